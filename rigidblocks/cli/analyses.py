@@ -1,0 +1,99 @@
+"""``check``, ``friction`` and ``load``: the analyses on a scene file."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+from typing import Any
+
+from ..errors import InputError
+from ..io import read_scene
+from ..problems import check, max_load_multiplier, min_friction
+
+
+def add_args(p: argparse.ArgumentParser, name: str) -> None:
+    p.add_argument("scene", help="scene file (JSON, see docs/scene-format.md)")
+    if name in ("check", "load"):
+        p.add_argument("--friction", help='friction coefficient f, or "infinite" '
+                       "(default: the scene's)")
+    if name in ("check", "friction"):
+        p.add_argument("--load-factor", type=float, default=1.0,
+                       help="lambda multiplying the live loads (default 1)")
+    p.add_argument("--method", default="clarabel",
+                   help='"clarabel" (convex path, default) or "distortion"')
+    p.add_argument("--solver", default=None,
+                   help="back end of the convex path: clarabel, highs, scs, ecos, "
+                   "cvxpy-NAME")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+def run(args: argparse.Namespace) -> int:
+    scene = read_scene(args.scene)
+    if args.command == "check":
+        res = check(scene, friction=args.friction, load_factor=args.load_factor,
+                    method=args.method, solver=args.solver, state=False)
+    elif args.command == "friction":
+        res = min_friction(scene, load_factor=args.load_factor, method=args.method,
+                           solver=args.solver, state=False)
+    else:
+        res = max_load_multiplier(scene, friction=args.friction, method=args.method,
+                                  solver=args.solver, state=False)
+    out = res.to_dict()
+    if args.json:
+        print(json.dumps(_jsonable(out)))
+    else:
+        print(report(scene, res))
+    return 0
+
+
+def _jsonable(v: Any) -> Any:
+    if isinstance(v, float) and not math.isfinite(v):
+        return None if math.isnan(v) else ("infinite" if v > 0 else "-infinite")
+    if isinstance(v, dict):
+        return {k: _jsonable(x) for k, x in v.items()}
+    if isinstance(v, list | tuple):
+        return [_jsonable(x) for x in v]
+    return v
+
+
+def report(scene, res) -> str:
+    """A short human-readable table of a result."""
+    fu = scene.force_unit or "force units"
+    lines = [f"scene      {scene.name or scene.source}",
+             f"blocks     {len(scene.blocks)} ({int(scene.support_mask.sum())} supports), "
+             f"joints {res.contacts.n_joints}"]
+    d = res.to_dict()
+    if res.analysis == "check":
+        f = d["friction"]
+        lines.append(f"friction   {f if f is not None else '-'}   load factor {res.load_factor:g}")
+        lines.append(f"verdict    {'ADMISSIBLE' if res.admissible else 'NOT ADMISSIBLE'}")
+        if not res.admissible and math.isfinite(res.violation):
+            lines.append(f"violation  {res.violation:.4g} {fu} (smallest possible breach "
+                         "of the joint laws)")
+    elif res.analysis == "min_friction":
+        if res.status == "stable":
+            lines.append(f"f*         {res.friction_factor:.6g}   (friction angle "
+                         f"{res.friction_angle_deg:.4f} deg)")
+            gov = ", ".join(f"{a}-{b}" for a, b in res.governing_joints) or "-"
+            lines.append(f"governing  {gov}")
+        else:
+            lines.append("verdict    UNSTABLE: no friction suffices (hinging mechanism)")
+    else:
+        f = d["friction"]
+        lines.append(f"friction   {f}")
+        if res.status == "collapse":
+            lines.append(f"lambda*    {res.load_multiplier:.6g}")
+            mech = d.get("mechanism", {})
+            for key in ("hinges", "sliding", "open"):
+                vals = ", ".join(f"{a}-{b}" for a, b in mech.get(key, [])) or "-"
+                lines.append(f"{key:<10} {vals}")
+        elif res.status == "unbounded":
+            lines.append("verdict    UNBOUNDED: no multiplier of the live load makes it collapse")
+        else:
+            lines.append("verdict    UNSTABLE: the dead load alone has no admissible state")
+    lines.append(f"solver     {res.solver}, {res.n_solves} solve(s), {res.solve_time:.3g} s")
+    return "\n".join(lines)
+
+
+__all__ = ["add_args", "run", "report", "InputError"]

@@ -1,0 +1,66 @@
+"""Command line: ``rigidblocks COMMAND ...``.
+
+Each command is a module in this package with ``add_args(parser)`` and
+``run(args) -> int``; this module only wires them up and turns errors into exit codes:
+0 when the analysis ran (whatever its verdict), 2 for bad input or usage (one line on
+standard error naming the file, block or key), 1 for a solver failure.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from collections.abc import Sequence
+
+from ..errors import InputError, SolverFailure
+
+#: command name -> (module, one-line help)
+COMMANDS: dict[str, tuple[str, str]] = {
+    "check": ("analyses", "is there an admissible equilibrium state?"),
+    "friction": ("analyses", "minimum friction coefficient and angle, governing joints"),
+    "load": ("analyses", "maximum load multiplier and collapse mechanism"),
+}
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str):  # usage errors: one line, exit 2
+        raise InputError(f"{self.prog}: {message}")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="rigidblocks", description="Limit analysis of rigid-block "
+                     "masonry with unilateral frictional joints.")
+    from .. import __version__
+
+    parser.add_argument("--version", action="version", version=f"rigidblocks {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    for name, (module, help_) in COMMANDS.items():
+        mod = importlib.import_module(f"{__package__}.{module}")
+        p = sub.add_parser(name, help=help_, description=help_)
+        mod.add_args(p, name)
+        p.set_defaults(_run=mod.run)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the CLI; returns the exit status."""
+    try:
+        parser = build_parser()
+        args = parser.parse_args(argv)
+        if not getattr(args, "_run", None):
+            parser.print_help()
+            return 2
+        return int(args._run(args) or 0)
+    except InputError as err:
+        print(f"rigidblocks: error: {err}", file=sys.stderr)
+        return 2
+    except SolverFailure as err:
+        print(f"rigidblocks: solver failure: {err}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:  # pragma: no cover
+        return 130
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

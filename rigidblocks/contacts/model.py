@@ -1,0 +1,75 @@
+"""Joints between blocks: contact points, local frames, areas and joint laws."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True, eq=False)
+class Contacts:
+    """Every joint of a scene, as flat arrays (dimension-generic).
+
+    A joint is one contact segment (2D) or polygon (3D) between blocks ``pairs[k, 0]``
+    (i) and ``pairs[k, 1]`` (j). Its unit normal points from i into j; in 2D its tangent
+    is ``s = (-n_y, n_x)``, in 3D it has two tangents. The contact points of joint k are
+    ``points[joint_start[k]:joint_start[k + 1]]``: the two end points of the segment in
+    2D, the vertices of the contact polygon in 3D.
+
+    Attributes:
+        pairs: (m, 2) block indices into ``scene.blocks``.
+        normals: (m, d) unit normals from i into j.
+        tangents: (m, d - 1, d) unit tangents.
+        points: (P, d) contact points.
+        joint_start: (m + 1,) offsets of each joint's points.
+        areas: (m,) contact area (2D: segment length x depth).
+        lengths: (m,) segment length (2D) or square root of the polygon's area (3D).
+        override_friction: (m,) the joint's own friction from a scene override; NaN
+            where the joint takes the uniform (scene or analysis) value; inf is
+            "infinite".
+        cohesion: (m,) cohesion (stress) of each joint.
+        tensile_strength: (m,) tensile strength (stress) of each joint.
+        block_ids: ids of the scene's blocks, for messages and reports.
+    """
+
+    dimension: int
+    pairs: np.ndarray
+    normals: np.ndarray
+    tangents: np.ndarray
+    points: np.ndarray
+    joint_start: np.ndarray
+    areas: np.ndarray
+    lengths: np.ndarray
+    override_friction: np.ndarray
+    cohesion: np.ndarray
+    tensile_strength: np.ndarray
+    block_ids: tuple[str, ...]
+
+    @property
+    def n_joints(self) -> int:
+        return len(self.pairs)
+
+    @property
+    def n_points(self) -> int:
+        return len(self.points)
+
+    @property
+    def point_joint(self) -> np.ndarray:
+        """(P,) the joint of each contact point."""
+        return np.repeat(np.arange(self.n_joints), np.diff(self.joint_start))
+
+    @property
+    def point_areas(self) -> np.ndarray:
+        """(P,) each point's share of its joint's area (equal shares)."""
+        counts = np.diff(self.joint_start)
+        return np.repeat(self.areas / counts, counts)
+
+    def block_pairs_ids(self) -> list[tuple[str, str]]:
+        """(id_i, id_j) of every joint."""
+        ids = self.block_ids
+        return [(ids[a], ids[b]) for a, b in self.pairs]
+
+    def joint_label(self, k: int) -> str:
+        a, b = self.pairs[k]
+        return f"{self.block_ids[a]}-{self.block_ids[b]}"

@@ -1,0 +1,332 @@
+"""Reading and writing scene files (format ``rigidblocks-scene``, version 1).
+
+The format is specified in ``docs/scene-format.md``. The reader is strict: every key is
+checked, unknown keys are errors, and every error is one line naming the file and the
+block id or key at fault. The writer emits a canonical layout (one block, load or joint
+per line) that the reader reads back to an equal scene, so that
+``write(read(file)) == file`` for files the writer made.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+from typing import Any
+
+from ..errors import InputError
+from ..scene.model import INFINITE, Block, JointOverride, Load, Scene, Units
+
+FORMAT = "rigidblocks-scene"
+VERSION = 1
+
+TOP_KEYS = {"format", "version", "name", "dimension", "units", "depth", "unit_weight",
+            "friction", "blocks", "loads", "live_body_force", "joints"}
+TOP_REQUIRED = ("format", "version", "dimension", "blocks")
+BLOCK_KEYS = {"id", "vertices", "faces", "support", "unit_weight"}
+LOAD_KEYS = {"block", "force", "point", "moment", "live"}
+JOINT_KEYS = {"blocks", "friction", "cohesion", "tensile_strength"}
+UNIT_KEYS = {"length", "force"}
+
+
+# -- small strict parsers -------------------------------------------------------------
+def _is_number(v: Any) -> bool:
+    return isinstance(v, int | float) and not isinstance(v, bool)
+
+
+def _number(v: Any, where: str, *, minimum: float | None = None, positive: bool = False):
+    if not _is_number(v):
+        raise InputError(f"expected a number, got {json.dumps(v)}", where)
+    if not math.isfinite(v):
+        raise InputError(f"expected a finite number, got {v}", where)
+    if positive and not v > 0:
+        raise InputError(f"must be > 0, got {v}", where)
+    if minimum is not None and v < minimum:
+        raise InputError(f"must be >= {minimum:g}, got {v}", where)
+    return v
+
+
+def _vector(v: Any, n: int, where: str) -> tuple:
+    if not isinstance(v, list) or len(v) != n:
+        raise InputError(f"expected a list of {n} numbers, got {json.dumps(v)}", where)
+    return tuple(_number(c, where) for c in v)
+
+
+def _friction(v: Any, where: str):
+    if v == INFINITE:
+        return INFINITE
+    if isinstance(v, str):
+        raise InputError(f'expected a number >= 0 or "infinite", got "{v}"', where)
+    return _number(v, where, minimum=0)
+
+
+def _bool(v: Any, where: str) -> bool:
+    if not isinstance(v, bool):
+        raise InputError(f"expected true or false, got {json.dumps(v)}", where)
+    return v
+
+
+def _string(v: Any, where: str) -> str:
+    if not isinstance(v, str):
+        raise InputError(f"expected a string, got {json.dumps(v)}", where)
+    return v
+
+
+def _keys(obj: Any, allowed: set[str], required: tuple[str, ...], where: str) -> dict:
+    if not isinstance(obj, dict):
+        raise InputError(f"expected an object, got {json.dumps(obj)[:40]}", where)
+    for k in obj:
+        if k not in allowed:
+            raise InputError(f'unknown key "{k}" (allowed: {", ".join(sorted(allowed))})',
+                             where)
+    for k in required:
+        if k not in obj:
+            raise InputError(f'missing key "{k}"', where)
+    return obj
+
+
+def _reject_constant(name: str) -> None:
+    raise InputError(f"{name} is not a number in a scene file")
+
+
+# -- reading --------------------------------------------------------------------------
+def scene_from_dict(doc: Any, source: str | None = None, *, validate: bool = True) -> Scene:
+    """Build a :class:`Scene` from a parsed JSON document, checking every key.
+
+    With ``validate`` (the default) the geometry is checked too (simple polygons, no
+    overlaps, supports present, joint overrides on touching blocks): see
+    :func:`rigidblocks.scene.validate.validate_scene`.
+    """
+    try:
+        scene = _parse(doc, source)
+        if validate:
+            from ..scene.validate import validate_scene
+
+            validate_scene(scene)
+    except InputError as err:
+        raise err.located(source) if source else err
+    return scene
+
+
+def _parse(doc: Any, source: str | None) -> Scene:
+    top = _keys(doc, TOP_KEYS, TOP_REQUIRED, "scene")
+    if top["format"] != FORMAT:
+        raise InputError(f'"format" must be "{FORMAT}", got {json.dumps(top["format"])}')
+    if top["version"] != VERSION or isinstance(top["version"], bool):
+        raise InputError(f'unsupported "version" {json.dumps(top["version"])} '
+                         f"(this reader knows version {VERSION})")
+    dim = top["dimension"]
+    if dim not in (2, 3) or isinstance(dim, bool):
+        raise InputError(f'"dimension" must be 2 or 3, got {json.dumps(dim)}')
+    name = _string(top["name"], '"name"') if "name" in top else None
+    units = None
+    if "units" in top:
+        u = _keys(top["units"], UNIT_KEYS, (), '"units"')
+        units = Units(*(_string(u[k], f'"units.{k}"') if k in u else None
+                        for k in ("length", "force")))
+    depth = None
+    if "depth" in top:
+        if dim == 3:
+            raise InputError('"depth" is for 2D scenes only')
+        depth = _number(top["depth"], '"depth"', positive=True)
+    unit_weight = (_number(top["unit_weight"], '"unit_weight"', minimum=0)
+                   if "unit_weight" in top else None)
+    friction = _friction(top["friction"], '"friction"') if "friction" in top else None
+    lbf = (_vector(top["live_body_force"], dim, '"live_body_force"')
+           if "live_body_force" in top else None)
+
+    if not isinstance(top["blocks"], list):
+        raise InputError('"blocks" must be a list of blocks')
+    blocks = tuple(_parse_block(b, i, dim) for i, b in enumerate(top["blocks"]))
+    loads = tuple(_parse_load(ld, i, dim) for i, ld in enumerate(_list(top, "loads")))
+    joints = tuple(_parse_joint(j, i) for i, j in enumerate(_list(top, "joints")))
+    return Scene(dimension=dim, blocks=blocks, loads=loads, joints=joints, name=name,
+                 units=units, depth=depth, unit_weight=unit_weight, friction=friction,
+                 live_body_force=lbf, source=source)
+
+
+def _list(top: dict, key: str) -> list:
+    v = top.get(key, [])
+    if not isinstance(v, list):
+        raise InputError(f'"{key}" must be a list')
+    return v
+
+
+def _parse_block(b: Any, i: int, dim: int) -> Block:
+    where = f"block #{i}"
+    if isinstance(b, dict) and isinstance(b.get("id"), str):
+        where = f"block '{b['id']}'"
+    b = _keys(b, BLOCK_KEYS, ("id", "vertices"), where)
+    bid = _string(b["id"], f'{where} "id"')
+    if bid == "":
+        raise InputError('"id" must not be empty', where)
+    verts = b["vertices"]
+    if not isinstance(verts, list):
+        raise InputError('"vertices" must be a list of points', where)
+    minimum = 3 if dim == 2 else 4
+    if len(verts) < minimum:
+        raise InputError(f"needs at least {minimum} vertices, got {len(verts)}", where)
+    vertices = tuple(_vector(v, dim, f'{where} "vertices"[{k}]') for k, v in enumerate(verts))
+    faces = None
+    if "faces" in b:
+        if dim == 2:
+            raise InputError('"faces" is for 3D blocks only', where)
+        faces = _parse_faces(b["faces"], len(vertices), where)
+    elif dim == 3:
+        raise InputError('missing key "faces" (required for 3D blocks)', where)
+    support = _bool(b["support"], f'{where} "support"') if "support" in b else None
+    uw = (_number(b["unit_weight"], f'{where} "unit_weight"', minimum=0)
+          if "unit_weight" in b else None)
+    return Block(bid, vertices, faces, bool(support), uw)
+
+
+def _parse_faces(faces: Any, nv: int, where: str) -> tuple[tuple[int, ...], ...]:
+    if not isinstance(faces, list) or len(faces) < 4:
+        raise InputError('"faces" must be a list of at least 4 faces', where)
+    out = []
+    for k, f in enumerate(faces):
+        ok = isinstance(f, list) and len(f) >= 3 and all(
+            isinstance(i, int) and not isinstance(i, bool) and 0 <= i < nv for i in f)
+        if not ok:
+            raise InputError(f'"faces"[{k}] must list at least 3 vertex indices in 0..{nv - 1}',
+                             where)
+        out.append(tuple(f))
+    return tuple(out)
+
+
+def _parse_load(ld: Any, i: int, dim: int) -> Load:
+    where = f"load #{i}"
+    ld = _keys(ld, LOAD_KEYS, ("block", "force"), where)
+    block = _string(ld["block"], f'{where} "block"')
+    where = f"load #{i} on block '{block}'"
+    force = _vector(ld["force"], dim, f'{where} "force"')
+    point = _vector(ld["point"], dim, f'{where} "point"') if "point" in ld else None
+    moment = None
+    if "moment" in ld:
+        moment = (_number(ld["moment"], f'{where} "moment"') if dim == 2
+                  else _vector(ld["moment"], 3, f'{where} "moment"'))
+    live = _bool(ld["live"], f'{where} "live"') if "live" in ld else None
+    return Load(block, force, point, moment, live)
+
+
+def _parse_joint(j: Any, i: int) -> JointOverride:
+    where = f"joint #{i}"
+    j = _keys(j, JOINT_KEYS, ("blocks",), where)
+    pair = j["blocks"]
+    if not (isinstance(pair, list) and len(pair) == 2 and all(isinstance(s, str) for s in pair)):
+        raise InputError('"blocks" must be a list of two block ids', where)
+    if pair[0] == pair[1]:
+        raise InputError(f"a joint needs two different blocks, got '{pair[0]}' twice", where)
+    where = f"joint '{pair[0]}'-'{pair[1]}'"
+    friction = _friction(j["friction"], f'{where} "friction"') if "friction" in j else None
+    coh = (_number(j["cohesion"], f'{where} "cohesion"', minimum=0)
+           if "cohesion" in j else None)
+    ts = (_number(j["tensile_strength"], f'{where} "tensile_strength"', minimum=0)
+          if "tensile_strength" in j else None)
+    return JointOverride((pair[0], pair[1]), friction, coh, ts)
+
+
+def loads_json(text: str, source: str | None = None) -> Any:
+    """Parse JSON text strictly (no NaN/Infinity literals); errors are InputError."""
+    try:
+        return json.loads(text, parse_constant=_reject_constant)
+    except json.JSONDecodeError as err:
+        raise InputError(f"malformed JSON: {err.msg} at line {err.lineno} column {err.colno}",
+                         source) from None
+    except InputError as err:
+        raise err.located(source) if source else err
+
+
+def read_scene(path: str | os.PathLike, *, validate: bool = True) -> Scene:
+    """Read and validate a scene file.
+
+    Raises:
+        InputError: with a one-line message naming the file and the block or key at
+            fault.
+    """
+    name = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputError("no such file", name) from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise InputError(f"cannot read: {err}", name) from None
+    return scene_from_dict(loads_json(text, name), name, validate=validate)
+
+
+# -- writing --------------------------------------------------------------------------
+def scene_to_dict(scene: Scene) -> dict:
+    """The scene as a JSON-ready dict, optional keys only where they were given."""
+    doc: dict[str, Any] = {"format": FORMAT, "version": VERSION}
+    if scene.name is not None:
+        doc["name"] = scene.name
+    doc["dimension"] = scene.dimension
+    if scene.units is not None:
+        doc["units"] = {k: v for k, v in (("length", scene.units.length),
+                                          ("force", scene.units.force)) if v is not None}
+    for key in ("depth", "unit_weight", "friction"):
+        if getattr(scene, key) is not None:
+            doc[key] = getattr(scene, key)
+    doc["blocks"] = [_block_dict(b) for b in scene.blocks]
+    if scene.loads:
+        doc["loads"] = [_drop_none({"block": ld.block, "force": list(ld.force),
+                                    "point": _maybe_list(ld.point),
+                                    "moment": _maybe_list(ld.moment), "live": ld.live})
+                        for ld in scene.loads]
+    if scene.live_body_force is not None:
+        doc["live_body_force"] = list(scene.live_body_force)
+    if scene.joints:
+        doc["joints"] = [_drop_none({"blocks": list(j.blocks), "friction": j.friction,
+                                     "cohesion": j.cohesion,
+                                     "tensile_strength": j.tensile_strength})
+                         for j in scene.joints]
+    return doc
+
+
+def _maybe_list(v):
+    return list(v) if isinstance(v, tuple) else v
+
+
+def _drop_none(d: dict) -> dict:
+    return {k: v for k, v in d.items() if v is not None}
+
+
+def _block_dict(b: Block) -> dict:
+    d: dict[str, Any] = {"id": b.id, "vertices": [list(v) for v in b.vertices]}
+    if b.faces is not None:
+        d["faces"] = [list(f) for f in b.faces]
+    if b.support:
+        d["support"] = True
+    if b.unit_weight is not None:
+        d["unit_weight"] = b.unit_weight
+    return d
+
+
+def dumps_scene(scene: Scene) -> str:
+    """The canonical text of a scene file: one block, load or joint per line."""
+    doc = scene_to_dict(scene)
+    lines = ["{"]
+    items = list(doc.items())
+    for k, (key, value) in enumerate(items):
+        comma = "," if k < len(items) - 1 else ""
+        if isinstance(value, list) and value and isinstance(value[0], dict):
+            lines.append(f"  {json.dumps(key)}: [")
+            for m, item in enumerate(value):
+                c = "," if m < len(value) - 1 else ""
+                lines.append(f"    {_compact(item)}{c}")
+            lines.append(f"  ]{comma}")
+        else:
+            lines.append(f"  {json.dumps(key)}: {_compact(value)}{comma}")
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+def _compact(value: Any) -> str:
+    return json.dumps(value, separators=(", ", ": "), allow_nan=False)
+
+
+def write_scene(scene: Scene, path: str | os.PathLike) -> None:
+    """Write a scene file in the canonical layout (see :func:`dumps_scene`)."""
+    Path(path).write_text(dumps_scene(scene), encoding="utf-8")
+

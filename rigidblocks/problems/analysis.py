@@ -1,0 +1,469 @@
+"""The analyses: admissibility, minimum friction and maximum load multiplier.
+
+Each function takes a scene, builds the problem (:mod:`.formulation`), hands it to a
+back end (:mod:`rigidblocks.solvers`) and returns an immutable result
+(:mod:`rigidblocks.results`). Solver failures raise
+:class:`~rigidblocks.errors.SolverFailure`; "no admissible state" is a status.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..contacts import Contacts
+from ..equilibrium import EquilibriumSystem, assemble
+from ..errors import InputError, SolverFailure
+from ..results import CheckResult, ForceState, FrictionResult, LoadResult, Mechanism
+from ..scene.model import INFINITE, Scene
+from ..solvers import INFEASIBLE, OPTIMAL, UNBOUNDED, SolverResult, solve
+from .formulation import (Scaling, build_energy_qp, build_max_load, build_relaxation)
+
+#: a relaxation below this (in units of the reference force) counts as zero
+ADMISSIBLE_TOL = 1e-9
+RELAX_ZERO = ADMISSIBLE_TOL
+#: solver tolerances for the relaxation problems (tight: R decides verdicts near 0)
+RELAX_SETTINGS = {"tol_gap_abs": 1e-10, "tol_gap_rel": 1e-10, "tol_feas": 1e-10}
+#: relative accuracy of the minimum friction
+FRICTION_RTOL = 1e-7
+METHODS = ("clarabel", "distortion")
+#: slack (reference-force units) granted to the force-state QP at a limit state, where
+#: the admissible set shrinks to a point and round-off would make it empty
+STATE_SLACK = 1e-9
+
+
+# -- shared plumbing ------------------------------------------------------------------
+def resolve_friction(scene: Scene, friction: Any) -> float:
+    """The uniform friction coefficient to use (``math.inf`` for "infinite")."""
+    f = scene.effective_friction if friction is None else friction
+    if isinstance(f, str):
+        if f.strip().lower() in ("infinite", "inf"):
+            return math.inf
+        try:
+            f = float(f)
+        except ValueError:
+            raise InputError(f'friction must be a number >= 0 or "infinite", got {f!r}') \
+                from None
+    f = float(f)
+    if not (f >= 0):
+        raise InputError(f"friction must be >= 0, got {f}")
+    return f
+
+
+def friction_label(f: float) -> Any:
+    return INFINITE if math.isinf(f) else f
+
+
+def split_method(method: str, solver: str | None) -> tuple[str, str]:
+    """(path, solver) from the ``method`` and ``solver`` arguments."""
+    m = method.lower()
+    if m == "distortion":
+        return "distortion", "distortion"
+    if m in ("clarabel", "convex"):
+        return "convex", (solver or "clarabel")
+    from ..solvers import SOLVERS
+
+    if m in SOLVERS or m.startswith("cvxpy-"):
+        return "convex", m
+    raise InputError(f"unknown method {method!r} (choose from {', '.join(METHODS)}, or a "
+                     "solver name for the convex path)")
+
+
+@dataclass
+class _Context:
+    scene: Scene
+    system: EquilibriumSystem
+    scaling: Scaling
+    solver: str
+    settings: dict
+    n_solves: int = 0
+    solve_time: float = 0.0
+    iterations: int = 0
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def contacts(self) -> Contacts:
+        return self.system.contacts
+
+    def f_joint(self, f_uniform: float) -> np.ndarray:
+        o = self.contacts.override_friction
+        return np.where(np.isnan(o), f_uniform, o)
+
+    @property
+    def uniform(self) -> np.ndarray:
+        return np.isnan(self.contacts.override_friction)
+
+    def run(self, problem, what: str, tight: bool = False) -> SolverResult:
+        settings = self.settings
+        if tight and self.solver == "clarabel":
+            settings = {**RELAX_SETTINGS, **self.settings}
+        res = solve(problem, self.solver, **settings)
+        if res.status not in (OPTIMAL, INFEASIBLE, UNBOUNDED) and settings is not self.settings:
+            # the tight tolerances were out of reach: the solver's defaults decide
+            self.n_solves += 1
+            self.solve_time += res.solve_time
+            self.iterations += res.iterations
+            res = solve(problem, self.solver, **self.settings)
+        self.n_solves += 1
+        self.solve_time += res.solve_time
+        self.iterations += res.iterations
+        if res.status not in (OPTIMAL, INFEASIBLE, UNBOUNDED):
+            raise SolverFailure(f"{res.solver} could not solve the {what} problem of "
+                                f"{self.scene.source or 'the scene'}: status "
+                                f"{res.raw_status}", res.solver, res.raw_status)
+        return res
+
+    def common(self, analysis: str, status: str, friction: Any, load_factor: float | None):
+        return dict(analysis=analysis, status=status, friction=friction,
+                    load_factor=load_factor, contacts=self.contacts, solver=self.solver,
+                    n_solves=self.n_solves, solve_time=self.solve_time,
+                    iterations=self.iterations,
+                    units=(self.scene.length_unit, self.scene.force_unit),
+                    notes=tuple(self.notes))
+
+
+def _context(scene: Scene, solver: str, settings: dict | None) -> _Context:
+    system = assemble(scene)
+    return _Context(scene, system, Scaling.of(system), solver, dict(settings or {}))
+
+
+# -- relaxation ----------------------------------------------------------------------
+def _relaxation(ctx: _Context, f_uniform: float, load_factor: float):
+    """R(f) and dR/df (from the duals of the friction rows of the uniform joints)."""
+    fj = ctx.f_joint(f_uniform)
+    prob, jr = build_relaxation(ctx.system, ctx.scaling, fj, load_factor)
+    res = ctx.run(prob, "relaxation", tight=True)
+    if res.status != OPTIMAL:
+        return None, 0.0, res, jr, prob
+    z, y = res.z, res.y
+    R = max(float(z[prob.cols["r"]][0]), 0.0)
+    head = prob.rows["joints"].start + jr.fric_head
+    uni = ctx.uniform[jr.fric_joint]
+    nsum = jr.fric_nsum @ z
+    slope = float(np.sum(y[head][uni] * nsum[uni]))
+    return R, slope, res, jr, prob
+
+
+def _state(ctx: _Context, f_uniform: float, load_factor: float, relax: float,
+           method: str = "least complementary energy") -> ForceState:
+    """The admissible state of least complementary energy (a QP)."""
+    prob = build_energy_qp(ctx.system, ctx.scaling, ctx.f_joint(f_uniform), load_factor,
+                           relax)
+    res = ctx.run(prob, "force-state")
+    if res.status != OPTIMAL:
+        raise SolverFailure(f"the force-state problem has status {res.raw_status} although "
+                            "an admissible state exists", res.solver, res.raw_status)
+    return force_state(ctx.system, res.z[prob.cols["x"]] * ctx.scaling.force, method)
+
+
+def force_state(system: EquilibriumSystem, x: np.ndarray, method: str) -> ForceState:
+    """Joint resultants, eccentricities and the thrust line of link forces ``x``."""
+    c = system.contacts
+    lay = system.layout
+    pj = c.point_joint
+    m = c.n_joints
+    N = x[lay.normal]
+    Nj = np.bincount(pj, N, minlength=m)
+    d = c.dimension
+    if d == 2:
+        if lay.shear == "joint":
+            Tj = x[lay.tangential]
+            share = np.where(Nj[pj] > 0, N / np.where(Nj[pj] > 0, Nj[pj], 1.0),
+                             1.0 / np.diff(c.joint_start)[pj])
+            T = Tj[pj] * share
+        else:
+            T = x[lay.tangential]
+            Tj = np.bincount(pj, T, minlength=m)
+        mid = 0.5 * (c.points[c.joint_start[:-1]] + c.points[c.joint_start[1:] - 1])
+        s = c.tangents[:, 0, :]
+        arm = np.einsum("ij,ij->i", c.points - mid[pj], s[pj])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ecc = np.bincount(pj, N * arm, minlength=m) / Nj
+        ecc = np.where(np.abs(Nj) > 0, ecc, np.nan)
+        thrust = mid + np.nan_to_num(ecc)[:, None] * s
+        Tabs = np.abs(Tj)
+    else:
+        T = x[lay.tangential].reshape(-1, 2)
+        Tvec = np.zeros((m, 3))
+        for k in range(2):
+            np.add.at(Tvec, pj, T[:, k:k + 1] * c.tangents[pj, k, :])
+        Tabs = np.linalg.norm(Tvec, axis=1)
+        Tj = Tabs
+        with np.errstate(invalid="ignore", divide="ignore"):
+            centre = np.stack([np.bincount(pj, N * c.points[:, k], minlength=m)
+                               for k in range(3)], axis=1) / Nj[:, None]
+        ecc = np.full(m, np.nan)
+        thrust = np.where(np.isfinite(centre), centre, 0.0)
+    scale = max(float(np.abs(Nj).max(initial=0.0)), 1e-300)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        demand = np.where(Nj > 1e-12 * scale, Tabs / np.where(Nj > 0, Nj, 1.0),
+                          np.where(Tabs > 1e-12 * scale, np.inf, 0.0))
+    return ForceState(normal=N, shear=T, joint_normal=Nj, joint_shear=Tj, eccentricity=ecc,
+                      demand=demand, thrust_points=thrust,
+                      thrust_order=chain_order(system), method=method)
+
+
+def chain_order(system: EquilibriumSystem) -> np.ndarray:
+    """Joints in order along the structure when the blocks form a chain (an arch).
+
+    A chain: every free block has exactly two joints, to different neighbours, and the
+    walk from a support reaches every joint. Otherwise joints keep detection order.
+    """
+    c = system.contacts
+    m = c.n_joints
+    fallback = np.arange(m)
+    free = system.block_rows >= 0
+    deg = np.bincount(c.pairs.ravel(), minlength=len(free))
+    if m == 0 or np.any(deg[free] != 2):
+        return fallback
+    by_block: dict[int, list[int]] = {}
+    for k, (a, b) in enumerate(c.pairs):
+        by_block.setdefault(int(a), []).append(k)
+        by_block.setdefault(int(b), []).append(k)
+    starts = [k for k in range(m) if not (free[c.pairs[k, 0]] and free[c.pairs[k, 1]])]
+    if not starts:
+        return fallback
+    k = starts[0]
+    a, b = c.pairs[k]
+    here = int(b) if free[b] else int(a)
+    order = [k]
+    used = {k}
+    while free[here]:
+        nxt = [j for j in by_block[here] if j not in used]
+        if len(nxt) != 1:
+            return fallback
+        k = nxt[0]
+        used.add(k)
+        order.append(k)
+        a, b = c.pairs[k]
+        here = int(b) if int(a) == here else int(a)
+    return np.array(order) if len(order) == m else fallback
+
+
+# -- check ---------------------------------------------------------------------------
+def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
+          method: str = "clarabel", *, solver: str | None = None, state: bool = True,
+          settings: dict | None = None) -> CheckResult:
+    """Is there an admissible equilibrium state under dead + load_factor x live?
+
+    Admissible: equilibrium of every free block with compression-only contacts (or
+    bounded tension where a joint has a tensile strength) and shear within the Coulomb
+    limit |T| <= f N + c A (static theorem of limit analysis).
+
+    Args:
+        scene: the structure.
+        friction: uniform friction coefficient (None: the scene's; "infinite":
+            Heyman's no-sliding hypothesis). Joints with an override keep theirs.
+        load_factor: lambda multiplying the live loads.
+        method: "clarabel" (convex path) or "distortion" (the iterative solver).
+        solver: back end of the convex path (see :func:`rigidblocks.solvers.solve`).
+        state: compute the force state (least complementary energy) when admissible.
+
+    Returns:
+        :class:`~rigidblocks.results.CheckResult` with status "admissible" or
+        "inadmissible".
+
+    Notes:
+        Posed as the relaxation R = min r over equilibrium states whose joint-law
+        violations are all <= r (r >= 0, forces scaled to order one); admissible iff
+        R <= 1e-7 of the reference force. The relaxation is always feasible when the
+        equilibrium equations can be met, so it avoids the degenerate feasibility
+        problems at the limit.
+    """
+    path, solver = split_method(method, solver)
+    f = resolve_friction(scene, friction)
+    if path == "distortion":
+        from ..solvers.distortion import check_distortion
+
+        return check_distortion(scene, f, float(load_factor), state=state)
+    ctx = _context(scene, solver, settings)
+    R, _, res, _, _ = _relaxation(ctx, f, float(load_factor))
+    if R is None:  # equilibrium equations cannot be met at all: a mechanism
+        ctx.notes.append("the equilibrium equations have no solution with these joints "
+                         "(the scene is a mechanism)")
+        ok, viol = False, math.inf
+    else:
+        ok, viol = R <= ADMISSIBLE_TOL, R * ctx.scaling.force
+    st = _state(ctx, f, float(load_factor), R + STATE_SLACK) if (ok and state) else None
+    return CheckResult(**ctx.common("check", "admissible" if ok else "inadmissible",
+                                    friction_label(f), float(load_factor)),
+                       state=st, admissible=ok, violation=0.0 if ok else viol)
+
+
+# -- minimum friction ------------------------------------------------------------------
+def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel", *,
+                 solver: str | None = None, state: bool = True, rtol: float = FRICTION_RTOL,
+                 settings: dict | None = None) -> FrictionResult:
+    """The smallest uniform friction coefficient f* that admits equilibrium.
+
+    Joints with their own friction override keep it. Status "unstable" (no number)
+    when even infinite friction admits no equilibrium: the structure fails by hinging.
+
+    Notes:
+        R(f), the smallest violation of the joint laws at friction f (see
+        :func:`check`), is zero for f >= f* and positive below. Starting from f = 0,
+        Newton steps f <- f + R(f) / (-dR/df) use the derivative from the duals of the
+        friction rows (dR/df = -sum_r y_r N_r, envelope theorem), with a bracket
+        [lower, upper] and bisection as a safeguard. Every step solves an always
+        feasible LP (SOCP in 3D); a few solves reach ``rtol``.
+    """
+    path, solver = split_method(method, solver)
+    lf = float(load_factor)
+    if path == "distortion":
+        from ..solvers.distortion import min_friction_distortion
+
+        return min_friction_distortion(scene, lf, state=state, rtol=rtol)
+    ctx = _context(scene, solver, settings)
+    if not ctx.uniform.any():
+        raise InputError("every joint has its own friction override: there is no uniform "
+                         "friction to minimise", scene.source)
+    R_inf, _, _, _, _ = _relaxation(ctx, math.inf, lf)
+    if R_inf is None or R_inf > RELAX_ZERO:
+        if R_inf is None:
+            ctx.notes.append("the equilibrium equations have no solution (mechanism)")
+        return FrictionResult(**ctx.common("min_friction", "unstable", None, lf))
+    lo, hi, R_hi = 0.0, math.inf, 0.0
+    R, slope, res, jr, prob = _relaxation(ctx, 0.0, lf)
+    if R is None:
+        raise SolverFailure("the relaxation at f = 0 has no solution although infinite "
+                            "friction has one", ctx.solver, res.raw_status)
+    last = None
+    if R <= RELAX_ZERO:
+        hi, R_hi = 0.0, R
+    else:
+        last = (res, jr, prob)
+    R_lo, s_lo = R, slope
+    probe_below_hi = True  # next time Newton lands on or past hi, probe just below hi
+    for _ in range(100):
+        if math.isfinite(hi) and hi - lo <= rtol * hi:
+            break
+        newton = lo + R_lo / s_lo if s_lo > 0 else math.inf
+        if math.isinf(hi):
+            trial = newton if math.isfinite(newton) else max(2.0 * lo, 1.0)
+            if trial - lo <= 0.5 * rtol * trial:
+                trial = trial * (1.0 + 0.5 * rtol)  # certify from above
+        elif lo < newton < hi * (1.0 - 0.5 * rtol):
+            trial = newton
+            if trial - lo <= 0.5 * rtol * trial:
+                trial = min(trial * (1.0 + 0.5 * rtol), hi * (1.0 - 0.25 * rtol))
+        elif probe_below_hi:
+            trial = hi * (1.0 - 0.5 * rtol)
+            probe_below_hi = False
+        else:
+            trial = 0.5 * (lo + hi)
+            probe_below_hi = True
+        R, slope, res, jr, prob = _relaxation(ctx, trial, lf)
+        if R is None:
+            raise SolverFailure("relaxation problem lost its solution", ctx.solver,
+                                res.raw_status)
+        if R > RELAX_ZERO:
+            lo, R_lo, s_lo = trial, R, slope
+            last = (res, jr, prob)
+        else:
+            hi, R_hi = trial, R
+    else:
+        raise SolverFailure("minimum friction did not converge in 100 solves", ctx.solver,
+                            "iteration limit")
+    fstar = hi
+    governing: tuple[int, ...] = ()
+    if last is not None:
+        res, jr, prob = last
+        head = prob.rows["joints"].start + jr.fric_head
+        w = res.y[head] * ctx.uniform[jr.fric_joint]
+        if w.size and w.max() > 0:
+            strong = w > 1e-3 * w.max()
+            governing = tuple(sorted({int(j) for j in jr.fric_joint[strong]}))
+    st = _state(ctx, fstar, lf, R_hi + STATE_SLACK) if state else None
+    return FrictionResult(**ctx.common("min_friction", "stable", fstar, lf), state=st,
+                          governing=governing, friction_factor=fstar,
+                          friction_angle_deg=math.degrees(math.atan(fstar)),
+                          lower=lo, upper=hi)
+
+
+# -- maximum load multiplier -------------------------------------------------------------
+def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clarabel", *,
+                        solver: str | None = None, state: bool = True,
+                        settings: dict | None = None) -> LoadResult:
+    """The largest multiplier lambda* of the live loads (associative friction).
+
+    Status "collapse" with lambda* and the collapse mechanism; "unbounded" when no
+    multiplier makes the structure collapse; "unstable" when the dead load alone has no
+    admissible state.
+
+    Notes:
+        One LP (SOCP in 3D): max lambda s.t. A x + F_dead + lambda F_live = 0 and the
+        joint laws. By LP duality the multipliers of the equilibrium rows are the
+        virtual velocities of a mechanism whose joint displacements satisfy the
+        associative flow rule (normal opening >= f |slip|) and in which the loads do
+        no net work (kinematic theorem).
+    """
+    if not scene.has_live_load:
+        raise InputError("the scene has no live load (no \"live\": true load and no "
+                         "live_body_force): there is nothing to multiply", scene.source)
+    path, solver = split_method(method, solver)
+    f = resolve_friction(scene, friction)
+    if path == "distortion":
+        from ..solvers.distortion import max_load_distortion
+
+        return max_load_distortion(scene, f, state=state)
+    ctx = _context(scene, solver, settings)
+    prob, jr = build_max_load(ctx.system, ctx.scaling, ctx.f_joint(f))
+    res = ctx.run(prob, "maximum load")
+    label = friction_label(f)
+    if res.status == UNBOUNDED:
+        return LoadResult(**ctx.common("max_load_multiplier", "unbounded", label, None))
+    if res.status == INFEASIBLE:
+        return LoadResult(**ctx.common("max_load_multiplier", "unstable", label, None))
+    lam = float(res.z[prob.cols["lambda"]][0])
+    if lam < -ADMISSIBLE_TOL:
+        ctx.notes.append(f"the largest admissible multiplier is negative ({lam:.6g}): the "
+                         "dead load alone is not admissible")
+        return LoadResult(**ctx.common("max_load_multiplier", "unstable", label, None))
+    mech = mechanism(ctx.system, ctx.scaling, res.y[prob.rows["equilibrium"]])
+    sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
+    st = _state(ctx, f, lam, STATE_SLACK) if state else None
+    return LoadResult(**ctx.common("max_load_multiplier", "collapse", label, lam), state=st,
+                      governing=sliding, load_multiplier=lam, mechanism=mech)
+
+
+def mechanism(system: EquilibriumSystem, scaling: Scaling, y_eq: np.ndarray) -> Mechanism:
+    """Virtual velocities from the duals of the (scaled) equilibrium rows."""
+    v = scaling.row * y_eq
+    if v @ system.live < 0:
+        v = -v
+    d = system.dofs
+    free = system.free_blocks
+    vb = v.reshape(-1, d)
+    nd = system.contacts.dimension
+    mag = np.linalg.norm(vb[:, :nd], axis=1) + np.linalg.norm(vb[:, nd:], axis=1) * \
+        system.sizes[free]
+    top = mag.max(initial=0.0)
+    if top > 0:
+        v = v / top
+    vel = np.zeros((len(system.block_rows), d))
+    vel[free] = v.reshape(-1, d)
+    delta = system.A.T @ v  # relative displacements at the links
+    lay = system.layout
+    c = system.contacts
+    opening = delta[lay.normal]
+    slip = delta[lay.tangential]
+    tol = 1e-6 * max(np.abs(delta).max(initial=0.0), 1e-300)
+    modes = []
+    for k in range(c.n_joints):
+        pts = slice(c.joint_start[k], c.joint_start[k + 1])
+        dn = opening[pts]
+        if lay.shear == "joint" and nd == 2:
+            ds = abs(slip[k])
+        else:
+            ds = float(np.abs(slip.reshape(len(opening), -1)[pts]).max())
+        uneven = dn.max() - dn.min() > tol
+        if ds > tol:
+            modes.append("slide+hinge" if uneven else "slide")
+        elif dn.max() > tol:
+            modes.append("hinge" if dn.min() <= tol else "open")
+        else:
+            modes.append("closed")
+    return Mechanism(velocities=vel, opening=opening, slip=slip, modes=tuple(modes))

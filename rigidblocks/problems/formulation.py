@@ -1,0 +1,271 @@
+"""The problem builder: equilibrium plus joint laws as standard-form conic problems.
+
+Given an :class:`~rigidblocks.equilibrium.EquilibriumSystem`, it poses (in the scaled
+variables described below)
+
+* the **relaxation** R(f, lambda) = min r such that an equilibrium state exists whose
+  joint forces violate no-tension and friction by at most r (r >= 0). R = 0 exactly
+  when the state is admissible (the static theorem's condition); R > 0 measures how far
+  from admissible it is. It is always feasible when the equilibrium equations can be
+  solved at all, so it is free of the degenerate feasibility problems met right at the
+  limit, and its duals give dR/df for the minimum-friction iteration.
+* the **maximum load multiplier** max lambda such that A x + F_dead + lambda F_live = 0
+  with admissible x; its duals on the equilibrium rows are the collapse mechanism.
+* the **force-state QP**: the admissible state of least complementary energy,
+  min 1/2 x'Cx, which picks one state out of the set of admissible ones.
+
+Joint laws (design.md): N_k >= -sigma_t a_k; 2D: |T_j| <= f_j sum_k N_k + c_j a_j per
+joint (or per point with one shear per point); 3D: ||(T1, T2)_k|| <= f_j N_k + c_j a_k, a
+second-order cone per contact point. ``f_j = inf`` (Heyman) leaves the shear free.
+
+Scaling: x is divided by a reference force F (the largest resultant load on one
+block), force rows are left as they are and each moment row is divided by its block's
+size, so that the numbers are of order one and a scene in mm and N gives the same
+problem as the same scene in m and kN.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..equilibrium import EquilibriumSystem
+from ..solvers.base import ConicProblem
+
+
+@dataclass(frozen=True, eq=False)
+class Scaling:
+    """x_scaled = x / force; equilibrium rows multiplied by ``row`` / force."""
+
+    force: float
+    row: np.ndarray
+
+    @classmethod
+    def of(cls, system: EquilibriumSystem) -> Scaling:
+        d = system.dofs
+        nf = system.n_rows // d if d else 0
+        sizes = system.sizes[system.free_blocks]
+        row = np.ones(system.n_rows)
+        if nf:
+            nforce = system.contacts.dimension
+            mom = np.zeros((nf, d), dtype=bool)
+            mom[:, nforce:] = True
+            row = np.where(mom, 1.0 / sizes[:, None], 1.0).ravel()
+        mags = []
+        for vec in (system.dead, system.live):
+            v = (vec * row).reshape(nf, d) if nf else np.zeros((0, d))
+            mags.append(np.abs(v).max() if v.size else 0.0)
+        force = max(mags)
+        if not np.isfinite(force) or force <= 0:
+            force = 1.0
+        return cls(force=float(force), row=row)
+
+
+@dataclass(frozen=True, eq=False)
+class JointRows:
+    """The no-tension and friction rows of the standard form, with bookkeeping.
+
+    ``G z + s = h`` with s >= 0 for the linear rows (and s in SOC for the 3D cones).
+    ``fric_head`` are the rows whose N coefficients are -f_j (one per friction
+    inequality or cone); ``fric_joint`` their joints; ``fric_nsum`` a sparse matrix
+    whose row r sums the normal forces in row ``fric_head[r]`` (for dR/df).
+    """
+
+    G_lin: sp.csr_matrix
+    h_lin: np.ndarray
+    G_soc: sp.csr_matrix
+    h_soc: np.ndarray
+    soc: tuple[int, ...]
+    n_normal_rows: int
+    fric_head: np.ndarray
+    fric_joint: np.ndarray
+    fric_nsum: sp.csr_matrix
+
+
+def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
+               n_cols: int, relax_col: int | None = None,
+               relax_rhs: float = 0.0) -> JointRows:
+    """Rows of the joint laws for friction coefficients ``f_joint`` (per joint).
+
+    ``relax_col`` adds -1 x that column to every row (the relaxation variable r);
+    ``relax_rhs`` adds a fixed relaxation to every right-hand side instead.
+    """
+    c = system.contacts
+    lay = system.layout
+    F = scaling.force
+    pj = c.point_joint
+    P = c.n_points
+    a_pt = c.point_areas
+    tens = c.tensile_strength[pj] * a_pt / F + relax_rhs
+    coh_joint = c.cohesion * c.areas / F
+    # -- no tension: -N_k (- r) <= sigma a_k
+    nrow = sp.coo_matrix((-np.ones(P), (np.arange(P), lay.normal.start + np.arange(P))),
+                         shape=(P, n_cols))
+    lin_blocks = [nrow]
+    h_parts = [tens]
+    finite = np.isfinite(f_joint)
+    soc_rows = None
+    h_soc = np.zeros(0)
+    soc: tuple[int, ...] = ()
+    t0 = lay.tangential.start
+    if c.dimension == 2:
+        if lay.shear == "joint":
+            # one inequality pair per joint: +-T_j - f_j (N_1 + N_2) <= c_j a_j
+            J = np.flatnonzero(finite)
+            nJ = len(J)
+            ptr = c.joint_start
+            cnt = ptr[J + 1] - ptr[J]
+            pts = np.concatenate([np.arange(ptr[j], ptr[j + 1]) for j in J]) if nJ else \
+                np.zeros(0, int)
+            owner = np.repeat(np.arange(nJ), cnt)
+            rows_n = np.concatenate([owner, owner + nJ])
+            cols_n = np.concatenate([pts, pts])
+            vals_n = -np.concatenate([f_joint[J][owner]] * 2)
+            rows_t = np.concatenate([np.arange(nJ), np.arange(nJ) + nJ])
+            cols_t = np.concatenate([t0 + J, t0 + J])
+            vals_t = np.concatenate([np.ones(nJ), -np.ones(nJ)])
+            G = sp.coo_matrix((np.concatenate([vals_n, vals_t]),
+                               (np.concatenate([rows_n, rows_t]),
+                                np.concatenate([cols_n, cols_t]))), shape=(2 * nJ, n_cols))
+            lin_blocks.append(G)
+            h_parts.append(np.concatenate([coh_joint[J], coh_joint[J]]) + relax_rhs)
+            fric_joint = np.concatenate([J, J])
+            nsum = sp.coo_matrix((np.ones(2 * len(pts)), (rows_n, cols_n)),
+                                 shape=(2 * nJ, n_cols)).tocsr()
+        else:
+            # one inequality pair per point: +-T_k - f_j N_k <= c_j a_k
+            K = np.flatnonzero(finite[pj])
+            nK = len(K)
+            r = np.arange(nK)
+            rows = np.concatenate([r, r + nK, r, r + nK])
+            cols = np.concatenate([K, K, t0 + K, t0 + K])
+            fk = f_joint[pj[K]]
+            vals = np.concatenate([-fk, -fk, np.ones(nK), -np.ones(nK)])
+            lin_blocks.append(sp.coo_matrix((vals, (rows, cols)), shape=(2 * nK, n_cols)))
+            hk = c.cohesion[pj[K]] * a_pt[K] / F
+            h_parts.append(np.concatenate([hk, hk]) + relax_rhs)
+            fric_joint = np.concatenate([pj[K], pj[K]])
+            nsum = sp.coo_matrix((np.ones(2 * nK), (np.concatenate([r, r + nK]),
+                                                    np.concatenate([K, K]))),
+                                 shape=(2 * nK, n_cols)).tocsr()
+        n_fric = len(fric_joint)
+        fric_head = P + np.arange(n_fric)
+    else:
+        # 3D: (f N_k + c a_k (+ r), T1_k, T2_k) in SOC(3) for points of finite-f joints
+        K = np.flatnonzero(finite[pj])
+        nK = len(K)
+        r = np.arange(nK) * 3
+        fk = f_joint[pj[K]]
+        rows = np.concatenate([r, r + 1, r + 2])
+        cols = np.concatenate([K, t0 + 2 * K, t0 + 2 * K + 1])
+        vals = np.concatenate([-fk, -np.ones(nK), -np.ones(nK)])
+        if relax_col is not None:
+            rows = np.concatenate([rows, r])
+            cols = np.concatenate([cols, np.full(nK, relax_col)])
+            vals = np.concatenate([vals, -np.ones(nK)])
+        soc_rows = sp.coo_matrix((vals, (rows, cols)), shape=(3 * nK, n_cols)).tocsr()
+        h_soc = np.zeros(3 * nK)
+        h_soc[r] = c.cohesion[pj[K]] * a_pt[K] / F + relax_rhs
+        soc = (3,) * nK
+        fric_joint = pj[K]
+        fric_head = None  # set below, after the linear rows are counted
+        nsum = sp.coo_matrix((np.ones(nK), (np.arange(nK), K)), shape=(nK, n_cols)).tocsr()
+    G_lin = sp.vstack(lin_blocks, format="csr")
+    h_lin = np.concatenate(h_parts)
+    if relax_col is not None:
+        extra = sp.coo_matrix((-np.ones(G_lin.shape[0]),
+                               (np.arange(G_lin.shape[0]),
+                                np.full(G_lin.shape[0], relax_col))), shape=G_lin.shape)
+        G_lin = (G_lin + extra).tocsr()
+    if soc_rows is None:
+        soc_rows = sp.csr_matrix((0, n_cols))
+    else:
+        fric_head = G_lin.shape[0] + np.arange(len(fric_joint)) * 3
+    return JointRows(G_lin=G_lin, h_lin=h_lin, G_soc=soc_rows, h_soc=h_soc, soc=soc,
+                     n_normal_rows=P, fric_head=fric_head, fric_joint=fric_joint,
+                     fric_nsum=nsum)
+
+
+def _equilibrium(system: EquilibriumSystem, scaling: Scaling) -> sp.csr_matrix:
+    return sp.diags(scaling.row) @ system.A.tocsr()
+
+
+def _stack(eq_A, eq_b, jr: JointRows, extra_lin=None, extra_h=None):
+    blocks = [eq_A]
+    rhs = [eq_b]
+    if extra_lin is not None:  # extra linear rows come first, before the joint rows
+        blocks.append(extra_lin)
+        rhs.append(extra_h)
+    blocks.append(jr.G_lin)
+    rhs.append(jr.h_lin)
+    blocks.append(jr.G_soc)
+    rhs.append(jr.h_soc)
+    A = sp.vstack(blocks, format="csc")
+    return A, np.concatenate(rhs)
+
+
+def build_relaxation(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
+                     load_factor: float) -> tuple[ConicProblem, JointRows]:
+    """min r  s.t.  equilibrium at ``load_factor``, joint laws relaxed by r, r >= 0."""
+    n = system.layout.size
+    nc = n + 1
+    Aeq = sp.hstack([_equilibrium(system, scaling), sp.csr_matrix((system.n_rows, 1))])
+    beq = -scaling.row * (system.dead + load_factor * system.live) / scaling.force
+    jr = joint_rows(system, scaling, f_joint, nc, relax_col=n)
+    r_nonneg = sp.coo_matrix(([-1.0], ([0], [n])), shape=(1, nc))
+    A, b = _stack(Aeq, beq, jr, r_nonneg, np.zeros(1))
+    cvec = np.zeros(nc)
+    cvec[n] = 1.0
+    ne, nl = system.n_rows, jr.G_lin.shape[0] + 1
+    prob = ConicProblem(c=cvec, A=A, b=b, n_eq=ne, n_nonneg=nl, soc=jr.soc,
+                        cols={"x": slice(0, n), "r": slice(n, n + 1)},
+                        rows={"equilibrium": slice(0, ne), "joints": slice(ne + 1, len(b))})
+    return prob, jr
+
+
+def build_max_load(system: EquilibriumSystem, scaling: Scaling,
+                   f_joint: np.ndarray) -> tuple[ConicProblem, JointRows]:
+    """max lambda  s.t.  A x + F_dead + lambda F_live = 0, joint laws."""
+    n = system.layout.size
+    nc = n + 1
+    live = (scaling.row * system.live / scaling.force)[:, None]
+    Aeq = sp.hstack([_equilibrium(system, scaling), sp.csr_matrix(live)])
+    beq = -scaling.row * system.dead / scaling.force
+    jr = joint_rows(system, scaling, f_joint, nc)
+    A, b = _stack(Aeq, beq, jr)
+    cvec = np.zeros(nc)
+    cvec[n] = -1.0
+    ne = system.n_rows
+    prob = ConicProblem(c=cvec, A=A, b=b, n_eq=ne, n_nonneg=jr.G_lin.shape[0], soc=jr.soc,
+                        cols={"x": slice(0, n), "lambda": slice(n, n + 1)},
+                        rows={"equilibrium": slice(0, ne), "joints": slice(ne, len(b))})
+    return prob, jr
+
+
+def flexibility(system: EquilibriumSystem) -> np.ndarray:
+    """Diagonal link flexibility C (scaled units): 1 per normal link and per shear link.
+
+    With one shear per 2D joint the shear link stands for the two point links in
+    parallel, so its flexibility is 1/2: both layouts then give the same state.
+    """
+    lay = system.layout
+    C = np.ones(lay.size)
+    if lay.shear == "joint" and system.contacts.dimension == 2:
+        C[lay.tangential] = 0.5
+    return C
+
+
+def build_energy_qp(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
+                    load_factor: float, relax: float = 0.0) -> ConicProblem:
+    """min 1/2 x'Cx  s.t.  equilibrium at ``load_factor``, joint laws relaxed by ``relax``."""
+    n = system.layout.size
+    Aeq = _equilibrium(system, scaling)
+    beq = -scaling.row * (system.dead + load_factor * system.live) / scaling.force
+    jr = joint_rows(system, scaling, f_joint, n, relax_rhs=relax)
+    A, b = _stack(Aeq, beq, jr)
+    P = sp.diags(flexibility(system), format="csc")
+    return ConicProblem(c=np.zeros(n), A=A, b=b, n_eq=system.n_rows,
+                        n_nonneg=jr.G_lin.shape[0], soc=jr.soc, P=P,
+                        cols={"x": slice(0, n)}, rows={"equilibrium": slice(0, system.n_rows)})

@@ -1,0 +1,180 @@
+"""The scene: blocks, supports, loads and joint laws as plain, validated data.
+
+Types are frozen dataclasses that keep the values exactly as they were given (so that a
+scene file round-trips); derived geometry (oriented polygons, areas, centroids) lives in
+:mod:`rigidblocks.scene.geometry`. The same types describe 2D blocks (polygons) and 3D
+blocks (convex polyhedra given by vertices and faces).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+from functools import cached_property
+from typing import Literal
+
+import numpy as np
+
+INFINITE = "infinite"
+Friction = float | Literal["infinite"]
+
+
+def friction_value(f: Friction) -> float:
+    """The friction coefficient as a float (``math.inf`` for ``"infinite"``)."""
+    return math.inf if f == INFINITE else float(f)
+
+
+@dataclass(frozen=True, eq=False)
+class Block:
+    """A rigid block.
+
+    Attributes:
+        id: unique name within the scene.
+        vertices: 2D polygon corners (either orientation, convex or not) or 3D
+            polyhedron corners, as given.
+        faces: 3D only: faces as tuples of vertex indices.
+        support: a support block is fixed and has no equilibrium equations.
+        unit_weight: overrides the scene's unit weight when not None.
+    """
+
+    id: str
+    vertices: tuple[tuple[float, ...], ...]
+    faces: tuple[tuple[int, ...], ...] | None = None
+    support: bool = False
+    unit_weight: float | None = None
+
+    @cached_property
+    def points(self) -> np.ndarray:
+        """The vertices as an (n, d) float array."""
+        return np.asarray(self.vertices, dtype=float)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Block) and (
+            self.id, self.vertices, self.faces, self.support, self.unit_weight
+        ) == (other.id, other.vertices, other.faces, other.support, other.unit_weight)
+
+    __hash__ = None  # type: ignore[assignment]
+
+
+@dataclass(frozen=True)
+class Load:
+    """A point load on a free block.
+
+    ``point`` None means the block's centroid. ``moment`` is a scalar couple in 2D and a
+    3-vector in 3D. A live load is multiplied by the load factor lambda.
+    """
+
+    block: str
+    force: tuple[float, ...]
+    point: tuple[float, ...] | None = None
+    moment: float | tuple[float, ...] | None = None
+    live: bool | None = None
+
+    @property
+    def is_live(self) -> bool:
+        return bool(self.live)
+
+
+@dataclass(frozen=True)
+class JointOverride:
+    """The law of the joint(s) between two blocks, overriding the scene's defaults.
+
+    ``friction`` None keeps the scene's f; cohesion and tensile strength are stresses
+    over the contact area (None means 0, a dry joint).
+    """
+
+    blocks: tuple[str, str]
+    friction: Friction | None = None
+    cohesion: float | None = None
+    tensile_strength: float | None = None
+
+
+@dataclass(frozen=True)
+class Units:
+    length: str | None = None
+    force: str | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class Scene:
+    """A rigid-block structure with its supports, loads and joint laws.
+
+    Optional scene-level values are kept as given (None when absent from the file);
+    the ``effective_*`` properties give the values that apply.
+    """
+
+    dimension: int
+    blocks: tuple[Block, ...]
+    loads: tuple[Load, ...] = ()
+    joints: tuple[JointOverride, ...] = ()
+    name: str | None = None
+    units: Units | None = None
+    depth: float | None = None
+    unit_weight: float | None = None
+    friction: Friction | None = None
+    live_body_force: tuple[float, ...] | None = None
+    # where the scene came from, for messages (a file name); not part of the scene
+    source: str | None = field(default=None, compare=False)
+
+    # -- effective values -------------------------------------------------------------
+    @property
+    def effective_depth(self) -> float:
+        return 1.0 if self.depth is None else float(self.depth)
+
+    @property
+    def effective_unit_weight(self) -> float:
+        return 0.0 if self.unit_weight is None else float(self.unit_weight)
+
+    @property
+    def effective_friction(self) -> Friction:
+        return INFINITE if self.friction is None else self.friction
+
+    @property
+    def length_unit(self) -> str:
+        return (self.units.length if self.units and self.units.length else "") or ""
+
+    @property
+    def force_unit(self) -> str:
+        return (self.units.force if self.units and self.units.force else "") or ""
+
+    # -- lookups ------------------------------------------------------------------
+    @cached_property
+    def index(self) -> dict[str, int]:
+        """Block id -> position in ``blocks``."""
+        return {b.id: i for i, b in enumerate(self.blocks)}
+
+    @cached_property
+    def support_mask(self) -> np.ndarray:
+        return np.array([b.support for b in self.blocks], dtype=bool)
+
+    def block(self, block_id: str) -> Block:
+        return self.blocks[self.index[block_id]]
+
+    @property
+    def has_live_load(self) -> bool:
+        lbf = self.live_body_force
+        body = lbf is not None and any(v != 0 for v in lbf)
+        return body or any(ld.is_live for ld in self.loads)
+
+    def with_changes(self, **changes: object) -> Scene:
+        """A copy with some fields replaced (scenes are immutable)."""
+        return replace(self, **changes)  # type: ignore[arg-type]
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Scene):
+            return NotImplemented
+        names = ("dimension", "blocks", "loads", "joints", "name", "units", "depth",
+                 "unit_weight", "friction", "live_body_force")
+        return all(getattr(self, n) == getattr(other, n) for n in names)
+
+    __hash__ = None  # type: ignore[assignment]
+
+
+def make_block(block_id: str, vertices: Sequence[Sequence[float]], *, support: bool = False,
+               unit_weight: float | None = None,
+               faces: Sequence[Sequence[int]] | None = None) -> Block:
+    """Convenience constructor that accepts lists or arrays."""
+    verts = tuple(tuple(float(c) for c in v) for v in np.asarray(vertices, dtype=float))
+    fcs = None if faces is None else tuple(tuple(int(i) for i in f) for f in faces)
+    return Block(block_id, verts, fcs, support, unit_weight)

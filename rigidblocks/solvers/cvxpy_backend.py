@@ -1,0 +1,82 @@
+"""Any conic solver installed for cvxpy (HiGHS, SCS, ECOS, Clarabel, ...), for cross-checks.
+
+The standard-form problem is handed to cvxpy as it is, so every solver sees the same
+formulation as the native Clarabel path.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..errors import InputError
+from .base import FAILURE, INFEASIBLE, OPTIMAL, UNBOUNDED, ConicProblem, SolverResult
+
+
+def installed_cvxpy_solvers() -> list[str]:
+    import cvxpy as cp
+
+    return list(cp.installed_solvers())
+
+
+def solve_cvxpy(problem: ConicProblem, solver: str, **options) -> SolverResult:
+    import cvxpy as cp
+
+    name = solver.upper()
+    if name not in cp.installed_solvers():
+        raise InputError(f"solver {solver!r} is not installed for cvxpy "
+                         f"(installed: {', '.join(cp.installed_solvers())})")
+    n = problem.n
+    z = cp.Variable(n)
+    A = problem.A.tocsr()
+    b = problem.b
+    ne, ni = problem.n_eq, problem.n_nonneg
+    cons = []
+    if ne:
+        cons.append(A[:ne] @ z == b[:ne])
+    if ni:
+        cons.append(A[ne:ne + ni] @ z <= b[ne:ne + ni])
+    start = ne + ni
+    for k in problem.soc:
+        # s = b - A z in SOC(k): s[0] >= ||s[1:]||
+        s = b[start:start + k] - A[start:start + k] @ z
+        cons.append(cp.SOC(s[0], s[1:]))
+        start += k
+    obj = problem.c @ z
+    if problem.P is not None and problem.P.nnz:
+        obj = obj + 0.5 * cp.quad_form(z, cp.psd_wrap(problem.P))
+    prob = cp.Problem(cp.Minimize(obj), cons)
+    t0 = time.perf_counter()
+    try:
+        prob.solve(solver=name, **options)
+    except cp.error.SolverError as err:
+        return SolverResult(FAILURE, None, None, np.nan, f"cvxpy-{name.lower()}", str(err),
+                            solve_time=time.perf_counter() - t0)
+    elapsed = time.perf_counter() - t0
+    raw = str(prob.status)
+    status = {cp.OPTIMAL: OPTIMAL, cp.INFEASIBLE: INFEASIBLE,
+              cp.UNBOUNDED: UNBOUNDED}.get(prob.status, FAILURE)
+    zz = y = None
+    if status == OPTIMAL:
+        zz = np.asarray(z.value)
+        parts = []
+        k = 0
+        if ne:
+            parts.append(-np.asarray(cons[k].dual_value).ravel())
+            k += 1
+        if ni:
+            parts.append(np.asarray(cons[k].dual_value).ravel())
+            k += 1
+        for size in problem.soc:
+            dv = cons[k].dual_value
+            parts.append(np.concatenate([np.ravel(dv[0]), np.ravel(dv[1])])
+                         if isinstance(dv, list) else np.zeros(size))
+            k += 1
+        y = np.concatenate(parts) if parts else np.zeros(0)
+    stats = prob.solver_stats
+    return SolverResult(status=status, z=zz, y=y,
+                        objective=float(prob.value) if prob.value is not None else np.nan,
+                        solver=f"cvxpy-{name.lower()}", raw_status=raw,
+                        iterations=int(getattr(stats, "num_iters", 0) or 0),
+                        solve_time=elapsed)

@@ -1,0 +1,38 @@
+"""OSQP for quadratic programs with linear constraints (the force-state QP)."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..errors import InputError
+from .base import FAILURE, INFEASIBLE, OPTIMAL, ConicProblem, SolverResult
+
+
+def solve_osqp(problem: ConicProblem, **settings) -> SolverResult:
+    import osqp
+
+    if problem.soc:
+        raise InputError("OSQP handles linear constraints only (no friction cones)")
+    n = problem.n
+    P = problem.P if problem.P is not None else sp.csc_matrix((n, n))
+    ne = problem.n_eq
+    lower = np.concatenate([problem.b[:ne], np.full(problem.n_nonneg, -np.inf)])
+    opts = dict(verbose=False, eps_abs=1e-9, eps_rel=1e-9, polishing=True,
+                max_iter=200000)
+    opts.update(settings)
+    t0 = time.perf_counter()
+    solver = osqp.OSQP()
+    solver.setup(P=sp.triu(P, format="csc"), q=problem.c, A=sp.csc_matrix(problem.A),
+                 l=lower, u=problem.b, **opts)
+    res = solver.solve()
+    elapsed = time.perf_counter() - t0
+    raw = str(res.info.status)
+    status = (OPTIMAL if raw == "solved" else INFEASIBLE if raw == "primal infeasible"
+              else FAILURE)
+    z = np.asarray(res.x) if status == OPTIMAL else None
+    y = np.asarray(res.y) if status == OPTIMAL else None
+    return SolverResult(status, z, y, float(res.info.obj_val), "osqp", raw,
+                        int(res.info.iter), elapsed)
