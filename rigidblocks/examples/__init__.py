@@ -1,0 +1,1 @@
+"""Parametric generators of standard structures (scenes built in code)."""
