@@ -20,19 +20,28 @@ from ..errors import InputError, SolverFailure
 from ..results import CheckResult, ForceState, FrictionResult, LoadResult, Mechanism
 from ..scene.model import INFINITE, Scene
 from ..solvers import INFEASIBLE, OPTIMAL, UNBOUNDED, SolverResult, solve
-from .formulation import (Scaling, build_energy_qp, build_max_load, build_relaxation)
+from .formulation import Scaling, build_energy_qp, build_max_load, build_relaxation
 
 #: a relaxation below this (in units of the reference force) counts as zero
 ADMISSIBLE_TOL = 1e-9
 RELAX_ZERO = ADMISSIBLE_TOL
 #: solver tolerances for the relaxation problems (tight: R decides verdicts near 0)
 RELAX_SETTINGS = {"tol_gap_abs": 1e-10, "tol_gap_rel": 1e-10, "tol_feas": 1e-10}
+#: the same for other back ends whose defaults are looser than the verdict threshold
+TIGHT_SETTINGS = {
+    "clarabel": RELAX_SETTINGS,
+    "cvxpy-highs": {"primal_feasibility_tolerance": 1e-10,
+                    "dual_feasibility_tolerance": 1e-10},
+    "cvxpy-clarabel": RELAX_SETTINGS,
+}
 #: relative accuracy of the minimum friction
 FRICTION_RTOL = 1e-7
 METHODS = ("clarabel", "distortion")
 #: slack (reference-force units) granted to the force-state QP at a limit state, where
 #: the admissible set shrinks to a point and round-off would make it empty
 STATE_SLACK = 1e-9
+#: back ends that solve linear programs only (the force-state QP goes to Clarabel)
+LP_ONLY = ("highs",)
 
 
 # -- shared plumbing ------------------------------------------------------------------
@@ -79,6 +88,7 @@ class _Context:
     scaling: Scaling
     solver: str
     settings: dict
+    pyramid: int | None = None
     n_solves: int = 0
     solve_time: float = 0.0
     iterations: int = 0
@@ -98,15 +108,20 @@ class _Context:
 
     def run(self, problem, what: str, tight: bool = False) -> SolverResult:
         settings = self.settings
-        if tight and self.solver == "clarabel":
-            settings = {**RELAX_SETTINGS, **self.settings}
-        res = solve(problem, self.solver, **settings)
-        if res.status not in (OPTIMAL, INFEASIBLE, UNBOUNDED) and settings is not self.settings:
+        solver = self.solver
+        if problem.P is not None and solver in LP_ONLY:
+            # the force state is a QP: an LP-only back end hands it to Clarabel
+            solver, settings = "clarabel", {}
+        if tight and solver in TIGHT_SETTINGS:
+            settings = {**TIGHT_SETTINGS[solver], **settings}
+        base = self.settings if solver == self.solver else {}
+        res = solve(problem, solver, **settings)
+        if res.status not in (OPTIMAL, INFEASIBLE, UNBOUNDED) and settings is not base:
             # the tight tolerances were out of reach: the solver's defaults decide
             self.n_solves += 1
             self.solve_time += res.solve_time
             self.iterations += res.iterations
-            res = solve(problem, self.solver, **self.settings)
+            res = solve(problem, solver, **base)
         self.n_solves += 1
         self.solve_time += res.solve_time
         self.iterations += res.iterations
@@ -125,16 +140,26 @@ class _Context:
                     notes=tuple(self.notes))
 
 
-def _context(scene: Scene, solver: str, settings: dict | None) -> _Context:
+def _context(scene: Scene, solver: str, settings: dict | None,
+             pyramid: int | None = None) -> _Context:
     system = assemble(scene)
-    return _Context(scene, system, Scaling.of(system), solver, dict(settings or {}))
+    ctx = _Context(scene, system, Scaling.of(system), solver, dict(settings or {}),
+                   pyramid=pyramid)
+    if pyramid is not None:
+        if scene.dimension != 3:
+            raise InputError("the friction pyramid is an option of 3D scenes only")
+        if int(pyramid) < 3:
+            raise InputError(f"a friction pyramid needs at least 3 facets, got {pyramid}")
+        ctx.notes.append(f"friction cones linearised as inscribed {int(pyramid)}-facet "
+                         "pyramids (an approximation: not the Coulomb cone)")
+    return ctx
 
 
 # -- relaxation ----------------------------------------------------------------------
 def _relaxation(ctx: _Context, f_uniform: float, load_factor: float):
     """R(f) and dR/df (from the duals of the friction rows of the uniform joints)."""
     fj = ctx.f_joint(f_uniform)
-    prob, jr = build_relaxation(ctx.system, ctx.scaling, fj, load_factor)
+    prob, jr = build_relaxation(ctx.system, ctx.scaling, fj, load_factor, ctx.pyramid)
     res = ctx.run(prob, "relaxation", tight=True)
     if res.status != OPTIMAL:
         return None, 0.0, res, jr, prob
@@ -151,7 +176,7 @@ def _state(ctx: _Context, f_uniform: float, load_factor: float, relax: float,
            method: str = "least complementary energy") -> ForceState:
     """The admissible state of least complementary energy (a QP)."""
     prob = build_energy_qp(ctx.system, ctx.scaling, ctx.f_joint(f_uniform), load_factor,
-                           relax)
+                           relax, ctx.pyramid)
     res = ctx.run(prob, "force-state")
     if res.status != OPTIMAL:
         raise SolverFailure(f"the force-state problem has status {res.raw_status} although "
@@ -246,7 +271,7 @@ def chain_order(system: EquilibriumSystem) -> np.ndarray:
 # -- check ---------------------------------------------------------------------------
 def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
           method: str = "clarabel", *, solver: str | None = None, state: bool = True,
-          settings: dict | None = None) -> CheckResult:
+          settings: dict | None = None, pyramid: int | None = None) -> CheckResult:
     """Is there an admissible equilibrium state under dead + load_factor x live?
 
     Admissible: equilibrium of every free block with compression-only contacts (or
@@ -261,6 +286,8 @@ def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
         method: "clarabel" (convex path) or "distortion" (the iterative solver).
         solver: back end of the convex path (see :func:`rigidblocks.solvers.solve`).
         state: compute the force state (least complementary energy) when admissible.
+        pyramid: 3D only: linearise each Coulomb cone as an inscribed pyramid of this
+            many facets (an approximation, labelled in the result's notes).
 
     Returns:
         :class:`~rigidblocks.results.CheckResult` with status "admissible" or
@@ -279,7 +306,7 @@ def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
         from ..solvers.distortion import check_distortion
 
         return check_distortion(scene, f, float(load_factor), state=state)
-    ctx = _context(scene, solver, settings)
+    ctx = _context(scene, solver, settings, pyramid)
     R, _, res, _, _ = _relaxation(ctx, f, float(load_factor))
     if R is None:  # equilibrium equations cannot be met at all: a mechanism
         ctx.notes.append("the equilibrium equations have no solution with these joints "
@@ -296,7 +323,7 @@ def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
 # -- minimum friction ------------------------------------------------------------------
 def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel", *,
                  solver: str | None = None, state: bool = True, rtol: float = FRICTION_RTOL,
-                 settings: dict | None = None) -> FrictionResult:
+                 settings: dict | None = None, pyramid: int | None = None) -> FrictionResult:
     """The smallest uniform friction coefficient f* that admits equilibrium.
 
     Joints with their own friction override keep it. Status "unstable" (no number)
@@ -316,8 +343,8 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
         from ..solvers.distortion import min_friction_distortion
 
         return min_friction_distortion(scene, lf, state=state, rtol=rtol)
-    ctx = _context(scene, solver, settings)
-    if not ctx.uniform.any():
+    ctx = _context(scene, solver, settings, pyramid)
+    if ctx.contacts.n_joints and not ctx.uniform.any():
         raise InputError("every joint has its own friction override: there is no uniform "
                          "friction to minimise", scene.source)
     R_inf, _, _, _, _ = _relaxation(ctx, math.inf, lf)
@@ -372,7 +399,9 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
     if last is not None:
         res, jr, prob = last
         head = prob.rows["joints"].start + jr.fric_head
-        w = res.y[head] * ctx.uniform[jr.fric_joint]
+        # each friction row's share of -dR/df, y_r N_r: a joint whose normal force
+        # vanishes (an opening joint carrying only the relaxation's slack) does not govern
+        w = res.y[head] * (jr.fric_nsum @ res.z) * ctx.uniform[jr.fric_joint]
         if w.size and w.max() > 0:
             strong = w > 1e-3 * w.max()
             governing = tuple(sorted({int(j) for j in jr.fric_joint[strong]}))
@@ -386,7 +415,8 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
 # -- maximum load multiplier -------------------------------------------------------------
 def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clarabel", *,
                         solver: str | None = None, state: bool = True,
-                        settings: dict | None = None) -> LoadResult:
+                        settings: dict | None = None,
+                        pyramid: int | None = None) -> LoadResult:
     """The largest multiplier lambda* of the live loads (associative friction).
 
     Status "collapse" with lambda* and the collapse mechanism; "unbounded" when no
@@ -409,8 +439,8 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         from ..solvers.distortion import max_load_distortion
 
         return max_load_distortion(scene, f, state=state)
-    ctx = _context(scene, solver, settings)
-    prob, jr = build_max_load(ctx.system, ctx.scaling, ctx.f_joint(f))
+    ctx = _context(scene, solver, settings, pyramid)
+    prob, jr = build_max_load(ctx.system, ctx.scaling, ctx.f_joint(f), ctx.pyramid)
     res = ctx.run(prob, "maximum load")
     label = friction_label(f)
     if res.status == UNBOUNDED:
