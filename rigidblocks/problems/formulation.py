@@ -86,11 +86,14 @@ class JointRows:
 
 def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
                n_cols: int, relax_col: int | None = None,
-               relax_rhs: float = 0.0) -> JointRows:
+               relax_rhs: float = 0.0, pyramid: int | None = None) -> JointRows:
     """Rows of the joint laws for friction coefficients ``f_joint`` (per joint).
 
     ``relax_col`` adds -1 x that column to every row (the relaxation variable r);
     ``relax_rhs`` adds a fixed relaxation to every right-hand side instead.
+    ``pyramid`` (3D only) replaces each Coulomb cone by the inscribed pyramid of that
+    many facets: T . d_i <= f cos(pi / k) N with d_i the facets' outward directions
+    in the joint's tangent frame. It is an approximation, never the default.
     """
     c = system.contacts
     lay = system.layout
@@ -152,6 +155,28 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
                                  shape=(2 * nK, n_cols)).tocsr()
         n_fric = len(fric_joint)
         fric_head = P + np.arange(n_fric)
+    elif pyramid is not None:
+        k = int(pyramid)
+        K = np.flatnonzero(finite[pj])
+        nK = len(K)
+        ang = (2 * np.arange(k) + 1) * np.pi / k
+        cosk = np.cos(np.pi / k)
+        fk = f_joint[pj[K]]
+        rows, cols, vals = [], [], []
+        for i, a in enumerate(ang):
+            r = i * nK + np.arange(nK)
+            rows += [r, r, r]
+            cols += [K, t0 + 2 * K, t0 + 2 * K + 1]
+            vals += [-fk * cosk, np.full(nK, np.cos(a)), np.full(nK, np.sin(a))]
+        lin_blocks.append(sp.coo_matrix((np.concatenate(vals),
+                                         (np.concatenate(rows), np.concatenate(cols))),
+                                        shape=(k * nK, n_cols)))
+        hk = c.cohesion[pj[K]] * a_pt[K] / F * cosk
+        h_parts.append(np.tile(hk, k) + relax_rhs)
+        fric_joint = np.tile(pj[K], k)
+        nsum = sp.coo_matrix((np.full(k * nK, cosk), (np.arange(k * nK), np.tile(K, k))),
+                             shape=(k * nK, n_cols)).tocsr()
+        fric_head = P + np.arange(k * nK)
     else:
         # 3D: (f N_k + c a_k (+ r), T1_k, T2_k) in SOC(3) for points of finite-f joints
         K = np.flatnonzero(finite[pj])
@@ -207,13 +232,14 @@ def _stack(eq_A, eq_b, jr: JointRows, extra_lin=None, extra_h=None):
 
 
 def build_relaxation(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
-                     load_factor: float) -> tuple[ConicProblem, JointRows]:
+                     load_factor: float, pyramid: int | None = None,
+                     ) -> tuple[ConicProblem, JointRows]:
     """min r  s.t.  equilibrium at ``load_factor``, joint laws relaxed by r, r >= 0."""
     n = system.layout.size
     nc = n + 1
     Aeq = sp.hstack([_equilibrium(system, scaling), sp.csr_matrix((system.n_rows, 1))])
     beq = -scaling.row * (system.dead + load_factor * system.live) / scaling.force
-    jr = joint_rows(system, scaling, f_joint, nc, relax_col=n)
+    jr = joint_rows(system, scaling, f_joint, nc, relax_col=n, pyramid=pyramid)
     r_nonneg = sp.coo_matrix(([-1.0], ([0], [n])), shape=(1, nc))
     A, b = _stack(Aeq, beq, jr, r_nonneg, np.zeros(1))
     cvec = np.zeros(nc)
@@ -225,15 +251,15 @@ def build_relaxation(system: EquilibriumSystem, scaling: Scaling, f_joint: np.nd
     return prob, jr
 
 
-def build_max_load(system: EquilibriumSystem, scaling: Scaling,
-                   f_joint: np.ndarray) -> tuple[ConicProblem, JointRows]:
+def build_max_load(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
+                   pyramid: int | None = None) -> tuple[ConicProblem, JointRows]:
     """max lambda  s.t.  A x + F_dead + lambda F_live = 0, joint laws."""
     n = system.layout.size
     nc = n + 1
     live = (scaling.row * system.live / scaling.force)[:, None]
     Aeq = sp.hstack([_equilibrium(system, scaling), sp.csr_matrix(live)])
     beq = -scaling.row * system.dead / scaling.force
-    jr = joint_rows(system, scaling, f_joint, nc)
+    jr = joint_rows(system, scaling, f_joint, nc, pyramid=pyramid)
     A, b = _stack(Aeq, beq, jr)
     cvec = np.zeros(nc)
     cvec[n] = -1.0
@@ -258,12 +284,13 @@ def flexibility(system: EquilibriumSystem) -> np.ndarray:
 
 
 def build_energy_qp(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
-                    load_factor: float, relax: float = 0.0) -> ConicProblem:
+                    load_factor: float, relax: float = 0.0,
+                    pyramid: int | None = None) -> ConicProblem:
     """min 1/2 x'Cx  s.t.  equilibrium at ``load_factor``, joint laws relaxed by ``relax``."""
     n = system.layout.size
     Aeq = _equilibrium(system, scaling)
     beq = -scaling.row * (system.dead + load_factor * system.live) / scaling.force
-    jr = joint_rows(system, scaling, f_joint, n, relax_rhs=relax)
+    jr = joint_rows(system, scaling, f_joint, n, relax_rhs=relax, pyramid=pyramid)
     A, b = _stack(Aeq, beq, jr)
     P = sp.diags(flexibility(system), format="csc")
     return ConicProblem(c=np.zeros(n), A=A, b=b, n_eq=system.n_rows,

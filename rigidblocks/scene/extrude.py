@@ -1,0 +1,59 @@
+"""Turn a 2D scene into the equivalent 3D scene of prisms."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import InputError
+from .geometry import ccw, signed_area
+from .model import Block, Load, Scene
+
+
+def _convex(poly: np.ndarray) -> bool:
+    e = np.roll(poly, -1, axis=0) - poly
+    cross = e[:, 0] * np.roll(e[:, 1], -1) - e[:, 1] * np.roll(e[:, 0], -1)
+    return bool(np.all(cross >= -1e-12 * np.abs(cross).max()))
+
+
+def extrude(scene: Scene, depth: float | None = None) -> Scene:
+    """The 3D scene of a 2D one: each polygon becomes a prism of the scene's depth.
+
+    The 2D plane (x, y) becomes the vertical plane (x, z) of the 3D scene; the depth
+    runs along y from 0 to ``depth``; gravity stays vertical (-z). Forces (fx, fy)
+    become (fx, 0, fy), points (x, y) become (x, depth / 2, y), and a couple m (about
+    the 2D out-of-plane axis, counter-clockwise positive) becomes (0, -m, 0). Weights,
+    friction and joint laws are unchanged, so f* and lambda* are the same.
+    3D blocks must be convex: a non-convex 2D block is an error.
+    """
+    if scene.dimension != 2:
+        raise InputError("extrude takes a 2D scene")
+    t = scene.effective_depth if depth is None else float(depth)
+    if not t > 0:
+        raise InputError(f"depth must be > 0, got {t}")
+    blocks = []
+    for b in scene.blocks:
+        poly = ccw(b.points)
+        if not _convex(poly) or signed_area(poly) <= 0:
+            raise InputError("3D blocks must be convex: split this block first",
+                             f"block '{b.id}'")
+        n = len(poly)
+        verts = [(float(x), 0.0, float(y)) for x, y in poly] + \
+                [(float(x), t, float(y)) for x, y in poly]
+        # outward orientation: the front face (y = 0) seen from -y is clockwise in (x, z)
+        faces = [tuple(range(n)), tuple(range(2 * n - 1, n - 1, -1))]
+        faces += [(k, n + k, n + (k + 1) % n, (k + 1) % n) for k in range(n)]
+        blocks.append(Block(b.id, tuple(verts), tuple(faces), b.support, b.unit_weight))
+
+    def v3(v):
+        return None if v is None else (float(v[0]), 0.0, float(v[1]))
+
+    loads = []
+    for ld in scene.loads:
+        pt = None if ld.point is None else (float(ld.point[0]), t / 2, float(ld.point[1]))
+        mom = None if ld.moment is None else (0.0, -float(ld.moment), 0.0)
+        loads.append(Load(ld.block, v3(ld.force), pt, mom, ld.live))
+    return Scene(dimension=3, blocks=tuple(blocks), loads=tuple(loads), joints=scene.joints,
+                 name=scene.name, units=scene.units, depth=None,
+                 unit_weight=scene.unit_weight if scene.unit_weight is not None else None,
+                 friction=scene.friction, live_body_force=v3(scene.live_body_force),
+                 source=scene.source)

@@ -1,0 +1,149 @@
+"""3D scenes: convex polyhedra, contact polygons and Coulomb cones (SOCP).
+
+References: docs/validation.md (closed forms); the equivalence of an extruded 2D scene
+with the plane problem follows from symmetry about the mid-plane (every 3D admissible
+state averaged with its mirror image is a plane state, and a plane state spread evenly
+over the depth is admissible in 3D).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from conftest import make_scene, rect
+
+import rigidblocks as rb
+from rigidblocks.errors import InputError
+from rigidblocks.io.scene_file import scene_from_dict
+from rigidblocks.scene.extrude import extrude
+
+
+def box(x0, y0, z0, a, b, c):
+    v = [[x0, y0, z0], [x0 + a, y0, z0], [x0 + a, y0 + b, z0], [x0, y0 + b, z0],
+         [x0, y0, z0 + c], [x0 + a, y0, z0 + c], [x0 + a, y0 + b, z0 + c], [x0, y0 + b, z0 + c]]
+    faces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]
+    return v, faces
+
+
+def scene3d(blocks, **top):
+    doc = {"format": "rigidblocks-scene", "version": 1, "dimension": 3, "blocks": blocks}
+    doc.update(top)
+    return scene_from_dict(doc)
+
+
+def box_on_slab(a=1.0, b=2.0, h=2.0, tilt=0.0, azimuth=0.0, **top):
+    """A box a x b x h on a slab, the whole rotated by ``tilt`` so that the slab's top
+    slopes down towards ``azimuth`` (radians from +x)."""
+    bv, bf = box(-a / 2, -b / 2, 0, a, b, h)
+    sv, sf = box(-3, -3, -1, 6, 6, 1)
+    axis = np.array([-math.sin(azimuth), math.cos(azimuth), 0.0])  # horizontal axis
+    # rotation taking +z towards the downhill direction (cos az, sin az) by `tilt`
+    K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    R = np.eye(3) + math.sin(tilt) * K + (1 - math.cos(tilt)) * K @ K
+    rot = lambda pts: (np.asarray(pts) @ R.T).tolist()  # noqa: E731
+    return scene3d([{"id": "slab", "vertices": rot(sv), "faces": sf, "support": True},
+                    {"id": "box", "vertices": rot(bv), "faces": bf}], unit_weight=1.0, **top)
+
+
+def test_contact_polygon_of_box_on_slab():
+    s = box_on_slab()
+    c = rb.detect_contacts(s)
+    assert c.n_joints == 1
+    assert c.areas[0] == pytest.approx(2.0)
+    assert np.diff(c.joint_start)[0] == 4
+    np.testing.assert_allclose(c.normals[0], [0, 0, 1], atol=1e-12)
+
+
+@pytest.mark.parametrize("azimuth", [0.0, 0.4, math.pi / 4, 2.0])
+def test_inclined_plane_cone_is_isotropic(azimuth):
+    """validation.md: a block on a plane sloping at theta needs f* = tan(theta) with the
+    Coulomb cone, whatever the downhill azimuth (the block is squat enough not to tip)."""
+    theta = math.radians(20)
+    res = rb.min_friction(box_on_slab(a=2, b=2, h=0.5, tilt=theta, azimuth=azimuth),
+                          state=False)
+    assert res.status == "stable"
+    assert res.friction_factor == pytest.approx(math.tan(theta), rel=1e-6)
+
+
+def test_pyramid_depends_on_direction_and_converges_to_cone():
+    """An inscribed k-facet pyramid is smaller than the cone: it needs f* >= tan(theta)
+    (f* = tan(theta) / cos(pi/k) when the slip points at a facet's middle), so the
+    answer depends on the direction, and it tends to tan(theta) as k grows."""
+    theta = math.radians(20)
+    exact = math.tan(theta)
+    f4 = [rb.min_friction(box_on_slab(a=2, b=2, h=0.5, tilt=theta, azimuth=az), state=False,
+                          pyramid=4).friction_factor for az in (0.0, 0.3, math.pi / 4)]
+    assert min(f4) >= exact * (1 - 1e-6)
+    assert max(f4) - min(f4) > 1e-3 * exact
+    assert max(f4) <= exact / math.cos(math.pi / 4) * (1 + 1e-6)
+    errs = []
+    for k in (4, 8, 16, 64):
+        f = rb.min_friction(box_on_slab(a=2, b=2, h=0.5, tilt=theta, azimuth=0.3),
+                            state=False, pyramid=k)
+        assert any("pyramid" in n for n in f.notes)
+        errs.append(f.friction_factor - exact)
+    assert all(e >= -1e-7 for e in errs)
+    assert errs[-1] < errs[0] and errs[-1] <= exact * (1 / math.cos(math.pi / 64) - 1) + 1e-7
+
+
+def test_box_tipping_about_an_edge_under_diagonal_load():
+    """Box a x b x h, horizontal body force lambda W at azimuth alpha, infinite friction.
+    The resultant of W and lambda W at the centroid (height h/2) meets the base at
+    lambda h/2 (cos alpha, sin alpha) from its centre; it must stay inside the a x b base:
+    lambda* = min(a / (h cos alpha), b / (h sin alpha)). With a=1, b=2, h=2, alpha=30 deg:
+    lambda* = 1/(2 cos 30) = 0.57735, tipping about the edge x = a/2."""
+    alpha = math.radians(30)
+    s = box_on_slab(a=1, b=2, h=2, friction="infinite",
+                    live_body_force=[math.cos(alpha), math.sin(alpha), 0])
+    res = rb.max_load_multiplier(s)
+    assert res.status == "collapse"
+    assert res.load_multiplier == pytest.approx(1 / (2 * math.cos(alpha)), rel=1e-6)
+    assert res.mechanism.modes == ("hinge",)
+
+
+def test_extruded_2d_scene_gives_same_answers():
+    """Every 2D answer holds for the extruded 3D scene (to 1e-5)."""
+    s2 = make_scene([
+        {"id": "base", "vertices": rect(-2, -1, 6, 1), "support": True},
+        {"id": "A", "vertices": rect(0, 0, 1, 0.5)},
+        {"id": "B", "vertices": rect(0.1, 0.5, 0.8, 0.8)},
+        {"id": "C", "vertices": [[1.0, 0.0], [2.0, 0.0], [1.8, 0.6], [1.0, 0.5]]},
+    ], unit_weight=20.0, friction=0.7, live_body_force=[1, 0], depth=0.5,
+        loads=[{"block": "B", "force": [0, -3], "point": [0.5, 1.3]},
+               {"block": "C", "force": [-1, 0], "point": [1.5, 0.3], "live": True}])
+    s3 = extrude(s2)
+    assert s3.dimension == 3
+    l2 = rb.max_load_multiplier(s2, state=False).load_multiplier
+    l3 = rb.max_load_multiplier(s3, state=False).load_multiplier
+    assert l3 == pytest.approx(l2, rel=1e-5)
+    f2 = rb.min_friction(s2, load_factor=0.3, state=False).friction_factor
+    f3 = rb.min_friction(s3, load_factor=0.3, state=False).friction_factor
+    assert f3 == pytest.approx(f2, rel=1e-5)
+
+
+def test_3d_validation_errors():
+    v, f = box(0, 0, 0, 1, 1, 1)
+    base_v, base_f = box(-1, -1, -1, 3, 3, 1)
+    ok = {"id": "base", "vertices": base_v, "faces": base_f, "support": True}
+    with pytest.raises(InputError, match="faces"):
+        scene3d([ok, {"id": "b", "vertices": v, "faces": f[:-1]}])
+    bent = [list(p) for p in v]
+    bent[6] = [1.0, 1.0, 1.3]
+    with pytest.raises(InputError, match="block 'b'.*planar"):
+        scene3d([ok, {"id": "b", "vertices": bent, "faces": f}])
+    with pytest.raises(InputError, match="missing key \"faces\""):
+        scene3d([ok, {"id": "b", "vertices": v}])
+    sunk = box(0, 0, -0.5, 1, 1, 1)
+    with pytest.raises(InputError, match="overlap"):
+        scene3d([ok, {"id": "b", "vertices": sunk[0], "faces": sunk[1]}])
+
+
+def test_nonconvex_block_cannot_be_extruded():
+    s2 = make_scene([
+        {"id": "base", "vertices": rect(-2, -1, 6, 1), "support": True},
+        {"id": "L", "vertices": [[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]]},
+    ], unit_weight=1.0)
+    with pytest.raises(InputError, match="block 'L'.*convex"):
+        extrude(s2)
