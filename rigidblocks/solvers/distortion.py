@@ -1,0 +1,525 @@
+"""The iterative impressed-distortion solver of the seed paper, as a projection method.
+
+The seed (Eq. 1-4) writes the joints as links: one normal link per contact point and
+one shear link per 2D joint. Equilibrium is ``A X + F = 0`` (Eq. 1). With a diagonal
+link flexibility C (:func:`rigidblocks.problems.formulation.flexibility`) and the
+stiffness K = C^-1, the elastic solution of the linked structure is (Eq. 3)::
+
+    X0  = Ã (A Ã)^-1 (-F),          Ã = K A^T
+    X_N = (I - Ã (A Ã)^-1 A) delta   (self-stress of impressed distortions delta)
+
+X0 is the equilibrium state of least complementary energy 1/2 X'CX, and X0 + X_N
+(any delta) is again in equilibrium: the second line is the C-orthogonal projector
+onto the self-stress states, ``A X_N = 0``. The seed iterates on delta until no normal
+link is in tension and no shear link exceeds its friction threshold (Eq. 2, 4).
+
+Here that iteration is Dykstra's alternating projection algorithm in the metric of C
+between the equilibrium subspace E = {A X = -F} and the admissible set K of the joint
+laws (per joint: N_k >= -sigma_t a_k, |T| <= f (N_1 + N_2) + c a):
+
+    z = X_k + p_k;   Y = P_K(z);   p_{k+1} = z - Y;   X_{k+1} = P_E(Y)
+        = X0 + (I - Ã (A Ã)^-1 A) (Y - X0)      (delta_{k+1} = Y - X0)
+
+E is affine, so Dykstra's correction is needed only for K. When E and K intersect
+(an admissible state exists) X_k converges to the admissible state closest to X0 in
+the C metric, which is the least-complementary-energy state of the convex path
+(:func:`rigidblocks.problems.formulation.build_energy_qp`); plain alternating
+projections would only find some admissible state. ``P_K`` is exact and separable per
+joint: a 3-variable polyhedral projection solved by enumerating active sets, with the
+per-joint matrices computed once per friction value. ``P_E`` uses one sparse LU
+factorisation of A K A^T per scene, reused by every iteration and every trial f or
+lambda; no dense projector is formed.
+
+Verdicts. Admissible: violation of the joint laws <= ``tol`` (in units of the
+reference force of :class:`~rigidblocks.problems.formulation.Scaling`) and the last
+step <= ``tol``. Not admissible: when E and K do not meet, the violation decreases to
+a positive limit (the C-distance between the two sets); every ``window`` iterations the
+limit is estimated by Aitken extrapolation of the violation at three window ends, and
+the run stops as not admissible when the limit is positive, above ``100 tol`` and above
+half the present violation. Failure, with a reason: A K A^T singular or
+ill-conditioned (a mechanism of the bilateral linked structure: some block motion
+stretches no link), and the iteration budget exhausted. Near a limit state (f close to
+f*, lambda close to lambda*) the intersection shrinks to a point and the convergence
+slows down: a run that ends its budget with a violation below ``sqrt(tol)`` is
+reported as "undecided" rather than forced into a verdict.
+
+Joint behaviours for :func:`load_path` (the seed's Fig. 2 and 5):
+
+* normal links are rigid-brittle: with a tensile strength they carry tension up to
+  it; at the load step where a link reaches it, the joint cracks and from then on it
+  carries no tension and no cohesion (compression only);
+* shear links are rigid-plastic (Drucker, ``sliding="plastic"``): the shear is capped
+  at the threshold f N + c a and stays there while the joint plasticises; or they follow
+  Coulomb's sliding friction (``sliding="coulomb"``): once a joint reaches the threshold
+  the block slides and the joint's shear drops to zero for the rest of the path.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from ..equilibrium import EquilibriumSystem, assemble
+from ..errors import InputError
+from ..results import CheckResult, FrictionResult, LoadResult
+from ..scene.model import Scene
+
+#: violation (reference-force units) below which a state counts as admissible
+TOL = 1e-9
+#: iteration budget of one run
+MAX_ITER = 20000
+#: iterations between two divergence / stalling tests
+WINDOW = 50
+#: reciprocal condition estimate of A K A^T below which the scene counts as a mechanism
+RCOND_MIN = 1e-12
+
+_SUBSETS = [s for k in range(4) for s in itertools.combinations(range(4), k)]
+
+
+@dataclass
+class Run:
+    """One iteration run at fixed joint laws and load factor (scaled units).
+
+    ``status``: "admissible", "inadmissible", "undecided" or "failure"; ``reason``
+    explains the last two and the limit estimate of "inadmissible". ``violation`` is the
+    largest breach of a joint law by X, ``residual`` the largest equilibrium residual
+    |A X + F| (both scaled); ``history`` the violation after every iteration.
+    """
+
+    status: str
+    x: np.ndarray
+    iterations: int
+    violation: float
+    residual: float
+    reason: str = ""
+    history: list[float] = field(default_factory=list)
+    time: float = 0.0
+
+
+class DistortionSolver:
+    """The factorised linked structure of one scene (2D, one shear link per joint)."""
+
+    def __init__(self, scene: Scene, system: EquilibriumSystem | None = None):
+        from ..problems.formulation import Scaling, flexibility
+
+        if scene.dimension != 2:
+            raise InputError("the distortion method is implemented for 2D scenes only",
+                             scene.source)
+        self.scene = scene
+        self.system = system if system is not None else assemble(scene)
+        sysm = self.system
+        c = sysm.contacts
+        if np.any(np.diff(c.joint_start) != 2):
+            raise InputError("the distortion method needs two contact points per joint",
+                             scene.source)
+        self.scaling = Scaling.of(sysm)
+        self.C = flexibility(sysm)
+        self.K = 1.0 / self.C
+        self.As = sp.diags(self.scaling.row) @ sysm.A.tocsr()
+        self.AsT = self.As.T.tocsr()
+        self.P = c.n_points
+        self.m = c.n_joints
+        self.i0 = c.joint_start[:-1]
+        self.it = self.P + np.arange(self.m)
+        self.mechanism = ""
+        self.lu = None
+        n = self.As.shape[0]
+        if n:
+            M = (self.As @ sp.diags(self.K) @ self.AsT).tocsc()
+            try:
+                lu = spla.splu(M)
+                d = np.abs(lu.U.diagonal())
+                if d.size and (d.min() <= RCOND_MIN * d.max() or not np.all(np.isfinite(d))):
+                    raise RuntimeError("ill-conditioned")
+                self.lu = lu
+            except RuntimeError:
+                free = sysm.free_blocks
+                ids = [scene.blocks[b].id for b in free]
+                rows = np.asarray(abs(self.As).sum(axis=1)).ravel().reshape(-1, sysm.dofs)
+                loose = [ids[k] for k in range(len(ids)) if np.all(rows[k] == 0)]
+                extra = f" (blocks without joints: {', '.join(loose)})" if loose else ""
+                self.mechanism = ("A C^-1 A^T is singular or ill-conditioned: the linked "
+                                  "structure is a mechanism" + extra)
+
+    # -- the two projections ---------------------------------------------------------
+    def rhs(self, load_factor: float) -> np.ndarray:
+        s = self.system
+        return -self.scaling.row * (s.dead + load_factor * s.live) / self.scaling.force
+
+    def project_equilibrium(self, y: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """P_E(y) = y - K A^T (A K A^T)^-1 (A y - b), the C-metric projection onto E."""
+        if self.lu is None:
+            return y
+        u = self.lu.solve(self.As @ y - b)
+        return y - self.K * (self.AsT @ u)
+
+    def elastic(self, load_factor: float) -> np.ndarray:
+        """X0 = K A^T (A K A^T)^-1 (-F): the elastic (least-energy) equilibrium state."""
+        return self.project_equilibrium(np.zeros(self.P + self.m), self.rhs(load_factor))
+
+    def laws(self, f_joint: np.ndarray, tension: np.ndarray | None = None,
+             cohesion: np.ndarray | None = None) -> _Laws:
+        """Per-joint rows G v <= h (v = N1, N2, T) and the candidate maps of P_K."""
+        c = self.system.contacts
+        F = self.scaling.force
+        a = c.point_areas
+        ts = c.tensile_strength if tension is None else tension
+        co = c.cohesion if cohesion is None else cohesion
+        return _Laws(f_joint, ts[c.point_joint] * a / F, co * c.areas / F,
+                     np.array([self.C[self.i0], self.C[self.i0 + 1], self.C[self.it]]).T)
+
+    def gather(self, x: np.ndarray) -> np.ndarray:
+        return np.stack([x[self.i0], x[self.i0 + 1], x[self.it]], axis=1)
+
+    def scatter(self, v: np.ndarray) -> np.ndarray:
+        x = np.empty(self.P + self.m)
+        x[self.i0], x[self.i0 + 1], x[self.it] = v[:, 0], v[:, 1], v[:, 2]
+        return x
+
+    # -- the iteration -----------------------------------------------------------------
+    def run(self, laws: _Laws, load_factor: float, tol: float = TOL,
+            max_iter: int = MAX_ITER, window: int = WINDOW, keep_history: bool = False) -> Run:
+        """Dykstra's iteration from the elastic solution; see the module docstring."""
+        t0 = time.perf_counter()
+        n = self.P + self.m
+        if self.mechanism:
+            return Run("failure", np.full(n, np.nan), 0, math.inf, math.inf, self.mechanism,
+                       time=time.perf_counter() - t0)
+        b = self.rhs(load_factor)
+        x = self.project_equilibrium(np.zeros(n), b)
+        res0 = float(np.abs(self.As @ x - b).max(initial=0.0))
+        if res0 > 1e-6 * max(1.0, float(np.abs(b).max(initial=0.0))):
+            return Run("failure", x, 0, math.inf, res0, "the elastic solution does not meet "
+                       "the equilibrium equations (A C^-1 A^T nearly singular: mechanism)",
+                       time=time.perf_counter() - t0)
+        v = self.gather(x)
+        pv = np.zeros_like(v)
+        viol = laws.violation(v)
+        hist = [viol]
+        marks: list[float] = []
+        status, reason, k = "", "", 0
+        if viol <= tol:
+            status = "admissible"
+        while not status and k < max_iter:
+            z = v + pv
+            y = laws.project(z)
+            pv = z - y
+            xn = self.project_equilibrium(self.scatter(y), b)
+            vn = self.gather(xn)
+            step = float(np.abs(vn - v).max(initial=0.0))
+            v = vn
+            viol = laws.violation(v)
+            k += 1
+            hist.append(viol)
+            if viol <= tol and step <= tol:
+                status = "admissible"
+                break
+            if k % window == 0:
+                marks.append(viol)
+                if len(marks) >= 3:
+                    v0, v1, v2 = marks[-3:]
+                    d1, d2 = v1 - v0, v2 - v1
+                    den = d2 - d1
+                    limit = v2 - d2 * d2 / den if den > 0 and d2 <= 0 else \
+                        (v2 if d2 >= 0 else 0.0)
+                    if limit > 100 * tol and limit > 0.5 * v2:
+                        status = "inadmissible"
+                        reason = (f"the violation stalls at {limit:.3g} (reference-force "
+                                  "units): equilibrium and joint laws do not meet")
+        x = self.scatter(v)
+        residual = float(np.abs(self.As @ x - b).max(initial=0.0))
+        if not status:
+            if viol <= math.sqrt(tol):
+                status = "undecided"
+                reason = (f"violation {viol:.3g} after {k} iterations is still decreasing "
+                          "slowly: a limit state, where the method cannot decide")
+            else:
+                status = "failure"
+                reason = f"no convergence within {max_iter} iterations (violation {viol:.3g})"
+        return Run(status, x, k, viol, residual, reason, hist if keep_history else [],
+                   time.perf_counter() - t0)
+
+
+class _Laws:
+    """Joint laws of one run, with the affine maps of every active set of P_K."""
+
+    def __init__(self, f: np.ndarray, t: np.ndarray, c: np.ndarray, cflex: np.ndarray):
+        m = len(f)
+        fin = np.isfinite(f)
+        ff = np.where(fin, f, 0.0)
+        G = np.zeros((m, 4, 3))
+        G[:, 0, 0] = -1.0
+        G[:, 1, 1] = -1.0
+        G[:, 2] = np.stack([-ff, -ff, np.ones(m)], axis=1)
+        G[:, 3] = np.stack([-ff, -ff, -np.ones(m)], axis=1)
+        G[~fin, 2:] = 0.0
+        h = np.stack([t[0::2], t[1::2], c, c], axis=1)
+        h[~fin, 2:] = 0.0
+        self.G, self.h, self.active = G, h, np.stack([np.ones(m, bool)] * 2 + [fin] * 2, 1)
+        self.W = 1.0 / cflex  # the C metric acts on the joint's (N1, N2, T) with weights C
+        winv = cflex
+        R, q, ok = [], [], []
+        for S in _SUBSETS:
+            S = list(S)
+            if not S:
+                R.append(np.broadcast_to(np.eye(3), (m, 3, 3)))
+                q.append(np.zeros((m, 3)))
+                ok.append(np.ones(m, bool))
+                continue
+            GS, hS = G[:, S, :], h[:, S]
+            Q = winv[:, :, None] * np.swapaxes(GS, 1, 2)        # (m, 3, k)
+            Mk = GS @ Q                                          # (m, k, k)
+            Q = Q @ np.linalg.pinv(Mk)
+            R.append(np.eye(3)[None] - Q @ GS)
+            q.append(np.einsum("mik,mk->mi", Q, hS))
+            ok.append(np.all(self.active[:, S], axis=1))
+        self.R = np.stack(R)
+        self.q = np.stack(q)
+        self.ok = np.stack(ok)
+        self.cw = cflex  # distance weights: the C metric
+
+    def rows(self, v: np.ndarray) -> np.ndarray:
+        r = np.einsum("...ij,...j->...i", self.G, v) - self.h
+        return np.where(self.active, r, -np.inf)
+
+    def violation(self, v: np.ndarray) -> float:
+        return float(np.maximum(self.rows(v), 0.0).max(initial=0.0))
+
+    def project(self, y: np.ndarray) -> np.ndarray:
+        """Exact C-metric projection of every joint's (N1, N2, T) onto its law."""
+        V = np.einsum("smij,mj->smi", self.R, y) + self.q       # (subsets, m, 3)
+        r = np.einsum("mij,smj->smi", self.G, V) - self.h[None]
+        r = np.where(self.active[None], r, -np.inf)
+        scale = 1e-12 * (1.0 + np.abs(y).max(axis=1))
+        feas = np.all(r <= scale[None, :, None], axis=2) & self.ok
+        d = np.einsum("smi,mi->sm", (V - y[None]) ** 2, 1.0 / self.cw)
+        d = np.where(feas, d, np.inf)
+        best = np.argmin(d, axis=0)
+        return V[best, np.arange(len(y))]
+
+
+# -- analyses ------------------------------------------------------------------------------
+class _Work:
+    def __init__(self, scene: Scene):
+        self.solver = DistortionSolver(scene)
+        self.runs = 0
+        self.iterations = 0
+        self.time = 0.0
+        self.notes: list[str] = []
+
+    @property
+    def uniform(self) -> np.ndarray:
+        return np.isnan(self.solver.system.contacts.override_friction)
+
+    def f_joint(self, f: float) -> np.ndarray:
+        o = self.solver.system.contacts.override_friction
+        return np.where(np.isnan(o), f, o)
+
+    def run(self, f: float, lam: float, **kw: Any) -> Run:
+        r = self.solver.run(self.solver.laws(self.f_joint(f)), lam, **kw)
+        self.runs += 1
+        self.iterations += r.iterations
+        self.time += r.time
+        return r
+
+    def common(self, analysis: str, status: str, friction: Any, lam: float | None) -> dict:
+        s = self.solver.scene
+        notes = list(self.notes)
+        return dict(analysis=analysis, status=status, friction=friction, load_factor=lam,
+                    contacts=self.solver.system.contacts, solver="distortion",
+                    n_solves=self.runs, solve_time=self.time, iterations=self.iterations,
+                    units=(s.length_unit, s.force_unit), notes=tuple(notes))
+
+    def state(self, r: Run):
+        from ..problems.analysis import force_state
+
+        return force_state(self.solver.system, r.x * self.solver.scaling.force,
+                           "impressed distortions")
+
+    def at_threshold(self, r: Run, f: float, rel: float = 1e-4) -> tuple[int, ...]:
+        laws = self.solver.laws(self.f_joint(f))
+        v = self.solver.gather(r.x)
+        rows = laws.rows(v)[:, 2:]
+        cap = np.abs(laws.h[:, 2:]) + np.abs(np.einsum("mij,mj->mi", laws.G[:, 2:], v)
+                                             - v[:, 2:3] * laws.G[:, 2:, 2])
+        hit = np.any(rows >= -rel * np.maximum(cap, 1e-12), axis=1) & laws.active[:, 2]
+        return tuple(int(j) for j in np.flatnonzero(hit))
+
+    def describe(self, r: Run) -> None:
+        F = self.solver.scaling.force
+        self.notes.append(f"{r.iterations} iterations, equilibrium residual "
+                          f"{r.residual * F:.3g}, joint-law violation {r.violation * F:.3g}")
+        if r.reason:
+            self.notes.append(r.reason)
+
+
+def _label(f: float) -> Any:
+    from ..problems.analysis import friction_label
+
+    return friction_label(f)
+
+
+def check_distortion(scene: Scene, f: float, load_factor: float, state: bool = True,
+                     tol: float = TOL, max_iter: int = MAX_ITER) -> CheckResult:
+    """Admissibility at friction ``f`` and load factor by the distortion iteration.
+
+    Status "admissible", "inadmissible", "undecided" (a limit state the iteration cannot
+    resolve within its budget) or "failure" (mechanism, budget); the reason and the
+    final residuals (force units) are in ``notes``. ``violation`` is the joint-law
+    violation of the last iterate (an upper bound of the smallest one).
+    """
+    w = _Work(scene)
+    r = w.run(f, load_factor, tol=tol, max_iter=max_iter)
+    w.describe(r)
+    ok = r.status == "admissible"
+    st = w.state(r) if (ok and state) else None
+    viol = 0.0 if ok else r.violation * w.solver.scaling.force
+    return CheckResult(**w.common("check", r.status, _label(f), load_factor), state=st,
+                       admissible=ok, violation=viol)
+
+
+def _bisect(decide, bad: float, good: float, rtol: float):
+    """Shrink the bracket until |good - bad| <= rtol max(|good|, |bad|).
+
+    ``bad`` is not admissible, ``good`` is. ``decide(x)`` returns (True | False | None,
+    run); an undecided trial (None) stops the bisection and leaves the bracket as it is.
+    """
+    last = None
+    for _ in range(200):
+        if abs(good - bad) <= rtol * max(abs(good), abs(bad), 1e-300):
+            break
+        mid = 0.5 * (bad + good)
+        verdict, run = decide(mid)
+        if verdict is None:
+            return bad, good, last, mid
+        if verdict:
+            good, last = mid, run
+        else:
+            bad = mid
+    return bad, good, last, None
+
+
+def min_friction_distortion(scene: Scene, load_factor: float = 1.0, state: bool = True,
+                            rtol: float = 1e-6, tol: float = TOL) -> FrictionResult:
+    """Smallest uniform f admitting equilibrium, by bisection on the iteration's verdict.
+
+    f = infinite first (if not admissible: status "unstable"), then f = 0, then doubling
+    from 1 to bracket f*, then bisection to ``rtol`` (at least 1e-9: the verdict is only
+    as sharp as the violation tolerance). An undecided trial ends the bisection: f* is
+    then the upper end of the bracket and the bracket is reported.
+    """
+    rtol = max(rtol, 1e-9)
+    w = _Work(scene)
+    if not w.uniform.any():
+        raise InputError("every joint has its own friction override: there is no uniform "
+                         "friction to minimise", scene.source)
+    lf = float(load_factor)
+
+    def decide(f: float):
+        r = w.run(f, lf, tol=tol)
+        if r.status == "failure":
+            w.describe(r)
+            return "failure", r
+        return {"admissible": True, "inadmissible": False}.get(r.status), r
+
+    v_inf, r_inf = decide(math.inf)
+    if v_inf is not True:
+        if v_inf == "failure" or v_inf is None:
+            status = "failure" if v_inf == "failure" else "undecided"
+            if v_inf is None:
+                w.describe(r_inf)
+            return FrictionResult(**w.common("min_friction", status, None, lf))
+        return FrictionResult(**w.common("min_friction", "unstable", None, lf))
+    v0, r0 = decide(0.0)
+    if v0 is True:
+        lo, hi, best = 0.0, 0.0, r0
+    else:
+        lo, hi, best = 0.0, 1.0, None
+        while True:
+            v, r = decide(hi)
+            if v == "failure":
+                return FrictionResult(**w.common("min_friction", "failure", None, lf))
+            if v is True:
+                best = r
+                break
+            lo, hi = hi, 2 * hi
+            if hi > 1e8:
+                w.notes.append("no finite friction up to 1e8 is admissible")
+                return FrictionResult(**w.common("min_friction", "unstable", None, lf))
+
+        def dec2(f):
+            v, r = decide(f)
+            return (None if v == "failure" else v), r
+
+        lo, hi, last, und = _bisect(dec2, lo, hi, rtol)
+        best = last or best
+        if und is not None:
+            w.notes.append(f"the iteration could not decide at f = {und:.9g}: f* is "
+                           f"bracketed in [{lo:.9g}, {hi:.9g}]")
+    fstar = hi
+    final = w.run(fstar, lf, tol=tol) if state else best
+    w.describe(final)
+    gov = w.at_threshold(final, fstar) if fstar > 0 else ()
+    gov = tuple(j for j in gov if w.uniform[j])
+    st = w.state(final) if (state and final.status == "admissible") else None
+    return FrictionResult(**w.common("min_friction", "stable", fstar, lf), state=st,
+                          governing=gov, friction_factor=fstar,
+                          friction_angle_deg=math.degrees(math.atan(fstar)), lower=lo,
+                          upper=hi)
+
+
+def max_load_distortion(scene: Scene, f: float, state: bool = True, rtol: float = 1e-6,
+                        tol: float = TOL, unbounded_at: float = 1e6) -> LoadResult:
+    """Largest live-load multiplier by bisection on lambda over admissibility.
+
+    lambda = 0 must be admissible (else "unstable"); lambda is doubled from 1 until
+    inadmissible ("unbounded" if still admissible at ``unbounded_at``), then bisected to
+    ``rtol``. No collapse mechanism is returned (the iteration has no dual variables);
+    ``governing`` lists the joints at their friction threshold at lambda*.
+    """
+    w = _Work(scene)
+    label = _label(f)
+
+    def decide(lam: float):
+        r = w.run(f, lam, tol=tol)
+        if r.status == "failure":
+            w.describe(r)
+        return {"admissible": True, "inadmissible": False}.get(r.status), r
+
+    v0, r0 = decide(0.0)
+    if r0.status == "failure":
+        return LoadResult(**w.common("max_load_multiplier", "failure", label, None))
+    if v0 is not True:
+        return LoadResult(**w.common("max_load_multiplier", "unstable", label, None))
+    lo, hi, best = 0.0, 1.0, r0
+    while True:
+        v, r = decide(hi)
+        if r.status == "failure":
+            return LoadResult(**w.common("max_load_multiplier", "failure", label, None))
+        if v is None:
+            break
+        if v is False:
+            break
+        lo, best = hi, r
+        hi *= 2
+        if hi > unbounded_at:
+            return LoadResult(**w.common("max_load_multiplier", "unbounded", label, None))
+    # admissible at lo, not at hi: reuse _bisect with the verdict reversed
+    hi, lo, last, und = _bisect(decide, hi, lo, rtol)
+    lam = lo
+    if und is not None:
+        w.notes.append(f"the iteration could not decide at lambda = {und:.9g}: lambda* is "
+                       f"bracketed in [{lo:.9g}, {hi:.9g}]")
+    final = w.run(f, lam, tol=tol) if state else (last or best)
+    w.describe(final)
+    gov = w.at_threshold(final, f) if math.isfinite(f) else ()
+    st = w.state(final) if (state and final.status == "admissible") else None
+    return LoadResult(**w.common("max_load_multiplier", "collapse", label, lam), state=st,
+                      governing=gov, load_multiplier=lam)
