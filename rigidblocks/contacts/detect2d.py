@@ -43,12 +43,17 @@ def oriented_polygons(scene: Scene, tol: float) -> tuple[np.ndarray, np.ndarray]
     suspect = (len1 <= tol) | (np.abs(cross) <= tol * np.maximum(len0 + len1, tol))
     if not suspect.any():
         return verts, starts
-    bad_blocks = np.unique(owner[suspect])
+    # simplify only the suspect blocks; the runs of clean blocks between them are
+    # copied as whole slices
     pieces = []
-    for b in range(len(counts)):
-        p = verts[starts[b]:starts[b + 1]]
-        pieces.append(simplify_polygon(p, tol) if b in set(bad_blocks.tolist()) else p)
-    counts = np.array([len(p) for p in pieces])
+    done = 0
+    for b in np.unique(owner[suspect]).tolist():
+        pieces.append(verts[done:starts[b]])
+        simple = simplify_polygon(verts[starts[b]:starts[b + 1]], tol)
+        pieces.append(simple)
+        counts[b] = len(simple)
+        done = starts[b + 1]
+    pieces.append(verts[done:])
     return np.concatenate(pieces), np.concatenate([[0], np.cumsum(counts)])
 
 

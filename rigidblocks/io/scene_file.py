@@ -86,8 +86,10 @@ def _keys(obj: Any, allowed: set[str], required: tuple[str, ...], where: str) ->
     return obj
 
 
-def _reject_constant(name: str) -> None:
-    raise InputError(f"{name} is not a number in a scene file")
+def _nonfinite_constant(name: str) -> float:
+    # NaN / Infinity literals are read as floats so that the strict value checks reject
+    # them with the block and key they stand in (every number goes through _number)
+    return float(name)
 
 
 # -- reading --------------------------------------------------------------------------
@@ -105,7 +107,7 @@ def scene_from_dict(doc: Any, source: str | None = None, *, validate: bool = Tru
 
             validate_scene(scene)
     except InputError as err:
-        raise err.located(source) if source else err
+        raise (err.located(source) if source else err) from None
     return scene
 
 
@@ -228,14 +230,18 @@ def _parse_joint(j: Any, i: int) -> JointOverride:
 
 
 def loads_json(text: str, source: str | None = None) -> Any:
-    """Parse JSON text strictly (no NaN/Infinity literals); errors are InputError."""
+    """Parse JSON text; errors are InputError.
+
+    NaN and Infinity literals parse as non-finite floats, which :func:`scene_from_dict`
+    rejects naming the block and key where they stand.
+    """
     try:
-        return json.loads(text, parse_constant=_reject_constant)
+        return json.loads(text, parse_constant=_nonfinite_constant)
     except json.JSONDecodeError as err:
         raise InputError(f"malformed JSON: {err.msg} at line {err.lineno} column {err.colno}",
                          source) from None
     except InputError as err:
-        raise err.located(source) if source else err
+        raise (err.located(source) if source else err) from None
 
 
 def read_scene(path: str | os.PathLike, *, validate: bool = True) -> Scene:

@@ -1,0 +1,354 @@
+"""The scene file contract (docs/scene-format.md): strict reading, clear errors, round-trip.
+
+Every rejected input must raise :class:`InputError` with one line that names the file
+and the block id or key at fault; the CLI turns it into exit status 2 and one line on
+standard error.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from conftest import EXAMPLES, make_scene, rect
+
+from rigidblocks.cli.main import main
+from rigidblocks.contacts import detect_contacts
+from rigidblocks.equilibrium import assemble
+from rigidblocks.errors import InputError
+from rigidblocks.io.scene_file import dumps_scene, read_scene, write_scene
+
+
+def base_doc() -> dict:
+    """The example of docs/scene-format.md: two blocks on a base, with loads."""
+    return {
+        "format": "rigidblocks-scene", "version": 1, "name": "two blocks on a base",
+        "dimension": 2, "units": {"length": "m", "force": "kN"}, "depth": 1.0,
+        "unit_weight": 20.0, "friction": 0.6,
+        "blocks": [
+            {"id": "base", "vertices": rect(0, 0, 2, 0.5), "support": True},
+            {"id": "A", "vertices": rect(0.5, 0.5, 1, 0.5)},
+            {"id": "B", "vertices": rect(0.5, 1.0, 1, 0.5)},
+        ],
+        "loads": [
+            {"block": "B", "force": [0, -10], "point": [1.0, 1.5]},
+            {"block": "B", "force": [1, 0], "point": [1.0, 1.5], "live": True},
+        ],
+        "joints": [{"blocks": ["A", "B"], "friction": 0.4}],
+    }
+
+
+def write_doc(tmp_path: Path, doc, name: str = "scene.json") -> Path:
+    path = tmp_path / name
+    path.write_text(doc if isinstance(doc, str) else json.dumps(doc), encoding="utf-8")
+    return path
+
+
+def expect_error(path: Path, *names: str) -> str:
+    """Read ``path``, expect an InputError naming the file and every one of ``names``."""
+    with pytest.raises(InputError) as info:
+        read_scene(path)
+    msg = str(info.value)
+    assert "\n" not in msg
+    assert str(path) in msg, msg
+    for n in names:
+        assert n in msg, f"{n!r} not in {msg!r}"
+    return msg
+
+
+def test_base_doc_is_valid(tmp_path):
+    scene = read_scene(write_doc(tmp_path, base_doc()))
+    assert [b.id for b in scene.blocks] == ["base", "A", "B"]
+    assert scene.friction == 0.6 and scene.loads[1].is_live
+
+
+# -- structure --------------------------------------------------------------------------
+def test_malformed_json(tmp_path):
+    text = json.dumps(base_doc())[:-5]
+    msg = expect_error(write_doc(tmp_path, text), "malformed JSON")
+    assert "line 1" in msg
+
+
+@pytest.mark.parametrize("key, value", [("format", "rigidblocks"), ("version", 2),
+                                        ("version", "1"), ("dimension", 4)])
+def test_wrong_format_version_dimension(tmp_path, key, value):
+    doc = base_doc()
+    doc[key] = value
+    expect_error(write_doc(tmp_path, doc), f'"{key}"')
+
+
+def mutate(path_in_doc, key, value=1):
+    """A function that adds ``key: value`` to the object at ``path_in_doc``."""
+
+    def apply(doc):
+        obj = doc
+        for p in path_in_doc:
+            obj = obj[p]
+        obj[key] = value
+
+    return apply
+
+
+@pytest.mark.parametrize("where, names", [
+    ((), ["frction"]),
+    (("blocks", 1), ["frction", "block 'A'"]),
+    (("loads", 0), ["frction", "load #0"]),
+    (("joints", 0), ["frction", "joint #0"]),
+    (("units",), ["frction", "units"]),
+])
+def test_unknown_key(tmp_path, where, names):
+    doc = base_doc()
+    mutate(where, "frction", 0.3)(doc)
+    expect_error(write_doc(tmp_path, doc), *names)
+
+
+@pytest.mark.parametrize("where, key, names", [
+    ((), "blocks", ['"blocks"']),
+    ((), "format", ['"format"']),
+    ((), "dimension", ['"dimension"']),
+    (("blocks", 2), "vertices", ['"vertices"', "block 'B'"]),
+    (("blocks", 2), "id", ['"id"', "block #2"]),
+    (("loads", 1), "force", ['"force"', "load #1"]),
+    (("joints", 0), "blocks", ['"blocks"', "joint #0"]),
+])
+def test_missing_key(tmp_path, where, key, names):
+    doc = base_doc()
+    obj = doc
+    for p in where:
+        obj = obj[p]
+    del obj[key]
+    expect_error(write_doc(tmp_path, doc), *names)
+
+
+@pytest.mark.parametrize("value", ["0.5", None, [0.5], True])
+def test_non_numeric_coordinate(tmp_path, value):
+    doc = base_doc()
+    doc["blocks"][1]["vertices"][2][0] = value
+    expect_error(write_doc(tmp_path, doc), "block 'A'", '"vertices"[2]')
+
+
+@pytest.mark.parametrize("literal", ["NaN", "Infinity", "-Infinity", "1e999"])
+def test_non_finite_coordinate_literal(tmp_path, literal):
+    """JSON literals NaN / Infinity (and 1e999, which overflows to inf) are rejected."""
+    doc = base_doc()
+    doc["blocks"][2]["vertices"][1][1] = 12345.0
+    text = json.dumps(doc).replace("12345.0", literal)
+    assert literal in text
+    expect_error(write_doc(tmp_path, text), "block 'B'", '"vertices"[1]', "finite")
+
+
+def test_non_finite_load_and_scene_values(tmp_path):
+    doc = base_doc()
+    doc["loads"][0]["force"][1] = 12345.0
+    text = json.dumps(doc).replace("12345.0", "NaN")
+    expect_error(write_doc(tmp_path, text), "load #0", '"force"')
+    doc = base_doc()
+    doc["friction"] = 12345.0
+    text = json.dumps(doc).replace("12345.0", "Infinity")
+    expect_error(write_doc(tmp_path, text), '"friction"')
+
+
+def test_non_finite_in_dict_rejected():
+    """The same check applies to documents built in code (float('nan'))."""
+    with pytest.raises(InputError, match="block 'B'.*finite"):
+        make_scene([{"id": "base", "vertices": rect(0, -1, 3, 1), "support": True},
+                    {"id": "B", "vertices": [[0, 0], [1, 0], [1, float("nan")], [0, 1]]}])
+
+
+# -- polygons -----------------------------------------------------------------------------
+def test_fewer_than_three_vertices(tmp_path):
+    doc = base_doc()
+    doc["blocks"][1]["vertices"] = [[0.5, 0.5], [1.5, 0.5]]
+    expect_error(write_doc(tmp_path, doc), "block 'A'", "at least 3 vertices")
+
+
+def test_zero_area_polygon(tmp_path):
+    doc = base_doc()
+    doc["blocks"][1]["vertices"] = [[0.5, 0.5], [1.0, 0.5], [1.5, 0.5]]
+    expect_error(write_doc(tmp_path, doc), "block 'A'", "zero area")
+
+
+def test_self_intersecting_polygon(tmp_path):
+    """A bow tie: edges (0.5,0.5)-(1.5,1) and (1.5,0.5)-(0.5,1) cross (zero net area
+    would be caught earlier, so the bow tie is made lopsided)."""
+    doc = base_doc()
+    doc["blocks"][1]["vertices"] = [[0.5, 0.5], [1.5, 1.0], [1.5, 0.5], [0.5, 0.9]]
+    expect_error(write_doc(tmp_path, doc), "block 'A'", "self-intersecting")
+
+
+# -- semantics ------------------------------------------------------------------------
+def test_duplicate_ids(tmp_path):
+    doc = base_doc()
+    doc["blocks"][2]["id"] = "A"
+    expect_error(write_doc(tmp_path, doc), "block 'A'", "duplicate")
+
+
+def test_load_on_support(tmp_path):
+    doc = base_doc()
+    doc["loads"][1]["block"] = "base"
+    expect_error(write_doc(tmp_path, doc), "load #1", "'base'", "support")
+
+
+def test_load_on_unknown_block(tmp_path):
+    doc = base_doc()
+    doc["loads"][0]["block"] = "Z"
+    expect_error(write_doc(tmp_path, doc), "load #0", "'Z'", "unknown")
+
+
+def test_no_support_block(tmp_path):
+    doc = base_doc()
+    del doc["blocks"][0]["support"]
+    expect_error(write_doc(tmp_path, doc), "no support block", '"support"')
+
+
+def test_no_free_block(tmp_path):
+    doc = base_doc()
+    for b in doc["blocks"]:
+        b["support"] = True
+    del doc["loads"]
+    expect_error(write_doc(tmp_path, doc), "no free block")
+
+
+def test_overlapping_blocks_names_both(tmp_path):
+    doc = base_doc()
+    doc["blocks"][2]["vertices"] = rect(0.5, 0.9, 1, 0.5)  # 0.1 into A
+    expect_error(write_doc(tmp_path, doc), "'A'", "'B'", "overlap")
+
+
+def test_touching_blocks_are_not_overlapping(tmp_path):
+    doc = base_doc()
+    doc["blocks"].append({"id": "C", "vertices": rect(1.5, 0.5, 0.5, 0.5)})  # beside A
+    read_scene(write_doc(tmp_path, doc))
+
+
+def test_joint_override_between_non_touching_blocks(tmp_path):
+    doc = base_doc()
+    doc["joints"] = [{"blocks": ["base", "B"], "friction": 0.2}]
+    expect_error(write_doc(tmp_path, doc), "'base'", "'B'", "not in contact")
+
+
+def test_joint_override_unknown_block(tmp_path):
+    doc = base_doc()
+    doc["joints"] = [{"blocks": ["A", "Q"]}]
+    expect_error(write_doc(tmp_path, doc), "'Q'", "unknown")
+
+
+# -- CLI ---------------------------------------------------------------------------------
+@pytest.mark.parametrize("case", ["unknown_key", "overlap", "missing_file", "nan"])
+def test_cli_bad_input_exit_2_one_line(tmp_path, capsys, case):
+    doc = base_doc()
+    if case == "unknown_key":
+        doc["blocks"][1]["frction"] = 0.1
+        path, names = write_doc(tmp_path, doc), ["frction", "block 'A'"]
+    elif case == "overlap":
+        doc["blocks"][2]["vertices"] = rect(0.5, 0.9, 1, 0.5)
+        path, names = write_doc(tmp_path, doc), ["'A'", "'B'"]
+    elif case == "nan":
+        doc["blocks"][2]["vertices"][1][1] = 12345.0
+        path = write_doc(tmp_path, json.dumps(doc).replace("12345.0", "NaN"))
+        names = ["block 'B'"]
+    else:
+        path, names = tmp_path / "absent.json", ["no such file"]
+    assert main(["check", str(path)]) == 2
+    out, err = capsys.readouterr()
+    assert out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert "Traceback" not in err
+    assert str(path) in lines[0]
+    for n in names:
+        assert n in lines[0]
+
+
+# -- round trip ----------------------------------------------------------------------
+def example_files() -> list[Path]:
+    return sorted(EXAMPLES.glob("*.json"))
+
+
+@pytest.mark.parametrize("path", example_files(), ids=lambda p: p.name)
+def test_examples_round_trip(path):
+    """write(read(file)) reproduces every bundled example's text exactly."""
+    text = path.read_text(encoding="utf-8")
+    scene = read_scene(path)
+    assert dumps_scene(scene) == text
+
+
+def test_generated_scene_round_trip(tmp_path):
+    """A scene written by the writer reads back equal and re-writes to the same text
+    (always runs, whether or not examples/ holds any file yet)."""
+    first = write_doc(tmp_path, base_doc(), "input.json")
+    scene = read_scene(first)
+    out = tmp_path / "canonical.json"
+    write_scene(scene, out)
+    text = out.read_text(encoding="utf-8")
+    again = read_scene(out)
+    assert again == scene
+    assert dumps_scene(again) == text
+    # the canonical layout: one block per line
+    assert sum(1 for line in text.splitlines() if '"id"' in line) == 3
+
+
+def test_round_trip_keeps_optional_keys_absent(tmp_path):
+    doc = {"format": "rigidblocks-scene", "version": 1, "dimension": 2,
+           "blocks": [{"id": "s", "vertices": rect(0, -1, 2, 1), "support": True},
+                      {"id": "b", "vertices": rect(0, 0, 1, 1), "unit_weight": 3}]}
+    scene = read_scene(write_doc(tmp_path, doc))
+    assert scene.friction is None and scene.depth is None
+    out = json.loads(dumps_scene(scene))
+    assert out == doc
+
+
+# -- orientation ---------------------------------------------------------------------
+def _stack_doc(clockwise: set[str]) -> dict:
+    doc = base_doc()
+    for b in doc["blocks"]:
+        if b["id"] in clockwise:
+            b["vertices"] = b["vertices"][::-1]
+    return doc
+
+
+def _contact_set(scene):
+    c = detect_contacts(scene)
+    out = []
+    for k in range(c.n_joints):
+        pts = c.points[c.joint_start[k]:c.joint_start[k + 1]]
+        out.append((tuple(c.pairs[k]), tuple(np.round(c.normals[k], 12)),
+                    tuple(sorted(map(tuple, np.round(pts, 12)))), round(c.areas[k], 12)))
+    return sorted(out)
+
+
+@pytest.mark.parametrize("clockwise", [{"A"}, {"base", "B"}, {"base", "A", "B"}])
+def test_clockwise_and_counter_clockwise_agree(tmp_path, clockwise):
+    """Orientation is normalised by the reader: same joints, normals, points, areas and
+    the same equilibrium system (up to the order of columns within a joint)."""
+    ccw = read_scene(write_doc(tmp_path, _stack_doc(set()), "ccw.json"))
+    cw = read_scene(write_doc(tmp_path, _stack_doc(clockwise), "cw.json"))
+    assert _contact_set(ccw) == _contact_set(cw)
+    s1, s2 = assemble(ccw), assemble(cw)
+    np.testing.assert_allclose(s1.dead, s2.dead, atol=1e-12)
+    np.testing.assert_allclose(s1.live, s2.live, atol=1e-12)
+    np.testing.assert_allclose(s1.centroids, s2.centroids, atol=1e-12)
+    cols1 = sorted(map(tuple, np.round(s1.A.toarray().T, 12)))
+    cols2 = sorted(map(tuple, np.round(s2.A.toarray().T, 12)))
+    assert cols1 == cols2
+    # and the same least-squares reactions of A x = -F (unique: A is square here)
+    x1 = np.linalg.lstsq(s1.A.toarray(), -s1.dead, rcond=None)[0]
+    x2 = np.linalg.lstsq(s2.A.toarray(), -s2.dead, rcond=None)[0]
+    np.testing.assert_allclose(np.sort(x1), np.sort(x2), atol=1e-9)
+
+
+def test_clockwise_same_min_friction(tmp_path):
+    """The minimum friction of a pulled block does not depend on vertex order."""
+    from rigidblocks.problems import min_friction
+
+    doc = copy.deepcopy(_stack_doc(set()))
+    del doc["joints"]
+    a = min_friction(read_scene(write_doc(tmp_path, doc, "a.json")), state=False)
+    doc_cw = _stack_doc({"A", "B", "base"})
+    del doc_cw["joints"]
+    b = min_friction(read_scene(write_doc(tmp_path, doc_cw, "b.json")), state=False)
+    assert a.status == b.status
+    assert a.friction_factor == pytest.approx(b.friction_factor, rel=1e-6, abs=1e-9)
