@@ -1,0 +1,164 @@
+"""The ``check``, ``friction`` and ``load`` commands against scene-format.md's contract.
+
+Expected values are the closed forms of the catalogue (validation.md): a b x h block on
+a support under a horizontal body force has lambda* = min(f, b/h); the seed's
+four-block model without self-weight has f* = 0.5 (26.565 deg).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+from conftest import rect
+
+from rigidblocks.cli.main import main
+
+
+def write(tmp_path, name, blocks, **top):
+    d = {"format": "rigidblocks-scene", "version": 1, "dimension": 2, "blocks": blocks}
+    d.update(top)
+    p = tmp_path / name
+    p.write_text(json.dumps(d))
+    return str(p)
+
+
+@pytest.fixture
+def block_file(tmp_path):
+    """1 x 2 block, unit weight 1, f = 0.3, live horizontal body force."""
+    return write(tmp_path, "block.json", [
+        {"id": "base", "vertices": rect(-2, -1, 5, 1), "support": True},
+        {"id": "B", "vertices": rect(0, 0, 1, 2)},
+    ], unit_weight=1.0, friction=0.3, live_body_force=[1, 0])
+
+
+@pytest.fixture
+def seed_file(tmp_path):
+    """The seed's reference model (see test_catalogue.seed_model), no self-weight."""
+    return write(tmp_path, "seed.json", [
+        {"id": "S", "vertices": rect(-1, -1, 4, 1), "support": True},
+        {"id": "C1", "vertices": rect(0, 0, 1, 1)},
+        {"id": "C2", "vertices": rect(1, 0, 1, 1)},
+        {"id": "T", "vertices": rect(0, 1, 2, 0.5)},
+    ], loads=[{"block": "T", "force": [0, -100]}, {"block": "C1", "force": [-50, 0]},
+              {"block": "C2", "force": [50, 0]}])
+
+
+def run_json(capsys, argv):
+    code = main(argv)
+    out = capsys.readouterr()
+    lines = [ln for ln in out.out.splitlines() if ln.strip()]
+    assert len(lines) == 1, out.out  # exactly one JSON object
+    return code, json.loads(lines[0]), out.err
+
+
+@pytest.mark.parametrize("solver", [[], ["--solver", "highs"]])
+def test_friction_json(capsys, seed_file, solver):
+    """f* = 0.5 and phi = atan(0.5) = 26.565 deg (seed, validation.md); the governing
+    joints are the four horizontal joints of the central blocks."""
+    code, d, _ = run_json(capsys, ["friction", seed_file, "--json", *solver])
+    assert code == 0
+    assert {"status", "friction_factor", "friction_angle_deg", "governing_joints"} <= set(d)
+    assert d["status"] == "stable"
+    assert abs(d["friction_factor"] - 0.5) <= 1e-6 * 0.5
+    assert abs(d["friction_angle_deg"] - math.degrees(math.atan(0.5))) <= 1e-5
+    gov = {frozenset(p) for p in d["governing_joints"]}
+    assert gov == {frozenset(p) for p in (("S", "C1"), ("S", "C2"), ("C1", "T"),
+                                           ("C2", "T"))}
+
+
+def test_friction_unstable_json(capsys, tmp_path):
+    """A block standing on a corner has no joint: "unstable", angle null."""
+    p = write(tmp_path, "point.json", [
+        {"id": "S", "vertices": rect(-1, -1, 2, 1), "support": True},
+        {"id": "B", "vertices": [[0, 0], [1, 1], [0, 2], [-1, 1]]},
+    ], unit_weight=1.0)
+    code, d, _ = run_json(capsys, ["friction", p, "--json"])
+    assert code == 0
+    assert d["status"] == "unstable"
+    assert d["friction_factor"] is None and d["friction_angle_deg"] is None
+
+
+@pytest.mark.parametrize("solver", [[], ["--solver", "highs"]])
+def test_load_json(capsys, block_file, solver):
+    """lambda* = min(f, b/h) = 0.3 with the scene's f; 0.5 (tipping, b/h) with
+    --friction infinite."""
+    code, d, _ = run_json(capsys, ["load", block_file, "--json", *solver])
+    assert code == 0
+    assert {"status", "load_multiplier", "friction"} <= set(d)
+    assert d["status"] == "collapse" and d["friction"] == 0.3
+    assert abs(d["load_multiplier"] - 0.3) <= 1e-6 * 0.3
+    code, d, _ = run_json(capsys, ["load", block_file, "--json", "--friction", "infinite",
+                                   *solver])
+    assert code == 0 and d["friction"] == "infinite"
+    assert abs(d["load_multiplier"] - 0.5) <= 1e-6 * 0.5
+
+
+def test_load_unbounded_json(capsys, tmp_path):
+    """A live force straight down with infinite friction never causes collapse."""
+    p = write(tmp_path, "down.json", [
+        {"id": "S", "vertices": rect(0, -1, 3, 1), "support": True},
+        {"id": "B", "vertices": rect(1, 0, 1, 1)},
+    ], unit_weight=1.0, live_body_force=[0, -1])
+    code, d, _ = run_json(capsys, ["load", p, "--json"])
+    assert code == 0 and d["status"] == "unbounded" and d["load_multiplier"] is None
+
+
+@pytest.mark.parametrize("lf,ok", [(0.3 * (1 - 1e-4), True), (0.3 * (1 + 1e-4), False)])
+def test_check_json(capsys, block_file, lf, ok):
+    """Admissible just below lambda* = f = 0.3, not just above; exit 0 either way."""
+    code, d, _ = run_json(capsys, ["check", block_file, "--json", "--load-factor", str(lf)])
+    assert code == 0
+    assert d["admissible"] is ok
+    assert d["status"] == ("admissible" if ok else "inadmissible")
+
+
+def test_check_friction_infinite(capsys, block_file):
+    """With infinite friction the block only tips at b/h = 0.5: lambda = 0.4 passes."""
+    code, d, _ = run_json(capsys, ["check", block_file, "--json", "--friction", "infinite",
+                                   "--load-factor", "0.4", "--solver", "highs"])
+    assert code == 0 and d["admissible"] is True
+
+
+def test_load_without_live_load_exits_2(capsys, tmp_path):
+    """scene-format.md: load on a scene with no live load is a usage error (exit 2,
+    one line on standard error that says so)."""
+    p = write(tmp_path, "dead.json", [
+        {"id": "S", "vertices": rect(0, -1, 3, 1), "support": True},
+        {"id": "B", "vertices": rect(1, 0, 1, 1)},
+    ], unit_weight=1.0)
+    code = main(["load", p, "--json"])
+    out = capsys.readouterr()
+    assert code == 2
+    assert out.out == ""
+    err = out.err.strip().splitlines()
+    assert len(err) == 1 and "live" in err[0]
+
+
+def test_friction_all_overridden_exits_2(capsys, tmp_path):
+    """scene-format.md: friction on a scene whose every joint has its own friction is a
+    usage error (exit 2, one line)."""
+    p = write(tmp_path, "over.json", [
+        {"id": "S", "vertices": rect(0, -1, 3, 1), "support": True},
+        {"id": "B", "vertices": rect(1, 0, 1, 1)},
+    ], unit_weight=1.0, joints=[{"blocks": ["S", "B"], "friction": 0.4}])
+    code = main(["friction", p, "--json"])
+    out = capsys.readouterr()
+    assert code == 2
+    err = out.err.strip().splitlines()
+    assert len(err) == 1 and "override" in err[0]
+
+
+def test_bad_friction_option_exits_2(capsys, block_file):
+    """--friction must be a number >= 0 or "infinite": exit 2 with one line."""
+    code = main(["check", block_file, "--friction", "-1"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and "friction" in err[0]
+
+
+def test_human_report(capsys, seed_file):
+    """Without --json a short table with f* to six digits is printed."""
+    assert main(["friction", seed_file]) == 0
+    out = capsys.readouterr().out
+    assert "0.5" in out and "26.5651" in out
