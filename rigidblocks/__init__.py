@@ -9,9 +9,24 @@ from .scene import INFINITE, Block, JointOverride, Load, Scene, make_block
 
 __version__ = "0.1.0"
 
+
+def plot(scene: Scene, result: object = None, ax: object = None, **kwargs: object) -> object:
+    """Draw a 2D scene and a result; see :func:`rigidblocks.plotting.plot` (needs matplotlib)."""
+    from .plotting import plot as _plot
+
+    return _plot(scene, result, ax, **kwargs)
+
+
+def read_dxf(path: object, **kwargs: object) -> object:
+    """Read a DXF drawing as a scene; see :func:`rigidblocks.io.dxf.read_dxf` (needs ezdxf)."""
+    from .io.dxf import read_dxf as _read_dxf
+
+    return _read_dxf(path, **kwargs)  # type: ignore[arg-type]
+
+
 __all__ = [
     "INFINITE", "Block", "Contacts", "EquilibriumSystem", "InputError", "JointOverride",
     "Load", "RigidBlocksError", "Scene", "SolverFailure", "assemble", "detect_contacts",
-    "check", "make_block", "max_load_multiplier", "min_friction", "read_scene",
-    "write_scene",
+    "check", "make_block", "max_load_multiplier", "min_friction", "plot", "read_dxf",
+    "read_scene", "write_scene",
 ]

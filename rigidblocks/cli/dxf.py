@@ -1,0 +1,88 @@
+"""``import-dxf`` and ``export-dxf``: CAD drawings to scene files and back."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..errors import InputError
+from ..io import read_scene, write_scene
+
+
+def _pair(text: str) -> tuple[float, float]:
+    try:
+        vals = tuple(float(v) for v in text.replace(",", " ").split())
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not two numbers: '{text}'") from None
+    if len(vals) != 2:
+        raise argparse.ArgumentTypeError(f"not two numbers: '{text}'")
+    return vals  # type: ignore[return-value]
+
+
+def add_args(p: argparse.ArgumentParser, name: str) -> None:
+    if name == "import-dxf":
+        from ..io.dxf import DEFAULT_NEAR_MISS, DEFAULT_SNAP_TOL
+
+        p.add_argument("dxf", help="DXF drawing: one block per closed polyline")
+        p.add_argument("-o", "--output", required=True, help="scene file to write (JSON)")
+        p.add_argument("--supports", default="lowest",
+                       help="'lowest' (default), 'largest', 'layer:NAME' or 'ids:b1,b2'")
+        p.add_argument("--unit-weight", type=float, default=None, help="unit weight")
+        p.add_argument("--depth", type=float, default=None, help="out-of-plane depth")
+        p.add_argument("--friction", default=None, help='friction f or "infinite"')
+        p.add_argument("--length-unit", default=None, help="e.g. mm")
+        p.add_argument("--force-unit", default=None, help="e.g. kN")
+        p.add_argument("--live-body-force", type=_pair, default=None, metavar="'FX FY'",
+                       help="live body force vector, e.g. '1 0'")
+        p.add_argument("--name", default=None, help="scene name")
+        p.add_argument("--snap-tol", type=float, default=DEFAULT_SNAP_TOL,
+                       help="snapping tolerance relative to the drawing size "
+                       f"(default {DEFAULT_SNAP_TOL:g})")
+        p.add_argument("--near-miss", type=float, default=DEFAULT_NEAR_MISS,
+                       help="reject corners closer than this many tolerances but not "
+                       f"within one (default {DEFAULT_NEAR_MISS:g}; 0 disables)")
+    else:
+        p.add_argument("scene", help="scene file (JSON)")
+        p.add_argument("-o", "--output", required=True, help="DXF file to write")
+        p.add_argument("--analysis", choices=("check", "friction", "load"), default=None,
+                       help="add the thrust line and force arrows of this analysis")
+        p.add_argument("--friction", default=None, help='friction f or "infinite"')
+        p.add_argument("--load-factor", type=float, default=1.0, help="lambda (default 1)")
+
+
+def _friction(text: str | None):
+    if text is None or text == "infinite":
+        return text
+    try:
+        f = float(text)
+    except ValueError:
+        raise InputError(f"--friction: not a number or \"infinite\": '{text}'") from None
+    if f < 0:
+        raise InputError("--friction must be >= 0")
+    return f
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..io.dxf import read_dxf, write_dxf
+
+    if args.command == "import-dxf":
+        units = None
+        if args.length_unit or args.force_unit:
+            units = (args.length_unit, args.force_unit)
+        scene, rep = read_dxf(args.dxf, supports=args.supports, unit_weight=args.unit_weight,
+                              depth=args.depth, friction=_friction(args.friction),
+                              units=units, live_body_force=args.live_body_force,
+                              name=args.name, snap_tol=args.snap_tol,
+                              near_miss=args.near_miss, report=True)
+        write_scene(scene, args.output)
+        print(rep.summary())
+        print(f"wrote {args.output}")
+        return 0
+    from .plot import analyse
+
+    scene = read_scene(args.scene)
+    result = analyse(scene, args.analysis, args.friction, args.load_factor)
+    if result is not None and getattr(result, "state", None) is None and args.analysis:
+        print(f"{args.analysis}: {result.status}, no force state to draw")
+    write_dxf(scene, args.output, result)
+    print(f"wrote {args.output}")
+    return 0

@@ -1,0 +1,70 @@
+"""``plot``: a picture of a scene, optionally with the result of an analysis."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from ..errors import InputError
+from ..io import read_scene
+
+ANALYSES = ("check", "friction", "load")
+FORMATS = (".png", ".svg", ".pdf")
+
+
+def add_args(p: argparse.ArgumentParser, name: str) -> None:
+    p.add_argument("scene", help="scene file (JSON)")
+    p.add_argument("--analysis", choices=ANALYSES, default=None,
+                   help="run this analysis and draw its result (forces and thrust line "
+                   "for check/friction, the collapse mechanism for load)")
+    p.add_argument("--friction", default=None,
+                   help='friction coefficient f or "infinite" for check/load '
+                   "(default: the scene's)")
+    p.add_argument("--load-factor", type=float, default=1.0,
+                   help="lambda for check/friction (default 1)")
+    p.add_argument("--ids", action="store_true", help="write the block ids")
+    p.add_argument("-o", "--output", default=None,
+                   help="output file, .png, .svg or .pdf (default: SCENE with .png)")
+
+
+def run(args: argparse.Namespace) -> int:
+    out = Path(args.output) if args.output else Path(args.scene).with_suffix(".png")
+    if out.suffix.lower() not in FORMATS:
+        raise InputError(f"unknown picture format '{out.suffix}': use "
+                         f"{', '.join(FORMATS)}", str(out))
+    scene = read_scene(args.scene)
+    if scene.dimension != 2:
+        raise InputError("plot draws 2D scenes only", args.scene)
+    result = analyse(scene, args.analysis, args.friction, args.load_factor)
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..plotting import plot, save_figure
+
+    ax = plot(scene, result, ids=args.ids)
+    try:
+        save_figure(ax, str(out))
+    except OSError as err:
+        raise InputError(f"cannot write: {err}", str(out)) from None
+    finally:
+        plt.close(ax.figure)
+    print(f"wrote {out}")
+    return 0
+
+
+def analyse(scene, analysis: str | None, friction, load_factor: float):
+    """Run the named analysis (None: no analysis) with a force state."""
+    from ..problems import check, max_load_multiplier, min_friction
+
+    if analysis is None:
+        return None
+    if analysis == "check":
+        return check(scene, friction=friction, load_factor=load_factor)
+    if analysis == "friction":
+        return min_friction(scene, load_factor=load_factor)
+    if analysis == "load":
+        return max_load_multiplier(scene, friction=friction)
+    raise InputError(f"unknown analysis '{analysis}': use {', '.join(ANALYSES)}")

@@ -1,0 +1,310 @@
+"""Pictures of 2D scenes and results with matplotlib.
+
+:func:`plot` draws the blocks (supports shaded differently) and, given a result:
+
+* after :func:`~rigidblocks.check` or :func:`~rigidblocks.min_friction` (a result whose
+  ``state`` is a :class:`~rigidblocks.results.ForceState`): the joint force resultants
+  as arrows scaled to a reference arrow in the legend, the thrust line (the points
+  where the resultants cross the joints, joined in order along the structure when the
+  blocks form a chain), the joints coloured by their friction demand |T| / (f N) with
+  a colour bar, and the governing joints marked;
+* after :func:`~rigidblocks.max_load_multiplier`: the collapse mechanism as the
+  displaced configuration. Block i with virtual velocity (u, v, omega) of its
+  centroid c moves each point p to c + s (u, v) + R(s omega) (p - c), with s chosen
+  so that the largest displacement is about 10 % of the scene's size; hinges and
+  sliding joints are marked.
+
+Large scenes stay readable: above ``max_arrows`` joints no arrows are drawn and the
+joints are drawn as a heat map instead (colour: friction demand, line width:
+normal force); arrows shorter than a twentieth of the largest are left out.
+
+Every artist carries a ``gid`` (``"rb-blocks"``, ``"rb-supports"``, ``"rb-joints"``,
+``"rb-forces"``, ``"rb-thrust"``, ``"rb-governing"``, ``"rb-displaced"``,
+``"rb-hinges"``, ``"rb-sliding"``) so that programs can find it.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ..scene.geometry import block_weights, scene_size
+from ..scene.model import Scene
+
+#: above this many joints no force arrows are drawn (the joints become a heat map)
+MAX_ARROWS = 400
+#: arrows shorter than this fraction of the largest one are left out
+MIN_ARROW_FRACTION = 0.05
+#: the largest mechanism displacement, as a fraction of the scene's size
+DISPLACEMENT_FRACTION = 0.1
+
+FREE_COLOUR = "#d9c7a7"
+SUPPORT_COLOUR = "#7f7f7f"
+
+
+def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
+         max_arrows: int = MAX_ARROWS, force_scale: float | None = None,
+         displacement_scale: float | None = None, title: str | None = None,
+         colorbar: bool = True) -> Any:
+    """Draw a 2D scene, and a result of an analysis on it.
+
+    Args:
+        scene: a 2D scene.
+        result: None, or the result of ``check``, ``min_friction`` (with a force
+            state) or ``max_load_multiplier`` on this scene.
+        ax: matplotlib Axes to draw on (default: a new figure).
+        ids: write block ids at the centroids.
+        max_arrows: above this many joints, draw a heat map instead of arrows.
+        force_scale: drawing length per force unit (default: the largest resultant
+            is 12 % of the scene's size).
+        displacement_scale: factor s on the mechanism's virtual velocities (default:
+            the largest displacement is 10 % of the scene's size).
+        title: overrides the title made from the result.
+        colorbar: add a colour bar for the friction demand.
+
+    Returns:
+        The matplotlib Axes.
+    """
+    from matplotlib.collections import LineCollection, PolyCollection
+
+    if scene.dimension != 2:
+        from ..errors import InputError
+
+        raise InputError("plot draws 2D scenes only", scene.source)
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        n = len(scene.blocks)
+        _, ax = plt.subplots(figsize=(10, 7) if n > 200 else (8, 6))
+    size = scene_size(scene)
+    _, centroids, _ = block_weights(scene)
+    polys = [b.points for b in scene.blocks]
+    sup = scene.support_mask
+    mech = getattr(result, "mechanism", None)
+    faded = mech is not None
+    lw = 0.8 if len(polys) < 500 else 0.2
+    for mask, colour, gid in ((~sup, FREE_COLOUR, "rb-blocks"), (sup, SUPPORT_COLOUR,
+                                                                  "rb-supports")):
+        pc = PolyCollection([polys[i] for i in np.flatnonzero(mask)], closed=True,
+                            facecolors=colour, edgecolors="k", linewidths=lw,
+                            alpha=0.35 if faded and gid == "rb-blocks" else 1.0,
+                            hatch="///" if gid == "rb-supports" else None, zorder=1)
+        pc.set_gid(gid)
+        pc.set_label("support" if gid == "rb-supports" else "block")
+        ax.add_collection(pc)
+    if ids:
+        fs = 8 if len(polys) < 60 else 5
+        for b, c in zip(scene.blocks, centroids, strict=True):
+            ax.text(c[0], c[1], b.id, ha="center", va="center", fontsize=fs, zorder=6)
+    allpts = np.concatenate(polys)
+    lo, hi = allpts.min(axis=0), allpts.max(axis=0)
+
+    headline = _title(scene, result)
+    state = getattr(result, "state", None)
+    if mech is not None:
+        lo, hi = _draw_mechanism(ax, scene, result, centroids, size, displacement_scale,
+                                 lo, hi)
+    elif state is not None and result.contacts.n_joints:
+        _draw_forces(ax, scene, result, size, max_arrows, force_scale, colorbar,
+                     LineCollection)
+    pad = 0.05 * (hi - lo).max()
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    ax.set_aspect("equal", adjustable="box")
+    unit = scene.length_unit
+    ax.set_xlabel(f"x [{unit}]" if unit else "x")
+    ax.set_ylabel(f"y [{unit}]" if unit else "y")
+    ax.set_title(title if title is not None else headline)
+    return ax
+
+
+def _title(scene: Scene, result: Any) -> str:
+    name = scene.name or ""
+    if result is None:
+        return name
+    a = getattr(result, "analysis", "")
+    if a == "min_friction":
+        if result.friction_factor is None:
+            txt = "unstable: no friction suffices"
+        else:
+            txt = (f"minimum friction f* = {result.friction_factor:.4g} "
+                   f"(friction angle {result.friction_angle_deg:.2f}\N{DEGREE SIGN})")
+    elif a == "max_load_multiplier":
+        if result.load_multiplier is None:
+            txt = f"load multiplier: {result.status}"
+        else:
+            txt = (f"collapse load multiplier \N{GREEK SMALL LETTER LAMDA}* = "
+                   f"{result.load_multiplier:.4g}, f = {_fmt_f(result.friction)}")
+    elif a == "check":
+        verdict = "admissible" if result.admissible else "not admissible"
+        txt = (f"{verdict} at f = {_fmt_f(result.friction)}, "
+               f"\N{GREEK SMALL LETTER LAMDA} = {result.load_factor:g}")
+    else:
+        txt = f"{a}: {result.status}"
+    return f"{name}\n{txt}" if name else txt
+
+
+def _fmt_f(f: Any) -> str:
+    if f is None or isinstance(f, str) or (isinstance(f, float) and math.isinf(f)):
+        return "\N{INFINITY}"
+    return f"{float(f):.4g} ({math.degrees(math.atan(float(f))):.2f}\N{DEGREE SIGN})"
+
+
+def available_friction(result: Any) -> float:
+    """The friction coefficient the demand is compared with (inf when none)."""
+    if getattr(result, "analysis", "") == "min_friction" and result.friction_factor:
+        return float(result.friction_factor)
+    f = getattr(result, "friction", None)
+    if f is None or isinstance(f, str):
+        return math.inf
+    return float(f)
+
+
+def _nice(x: float) -> float:
+    """1, 2 or 5 times a power of ten, at most x."""
+    if x <= 0 or not math.isfinite(x):
+        return 1.0
+    e = math.floor(math.log10(x))
+    for m in (5, 2, 1):
+        if m * 10**e <= x:
+            return m * 10**e
+    return 10**e  # pragma: no cover
+
+
+def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: int,
+                 force_scale: float | None, colorbar: bool, LineCollection: Any) -> None:
+    from ..io.dxf import joint_force_vectors
+
+    c = result.contacts
+    st = result.state
+    m = c.n_joints
+    seg = np.stack([c.points[c.joint_start[:-1]], c.points[c.joint_start[1:] - 1]], axis=1)
+    f = available_friction(result)
+    if math.isfinite(f) and f > 0:
+        val = st.demand / f
+        label = f"friction demand |T| / (f N), f = {f:.4g}"
+    else:
+        val = st.demand
+        label = "friction demand |T| / N"
+    val = np.where(np.isfinite(val), val, 1e3)
+    heat = m > max_arrows
+    Nj = np.abs(st.joint_normal)
+    nmax = Nj.max(initial=0.0)
+    widths = (0.5 + 3.5 * Nj / nmax) if (heat and nmax > 0) else (2.5 if m < 200 else 1.5)
+    lc = LineCollection(seg, cmap="RdYlGn_r", linewidths=widths, zorder=3)
+    lc.set_array(val)
+    lc.set_clim(0.0, 1.0)
+    lc.set_gid("rb-joints")
+    ax.add_collection(lc)
+    if colorbar:
+        ax.figure.colorbar(lc, ax=ax, label=label, shrink=0.8, extend="max")
+    # thrust line
+    pts = st.thrust_points
+    order = np.asarray(st.thrust_order)
+    chain = len(order) == m and m > 1 and all(
+        set(c.pairs[order[k]]) & set(c.pairs[order[k + 1]]) for k in range(m - 1))
+    line = st.thrust_line
+    if chain:
+        (tl,) = ax.plot(line[:, 0], line[:, 1], "-", color="tab:red", lw=1.5, zorder=4,
+                        label="thrust line")
+    else:
+        ms = 3 if m < 500 else 1
+        (tl,) = ax.plot(pts[:, 0], pts[:, 1], "o", color="tab:red", ms=ms, zorder=4,
+                        label="resultant on joint")
+    tl.set_gid("rb-thrust")
+    # governing joints
+    gov = np.asarray(result.governing, dtype=int)
+    if len(gov):
+        mid = seg[gov].mean(axis=1)
+        sc = ax.scatter(mid[:, 0], mid[:, 1], s=90, facecolors="none", edgecolors="k",
+                        linewidths=1.8, zorder=5, label="governing joint")
+        sc.set_gid("rb-governing")
+    # force arrows, scaled to a reference arrow in the legend
+    if not heat:
+        vec = joint_force_vectors(c, st)
+        mag = np.linalg.norm(vec, axis=1)
+        top = mag.max(initial=0.0)
+        if top > 0:
+            scale = force_scale if force_scale is not None else 0.12 * size / top
+            keep = (mag >= MIN_ARROW_FRACTION * top) & np.all(np.isfinite(pts), axis=1)
+            q = ax.quiver(pts[keep, 0], pts[keep, 1], vec[keep, 0], vec[keep, 1],
+                          angles="xy", scale_units="xy", scale=1.0 / scale,
+                          color="tab:blue", width=0.004, zorder=5)
+            q.set_gid("rb-forces")
+            ref = _nice(top)
+            unit = scene.force_unit or "force units"
+            ax.quiverkey(q, 0.8, -0.16, ref, f"{ref:g} {unit}", labelpos="E",
+                         coordinates="axes")
+    ax.legend(loc="upper left", bbox_to_anchor=(0.0, -0.12), ncol=3, fontsize=8)
+
+
+def displaced_polygons(scene: Scene, velocities: np.ndarray, s: float,
+                       centroids: np.ndarray | None = None) -> list[np.ndarray]:
+    """Block polygons moved by s times their virtual velocities (u, v, omega).
+
+    p' = c + s (u, v) + R(s omega) (p - c), with c the block's centroid.
+    """
+    if centroids is None:
+        centroids = block_weights(scene)[1]
+    out = []
+    for b, c, (u, v, w) in zip(scene.blocks, centroids, velocities, strict=True):
+        t = s * w
+        rot = np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
+        out.append(c + s * np.array([u, v]) + (b.points - c) @ rot.T)
+    return out
+
+
+def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, size: float,
+                    displacement_scale: float | None, lo: np.ndarray,
+                    hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    from matplotlib.collections import PolyCollection
+
+    mech = result.mechanism
+    vel = np.asarray(mech.velocities, dtype=float)
+    # largest displacement of any vertex per unit s (small-rotation estimate)
+    reach = 0.0
+    for b, c, (u, v, w) in zip(scene.blocks, centroids, vel, strict=True):
+        r = np.linalg.norm(b.points - c, axis=1).max()
+        reach = max(reach, math.hypot(u, v) + abs(w) * r)
+    s = displacement_scale if displacement_scale is not None else (
+        DISPLACEMENT_FRACTION * size / reach if reach > 0 else 0.0)
+    moved = displaced_polygons(scene, vel, s, centroids)
+    free = ~scene.support_mask
+    pc = PolyCollection([moved[i] for i in np.flatnonzero(free)], closed=True,
+                        facecolors=FREE_COLOUR, edgecolors="k",
+                        linewidths=0.8 if len(moved) < 500 else 0.2, zorder=2)
+    pc.set_gid("rb-displaced")
+    pc.set_label("collapse mechanism (displaced)")
+    ax.add_collection(pc)
+    c = result.contacts
+    first = c.points[c.joint_start[:-1]]
+    last = c.points[c.joint_start[1:] - 1]
+    hinge = mech.joints_with("hinge")
+    if len(hinge):
+        op = np.asarray(mech.opening)
+        pick = np.where(op[c.joint_start[hinge]] <= op[c.joint_start[hinge + 1] - 1],
+                        c.joint_start[hinge], c.joint_start[hinge + 1] - 1)
+        hp = c.points[pick]
+        sc = ax.scatter(hp[:, 0], hp[:, 1], s=40, c="tab:red", marker="o", zorder=5,
+                        label="hinge")
+        sc.set_gid("rb-hinges")
+    slide = np.array([k for k, md in enumerate(mech.modes) if md.startswith("slide")],
+                     dtype=int)
+    if len(slide):
+        mid = 0.5 * (first[slide] + last[slide])
+        sc = ax.scatter(mid[:, 0], mid[:, 1], s=60, c="tab:blue", marker="D", zorder=5,
+                        label="sliding joint")
+        sc.set_gid("rb-sliding")
+    ax.legend(loc="upper left", bbox_to_anchor=(0.0, -0.12), ncol=3, fontsize=8)
+    allm = np.concatenate(moved)
+    return np.minimum(lo, allm.min(axis=0)), np.maximum(hi, allm.max(axis=0))
+
+
+def save_figure(ax: Any, path: str) -> None:
+    """Save the Axes' figure (format from the file extension: png, svg, pdf)."""
+    ax.figure.savefig(path, dpi=150, bbox_inches="tight")
+
+
+__all__ = ["MAX_ARROWS", "available_friction", "displaced_polygons", "plot", "save_figure"]
