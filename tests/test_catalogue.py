@@ -413,3 +413,16 @@ def test_energy_state_admissible_and_in_equilibrium(scene, f):
     fr = scene.effective_friction if f is None else f
     assert st.normal.min() >= -1e-7 * scale
     assert np.all(np.abs(st.joint_shear) <= fr * st.joint_normal + 1e-7 * scale)
+
+
+@pytest.mark.parametrize("build,expect", [
+    (lambda: seed_model(), 0.5), (lambda: seed_model(50.0), 0.25),
+    (leaning_pair, 1.0 / 15.0), (lambda: inclined(1.0, 2.0, math.radians(20.0)),
+                                 math.tan(math.radians(20.0))),
+    (lambda: side_by_side(0.4, -1, 0.0), 0.4)])
+def test_min_friction_scs(build, expect):
+    """The catalogue's f* (closed forms above) with SCS, a first-order conic solver:
+    same verdict, f* to SCS's precision."""
+    r = min_friction(build(), solver="scs", state=False)
+    assert r.status == "stable" and close(r.friction_factor, expect, SCS_RTOL)
+    assert r.n_solves <= 15
