@@ -523,3 +523,225 @@ def max_load_distortion(scene: Scene, f: float, state: bool = True, rtol: float 
     st = w.state(final) if (state and final.status == "admissible") else None
     return LoadResult(**w.common("max_load_multiplier", "collapse", label, lam), state=st,
                       governing=gov, load_multiplier=lam)
+
+
+# -- the load path ----------------------------------------------------------------------------
+@dataclass(frozen=True)
+class PathEvent:
+    """Something that happens to joints on the load path, at ``load_factor``.
+
+    ``kind``: "crack" (a normal link reached its tensile strength and broke),
+    "plastic" (a shear link reached its friction threshold), "slide" (Coulomb option:
+    the shear dropped to zero), "collapse" (no admissible state beyond this load; the
+    joints listed are those at their threshold in the last admissible state).
+    """
+
+    kind: str
+    load_factor: float
+    joints: tuple[tuple[str, str], ...]
+
+
+@dataclass(frozen=True)
+class PathStep:
+    """The state at one load step: verdict, cracked and plastic joints, work done."""
+
+    load_factor: float
+    status: str
+    cracked: tuple[tuple[str, str], ...]
+    at_threshold: tuple[tuple[str, str], ...]
+    iterations: int
+
+
+@dataclass(frozen=True)
+class PathResult:
+    """A load path: status "collapse" (with ``collapse_load``), "standing" (admissible up
+    to the last step), "undecided" or "failure" (reason in ``notes``)."""
+
+    status: str
+    sliding: str
+    friction: Any
+    steps: tuple[PathStep, ...]
+    events: tuple[PathEvent, ...]
+    collapse_load: float | None
+    n_solves: int
+    iterations: int
+    solve_time: float
+    notes: tuple[str, ...] = ()
+
+    def first(self, kind: str) -> PathEvent | None:
+        return next((e for e in self.events if e.kind == kind), None)
+
+    def to_dict(self) -> dict[str, Any]:
+        from ..results import _friction_json
+
+        return {"status": self.status, "sliding": self.sliding,
+                "friction": _friction_json(self.friction), "collapse_load": self.collapse_load,
+                "events": [{"kind": e.kind, "load_factor": e.load_factor,
+                            "joints": [list(j) for j in e.joints]} for e in self.events],
+                "steps": [{"load_factor": s.load_factor, "status": s.status,
+                           "cracked": [list(j) for j in s.cracked],
+                           "at_threshold": [list(j) for j in s.at_threshold],
+                           "iterations": s.iterations} for s in self.steps],
+                "solver": "distortion", "n_solves": self.n_solves,
+                "iterations": self.iterations, "solve_time": self.solve_time,
+                "notes": list(self.notes)}
+
+
+def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: Any = None,
+              method: str = "distortion", sliding: str = "plastic", refine: int = 30,
+              tol: float = TOL) -> PathResult:
+    """Increase the live load in ``steps`` equal steps up to ``max_load`` x live.
+
+    At every step the state is the distortion iteration's (the admissible state closest
+    to the elastic one) under the joint laws as the history has left them: a joint whose
+    normal link reached its tensile strength has cracked (brittle: no tension and no
+    cohesion from then on); with ``sliding="coulomb"`` a joint that reached its friction
+    threshold has slid and carries no shear from then on, while with
+    ``sliding="plastic"`` (Drucker) its shear stays capped at the threshold. Every change
+    of law is followed by a new iteration at the same load, so that cascades show up at
+    the step they happen. The load of each event is refined by ``refine`` bisection
+    steps inside its load step. The path stops at the first load with no admissible
+    state ("collapse"). These states depend on the order of events (which joints
+    cracked or slid before): a single convex problem, which only asks whether some
+    admissible state exists, cannot express that.
+    """
+    from ..problems.analysis import resolve_friction
+
+    if method != "distortion":
+        raise InputError(f'load_path supports method="distortion" only, got {method!r}')
+    if sliding not in ("plastic", "coulomb"):
+        raise InputError(f'sliding must be "plastic" or "coulomb", got {sliding!r}')
+    if steps < 1 or not (max_load > 0):
+        raise InputError("load_path needs steps >= 1 and max_load > 0")
+    if not scene.has_live_load:
+        raise InputError("the scene has no live load: there is nothing to increase",
+                         scene.source)
+    f = resolve_friction(scene, friction)
+    w = _Work(scene)
+    ds = w.solver
+    c = ds.system.contacts
+    ids = c.block_ids
+    F = ds.scaling.force
+    names = [(ids[a], ids[b]) for a, b in c.pairs]
+    fj = w.f_joint(f).astype(float)
+    tension = c.tensile_strength.astype(float).copy()
+    cohesion = c.cohesion.astype(float).copy()
+    events: list[PathEvent] = []
+    out_steps: list[PathStep] = []
+    plastic_seen: set[int] = set()
+    slid: set[int] = set()
+
+    def solve_at(lam: float) -> Run:
+        r = ds.run(ds.laws(fj, tension, cohesion), lam, tol=tol)
+        w.runs += 1
+        w.iterations += r.iterations
+        w.time += r.time
+        return r
+
+    def at_cap(r: Run) -> list[int]:
+        cap = tension[c.point_joint] * c.point_areas / F
+        n = r.x[:ds.P]
+        hit = (cap > 0) & (n <= -cap * (1 - 1e-6))
+        return sorted({int(j) for j in c.point_joint[hit]})
+
+    def at_threshold(r: Run) -> list[int]:
+        laws = ds.laws(fj, tension, cohesion)
+        v = ds.gather(r.x)
+        thr = np.abs(fj * (v[:, 0] + v[:, 1]) + laws.h[:, 2])
+        thr = np.where(np.isfinite(fj), thr, np.inf)
+        gap = np.where(np.isfinite(fj), laws.rows(v)[:, 2:].max(axis=1), -np.inf)
+        big = float(np.abs(v).max(initial=0.0))
+        hit = (gap >= -1e-5 * np.maximum(thr, 1e-9 * big)) & (thr > 1e-6 * big)
+        return [int(j) for j in np.flatnonzero(hit)]
+
+    def refine_load(a: float, b: float, pred) -> float:
+        """Smallest load in (a, b] where pred(run) holds (pred false at a, true at b)."""
+        for _ in range(refine):
+            mid = 0.5 * (a + b)
+            r = solve_at(mid)
+            if r.status == "undecided":
+                break
+            if pred(r):
+                b = mid
+            else:
+                a = mid
+        return b
+
+    def ok(r: Run) -> bool:
+        return r.status == "admissible"
+
+    prev = 0.0
+    r = solve_at(0.0)
+    status = ""
+    collapse = None
+    if r.status == "failure":
+        w.notes.append(r.reason)
+        status = "failure"
+    elif not ok(r):
+        w.notes.append("the dead load alone has no admissible state")
+        status = "collapse"
+        collapse = 0.0
+    for k in range(1, steps + 1) if not status else ():
+        lam = max_load * k / steps
+        its0 = w.iterations
+        for _cascade in range(ds.m + 2):
+            r = solve_at(lam)
+            if not ok(r):
+                break
+            cracks = [j for j in at_cap(r)]
+            if cracks:
+                lam_e = refine_load(prev, lam, lambda q: not ok(q) or bool(at_cap(q)))
+                events.append(PathEvent("crack", lam_e, tuple(names[j] for j in cracks)))
+                tension[cracks] = 0.0
+                cohesion[cracks] = 0.0
+                continue
+            new = [j for j in at_threshold(r) if j not in plastic_seen and j not in slid]
+            if new:
+                events.append(PathEvent("plastic", lam, tuple(names[j] for j in new)))
+                plastic_seen.update(new)
+                if sliding == "coulomb":
+                    events.append(PathEvent("slide", lam, tuple(names[j] for j in new)))
+                    slid.update(new)
+                    fj[new] = 0.0
+                    cohesion[new] = 0.0
+                    continue
+            break
+        if r.status == "failure":
+            w.notes.append(r.reason)
+            status = "failure"
+            break
+        if not ok(r):
+            last = solve_at(prev)
+            lam_c = prev
+            if refine and ok(last):
+                a, b = prev, lam
+                for _ in range(refine):
+                    mid = 0.5 * (a + b)
+                    q = solve_at(mid)
+                    if q.status == "undecided":
+                        break
+                    if ok(q):
+                        a, last = mid, q
+                    else:
+                        b = mid
+                lam_c = a
+            gov = at_threshold(last) if ok(last) else []
+            new = [j for j in gov if j not in plastic_seen]
+            if new:
+                events.append(PathEvent("plastic", lam_c, tuple(names[j] for j in new)))
+            events.append(PathEvent("collapse", lam_c, tuple(names[j] for j in gov)))
+            out_steps.append(PathStep(lam, r.status, (), (), w.iterations - its0))
+            if r.status != "inadmissible":
+                w.notes.append(f"at load {lam:.6g}: {r.reason}")
+            status, collapse = "collapse", lam_c
+            break
+        cracked = tuple(names[j] for j in range(ds.m) if tension[j] == 0 and
+                        c.tensile_strength[j] > 0)
+        out_steps.append(PathStep(lam, r.status, cracked,
+                                  tuple(names[j] for j in at_threshold(r)),
+                                  w.iterations - its0))
+        prev = lam
+    if not status:
+        status = "standing"
+    return PathResult(status, sliding, _label(f), tuple(out_steps), tuple(events), collapse,
+                      w.runs, w.iterations, w.time, tuple(w.notes))
