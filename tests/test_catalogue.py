@@ -426,3 +426,16 @@ def test_min_friction_scs(build, expect):
     r = min_friction(build(), solver="scs", state=False)
     assert r.status == "stable" and close(r.friction_factor, expect, SCS_RTOL)
     assert r.n_solves <= 15
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+def test_max_load_unstable_when_live_load_props_up(solver):
+    """scene-format.md: "unstable" when the dead load alone has no admissible state.
+    The 0.5 x 1 block on the 30 deg ramp tips under its weight (b/h < tan 30 deg); a
+    live body force towards +x (uphill) can prop it up, so admissible multipliers exist,
+    but lambda = 0 is not one of them: no collapse multiplier is reported."""
+    s = inclined(0.5, 1.0, math.radians(30.0)).with_changes(live_body_force=(1.0, 0.0),
+                                                              friction="infinite")
+    assert not check(s, load_factor=0.0, solver=solver).admissible
+    r = max_load_multiplier(s, solver=solver)
+    assert r.status == "unstable" and r.load_multiplier is None

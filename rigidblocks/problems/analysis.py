@@ -444,7 +444,8 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     res = ctx.run(prob, "maximum load")
     label = friction_label(f)
     if res.status == UNBOUNDED:
-        return LoadResult(**ctx.common("max_load_multiplier", "unbounded", label, None))
+        status = "unbounded" if _dead_admissible(ctx, f) else "unstable"
+        return LoadResult(**ctx.common("max_load_multiplier", status, label, None))
     if res.status == INFEASIBLE:
         return LoadResult(**ctx.common("max_load_multiplier", "unstable", label, None))
     lam = float(res.z[prob.cols["lambda"]][0])
@@ -452,11 +453,28 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         ctx.notes.append(f"the largest admissible multiplier is negative ({lam:.6g}): the "
                          "dead load alone is not admissible")
         return LoadResult(**ctx.common("max_load_multiplier", "unstable", label, None))
+    if not _dead_admissible(ctx, f):
+        ctx.notes.append(f"largest admissible multiplier {lam:.6g}, but only with the live "
+                         "load propping the structure up")
+        return LoadResult(**ctx.common("max_load_multiplier", "unstable", label, None))
     mech = mechanism(ctx.system, ctx.scaling, res.y[prob.rows["equilibrium"]])
     sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
     st = _state(ctx, f, lam, STATE_SLACK) if state else None
     return LoadResult(**ctx.common("max_load_multiplier", "collapse", label, lam), state=st,
                       governing=sliding, load_multiplier=lam, mechanism=mech)
+
+
+def _dead_admissible(ctx: _Context, f: float) -> bool:
+    """Is lambda = 0 admissible? The admissible multipliers form an interval, which may
+    lie wholly above 0 when the live load props up a structure that cannot stand under
+    its dead load alone. One relaxation solve (none when there is no dead load)."""
+    if not np.any(ctx.system.dead):
+        return True
+    R0, _, _, _, _ = _relaxation(ctx, f, 0.0)
+    if R0 is None or R0 > RELAX_ZERO:
+        ctx.notes.append("the dead load alone is not admissible")
+        return False
+    return True
 
 
 def mechanism(system: EquilibriumSystem, scaling: Scaling, y_eq: np.ndarray) -> Mechanism:
