@@ -9,10 +9,10 @@
   blocks form a chain), the joints coloured by their friction demand |T| / (f N) with
   a colour bar, and the governing joints marked;
 * after :func:`~rigidblocks.max_load_multiplier`: the collapse mechanism as the
-  displaced configuration. Block i with virtual velocity (u, v, omega) of its
-  centroid c moves each point p to c + s (u, v) + R(s omega) (p - c), with s chosen
-  so that the largest displacement is about 10 % of the scene's size; hinges and
-  sliding joints are marked.
+  displaced configuration: block i, with virtual velocity (u, v, omega) of its
+  centroid, turns by s omega about its instantaneous centre (see
+  :func:`displaced_polygons`), s chosen so that the largest displacement is about
+  10 % of the scene's size; hinges and sliding joints are marked.
 
 Large scenes stay readable: above ``max_arrows`` joints no arrows are drawn and the
 joints are drawn as a heat map instead (colour: friction demand, line width:
@@ -20,7 +20,7 @@ normal force); arrows shorter than a twentieth of the largest are left out.
 
 Every artist carries a ``gid`` (``"rb-blocks"``, ``"rb-supports"``, ``"rb-joints"``,
 ``"rb-forces"``, ``"rb-thrust"``, ``"rb-governing"``, ``"rb-displaced"``,
-``"rb-hinges"``, ``"rb-sliding"``) so that programs can find it.
+``"rb-hinges"``, ``"rb-sliding"``, ``"rb-force-key"``) so that programs can find it.
 """
 
 from __future__ import annotations
@@ -235,8 +235,9 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
             q.set_gid("rb-forces")
             ref = _nice(top)
             unit = scene.force_unit or "force units"
-            ax.quiverkey(q, 0.8, -0.16, ref, f"{ref:g} {unit}", labelpos="E",
-                         coordinates="axes")
+            key = ax.quiverkey(q, 0.8, -0.16, ref, f"{ref:g} {unit}", labelpos="E",
+                               coordinates="axes")
+            key.set_gid("rb-force-key")
     ax.legend(loc="upper left", bbox_to_anchor=(0.0, -0.12), ncol=3, fontsize=8)
 
 
@@ -244,15 +245,24 @@ def displaced_polygons(scene: Scene, velocities: np.ndarray, s: float,
                        centroids: np.ndarray | None = None) -> list[np.ndarray]:
     """Block polygons moved by s times their virtual velocities (u, v, omega).
 
-    p' = c + s (u, v) + R(s omega) (p - c), with c the block's centroid.
+    (u, v) is the velocity of the block's centroid c. A block that turns (omega != 0)
+    is rotated by s omega about its instantaneous centre p0 = c + (-v, u) / omega, the
+    point of zero velocity, so that hinges stay closed in the picture:
+    p' = p0 + R(s omega) (p - p0); one that does not is translated by s (u, v). To
+    first order in s both are p + s (u - omega (y - c_y), v + omega (x - c_x)).
     """
     if centroids is None:
         centroids = block_weights(scene)[1]
     out = []
     for b, c, (u, v, w) in zip(scene.blocks, centroids, velocities, strict=True):
+        r = float(np.linalg.norm(b.points - c, axis=1).max())
+        if abs(w) * r <= 1e-12 * max(math.hypot(u, v), 1e-300):
+            out.append(b.points + s * np.array([u, v]))
+            continue
+        p0 = c + np.array([-v, u]) / w
         t = s * w
         rot = np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
-        out.append(c + s * np.array([u, v]) + (b.points - c) @ rot.T)
+        out.append(p0 + (b.points - p0) @ rot.T)
     return out
 
 

@@ -1,0 +1,202 @@
+"""Pictures: structure of the drawn figure (patches, arrows, markers, limits), files.
+
+Reference values: the block on a support under a horizontal body force lambda x W
+collapses at lambda* = min(f, b/h) (see docs/validation.md); with f < b/h it slides on
+its bed joint, with f > b/h it tips about its toe (one hinge). Its minimum friction
+at load factor lambda is f* = lambda (the bed joint carries H = lambda W, N = W).
+"""
+
+from __future__ import annotations
+
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+from conftest import EXAMPLES, make_scene, rect  # noqa: E402
+from matplotlib.quiver import Quiver  # noqa: E402
+
+import rigidblocks as rb  # noqa: E402
+from rigidblocks.cli.main import main  # noqa: E402
+from rigidblocks.io import read_scene, write_scene  # noqa: E402
+from rigidblocks.plotting import displaced_polygons  # noqa: E402
+
+
+def by_gid(ax, gid):
+    return [a for a in ax.get_children() if a.get_gid() == gid]
+
+
+def n_paths(ax, gid):
+    return sum(len(a.get_paths()) for a in by_gid(ax, gid))
+
+
+def arrows(ax):
+    return sum(q.N for q in ax.collections if isinstance(q, Quiver))
+
+
+def assert_contains_blocks(ax, polys):
+    x0, x1 = ax.get_xlim()
+    y0, y1 = ax.get_ylim()
+    pts = np.concatenate(polys)
+    assert x0 <= pts[:, 0].min() and pts[:, 0].max() <= x1
+    assert y0 <= pts[:, 1].min() and pts[:, 1].max() <= y1
+
+
+def stack(n=5, shift=0.0):
+    """n unit blocks stacked on a support; a live horizontal body force."""
+    blocks = [{"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True}]
+    blocks += [{"id": f"s{k}", "vertices": rect(k * shift, k * 0.5, 1, 0.5)}
+               for k in range(n)]
+    return make_scene(blocks, unit_weight=1.0, friction=0.3, live_body_force=[1, 0],
+                      units={"length": "m", "force": "kN"}, name="stack")
+
+
+def grid_wall(nx, ny):
+    """A running-bond wall of nx x ny bricks (2 x 1), one support below."""
+    blocks = [{"id": "base", "vertices": rect(-1, -1, 2 * nx + 3, 1), "support": True}]
+    for j in range(ny):
+        off = 1.0 if j % 2 else 0.0
+        for i in range(nx):
+            blocks.append({"id": f"w{i}_{j}", "vertices": rect(off + 2 * i, j, 2, 1)})
+    return make_scene(blocks, unit_weight=1.0, friction=0.7, live_body_force=[1, 0])
+
+
+def teardown_function():
+    plt.close("all")
+
+
+def test_scene_only_counts_patches_and_limits():
+    sc = stack(5, shift=0.1)
+    ax = rb.plot(sc, ids=True)
+    assert n_paths(ax, "rb-blocks") == 5
+    assert n_paths(ax, "rb-supports") == 1
+    assert len(ax.texts) == 6
+    assert arrows(ax) == 0
+    assert_contains_blocks(ax, [b.points for b in sc.blocks])
+    assert ax.get_aspect() == 1.0
+
+
+def test_min_friction_forces_thrust_and_governing(block_on_base):
+    """Block on a base at lambda = 0.3: f* = 0.3 on the one bed joint, which governs."""
+    sc = block_on_base(b=1.0, h=2.0, friction=0.5).with_changes(
+        units=rb.scene.Units("m", "kN"))
+    res = rb.min_friction(sc, load_factor=0.3)
+    assert res.friction_factor == pytest.approx(0.3, rel=1e-5)
+    ax = rb.plot(sc, res)
+    assert arrows(ax) == 1
+    assert n_paths(ax, "rb-joints") == 1
+    gov = by_gid(ax, "rb-governing")
+    assert len(gov) == 1 and len(gov[0].get_offsets()) == 1
+    assert len(by_gid(ax, "rb-thrust")) == 1
+    assert "f* = 0.3" in ax.get_title() and "16.7" in ax.get_title()  # atan 0.3 = 16.70 deg
+    # the joint is coloured at full demand |T|/(f* N) = 1
+    (lc,) = by_gid(ax, "rb-joints")
+    assert lc.get_array()[0] == pytest.approx(1.0, rel=1e-4)
+    # the reference arrow names the force unit
+    (key,) = by_gid(ax, "rb-force-key")
+    assert key.text.get_text().endswith(" kN") and key.U <= res.state.joint_normal.max() * 2
+
+
+def test_check_result_draws_arrows_per_loaded_joint():
+    sc = stack(5)
+    res = rb.check(sc, friction=0.6, load_factor=0.1)
+    assert res.admissible
+    ax = rb.plot(sc, res)
+    assert n_paths(ax, "rb-joints") == res.contacts.n_joints == 5
+    assert arrows(ax) == 5
+    (line,) = by_gid(ax, "rb-thrust")
+    assert len(line.get_xdata()) == 5  # a chain: one point per joint
+    assert "admissible" in ax.get_title()
+
+
+@pytest.mark.parametrize("f,mode", [(0.2, "rb-sliding"), (0.9, "rb-hinges")])
+def test_mechanism_sliding_or_tipping(block_on_base, f, mode):
+    """b/h = 0.5: f = 0.2 slides (lambda* = f), f = 0.9 tips (lambda* = b/h)."""
+    sc = block_on_base(b=1.0, h=2.0, friction=f)
+    res = rb.max_load_multiplier(sc)
+    assert res.load_multiplier == pytest.approx(min(f, 0.5), rel=1e-5)
+    ax = rb.plot(sc, res)
+    marks = by_gid(ax, mode)
+    assert len(marks) == 1 and len(marks[0].get_offsets()) == 1
+    other = "rb-hinges" if mode == "rb-sliding" else "rb-sliding"
+    assert not by_gid(ax, other)
+    assert n_paths(ax, "rb-displaced") == 1
+    assert f"{min(f, 0.5):.4g}" in ax.get_title()
+    moved = by_gid(ax, "rb-displaced")[0].get_paths()[0].vertices
+    assert_contains_blocks(ax, [b.points for b in sc.blocks] + [moved])
+    if mode == "rb-hinges":  # tipping about the toe (1, 0): it stays put
+        assert np.min(np.linalg.norm(moved - [1.0, 0.0], axis=1)) < 1e-9
+        (h,) = by_gid(ax, "rb-hinges")
+        assert np.allclose(h.get_offsets()[0], [1.0, 0.0])
+
+
+def test_displaced_polygons_rigid_rotation():
+    """A pure rotation omega about the centroid keeps the centroid and edge lengths."""
+    sc = stack(1)
+    vel = np.array([[0, 0, 0], [0, 0, 1.0]])
+    moved = displaced_polygons(sc, vel, math.pi / 2)
+    p = sc.blocks[1].points
+    assert np.allclose(moved[1].mean(axis=0), p.mean(axis=0))
+    # rotating (0,0) by 90 deg about (0.5, 0.25) gives (0.75, -0.25)
+    assert np.allclose(moved[1][0], [0.75, -0.25])
+    assert np.allclose(moved[0], sc.blocks[0].points)
+
+
+def test_large_scene_switches_to_heat_map():
+    sc = grid_wall(30, 12)
+    res = rb.check(sc, friction=0.7, load_factor=0.05)
+    assert res.admissible and res.contacts.n_joints > rb.plotting.MAX_ARROWS
+    ax = rb.plot(sc, res)
+    assert arrows(ax) == 0
+    assert n_paths(ax, "rb-joints") == res.contacts.n_joints
+    assert n_paths(ax, "rb-blocks") == 360
+    assert_contains_blocks(ax, [b.points for b in sc.blocks])
+    ax2 = rb.plot(sc, res, max_arrows=10**6)
+    assert 0 < arrows(ax2) <= res.contacts.n_joints
+
+
+@pytest.mark.parametrize("ext", ["png", "svg", "pdf"])
+def test_cli_writes_each_format(tmp_path, ext):
+    path = tmp_path / "s.json"
+    write_scene(stack(3), path)
+    out = tmp_path / f"s.{ext}"
+    assert main(["plot", str(path), "--analysis", "friction", "--load-factor", "0.1",
+                 "-o", str(out)]) == 0
+    assert out.stat().st_size > 100
+
+
+def test_cli_load_and_bad_format(tmp_path, capsys):
+    path = tmp_path / "s.json"
+    write_scene(stack(3), path)
+    out = tmp_path / "m.png"
+    assert main(["plot", str(path), "--analysis", "load", "-o", str(out)]) == 0
+    assert out.stat().st_size > 100
+    assert main(["plot", str(path), "-o", str(tmp_path / "x.gif")]) == 2
+    assert "gif" in capsys.readouterr().err
+
+
+def example_files():
+    files = sorted(EXAMPLES.glob("*.json")) if EXAMPLES.is_dir() else []
+    return [pytest.param(f, id=f.name) for f in files]
+
+
+@pytest.mark.parametrize("path", example_files() + [pytest.param(None, id="built-stack")])
+def test_render_every_example(path, tmp_path):
+    sc = stack(4, shift=0.05) if path is None else read_scene(path)
+    if sc.dimension != 2:
+        pytest.skip("3D scenes are not drawn")
+    ax = rb.plot(sc)
+    assert n_paths(ax, "rb-blocks") + n_paths(ax, "rb-supports") == len(sc.blocks)
+    assert_contains_blocks(ax, [b.points for b in sc.blocks])
+    if sc.has_live_load:
+        res = rb.max_load_multiplier(sc)
+        ax = rb.plot(sc, res)
+        if res.status == "collapse":
+            assert n_paths(ax, "rb-displaced") == int((~sc.support_mask).sum())
+    out = tmp_path / "x.png"
+    ax.figure.savefig(out)
+    assert out.stat().st_size > 0
