@@ -343,13 +343,17 @@ class _Work:
         return force_state(self.solver.system, r.x * self.solver.scaling.force,
                            "impressed distortions")
 
-    def at_threshold(self, r: Run, f: float, rel: float = 1e-4) -> tuple[int, ...]:
-        laws = self.solver.laws(self.f_joint(f))
+    def at_threshold(self, r: Run, f: float, rel: float = 1e-5) -> tuple[int, ...]:
+        """Loaded joints whose shear is at the friction threshold (within ``rel``)."""
+        fj = self.f_joint(f)
+        laws = self.solver.laws(fj)
         v = self.solver.gather(r.x)
-        rows = laws.rows(v)[:, 2:]
-        cap = np.abs(laws.h[:, 2:]) + np.abs(np.einsum("mij,mj->mi", laws.G[:, 2:], v)
-                                             - v[:, 2:3] * laws.G[:, 2:, 2])
-        hit = np.any(rows >= -rel * np.maximum(cap, 1e-12), axis=1) & laws.active[:, 2]
+        fin = np.isfinite(fj)
+        thr = np.where(fin, np.abs(np.where(fin, fj, 0.0) * (v[:, 0] + v[:, 1])
+                                   + laws.h[:, 2]), 0.0)
+        gap = laws.rows(v)[:, 2:].max(axis=1)
+        big = float(np.abs(v).max(initial=0.0))
+        hit = fin & (thr > 1e-6 * big) & (gap >= -rel * thr)
         return tuple(int(j) for j in np.flatnonzero(hit))
 
     def describe(self, r: Run) -> None:
