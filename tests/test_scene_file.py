@@ -352,3 +352,18 @@ def test_clockwise_same_min_friction(tmp_path):
     b = min_friction(read_scene(write_doc(tmp_path, doc_cw, "b.json")), state=False)
     assert a.status == b.status
     assert a.friction_factor == pytest.approx(b.friction_factor, rel=1e-6, abs=1e-9)
+
+
+def test_block_inside_another_is_an_overlap(tmp_path):
+    """A small block wholly inside A (no edge crossing) still overlaps it."""
+    doc = base_doc()
+    doc["blocks"].append({"id": "C", "vertices": rect(0.8, 0.6, 0.2, 0.2)})
+    expect_error(write_doc(tmp_path, doc), "'A'", "'C'", "overlap")
+
+
+def test_slight_overlap_of_side_by_side_blocks(tmp_path):
+    """Blocks side by side whose boxes share a sliver of 1e-3 x their height: an
+    overlap of 1e-4 of the smaller block's area is more than round-off."""
+    doc = base_doc()
+    doc["blocks"].append({"id": "C", "vertices": rect(1.499, 0.5, 0.5, 0.5)})
+    expect_error(write_doc(tmp_path, doc), "'A'", "'C'", "overlap")

@@ -104,8 +104,20 @@ def check_overlaps_2d(scene: Scene) -> None:
 
     polys = block_polygons(scene)
     tree = shapely.STRtree(polys)
-    i, j = tree.query(polys, predicate="intersects")
+    i, j = tree.query(polys)  # bounding boxes intersect
     keep = i < j
+    i, j = i[keep], j[keep]
+    if len(i) == 0:
+        return
+    own = shapely.area(polys)
+    # the interiors' common area is at most that of the bounding boxes' intersection:
+    # pairs whose boxes share less than the tolerance (blocks side by side, touching
+    # along an edge) cannot fail, and skip the exact (costly) tests
+    bounds = shapely.bounds(polys)
+    w = np.minimum(bounds[i, 2], bounds[j, 2]) - np.maximum(bounds[i, 0], bounds[j, 0])
+    h = np.minimum(bounds[i, 3], bounds[j, 3]) - np.maximum(bounds[i, 1], bounds[j, 1])
+    box_area = np.clip(w, 0, None) * np.clip(h, 0, None)
+    keep = box_area > OVERLAP_AREA_TOL * np.minimum(own[i], own[j])
     i, j = i[keep], j[keep]
     if len(i) == 0:
         return
@@ -114,7 +126,6 @@ def check_overlaps_2d(scene: Scene) -> None:
     if len(i) == 0:
         return
     areas = shapely.area(shapely.intersection(polys[i], polys[j]))
-    own = shapely.area(polys)
     bad = areas > OVERLAP_AREA_TOL * np.minimum(own[i], own[j])
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
