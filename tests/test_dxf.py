@@ -1,0 +1,167 @@
+"""DXF import (with the repairs real drawings need) and export.
+
+References: the stack of two equal-width blocks (total height h, width b) on a support
+under a horizontal body force lambda x weight tips as one body about its toe at
+lambda* = b / h when f > b / h (docs/validation.md, block on a support). The LACT3
+drawings and their published collapse tilt angles are described in
+../shared/data/lact3/README.md (Milani, LACT3_v1.0 sample models).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from conftest import SHARED
+
+import rigidblocks as rb
+from rigidblocks.cli.main import main
+from rigidblocks.errors import InputError
+from rigidblocks.io import read_scene, write_scene
+
+ezdxf = pytest.importorskip("ezdxf")
+
+LACT3 = SHARED / "data" / "lact3"
+E = 1e-12  # CAD round-off
+
+
+def quirky_drawing(path, *, gap=E, extra=()):
+    """Base (layer SUPPORT) 4 x 1, block A 1 x 2 on it, block B 1 x 1 on A, block C
+    (four LINEs) 1 x 1 on the base; with round-off, open ends, retracing, clockwise
+    order and a collinear extra vertex."""
+    doc = ezdxf.new()
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(-1, -1), (3, -1), (3, 0), (-1, 0)], close=True,
+                       dxfattribs={"layer": "SUPPORT"})
+    # A: not flagged closed, last vertex 1e-13 off the first, clockwise, extra vertex
+    msp.add_lwpolyline([(0, 0), (0, 2 + E), (0.5, 2), (1, 2 - E), (1 + E, 0), (1e-13, 0)])
+    # B: retraces its first two vertices, corners off by `gap`
+    msp.add_lwpolyline([(gap, 2), (1, 2 + gap), (1, 3), (0, 3), (gap, 2), (1, 2 + gap)])
+    # C: a closed chain of LINEs, drawn in scrambled order and directions
+    for a, b in [((2, 0), (2.5, 0)), ((2.5, 1), (2.5, 0)), ((2, 1), (2.5, 1)),
+                 ((2, 0), (2, 1 + E))]:
+        msp.add_line(a, b)
+    msp.add_point((5, 5))
+    for pts in extra:
+        msp.add_lwpolyline(pts, close=True)
+    doc.saveas(path)
+    return path
+
+
+def test_quirky_drawing_is_repaired_and_reported(tmp_path):
+    path = quirky_drawing(tmp_path / "q.dxf")
+    sc, rep = rb.read_dxf(path, supports="layer:SUPPORT", unit_weight=1.0, friction=0.9,
+                          live_body_force=(1, 0), units=("m", "kN"), report=True)
+    assert [b.id for b in sc.blocks] == ["b1", "b2", "b3", "b4"]
+    assert [b.support for b in sc.blocks] == [True, False, False, False]
+    assert rep.n_blocks == 4 and rep.supports == ["b1"]
+    assert rep.retraced == ["b3"] and set(rep.closed_by_snap) >= {"b2", "b3"}
+    assert rep.vertices_snapped > 0 and 0 < rep.max_move < 1e-11
+    assert rep.skipped == {"POINT": 1}
+    assert len(sc.blocks[2].vertices) == 4  # retraced vertices dropped
+    # shared corners now coincide exactly
+    a = {tuple(p) for p in sc.blocks[1].vertices}
+    b = {tuple(p) for p in sc.blocks[2].vertices}
+    assert len(a & b) == 2
+    assert "4 blocks" in rep.summary() and "snapped" in rep.summary()
+    # A + B tip together about the toe (1, 0): lambda* = b / h = 1 / 3
+    res = rb.max_load_multiplier(sc)
+    assert res.load_multiplier == pytest.approx(1 / 3, rel=1e-6)
+    # "lowest" picks the same support
+    low = rb.read_dxf(path)
+    assert [b.support for b in low.blocks] == [True, False, False, False]
+    assert rb.read_dxf(path, supports="largest").blocks[0].support
+
+
+def test_near_miss_beyond_tolerance_names_the_blocks(tmp_path):
+    # size 4 sqrt(2): tolerance 5.7e-8, near-miss band up to 5.7e-6
+    path = quirky_drawing(tmp_path / "q.dxf", gap=2e-6)
+    with pytest.raises(InputError, match="'b2' and 'b3'|'b3' and 'b2'"):
+        rb.read_dxf(path)
+    sc = rb.read_dxf(path, snap_tol=1e-6)  # a looser tolerance accepts it
+    assert len(sc.blocks) == 4
+
+
+def test_rejections(tmp_path):
+    # a floating block
+    path = quirky_drawing(tmp_path / "f.dxf", extra=[[(10, 10), (11, 10), (11, 11)]])
+    with pytest.raises(InputError, match="b4 touch no other block"):
+        rb.read_dxf(path)
+    # an overlap
+    path = quirky_drawing(tmp_path / "o.dxf", extra=[[(0.5, 0.5), (1.5, 0.5), (1.5, 1.5)]])
+    with pytest.raises(InputError, match="b2|b5"):
+        rb.read_dxf(path)
+    # an open polyline
+    doc = ezdxf.new()
+    doc.modelspace().add_lwpolyline([(0, 0), (1, 0), (1, 1), (0, 1)])
+    doc.saveas(tmp_path / "open.dxf")
+    with pytest.raises(InputError, match="block 'b1'.*open polyline"):
+        rb.read_dxf(tmp_path / "open.dxf")
+    path = quirky_drawing(tmp_path / "q.dxf")
+    with pytest.raises(InputError, match="no block on layer 'NOPE'"):
+        rb.read_dxf(path, supports="layer:NOPE")
+    with pytest.raises(InputError, match="unknown supports option"):
+        rb.read_dxf(path, supports="top")
+    with pytest.raises(InputError, match="no such file"):
+        rb.read_dxf(tmp_path / "missing.dxf")
+
+
+def test_cli_import_and_export(tmp_path, capsys):
+    path = quirky_drawing(tmp_path / "q.dxf")
+    out = tmp_path / "q.json"
+    assert main(["import-dxf", str(path), "-o", str(out), "--unit-weight", "1",
+                 "--friction", "0.9", "--live-body-force", "1 0", "--length-unit", "m",
+                 "--force-unit", "kN", "--supports", "layer:SUPPORT"]) == 0
+    text = capsys.readouterr().out
+    assert "4 blocks" in text and "snapped" in text
+    sc = read_scene(out)
+    assert len(sc.blocks) == 4 and sc.friction == 0.9
+    dxf_out = tmp_path / "r.dxf"
+    assert main(["export-dxf", str(out), "-o", str(dxf_out), "--analysis", "friction",
+                 "--load-factor", "0.1"]) == 0
+    doc = ezdxf.readfile(dxf_out)
+    msp = doc.modelspace()
+    on = {lay: [e for e in msp if e.dxf.layer == lay] for lay in
+          ("RB_BLOCKS", "RB_SUPPORTS", "RB_THRUST_LINE", "RB_FORCES")}
+    assert len(on["RB_BLOCKS"]) == 3 and len(on["RB_SUPPORTS"]) == 1
+    assert len(on["RB_THRUST_LINE"]) == 1
+    n_joints = rb.detect_contacts(sc).n_joints
+    assert len(on["RB_FORCES"]) == 3 * n_joints  # shaft + two head strokes each
+    # the exported blocks read back as the same scene geometry
+    back = rb.read_dxf(dxf_out, layers=["RB_BLOCKS", "RB_SUPPORTS"],
+                       supports="layer:RB_SUPPORTS")
+    for b0, b1 in zip(sc.blocks, back.blocks, strict=True):
+        assert np.allclose(b0.points, b1.points)
+    assert main(["import-dxf", str(tmp_path / "missing.dxf"), "-o", str(out)]) == 2
+
+
+def test_roundtrip_scene_file(tmp_path):
+    sc = rb.read_dxf(quirky_drawing(tmp_path / "q.dxf"), unit_weight=2.0, depth=0.5)
+    write_scene(sc, tmp_path / "s.json")
+    assert read_scene(tmp_path / "s.json") == sc
+
+
+LACT3_CASES = [("Portal.dxf", 41, 30.0, 27.30), ("wall.dxf", 183, 26.0, 16.73),
+               ("arch_1.dxf", 26, 30.0, 17.10)]
+
+
+@pytest.mark.parametrize("name,n_blocks,phi,theta", LACT3_CASES,
+                         ids=[c[0] for c in LACT3_CASES])
+def test_lact3_import_and_collapse_multiplier(name, n_blocks, phi, theta):
+    """LACT3 sample models (GabrieleMilani/LACT3_v1.0, see the README in the data
+    folder): published collapse tilt angle theta*, lambda* = tan(theta*) for a
+    horizontal body force lambda x weight, associative friction tan(phi), zero
+    cohesion; the angles were found on a grid of about 1/128 degree (about 0.1 %)."""
+    if not LACT3.is_dir():
+        pytest.skip(f"shared data folder {LACT3} is missing")
+    sc, rep = rb.read_dxf(LACT3 / name, unit_weight=25e-9, units=("mm", "kN"),
+                          friction=math.tan(math.radians(phi)), live_body_force=(1, 0),
+                          report=True)
+    assert len(sc.blocks) == n_blocks
+    assert int(sc.support_mask.sum()) == 1
+    (sup,) = [b for b in sc.blocks if b.support]
+    assert sup.points[:, 1].min() == pytest.approx(0.0, abs=1e-9)
+    res = rb.max_load_multiplier(sc)
+    assert res.status == "collapse"
+    assert res.load_multiplier == pytest.approx(math.tan(math.radians(theta)), rel=2e-3)
