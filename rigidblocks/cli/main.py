@@ -20,6 +20,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "check": ("analyses", "is there an admissible equilibrium state?"),
     "friction": ("analyses", "minimum friction coefficient and angle, governing joints"),
     "load": ("analyses", "maximum load multiplier and collapse mechanism"),
+    "example": ("example", "list the structure generators, or write a generated scene file"),
+    "thickness": ("thickness", "minimum thickness of a generator's family (bisection)"),
     "path": ("path", "load path of the distortion solver: cracks, plastic joints, collapse"),
     "plot": ("plot", "draw a scene and an analysis result (png, svg, pdf)"),
     "import-dxf": ("dxf", "read a DXF drawing (closed polylines) into a scene file"),

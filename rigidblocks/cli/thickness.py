@@ -1,0 +1,77 @@
+"""``thickness``: the minimum thickness of a generator's family by bisection."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from ..errors import InputError
+
+
+def add_args(p: argparse.ArgumentParser, name: str) -> None:
+    p.add_argument("generator", help="generator name (see `rigidblocks example --list`)")
+    p.add_argument("--param", default="thickness", help="parameter to bisect "
+                   "(default: thickness)")
+    p.add_argument("--lo", type=float, default=0.01, help="inadmissible lower bound")
+    p.add_argument("--hi", type=float, default=1.0, help="admissible upper bound")
+    p.add_argument("--rtol", type=float, default=1e-4, help="relative bracket width")
+    p.add_argument("--friction", default="infinite",
+                   help='friction coefficient f, or "infinite" (default)')
+    p.add_argument("--method", default="clarabel", help='"clarabel" or "distortion"')
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("params", nargs=argparse.REMAINDER,
+                   help="--PARAM VALUE pairs of the generator")
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..examples import get
+    from ..studies import min_thickness
+    from .example import parse_params
+
+    gen = get(args.generator)
+    params = parse_params(gen, _own_options(args, list(args.params)))
+    if args.param not in {p.name for p in gen.params}:
+        raise InputError(f"thickness: {args.generator} has no parameter {args.param!r}")
+    res = min_thickness(args.generator, param=args.param, lo=args.lo, hi=args.hi,
+                        rtol=args.rtol, friction=args.friction, method=args.method,
+                        **params)
+    if args.json:
+        print(json.dumps(res.to_dict()))
+    else:
+        extra = ", ".join(f"{k}={v}" for k, v in params.items()) or "defaults"
+        print(f"generator  {res.generator} ({extra})")
+        print(f"friction   {res.friction}   load factor 0 (dead load only)")
+        print(f"{res.param:<10} min {res.thickness:.6g}   (bracket [{res.lower:.6g}, "
+              f"{res.thickness:.6g}], {res.n_checks} checks)")
+    return 0
+
+
+_OWN = {"--param": str, "--lo": float, "--hi": float, "--rtol": float, "--friction": str,
+        "--method": str}
+
+
+def _own_options(args: argparse.Namespace, tokens: list[str]) -> list[str]:
+    """Take this command's own options out of the tokens that follow the generator."""
+    rest = []
+    i = 0
+    while i < len(tokens):
+        tok = tokens[i]
+        if tok == "--json":
+            args.json = True
+            i += 1
+        elif tok in _OWN:
+            if i + 1 >= len(tokens):
+                raise InputError(f"thickness: {tok} needs a value")
+            try:
+                setattr(args, tok[2:], _OWN[tok](tokens[i + 1]))
+            except ValueError:
+                raise InputError(f"thickness: {tok} must be a number, got "
+                                 f"{tokens[i + 1]!r}") from None
+            i += 2
+        else:
+            rest.append(tok)
+            i += 1
+    return rest
+
+
+__all__ = ["add_args", "run"]
