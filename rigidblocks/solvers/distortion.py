@@ -33,10 +33,11 @@ lambda; no dense projector is formed.
 Verdicts. Admissible: violation of the joint laws <= ``tol`` (in units of the
 reference force of :class:`~rigidblocks.problems.formulation.Scaling`) and the last
 step <= ``tol``. Not admissible: when E and K do not meet, the violation decreases to
-a positive limit (the C-distance between the two sets); every ``window`` iterations the
-limit is estimated by Aitken extrapolation of the violation at three window ends, and
-the run stops as not admissible when the limit is positive, above ``100 tol`` and above
-half the present violation. Failure, with a reason: A K A^T singular or
+a positive limit (the C-distance between the two sets), approached linearly, while a
+run that converges to an admissible state keeps reducing it (sublinearly at worst,
+like 1/k). Every ``window`` iterations, from iteration ``2 window`` on, the violation
+at iteration k is compared with that at k/2: above ``100 tol`` and above 0.99 of it,
+the run stops as not admissible. Failure, with a reason: A K A^T singular or
 ill-conditioned (a mechanism of the bilateral linked structure: some block motion
 stretches no link), and the iteration budget exhausted. Near a limit state (f close to
 f*, lambda close to lambda*) the intersection shrinks to a point and the convergence
@@ -77,6 +78,8 @@ TOL = 1e-9
 MAX_ITER = 20000
 #: iterations between two divergence / stalling tests
 WINDOW = 50
+#: a violation above this fraction of its value at half the iterations counts as stalled
+STALL = 0.99
 #: reciprocal condition estimate of A K A^T below which the scene counts as a mechanism
 RCOND_MIN = 1e-12
 
@@ -203,7 +206,6 @@ class DistortionSolver:
         pv = np.zeros_like(v)
         viol = laws.violation(v)
         hist = [viol]
-        marks: list[float] = []
         status, reason, k = "", "", 0
         if viol <= tol:
             status = "admissible"
@@ -221,18 +223,13 @@ class DistortionSolver:
             if viol <= tol and step <= tol:
                 status = "admissible"
                 break
-            if k % window == 0:
-                marks.append(viol)
-                if len(marks) >= 3:
-                    v0, v1, v2 = marks[-3:]
-                    d1, d2 = v1 - v0, v2 - v1
-                    den = d2 - d1
-                    limit = v2 - d2 * d2 / den if den > 0 and d2 <= 0 else \
-                        (v2 if d2 >= 0 else 0.0)
-                    if limit > 100 * tol and limit > 0.5 * v2:
-                        status = "inadmissible"
-                        reason = (f"the violation stalls at {limit:.3g} (reference-force "
-                                  "units): equilibrium and joint laws do not meet")
+            if k % window == 0 and k >= 2 * window:
+                half = hist[k // 2]
+                if viol > 100 * tol and viol > STALL * half:
+                    status = "inadmissible"
+                    reason = (f"the violation stalls at {viol:.3g} (reference-force units; "
+                              f"{half:.3g} at iteration {k // 2}): equilibrium and joint "
+                              "laws do not meet")
         x = self.scatter(v)
         residual = float(np.abs(self.As @ x - b).max(initial=0.0))
         if not status:
