@@ -90,9 +90,11 @@ GENERATORS: dict[str, Generator] = {g.name: g for g in (
                ("friction", 'friction coefficient f, or "infinite"'))),
     Generator("flat_arch", "arches:flat_arch",
               "flat arch (platband) with vertical or radial joints, on piers or abutments",
-              (("span", "clear span at the intrados (m)"), ("height", "depth of the "
-               "platband (m)"), ("centre_depth", "radial joints meet at this distance "
-               "below the intrados (m)"), *_ARCH_HELP)),
+              (("span", "clear span at the intrados (m)"),
+               ("height", "depth of the platband (m)"),
+               ("centre_depth", "radial joints meet at this distance below the intrados (m)"),
+               ("bonded_piers", "piers never slide on the ground (true/false)"),
+               *_ARCH_HELP)),
     Generator("arch", "arches:arch",
               "semicircular, pointed or segmental arch of n voussoirs",
               (("shape", "semicircular | pointed | segmental"),

@@ -78,7 +78,7 @@ def _num(name: str, value: Any, gen: str) -> float:
 def make_scene(name: str, blocks: list[dict], *, unit_weight: float, friction: Any,
                depth: float = 1.0, loads: list[dict] | None = None,
                live_body_force: Sequence[float] | None = (1.0, 0.0),
-               units: dict | None = None) -> Scene:
+               units: dict | None = None, joints: list[dict] | None = None) -> Scene:
     """Build and validate a 2D scene from block dicts (see docs/scene-format.md)."""
     doc: dict[str, Any] = {"format": "rigidblocks-scene", "version": 1, "name": name,
                            "dimension": 2, "units": units or {"length": "m", "force": "kN"},
@@ -88,6 +88,8 @@ def make_scene(name: str, blocks: list[dict], *, unit_weight: float, friction: A
         doc["loads"] = loads
     if live_body_force is not None:
         doc["live_body_force"] = list(live_body_force)
+    if joints:
+        doc["joints"] = joints
     return scene_from_dict(doc, source=name)
 
 
@@ -278,7 +280,7 @@ def stocky_arch(voussoirs: int = 7, thickness: float = 0.6, radius: float = 1.5,
 def flat_arch(span: float = 2.0, height: float = 0.4, voussoirs: int = 9,
               joints: str = "radial", centre_depth: float = 1.5, pier_width: float = 1.0,
               pier_height: float = 1.0, springing: str = "piers", unit_weight: float = 20.0,
-              friction: Any = 0.6, depth: float = 1.0) -> Scene:
+              friction: Any = 0.6, depth: float = 1.0, bonded_piers: bool = False) -> Scene:
     """A flat arch (platband) of ``voussoirs`` blocks, intrados at y = 0.
 
     Args:
@@ -290,6 +292,9 @@ def flat_arch(span: float = 2.0, height: float = 0.4, voussoirs: int = 9,
         springing: ``piers`` (free piers of ``pier_width`` beyond the skewback's top and
             ``pier_height`` below the intrados, on a ground support) or ``abutments``
             (fixed; then the thrust is unbounded and the required friction tends to 0).
+        bonded_piers: the piers' bed joints on the ground never slide (a joint override
+            of infinite friction), so that only the platband's own joints and skewbacks
+            enter the friction problem.
     """
     g = "flat_arch"
     L, h = positive("span", span, g), positive("height", height, g)
@@ -309,7 +314,11 @@ def flat_arch(span: float = 2.0, height: float = 0.4, voussoirs: int = 9,
     blocks += _flat_springing(left, right, springing, pw, ph)
     extra = f", centre {c:g} below" if joints == "radial" else ""
     name = f"flat arch, span {L:g}, {n} voussoirs, {joints} joints{extra}, on {springing}"
-    return make_scene(name, blocks, unit_weight=uw, friction=fr, depth=d)
+    overrides = None
+    if bonded_piers and springing == "piers":
+        overrides = [{"blocks": [p, "ground"], "friction": "infinite"}
+                     for p in ("pier_l", "pier_r")]
+    return make_scene(name, blocks, unit_weight=uw, friction=fr, depth=d, joints=overrides)
 
 
 def _flat_springing(left, right, springing, pw, ph) -> list[dict]:
@@ -425,7 +434,7 @@ def _stepped(xs: Sequence[float], length: float, incl: float, hc: float) -> list
 
 
 def arpino_gate(opening: float = 2.4, height: float = 3.6, courses: int = 9,
-                joint_inclination: float = 5.0, wall: float = 1.2,
+                joint_inclination: float = 5.0, wall: float = 0.4,
                 unit_weight: float = 20.0, friction: Any = 0.6, depth: float = 1.0) -> Scene:
     """A pointed corbelled gate of dry stone (after the gate of Civitavecchia di Arpino,
     the seed's Fig. 8): two stacks of ``courses`` courses whose inner faces follow the

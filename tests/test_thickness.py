@@ -1,0 +1,58 @@
+"""Minimum thickness of arches by bisection (rigidblocks.studies.min_thickness).
+
+Reference: the thinnest semicircular arch of radial joints that can stand under its own
+weight (no sliding, no tension) has t/R = 0.1075, R the mean radius (Milankovitch 1907;
+Heyman, "The Stone Skeleton", Cambridge University Press 1995, who gives the
+approximation 0.106; Ochsendorf, PhD thesis, Cambridge 2002). With n voussoirs the
+value is approached from below as n grows.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from rigidblocks.cli.main import main
+from rigidblocks.errors import InputError
+from rigidblocks.studies import min_thickness
+
+CLASSICAL = 0.1075
+
+
+def test_semicircular_arch_approaches_the_classical_minimum():
+    r = min_thickness("arch", voussoirs=80, lo=0.05, hi=0.2, arc_points=2)
+    assert r.thickness == pytest.approx(CLASSICAL, rel=5e-3)
+    assert r.lower < r.thickness and (r.thickness - r.lower) <= 1e-4 * r.thickness
+    assert r.n_checks < 30
+
+
+def test_fewer_voussoirs_need_no_more_thickness():
+    """A discrete arch has fewer possible hinge positions, so its minimum thickness is
+    at most the continuous value (approached from below)."""
+    coarse = min_thickness("arch", voussoirs=12, lo=0.05, hi=0.2, rtol=1e-3)
+    fine = min_thickness("arch", voussoirs=60, lo=0.05, hi=0.2, rtol=1e-3, arc_points=2)
+    assert coarse.thickness < fine.thickness <= CLASSICAL * 1.005
+
+
+@pytest.mark.slow
+def test_semicircular_arch_many_voussoirs():
+    r = min_thickness("arch", voussoirs=300, lo=0.09, hi=0.12, rtol=1e-5, arc_points=1)
+    assert r.thickness == pytest.approx(CLASSICAL, rel=2e-3)
+
+
+def test_bad_brackets():
+    with pytest.raises(InputError, match="upper bound"):
+        min_thickness("arch", voussoirs=20, lo=0.01, hi=0.05)
+    with pytest.raises(InputError, match="lower bound"):
+        min_thickness("arch", voussoirs=20, lo=0.5, hi=0.9)
+    with pytest.raises(InputError, match="lo < hi"):
+        min_thickness("arch", lo=0.2, hi=0.1)
+
+
+def test_cli(capsys):
+    assert main(["thickness", "arch", "--voussoirs", "24", "--rtol", "1e-3", "--json"]) == 0
+    out = capsys.readouterr().out
+    import json
+
+    doc = json.loads(out)
+    assert doc["param"] == "thickness" and 0.1 < doc["min_thickness"] < CLASSICAL * 1.005
+    assert main(["thickness", "arch", "--param", "colour"]) == 2
