@@ -7,6 +7,7 @@ from .io import read_scene, write_scene
 from .problems import check, max_load_multiplier, min_friction
 from .scene import INFINITE, Block, JointOverride, Load, Scene, make_block
 from .solvers.distortion import load_path
+from .studies import min_thickness
 
 __version__ = "0.1.0"
 
@@ -29,5 +30,5 @@ __all__ = [
     "INFINITE", "Block", "Contacts", "EquilibriumSystem", "InputError", "JointOverride",
     "Load", "RigidBlocksError", "Scene", "SolverFailure", "assemble", "detect_contacts",
     "check", "make_block", "max_load_multiplier", "min_friction", "plot", "read_dxf",
-    "read_scene", "write_scene", "load_path",
+    "read_scene", "write_scene", "load_path", "min_thickness",
 ]
