@@ -3,8 +3,7 @@
 from __future__ import annotations
 
 from ..errors import InputError
-from .base import (FAILURE, INFEASIBLE, OPTIMAL, UNBOUNDED, ConicProblem,
-                   SolverResult)
+from .base import FAILURE, INFEASIBLE, OPTIMAL, UNBOUNDED, ConicProblem, SolverResult
 
 #: back ends by name; "cvxpy-NAME" reaches any solver installed for cvxpy
 SOLVERS = ("clarabel", "highs", "osqp", "scs", "ecos")
