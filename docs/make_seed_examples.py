@@ -264,7 +264,7 @@ def page() -> str:
       "again once the blocks' own tendency to slide inwards down the inclined joints "
       "governs. In a thick gate each stack stands by itself and inclined joints only "
       "invite the blocks to slide inwards. None of these proportions reaches the "
-      "seed's 21.80 deg: its model evidently differs (backing, block shapes, "
+      "seed's 21.80 deg: its model must differ (backing, block shapes, "
       "proportions) in ways the paper does not record, and no parameter here was "
       "tuned to that number.")
     w("")
