@@ -41,6 +41,7 @@ def test_registry_lists_parameters_with_defaults():
     ("arch", {"joints": "diagonal"}, "joints"),
     ("arch", {"shape": "pointed", "voussoirs": 7}, "even"),
     ("arch", {"shape": "pointed", "joints": "vertical"}, "radial"),
+    ("arch", {"shape": "pointed", "voussoirs": 40, "thickness": 0.5}, "crown"),
     ("arch", {"shape": "segmental", "half_angle": 120}, "half_angle"),
     ("flat_arch", {"span": 0}, "span"),
     ("flat_arch", {"springing": "air"}, "springing"),

@@ -212,6 +212,10 @@ def arch(shape: str = "semicircular", voussoirs: int = 15, thickness: float = 0.
         # right half: centre (-e, 0); radial joints at equal angles, closing at x = 0
         tc = math.acos(e / R)
         ts = np.linspace(0.0, tc, m + 1)
+        if m > 1 and not math.acos(e / ri) > ts[m - 1]:
+            raise InputError(f"{g}: with {n} voussoirs the last radial joint of a pointed "
+                             "arch passes the crown at the intrados; use fewer voussoirs, "
+                             "a thinner ring or a smaller pointedness")
         half = []
         for i in range(m):
             if i < m - 1:
