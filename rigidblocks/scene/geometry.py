@@ -112,6 +112,13 @@ def polygon_areas_centroids(verts: np.ndarray, starts: np.ndarray) -> tuple[np.n
     return 0.5 * area2, cent + verts[starts[:-1]]
 
 
+def polygon_diagonals(verts: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """Bounding-box diagonal of each polygon (see :func:`flat_polygons`)."""
+    lo = np.minimum.reduceat(verts, starts[:-1], axis=0)
+    hi = np.maximum.reduceat(verts, starts[:-1], axis=0)
+    return np.linalg.norm(hi - lo, axis=1)
+
+
 def block_weights(scene: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(weights, centroids, sizes) of every block, in the scene's units.
 
@@ -123,14 +130,8 @@ def block_weights(scene: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     if scene.dimension == 2:
         verts, starts = flat_polygons(scene)
         area, centroids = polygon_areas_centroids(verts, starts)
-        meas = np.abs(area)
-        owner = np.repeat(np.arange(len(scene.blocks)), np.diff(starts))
-        lo = np.full((len(scene.blocks), 2), np.inf)
-        hi = np.full((len(scene.blocks), 2), -np.inf)
-        np.minimum.at(lo, owner, verts)
-        np.maximum.at(hi, owner, verts)
-        sizes = np.linalg.norm(hi - lo, axis=1)
-        return gamma * meas * scene.effective_depth, centroids, sizes
+        sizes = polygon_diagonals(verts, starts)
+        return gamma * np.abs(area) * scene.effective_depth, centroids, sizes
     n = len(scene.blocks)
     meas = np.zeros(n)
     centroids = np.zeros((n, 3))

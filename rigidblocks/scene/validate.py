@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
-from .geometry import flat_polygons, polygon_areas_centroids, scene_size
+from .geometry import flat_polygons, polygon_areas_centroids, polygon_diagonals, scene_size
 from .model import Scene
 
 #: relative tolerance for geometric coincidence (times the scene's size)
@@ -71,11 +71,7 @@ def _check_polygons(scene: Scene) -> None:
     verts, starts = flat_polygons(scene)
     area, _ = polygon_areas_centroids(verts, starts)
     owner = np.repeat(np.arange(len(scene.blocks)), np.diff(starts))
-    lo = np.full((len(scene.blocks), 2), np.inf)
-    hi = np.full((len(scene.blocks), 2), -np.inf)
-    np.minimum.at(lo, owner, verts)
-    np.maximum.at(hi, owner, verts)
-    diag2 = ((hi - lo) ** 2).sum(axis=1)
+    diag2 = polygon_diagonals(verts, starts) ** 2
     flat = np.abs(area) <= 1e-10 * diag2
     if flat.any():
         b = scene.blocks[int(np.flatnonzero(flat)[0])]
