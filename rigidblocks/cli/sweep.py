@@ -1,0 +1,35 @@
+"""``sweep``: run a parametric study from a spec file (``docs/sweep-format.md``)."""
+
+from __future__ import annotations
+
+import argparse
+
+
+def add_args(p: argparse.ArgumentParser, name: str) -> None:
+    p.add_argument("spec", help="sweep spec file (JSON, see docs/sweep-format.md)")
+    p.add_argument("-o", "--output", required=True,
+                   help="results file, .parquet or .csv (cases it holds are skipped)")
+    p.add_argument("--workers", type=int, default=None,
+                   help="local processes (default: every core; 1: this process)")
+    p.add_argument("--scheduler", default=None,
+                   help="Dask scheduler address (tcp://HOST:PORT) instead of local processes")
+    p.add_argument("--batch-size", type=int, default=None, help="cases per task")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..studies.spec import read_spec
+    from ..studies.sweep import run as run_sweep
+
+    sweep = read_spec(args.spec)
+    res = run_sweep(sweep, output=args.output, workers=args.workers,
+                    scheduler=args.scheduler, batch_size=args.batch_size,
+                    progress=not args.no_progress)
+    print(f"cases     {res.n_cases} ({res.n_run} run, {res.n_skipped} done before)")
+    print(f"failures  {res.n_failed}")
+    print(f"time      {res.elapsed:.2f} s ({res.rate:.1f} cases/s, {res.executor})")
+    print(f"output    {res.path}")
+    return 0
+
+
+__all__ = ["add_args", "run"]
