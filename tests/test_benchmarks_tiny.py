@@ -54,3 +54,42 @@ def test_bench_foundation_full_sizes():
     """The 50,000-block wall goes through every stage in seconds, not minutes."""
     rows = load_bench().main([50_000])
     assert sum(rows[0]["seconds"].values()) < 60
+
+
+def load_peer_bench():
+    spec = importlib.util.spec_from_file_location(
+        "bench_peer", ROOT / "benchmarks" / "bench_peer.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_bench_peer_tiny_our_side(tmp_path):
+    """Our side of the peer comparison, the peer disabled.
+
+    A semicircular arch with radial joints under self-weight stands when its thickness
+    ratio exceeds the minimum t/R = 0.1075 (Milankovitch 1907; Heyman, "The safety of
+    masonry arches", Int. J. Mech. Sci. 11, 1969; Heyman, The Stone Skeleton, 1995), so
+    t/R = 0.15 and 0.2 stand in the 2D model, its extrusion with the Coulomb cone and
+    with an 8-facet pyramid; at t/R = 0.07, well below it, no thrust line fits. A
+    running-bond wall under self-weight alone carries every block straight down its
+    full bed joints.
+    """
+    bench = load_peer_bench()
+    data = bench.main(["--tiny", "--peer-python", "none", "--out", str(tmp_path)])
+    assert data["peer_available"] is False and data["targets"] is None
+    names = {r["name"]: r for r in data["rows"]}
+    assert set(names) == {"arch 10 v, t/R 0.15", "arch 10 v, t/R 0.2", "wall 10 blocks"}
+    for r in data["rows"]:
+        assert r["peer"] == {}
+        assert {m: o["verdict"] for m, o in r["ours"].items()} == {
+            "2d": "admissible", "3d_cone": "admissible", "3d_pyr8": "admissible"}
+    hard = data["hard_cases"]
+    assert {h["method"] for h in hard} == {"rigidblocks 2d", "rigidblocks 3d_cone",
+                                           "rigidblocks 3d_pyr8"}
+    assert all(h["grade"] == "right" for h in hard)
+    for ext in ("json", "md", "png"):
+        assert (tmp_path / f"bench_peer.{ext}").stat().st_size > 0
+    thin = bench.arch_scene(10, 0.07)
+    assert bench.run_ours(thin)["verdict"] == "inadmissible"
+    assert bench.run_ours(bench.extrude(thin))["verdict"] == "inadmissible"

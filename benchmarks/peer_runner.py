@@ -1,0 +1,189 @@
+"""Run compas_cra (the peer) on one assembly of polyhedral blocks; write its answer.
+
+Run with the peer's Python (a separate environment with ``compas_cra`` installed, never
+a dependency of rigidblocks), one case and one method per process, so that the caller
+can stop a solve that runs too long:
+
+    /path/to/peer/python benchmarks/peer_runner.py CASE.json OUT.json rbe|cra|cra_penalty
+
+``CASE.json``: ``{"name", "mu", "blocks": [{"id", "vertices": [[x, y, z], ...],
+"faces": [[i, j, k, ...], ...], "support": bool, "density": float}, ...],
+"interfaces": {"nmax", "tmax", "amin"}}``, gravity along -z, weight = density x volume.
+
+``OUT.json``: ``{"method", "status": "solved" | "failed" | "error", "message",
+"times": {"build", "interfaces", "solve", "total"}, "n_blocks", "n_interfaces",
+"n_vertices", "joints": [{"pair": [id_i, id_j], "normal": [nx, ny, nz], "fn": N,
+"tension": T_penalty, "fu", "fv"}, ...]}``. ``fn`` is the interface's total
+compressive normal force (sum of ``c_np``), ``tension`` the total of the penalised
+tensile part ``c_nn`` (RBE and CRA-penalty only), ``normal`` the interface frame's z
+axis (the direction of ``fn`` on the second block of the pair).
+
+Methods (Kao et al. 2022, doi:10.1016/j.cad.2022.103216): ``rbe`` rigid-block
+equilibrium (paper Eq. 6, a quadratic program with a tension penalty, friction as an
+8-facet pyramid), ``cra`` coupled rigid-block analysis (Eq. 11, non-associative,
+complementarity constraints), ``cra_penalty`` (Eq. 14).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import sys
+import time
+import traceback
+
+
+def build_assembly(case: dict):
+    """The compas_cra assembly of the case's blocks (supports flagged)."""
+    from compas.datastructures import Mesh
+    from compas_assembly.datastructures import Block
+    from compas_cra.datastructures import CRA_Assembly
+
+    assembly = CRA_Assembly()
+    keys = {}
+    supports = []
+    for b in case["blocks"]:
+        mesh = Mesh.from_vertices_and_faces(b["vertices"], b["faces"])
+        block = Block.from_vertices_and_faces(*mesh.to_vertices_and_faces())
+        block.attributes["density"] = float(b["density"])
+        key = assembly.add_block(block)
+        keys[key] = b["id"]
+        if b["support"]:
+            supports.append(key)
+    assembly.set_boundary_conditions(supports)
+    return assembly, keys
+
+
+def load_sample(case: dict):
+    """One of compas_cra's own sample assemblies (``case["sample"]``, a file name)."""
+    import os
+
+    import compas
+    import compas_cra
+    from compas_cra.datastructures import CRA_Assembly
+
+    assembly = compas.json_load(os.path.join(compas_cra.SAMPLE, case["sample"]))
+    assembly = assembly.copy(cls=CRA_Assembly)
+    assembly.set_boundary_conditions(case.get("supports", [0]))
+    keys = {k: str(k) for k in assembly.graph.nodes()}
+    return assembly, keys
+
+
+def export_blocks(assembly, keys) -> list[dict]:
+    """The assembly's blocks as polyhedra (so that another tool can model them)."""
+    blocks = []
+    for node in assembly.graph.nodes():
+        block = assembly.graph.node_attribute(node, "block")
+        verts, faces = block.to_vertices_and_faces()
+        blocks.append({"id": keys[node], "vertices": [list(map(float, v)) for v in verts],
+                       "faces": [list(f) for f in faces],
+                       "support": bool(assembly.graph.node_attribute(node, "is_support")),
+                       "density": float(block.attributes.get("density", 1.0))})
+    return blocks
+
+
+def warm_up() -> None:
+    """Solve two stacked cubes once, so that first-call costs are not timed."""
+    from compas_cra.algorithms import assembly_interfaces_numpy
+    from compas_cra.equilibrium import rbe_solve
+
+    cube = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1],
+            [0, 1, 1]]
+    faces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6],
+             [3, 0, 4, 7]]
+    blocks = [{"id": str(k), "vertices": [[x, y, z + k] for x, y, z in cube], "faces": faces,
+               "support": k == 0, "density": 1.0} for k in range(2)]
+    assembly, _ = build_assembly({"blocks": blocks})
+    with contextlib.redirect_stdout(io.StringIO()):
+        assembly_interfaces_numpy(assembly, nmax=2, tmax=1e-6, amin=1e-6)
+        rbe_solve(assembly, mu=0.6)
+
+
+def run(case: dict, method: str) -> dict:
+    """Build, detect interfaces and solve; the answer as a JSON-ready dict."""
+    from compas_cra.algorithms import assembly_interfaces_numpy
+    from compas_cra.equilibrium import cra_penalty_solve, cra_solve, rbe_solve
+
+    solvers = {"rbe": rbe_solve, "cra": cra_solve, "cra_penalty": cra_penalty_solve}
+    out: dict = {"method": method, "case": case.get("name"), "times": {}}
+    warm_up()
+    t_all = time.perf_counter()
+    t0 = time.perf_counter()
+    if "sample" in case:
+        assembly, keys = load_sample(case)
+        out["blocks"] = export_blocks(assembly, keys)
+    else:
+        assembly, keys = build_assembly(case)
+    out["times"]["build"] = time.perf_counter() - t0
+    opts = case.get("interfaces", {})
+    t0 = time.perf_counter()
+    assembly_interfaces_numpy(assembly, nmax=int(opts.get("nmax", 10)),
+                              tmax=float(opts.get("tmax", 1e-6)),
+                              amin=float(opts.get("amin", 1e-6)))
+    out["times"]["interfaces"] = time.perf_counter() - t0
+    edges = list(assembly.graph.edges())
+    out["n_blocks"] = assembly.graph.number_of_nodes()
+    out["n_interfaces"] = sum(len(assembly.graph.edge_attribute(e, "interfaces"))
+                              for e in edges)
+    out["n_vertices"] = sum(len(i.points) for e in edges
+                            for i in assembly.graph.edge_attribute(e, "interfaces"))
+    kwargs = {"mu": float(case["mu"]), "density": float(case.get("density", 1.0))}
+    if method != "rbe":
+        kwargs.update(d_bnd=float(case.get("d_bnd", 1e-3)), eps=float(case.get("eps", 1e-4)))
+    t0 = time.perf_counter()
+    log = io.StringIO()
+    try:
+        with contextlib.redirect_stdout(log):
+            solvers[method](assembly, **kwargs)
+        out["status"] = "solved"
+        out["message"] = ""
+    except ValueError as exc:
+        out["status"] = "failed"
+        out["message"] = str(exc).splitlines()[0][:300]
+    out["times"]["solve"] = time.perf_counter() - t0
+    out["times"]["total"] = time.perf_counter() - t_all
+    joints = []
+    if out["status"] == "solved":
+        for u, v in edges:
+            for itf in assembly.graph.edge_attribute((u, v), "interfaces"):
+                forces = itf.forces or []
+                joints.append({
+                    "pair": [keys[u], keys[v]],
+                    "normal": [float(c) for c in itf.frame.zaxis],
+                    "area": float(itf.size),
+                    "fn": sum(f["c_np"] for f in forces),
+                    "tension": sum(f["c_nn"] for f in forces),
+                    "fu": sum(f["c_u"] for f in forces),
+                    "fv": sum(f["c_v"] for f in forces),
+                })
+    out["joints"] = joints
+    return out
+
+
+def main(argv: list[str]) -> int:
+    """``peer_runner.py CASE.json OUT.json METHOD``; exit 0 when OUT.json was written."""
+    if len(argv) != 3:
+        print(__doc__.split("\n\n")[1], file=sys.stderr)
+        return 2
+    case_path, out_path, method = argv
+    with open(case_path) as fh:
+        case = json.load(fh)
+    try:
+        out = run(case, method)
+    except Exception as exc:  # the peer's own error, reported rather than raised
+        out = {"method": method, "case": case.get("name"), "status": "error",
+               "message": f"{type(exc).__name__}: {exc}"[:300],
+               "traceback": traceback.format_exc()[-2000:], "times": {}, "joints": []}
+    try:
+        import compas_cra
+        out["version"] = compas_cra.__version__
+    except ImportError:
+        pass
+    with open(out_path, "w") as fh:
+        json.dump(out, fh)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
