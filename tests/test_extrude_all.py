@@ -1,0 +1,151 @@
+"""Every 2D example and every 2D generator, extruded to 3D, gives the 2D f* and lambda*.
+
+An extruded scene (rigidblocks.scene.extrude) is the plane problem spread over the
+depth: averaging any admissible 3D state with its mirror image about the mid-plane
+gives a plane admissible state, and a plane state spread evenly over the depth is
+admissible in 3D (the Coulomb cone contains the in-plane segment |T| <= f N), so the
+static theorem gives the same f* and lambda* (issue #5; docs/validation.md).
+
+3D blocks are convex. A non-convex 2D block (a voussoir with curved intrados and
+extrados) is cut into convex pieces glued together: joints with infinite friction and a
+tensile strength 1e4 x unit weight x scene size (as a stress), far above any stress the
+loads can cause, so the pieces act as one rigid block.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+
+import numpy as np
+import pytest
+import shapely
+from conftest import EXAMPLES
+
+import rigidblocks as rb
+from rigidblocks.examples import available, build
+from rigidblocks.io.scene_file import read_scene
+from rigidblocks.scene.extrude import extrude
+from rigidblocks.scene.geometry import ccw, scene_size
+from rigidblocks.scene.model import Block, JointOverride, Scene
+
+RTOL = 1e-5
+#: cases with non-convex blocks: many glued pieces, a few seconds each
+SLOW = {"examples/arch.json", "examples/pointed_arch.json", "examples/segmental_arch.json",
+        "generator/arch", "generator/stocky_arch"}
+
+
+def _scene_files() -> list[str]:
+    out = []
+    for p in sorted(EXAMPLES.glob("*.json")):
+        doc = json.loads(p.read_text())
+        if doc.get("format") == "rigidblocks-scene" and doc.get("dimension") == 2:
+            out.append(f"examples/{p.name}")
+    return out
+
+
+@functools.cache
+def _generators() -> list[str]:
+    return [f"generator/{name}" for name in sorted(available()) if build(name).dimension == 2]
+
+
+def _load(case: str) -> Scene:
+    kind, name = case.split("/")
+    return read_scene(EXAMPLES / name) if kind == "examples" else build(name)
+
+
+def _cases():
+    for case in _scene_files() + _generators():
+        marks = [pytest.mark.slow] if case in SLOW else []
+        yield pytest.param(case, marks=marks, id=case)
+
+
+def _convex(poly: shapely.Polygon) -> bool:
+    return poly.convex_hull.area - poly.area <= 1e-12 * poly.area
+
+
+def convex_pieces(points: np.ndarray) -> list[shapely.Polygon]:
+    """A simple polygon cut into convex pieces: a constrained Delaunay triangulation whose
+    neighbouring pieces are merged while their union stays convex (Hertel-Mehlhorn)."""
+    pieces = list(shapely.constrained_delaunay_triangles(shapely.Polygon(points)).geoms)
+    merged = True
+    while merged:
+        merged = False
+        for i in range(len(pieces)):
+            for j in range(i + 1, len(pieces)):
+                if pieces[i].intersection(pieces[j]).length <= 0:
+                    continue
+                u = shapely.union(pieces[i], pieces[j])
+                if u.geom_type == "Polygon" and _convex(u):
+                    pieces[i] = shapely.normalize(u.simplify(0))
+                    del pieces[j]
+                    merged = True
+                    break
+            if merged:
+                break
+    return pieces
+
+
+def glued_convex(scene: Scene) -> Scene:
+    """The scene with every non-convex block cut into convex pieces glued together."""
+    strength = 1e4 * max(scene.effective_unit_weight, 1.0) * scene_size(scene)
+    blocks, glue = [], []
+    for b in scene.blocks:
+        pts = ccw(b.points)
+        if _convex(shapely.Polygon(pts)):
+            blocks.append(b)
+            continue
+        pieces = convex_pieces(pts)
+        ids = [f"{b.id}.{k}" for k in range(len(pieces))]
+        for bid, pc in zip(ids, pieces, strict=True):
+            corners = tuple(tuple(map(float, p)) for p in np.asarray(pc.exterior.coords)[:-1])
+            blocks.append(Block(bid, corners, None, b.support, b.unit_weight))
+        for i in range(len(pieces)):
+            for j in range(i + 1, len(pieces)):
+                if pieces[i].intersection(pieces[j]).length > 0:
+                    glue.append(JointOverride((ids[i], ids[j]), "infinite", None, strength))
+    if not glue:
+        return scene
+    return scene.with_changes(blocks=tuple(blocks), joints=scene.joints + tuple(glue))
+
+
+def test_the_catalogue_is_covered():
+    cases = _scene_files() + _generators()
+    assert "examples/reference.json" in cases and "generator/wall" in cases
+    assert len([c for c in cases if c not in SLOW]) >= len(cases) / 2
+
+
+def _same(a: float | None, b: float | None) -> bool:
+    if a is None or b is None:
+        return a is None and b is None
+    return math.isclose(a, b, rel_tol=RTOL, abs_tol=RTOL * 1e-3)
+
+
+@pytest.mark.parametrize("case", list(_cases()))
+def test_extruded_scene_gives_the_plane_answers(case):
+    s2 = _load(case)
+    s3 = extrude(glued_convex(s2))
+    assert s3.dimension == 3
+    for lf in (0.0, 1.0):
+        f2 = rb.min_friction(s2, load_factor=lf, state=False)
+        f3 = rb.min_friction(s3, load_factor=lf, state=False)
+        assert f3.status == f2.status, (case, lf)
+        assert _same(f3.friction_factor, f2.friction_factor), (case, lf, f2.friction_factor,
+                                                               f3.friction_factor)
+    if s2.has_live_load:
+        l2 = rb.max_load_multiplier(s2, state=False)
+        l3 = rb.max_load_multiplier(s3, state=False)
+        assert l3.status == l2.status, case
+        assert _same(l3.load_multiplier, l2.load_multiplier), (case, l2.load_multiplier,
+                                                               l3.load_multiplier)
+
+
+def test_glued_pieces_keep_the_plane_answer():
+    """The glue is strong enough: the cut 2D arch has the uncut arch's lambda*."""
+    s2 = build("stocky_arch")
+    cut = glued_convex(s2)
+    assert len(cut.blocks) > len(s2.blocks)
+    l_cut = rb.max_load_multiplier(cut, state=False).load_multiplier
+    assert l_cut == pytest.approx(rb.max_load_multiplier(s2, state=False).load_multiplier,
+                                  rel=RTOL)
