@@ -233,3 +233,24 @@ def test_cli_builds_3d_example(tmp_path, capsys):
     assert main(["example", "wall3d", "--load_direction", "sideways", "-o",
                  str(tmp_path / "w.json")]) == 2
     assert "load_direction must be one of" in capsys.readouterr().err
+
+
+# -- the distortion method is 2D only -----------------------------------------------
+def test_distortion_method_refuses_3d_scenes(tmp_path, capsys):
+    """The impressed-distortion solver has one shear link per 2D joint: 3D scenes get a
+    one-line InputError (CLI exit 2), raised before any work."""
+    s = box_stack(boxes=2)
+    for run in (lambda: rb.check(s, method="distortion"),
+                lambda: rb.min_friction(s, method="distortion"),
+                lambda: rb.max_load_multiplier(s, method="distortion")):
+        with pytest.raises(InputError, match="not supported for 3D scenes; use "
+                                             "method='clarabel'"):
+            run()
+    path = tmp_path / "stack.json"
+    rb.write_scene(s, path)
+    capsys.readouterr()
+    for cmd in ("check", "friction", "load"):
+        assert main([cmd, str(path), "--method", "distortion", "--json"]) == 2
+        err = capsys.readouterr().err.strip()
+        assert "not supported for 3D scenes" in err and "Traceback" not in err
+        assert len(err.splitlines()) == 1

@@ -113,7 +113,8 @@ class DistortionSolver:
         from ..problems.formulation import Scaling, flexibility
 
         if scene.dimension != 2:
-            raise InputError("the distortion method is implemented for 2D scenes only",
+            raise InputError("the distortion method is not supported for 3D scenes; use "
+                             "method='clarabel' (the convex path)",
                              scene.source)
         self.scene = scene
         self.system = system if system is not None else assemble(scene)
