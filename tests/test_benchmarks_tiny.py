@@ -93,3 +93,78 @@ def test_bench_peer_tiny_our_side(tmp_path):
     thin = bench.arch_scene(10, 0.07)
     assert bench.run_ours(thin)["verdict"] == "inadmissible"
     assert bench.run_ours(bench.extrude(thin))["verdict"] == "inadmissible"
+
+
+def load_script(name):
+    spec = importlib.util.spec_from_file_location(name, ROOT / "benchmarks" / f"{name}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_bench_scaling_tiny(tmp_path):
+    """Tiny walls through every stage; our lambda* equals the bare Clarabel solve's.
+
+    Counts: running-bond closed forms (rigidblocks.examples.walls): blocks
+    1 + N C + floor(C/2), J = N (3C - 1) - ceil(C/2) joints, two points per 2D joint and
+    four per extruded 3D joint; the plain 2D problem has (N, T) per point plus lambda,
+    and 3 equilibrium rows per free block + 3 inequality rows per point. The 3-course
+    wall (C = 3, N = 4, 1.6 m long, 0.6 m high, f = 0.6) collapses by sliding on a bed
+    joint: lambda* = f (kinematic: lambda W <= f W; overturning would need
+    lambda = L / H = 2.67), in 2D and extruded to 3D alike.
+    """
+    bench = load_script("bench_scaling")
+    data = bench.main(["--tiny", "--out", str(tmp_path)])
+    for ext in ("json", "md", "png"):
+        assert (tmp_path / f"bench_scaling.{ext}").stat().st_size > 0
+    bare = {(c["dim"], c["blocks"]): c for c in data["cases"] if c["kind"] == "bare"}
+    assert sorted(bare) == [(2, 14), (2, 46), (3, 14)]
+    for (dim, nb), c in bare.items():
+        C, N = bench.wall_shape(c["target"])
+        assert nb == 1 + N * C + C // 2
+        J = N * (3 * C - 1) - (C + 1) // 2
+        if dim == 2:
+            assert c["variables"] == 2 * (2 * J) + 1
+            assert c["constraints"] == 3 * (nb - 1) + 3 * (2 * J)
+        else:
+            assert c["variables"] == 3 * (4 * J) + 1
+        assert c["raw_status"] == "Solved"
+    rows = data["rows"]
+    assert {(r["dim"], r["blocks"], r["analysis"]) for r in rows} == {
+        (d, n, a) for d, n in bare for a in bench.ANALYSES
+        if not (d == 3 and a == "max_load_no_state")}
+    for r in rows:
+        assert set(r["seconds"]) == set(bench.STAGES)
+        assert min(r["seconds"].values()) >= 0
+        assert r["total"] >= r["seconds"]["solve"] > 0
+        if r["analysis"].startswith("max_load"):
+            assert r["answer"] == pytest.approx(r["bare_lambda"], rel=1e-6)
+            assert r["answer"] == pytest.approx(r["ref_lambda"], rel=1e-6)
+    small = [r["answer"] for r in rows if r["blocks"] == 14
+             and r["analysis"].startswith("max_load")]
+    assert small == pytest.approx([0.6] * len(small), rel=1e-6)
+    assert bench.fit_exponent([1e3, 1e4], [1.0, 100.0]) == pytest.approx(2.0)
+    assert "max_load_ratio" in data["targets"]
+
+
+def test_make_readme_order_and_machine(tmp_path):
+    """Sections in the fixed order (scaling before methods before peer), missing ones
+    skipped, the machine in the header, image links relative to the README."""
+    mr = load_script("make_readme")
+    res = tmp_path / "results"
+    res.mkdir()
+    (res / "bench_peer.md").write_text("## Peer section\n")
+    (res / "bench_methods.md").write_text("## Methods section\n")
+    (res / "bench_scaling.md").write_text("## Scaling section\n\n![chart](bench_scaling.png)\n")
+    (res / "bench_scaling.json").write_text(
+        '{"machine": {"cpu": "Test CPU 9000", "cores": 2}, "date": "2026-01-02", '
+        '"extras": {"cvxpy": [{"blocks": 1009, "native": 1.0, "cvxpy": 3.0, "ratio": 3.0}]}}')
+    out = mr.main(["--results", str(res), "--out", str(tmp_path / "README.md")])
+    assert out["sections"] == ["bench_scaling", "bench_methods", "bench_peer"]
+    text = (tmp_path / "README.md").read_text()
+    assert "Test CPU 9000" in text and "2026-01-02" in text
+    pos = [text.index(s) for s in ("Scaling section", "Methods section", "Peer section")]
+    assert pos == sorted(pos)
+    assert "](results/bench_scaling.png)" in text
+    assert "(3.00x)" in text
+    assert "python benchmarks/bench_scaling.py" in text
