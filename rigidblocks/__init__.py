@@ -13,7 +13,7 @@ __version__ = "0.1.0"
 
 
 def plot(scene: Scene, result: object = None, ax: object = None, **kwargs: object) -> object:
-    """Draw a 2D scene and a result; see :func:`rigidblocks.plotting.plot` (needs matplotlib)."""
+    """Draw a 2D or 3D scene and a result; see :func:`rigidblocks.plotting.plot`."""
     from .plotting import plot as _plot
 
     return _plot(scene, result, ax, **kwargs)

@@ -33,8 +33,6 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"unknown picture format '{out.suffix}': use "
                          f"{', '.join(FORMATS)}", str(out))
     scene = read_scene(args.scene)
-    if scene.dimension != 2:
-        raise InputError("plot draws 2D scenes only", args.scene)
     result = analyse(scene, args.analysis, args.friction, args.load_factor)
 
     import matplotlib

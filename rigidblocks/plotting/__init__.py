@@ -1,5 +1,30 @@
-"""Pictures of scenes and results (needs matplotlib, imported when first used)."""
+"""Pictures of scenes and results (needs matplotlib, imported when first used).
 
-from .plot2d import MAX_ARROWS, available_friction, displaced_polygons, plot, save_figure
+:func:`plot` draws a 2D scene with :func:`rigidblocks.plotting.plot2d.plot` and a 3D
+scene with :func:`rigidblocks.plotting.plot3d.plot` (same arguments).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..scene.model import Scene
+from .plot2d import MAX_ARROWS, available_friction, displaced_polygons, save_figure
+from .plot2d import plot as plot2d
+
+
+def plot(scene: Scene, result: Any = None, ax: Any = None, **kwargs: Any) -> Any:
+    """Draw a scene and a result: plane pictures for 2D scenes, mplot3d for 3D ones.
+
+    Keyword arguments (``ids``, ``max_arrows``, ``force_scale``,
+    ``displacement_scale``, ``title``, ``colorbar``) are those of
+    :func:`rigidblocks.plotting.plot2d.plot`; returns the matplotlib Axes.
+    """
+    if scene.dimension == 3:
+        from .plot3d import plot as plot3d
+
+        return plot3d(scene, result, ax, **kwargs)
+    return plot2d(scene, result, ax, **kwargs)
+
 
 __all__ = ["MAX_ARROWS", "available_friction", "displaced_polygons", "plot", "save_figure"]

@@ -1,0 +1,124 @@
+"""3D pictures (rigidblocks.plotting.plot3d): faces, force arrows, mechanism, files.
+
+Reference values: a box b = 1 wide, h = 2 high (box_stack with one box) under a
+horizontal body force lambda W tips about its toe edge at lambda* = b / h = 0.5 (f = 0.6
+> 0.5); the bed joint is then a hinge along the edge x = b/2, z = 0 (box_stack
+docstring; docs/validation.md).
+"""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+import rigidblocks as rb  # noqa: E402
+from rigidblocks.cli.main import main  # noqa: E402
+from rigidblocks.examples.solids import box_stack, corbel_dome  # noqa: E402
+from rigidblocks.io import write_scene  # noqa: E402
+from rigidblocks.plotting.plot3d import displaced_vertices  # noqa: E402
+
+
+def by_gid(ax, gid):
+    return [a for a in ax.get_children() if a.get_gid() == gid]
+
+
+def n_polys(ax, gid):
+    ax.figure.canvas.draw()
+    return sum(len(a.get_paths()) for a in by_gid(ax, gid))
+
+
+@pytest.fixture(autouse=True)
+def _close():
+    yield
+    plt.close("all")
+
+
+def n_faces(scene, support):
+    return sum(len(b.faces) for b in scene.blocks if b.support == support)
+
+
+def test_scene_faces_are_drawn():
+    s = corbel_dome(rings=2, blocks_per_ring=6)
+    ax = rb.plot(s)
+    assert ax.name == "3d"
+    assert n_polys(ax, "rb-blocks") == n_faces(s, False) == 2 * 6 * 6 + 14
+    assert n_polys(ax, "rb-supports") == n_faces(s, True) == 6
+    assert not by_gid(ax, "rb-forces") and not by_gid(ax, "rb-displaced")
+
+
+def test_force_arrows_one_per_loaded_joint():
+    """Two boxes on a slab under self-weight: each bed joint carries the weight above
+    it (2 W and W), so both get an arrow, pointing up (the force on the upper block)."""
+    s = box_stack(boxes=2, width=1.0, height=0.5)
+    res = rb.check(s, load_factor=0.0)
+    ax = rb.plot(s, res)
+    (q,) = by_gid(ax, "rb-forces")
+    segs = np.asarray(q._segments3d)  # shafts first, each (head, tail)
+    assert len(segs) == 2 * 3
+    shafts = segs[:2]
+    d = shafts[:, 0] - shafts[:, 1]
+    # tails at the joints' centres of pressure, the box centres' verticals
+    np.testing.assert_allclose(np.sort(shafts[:, 1, 2]), [0.0, 0.5], atol=1e-9)
+    np.testing.assert_allclose(shafts[:, 1, :2], 0.0, atol=1e-9)
+    assert np.all(d[:, 2] > 0) and np.allclose(d[:, :2], 0, atol=1e-9)
+    # arrow lengths in proportion to the joint forces 2 W : W
+    lengths = sorted(np.linalg.norm(d, axis=1))
+    assert lengths[1] == pytest.approx(2 * lengths[0], rel=1e-6)
+
+
+def test_mechanism_displaced_blocks_and_hinge_line():
+    s = box_stack(boxes=1, width=1.0, length=1.0, height=2.0, friction=0.6)
+    res = rb.max_load_multiplier(s)
+    assert res.load_multiplier == pytest.approx(0.5, rel=1e-6)
+    ax = rb.plot(s, res)
+    assert n_polys(ax, "rb-displaced") == 6
+    (h,) = by_gid(ax, "rb-hinges")
+    pts = np.asarray(h._offsets3d).T
+    # the hinge points lie on the toe edge x = 0.5, z = 0
+    assert len(pts) == 2
+    np.testing.assert_allclose(pts[:, [0, 2]], [[0.5, 0.0], [0.5, 0.0]], atol=1e-9)
+
+
+def test_displaced_vertices_rotate_about_the_hinge():
+    """Rotation rate omega = (0, w, 0) about the toe line a = (0.5, y, 0) of the box
+    centred at c = (0, 0, 1): the centroid moves at u = omega x (c - a) = (w, 0, w/2)
+    and the top corner (-0.5, y, 2) at omega x (-1, 0, 2) = (2w, 0, w): towards +x.
+    The finite motion is the rotation about the toe line: the toe stays, distances
+    are kept."""
+    s = box_stack(boxes=1, width=1.0, length=1.0, height=2.0)
+    w = 0.3
+    omega = np.array([0.0, w, 0.0])
+    c = np.array([0.0, 0.0, 1.0])
+    u = np.cross(omega, c - np.array([0.5, 0.0, 0.0]))
+    vel = np.zeros((2, 6))
+    vel[1] = [*u, *omega]
+    moved = displaced_vertices(s, vel, 1.0)[1]
+    pts = s.blocks[1].points
+    toe = np.isclose(pts[:, 0], 0.5) & np.isclose(pts[:, 2], 0.0)
+    np.testing.assert_allclose(moved[toe], pts[toe], atol=1e-12)
+    d0 = np.linalg.norm(pts[:, None] - pts[None], axis=2)
+    d1 = np.linalg.norm(moved[:, None] - moved[None], axis=2)
+    np.testing.assert_allclose(d1, d0, atol=1e-12)
+    top = pts[:, 2] == 2.0
+    assert np.all(moved[top, 0] > pts[top, 0])
+
+
+def test_png_written_by_api_and_cli(tmp_path, capsys):
+    s = box_stack(boxes=2)
+    path = tmp_path / "stack.json"
+    write_scene(s, path)
+    ax = rb.plot(s, rb.max_load_multiplier(s))
+    out = tmp_path / "api.png"
+    from rigidblocks.plotting import save_figure
+
+    save_figure(ax, str(out))
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    cli_out = tmp_path / "cli.png"
+    assert main(["plot", str(path), "--analysis", "load", "-o", str(cli_out)]) == 0
+    assert cli_out.stat().st_size > 1000
+    assert "wrote" in capsys.readouterr().out
