@@ -439,3 +439,18 @@ def test_max_load_unstable_when_live_load_props_up(solver):
     assert not check(s, load_factor=0.0, solver=solver).admissible
     r = max_load_multiplier(s, solver=solver)
     assert r.status == "unstable" and r.load_multiplier is None
+
+
+def test_large_wall_verdicts_hold_across_the_admissible_interval():
+    """The admissible load multipliers form an interval [0, lambda*] (the admissible
+    set is convex and the dead load alone stands), so every check below lambda* must
+    say admissible, however large the scene. On a 990-block wall the relaxation's
+    round-off (~1e-9 of a block weight) once exceeded a threshold fixed in block-weight
+    units and called lambda*/2 inadmissible."""
+    from rigidblocks.examples.walls import running_bond_wall
+
+    wall = running_bond_wall(30, 33)
+    lam = max_load_multiplier(wall, state=False).load_multiplier
+    for k in (0.0, 0.5, 0.999):
+        assert check(wall, load_factor=k * lam, state=False).admissible, k
+    assert not check(wall, load_factor=1.01 * lam, state=False).admissible

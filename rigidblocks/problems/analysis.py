@@ -22,9 +22,10 @@ from ..scene.model import INFINITE, Scene
 from ..solvers import INFEASIBLE, OPTIMAL, UNBOUNDED, SolverResult, solve
 from .formulation import Scaling, build_energy_qp, build_max_load, build_relaxation
 
-#: a relaxation below this (in units of the reference force) counts as zero
+#: a relaxation below this fraction of the largest force of its state counts as zero
+#: (interior-point residuals are relative to the size of the solution: a 30-course wall
+#: carries 30 block weights at its base, and R carries round-off of that order)
 ADMISSIBLE_TOL = 1e-9
-RELAX_ZERO = ADMISSIBLE_TOL
 #: solver tolerances for the relaxation problems (tight: R decides verdicts near 0)
 RELAX_SETTINGS = {"tol_gap_abs": 1e-10, "tol_gap_rel": 1e-10, "tol_feas": 1e-10}
 #: the same for other back ends whose defaults are looser than the verdict threshold
@@ -156,20 +157,38 @@ def _context(scene: Scene, solver: str, settings: dict | None,
 
 
 # -- relaxation ----------------------------------------------------------------------
-def _relaxation(ctx: _Context, f_uniform: float, load_factor: float):
+@dataclass(frozen=True)
+class _Relax:
+    """One relaxation solve: R(f), dR/df, and what the analyses read from it."""
+
+    R: float | None  # None: the equilibrium equations have no solution
+    slope: float
+    res: SolverResult
+    jr: Any
+    prob: Any
+    tol: float  # R <= tol counts as zero (ADMISSIBLE_TOL x the largest scaled force)
+
+    @property
+    def zero(self) -> bool:
+        return self.R is not None and self.R <= self.tol
+
+
+def _relaxation(ctx: _Context, f_uniform: float, load_factor: float) -> _Relax:
     """R(f) and dR/df (from the duals of the friction rows of the uniform joints)."""
     fj = ctx.f_joint(f_uniform)
     prob, jr = build_relaxation(ctx.system, ctx.scaling, fj, load_factor, ctx.pyramid)
     res = ctx.run(prob, "relaxation", tight=True)
     if res.status != OPTIMAL:
-        return None, 0.0, res, jr, prob
+        return _Relax(None, 0.0, res, jr, prob, ADMISSIBLE_TOL)
     z, y = res.z, res.y
     R = max(float(z[prob.cols["r"]][0]), 0.0)
+    x = z[prob.cols["x"]]
+    tol = ADMISSIBLE_TOL * max(1.0, float(np.max(np.abs(x), initial=0.0)))
     head = prob.rows["joints"].start + jr.fric_head
     uni = ctx.uniform[jr.fric_joint]
     nsum = jr.fric_nsum @ z
     slope = float(np.sum(y[head][uni] * nsum[uni]))
-    return R, slope, res, jr, prob
+    return _Relax(R, slope, res, jr, prob, tol)
 
 
 def _state(ctx: _Context, f_uniform: float, load_factor: float, relax: float,
@@ -296,9 +315,10 @@ def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
     Notes:
         Posed as the relaxation R = min r over equilibrium states whose joint-law
         violations are all <= r (r >= 0, forces scaled to order one); admissible iff
-        R <= 1e-7 of the reference force. The relaxation is always feasible when the
-        equilibrium equations can be met, so it avoids the degenerate feasibility
-        problems at the limit.
+        R <= 1e-9 of the largest force of the relaxation's state (the interior-point
+        solver's accuracy is relative to the size of its solution). The relaxation is
+        always feasible when the equilibrium equations can be met, so it avoids the
+        degenerate feasibility problems at the limit.
     """
     path, solver = split_method(method, solver)
     f = resolve_friction(scene, friction)
@@ -307,14 +327,14 @@ def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
 
         return check_distortion(scene, f, float(load_factor), state=state)
     ctx = _context(scene, solver, settings, pyramid)
-    R, _, res, _, _ = _relaxation(ctx, f, float(load_factor))
-    if R is None:  # equilibrium equations cannot be met at all: a mechanism
+    rx = _relaxation(ctx, f, float(load_factor))
+    if rx.R is None:  # equilibrium equations cannot be met at all: a mechanism
         ctx.notes.append("the equilibrium equations have no solution with these joints "
                          "(the scene is a mechanism)")
         ok, viol = False, math.inf
     else:
-        ok, viol = R <= ADMISSIBLE_TOL, R * ctx.scaling.force
-    st = _state(ctx, f, float(load_factor), R + STATE_SLACK) if (ok and state) else None
+        ok, viol = rx.zero, rx.R * ctx.scaling.force
+    st = _state(ctx, f, float(load_factor), rx.R + STATE_SLACK) if (ok and state) else None
     return CheckResult(**ctx.common("check", "admissible" if ok else "inadmissible",
                                     friction_label(f), float(load_factor)),
                        state=st, admissible=ok, violation=0.0 if ok else viol)
@@ -347,22 +367,22 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
     if ctx.contacts.n_joints and not ctx.uniform.any():
         raise InputError("every joint has its own friction override: there is no uniform "
                          "friction to minimise", scene.source)
-    R_inf, _, _, _, _ = _relaxation(ctx, math.inf, lf)
-    if R_inf is None or R_inf > RELAX_ZERO:
-        if R_inf is None:
+    rx = _relaxation(ctx, math.inf, lf)
+    if not rx.zero:
+        if rx.R is None:
             ctx.notes.append("the equilibrium equations have no solution (mechanism)")
         return FrictionResult(**ctx.common("min_friction", "unstable", None, lf))
     lo, hi, R_hi = 0.0, math.inf, 0.0
-    R, slope, res, jr, prob = _relaxation(ctx, 0.0, lf)
-    if R is None:
+    rx = _relaxation(ctx, 0.0, lf)
+    if rx.R is None:
         raise SolverFailure("the relaxation at f = 0 has no solution although infinite "
-                            "friction has one", ctx.solver, res.raw_status)
+                            "friction has one", ctx.solver, rx.res.raw_status)
     last = None
-    if R <= RELAX_ZERO:
-        hi, R_hi = 0.0, R
+    if rx.zero:
+        hi, R_hi = 0.0, rx.R
     else:
-        last = (res, jr, prob)
-    R_lo, s_lo = R, slope
+        last = rx
+    R_lo, s_lo = rx.R, rx.slope
     probe_below_hi = True  # next time Newton lands on or past hi, probe just below hi
     for _ in range(100):
         if math.isfinite(hi) and hi - lo <= rtol * hi:
@@ -382,22 +402,22 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
         else:
             trial = 0.5 * (lo + hi)
             probe_below_hi = True
-        R, slope, res, jr, prob = _relaxation(ctx, trial, lf)
-        if R is None:
+        rx = _relaxation(ctx, trial, lf)
+        if rx.R is None:
             raise SolverFailure("relaxation problem lost its solution", ctx.solver,
-                                res.raw_status)
-        if R > RELAX_ZERO:
-            lo, R_lo, s_lo = trial, R, slope
-            last = (res, jr, prob)
+                                rx.res.raw_status)
+        if rx.zero:
+            hi, R_hi = trial, rx.R
         else:
-            hi, R_hi = trial, R
+            lo, R_lo, s_lo = trial, rx.R, rx.slope
+            last = rx
     else:
         raise SolverFailure("minimum friction did not converge in 100 solves", ctx.solver,
                             "iteration limit")
     fstar = hi
     governing: tuple[int, ...] = ()
     if last is not None:
-        res, jr, prob = last
+        res, jr, prob = last.res, last.jr, last.prob
         head = prob.rows["joints"].start + jr.fric_head
         # each friction row's share of -dR/df, y_r N_r: a joint whose normal force
         # vanishes (an opening joint carrying only the relaxation's slack) does not govern
@@ -470,8 +490,7 @@ def _dead_admissible(ctx: _Context, f: float) -> bool:
     its dead load alone. One relaxation solve (none when there is no dead load)."""
     if not np.any(ctx.system.dead):
         return True
-    R0, _, _, _, _ = _relaxation(ctx, f, 0.0)
-    if R0 is None or R0 > RELAX_ZERO:
+    if not _relaxation(ctx, f, 0.0).zero:
         ctx.notes.append("the dead load alone is not admissible")
         return False
     return True

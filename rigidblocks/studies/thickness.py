@@ -20,7 +20,6 @@ from typing import Any
 
 from ..errors import InputError
 from ..problems import check
-from ..scene.geometry import block_weights
 from ..scene.model import Scene
 
 
@@ -55,7 +54,7 @@ class ThicknessResult:
 def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness",
                   lo: float = 0.01, hi: float = 1.0, rtol: float = 1e-4,
                   friction: Any = "infinite", method: str = "clarabel",
-                  tol: float = 1e-8, **params: Any) -> ThicknessResult:
+                  **params: Any) -> ThicknessResult:
     """Smallest value of ``param`` for which ``generator(**params)`` admits equilibrium
     under its dead load (load factor 0), by bisection to a relative bracket ``rtol``.
 
@@ -65,10 +64,7 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         param: the thickness parameter (``thickness`` is t / R for :func:`arch`).
         lo, hi: the initial bracket; ``hi`` must be admissible and ``lo`` not.
         friction: friction coefficient for every joint (default: no sliding).
-        tol: a state whose smallest violation of the joint laws is below ``tol`` times
-            the total weight counts as admissible. Near t_min the violation grows
-            linearly with t_min - t, so this only absorbs the solver's round-off
-            (about 1e-11 of the weight), not a real breach.
+        method: the method deciding admissibility (see :func:`rigidblocks.check`).
 
     Example:
         >>> r = min_thickness("arch", voussoirs=20, rtol=1e-3)
@@ -95,9 +91,8 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         nonlocal n
         n += 1
         scene = gen(**params, **{param: t})
-        res = check(scene, friction=friction, load_factor=0.0, method=method, state=False)
-        weight = float(block_weights(scene)[0][~scene.support_mask].sum())
-        return bool(res.admissible or res.violation <= tol * weight)
+        return check(scene, friction=friction, load_factor=0.0, method=method,
+                     state=False).admissible
 
     if not admissible(hi):
         raise InputError(f"min_thickness: {name} is not admissible at the upper bound "
