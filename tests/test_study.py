@@ -1,0 +1,331 @@
+"""Parametric studies (rigidblocks.study): executors, failures, resume, specs, CLI.
+
+Closed forms used (seed paper /work/shared/seed/000_12fc8c16f038a4e5.txt, section on
+the reference model): four blocks, a top block carrying P, two central blocks each
+pulled outwards by H, on a support. Without self-weight each central block has N = P/2
+on its top and bottom joints, so sliding needs H <= f (P/2 + P/2): f* = H / P, the
+seed's f = 0.5 (26.56 deg) for P = 100 N, H = 50 N; with the blocks' self-weight (top
+block 50 N, central blocks 50 N each) f* = H / (P + W_top + W_c) = 50 / 200 = 0.25, the
+seed's 14.03 deg. The maximum multiplier of H at friction f is fP / H.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+from conftest import EXAMPLES, ROOT
+
+import rigidblocks as rb
+from rigidblocks import study
+from rigidblocks.cli.main import main
+from rigidblocks.errors import InputError
+from rigidblocks.examples import build
+
+ANSWERS = ["status", "error", "check_status", "admissible", "violation",
+           "min_friction_status", "friction_factor", "friction_angle_deg"]
+
+# 50 flat arches on piers (seed Fig. 6 family): 5 voussoir counts x 10 load factors of
+# the live horizontal body force; about one in five cannot stand
+FLAT_GRID = {"voussoirs": [3, 4, 5, 6, 7],
+             "load_factor": [0.0, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45]}
+
+
+def flat_study(**kw):
+    return study.run("flat_arch", grid=FLAT_GRID, analyses=["check"], progress=False,
+                     **kw)
+
+
+def same_answers(a: pd.DataFrame, b: pd.DataFrame, tol: float = 1e-9) -> None:
+    """Same cases with the same statuses and numbers (to ``tol``), case by case."""
+    a = a.sort_values("case_id").reset_index(drop=True)
+    b = b.sort_values("case_id").reset_index(drop=True)
+    assert list(a["case_id"]) == list(b["case_id"])
+    for col in ANSWERS:
+        if col not in a.columns:
+            assert col not in b.columns
+            continue
+        x, y = a[col], b[col]
+        if col in ("violation", "friction_factor", "friction_angle_deg"):
+            x, y = x.to_numpy(float), y.to_numpy(float)
+            assert np.array_equal(np.isnan(x), np.isnan(y)), col
+            ok = ~np.isnan(x)
+            assert np.allclose(x[ok], y[ok], rtol=tol, atol=tol), col
+        else:
+            assert list(x.astype(object).where(x.notna(), None)) == \
+                list(y.astype(object).where(y.notna(), None)), col
+
+
+# -- executors -------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def dask_client():
+    distributed = pytest.importorskip("dask.distributed")
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                       dashboard_address=None)
+    client = distributed.Client(cluster)
+    yield client
+    client.close()
+    cluster.close()
+
+
+def test_executors_agree_case_by_case(dask_client):
+    """One process, 2 local processes and a 2-worker Dask LocalCluster give the same
+    verdict and violation for each of 50 flat arches, to 1e-9."""
+    one = flat_study(workers=1)
+    assert len(one.frame) == 50 and one.n_failed == 0
+    verdicts = one.frame["check_status"].value_counts()
+    assert verdicts["admissible"] > 10 and verdicts["inadmissible"] > 5
+    procs = flat_study(workers=2, batch_size=4)
+    dask = flat_study(client=dask_client, batch_size=4)
+    assert procs.executor == "2 processes" and dask.executor == "dask"
+    same_answers(one.frame, procs.frame)
+    same_answers(one.frame, dask.frame)
+    # the rows come back in case order whatever the order they finished in
+    assert list(dask.frame["case"]) == list(range(50))
+    # and the answers are those of the direct call on the generated scene
+    for k in (7, 48):
+        row = one.frame.iloc[k]
+        scene = build("flat_arch", voussoirs=int(row["voussoirs"]))
+        direct = rb.check(scene, load_factor=float(row["load_factor"]), state=False)
+        assert row["check_status"] == direct.status
+        assert row["violation"] == pytest.approx(direct.violation, rel=1e-9, abs=1e-12)
+
+
+# -- failures ----------------------------------------------------------------------------
+def test_bad_cases_are_recorded_and_the_rest_correct():
+    """Voussoir counts the generators reject (0, -2; an odd count for a pointed arch)
+    fail with the generator's message; the other cases match direct calls."""
+    cases = [{"shape": "semicircular", "voussoirs": 5}, {"shape": "semicircular",
+                                                         "voussoirs": 0},
+             {"shape": "pointed", "voussoirs": 6}, {"shape": "pointed", "voussoirs": 7},
+             {"shape": "semicircular", "voussoirs": -2},
+             {"shape": "segmental", "voussoirs": 4}]
+    res = study.run("arch", cases=cases, parameters={"load_factor": 0.0, "arc_points": 2},
+                    analyses=["min_friction", "check"], workers=2, batch_size=2,
+                    progress=False)
+    df = res.frame
+    assert list(df["status"]) == ["ok", "failed", "ok", "failed", "failed", "ok"]
+    assert res.n_failed == 3
+    assert df.loc[1, "error"].startswith("InputError: arch: voussoirs")
+    assert "even number of voussoirs" in df.loc[3, "error"]
+    assert df.loc[df["status"] == "failed", "friction_factor"].isna().all()
+    for i in (0, 2, 5):
+        c = cases[i]
+        scene = build("arch", arc_points=2, **c)
+        direct = rb.min_friction(scene, load_factor=0.0, state=False)
+        assert df.loc[i, "friction_factor"] == pytest.approx(direct.friction_factor,
+                                                             rel=1e-9)
+        assert df.loc[i, "check_status"] == rb.check(scene, load_factor=0.0,
+                                                     state=False).status
+        assert pd.isna(df.loc[i, "error"])
+
+
+# -- closed forms -------------------------------------------------------------------------
+def test_reference_model_closed_form_in_a_study():
+    """Seed reference model: f* = H / P (0.5 at H = 50, P = 100) and lambda* = f P / H."""
+    H = [10.0, 25.0, 50.0, 80.0]
+    res = study.run("reference", grid={"H": H}, parameters={"P": 100.0, "friction": 0.6},
+                    analyses=["min_friction", "max_load_multiplier"], workers=1,
+                    progress=False)
+    df = res.frame
+    assert np.allclose(df["friction_factor"], np.array(H) / 100.0, rtol=1e-6)
+    assert df.loc[2, "friction_angle_deg"] == pytest.approx(26.565, abs=1e-3)
+    assert np.allclose(df["load_multiplier"], 0.6 * 100.0 / np.array(H), rtol=1e-6)
+    sw = study.run("reference", cases=[{"self_weight": True}], analyses=["min_friction"],
+                   workers=1, progress=False).frame
+    assert sw.loc[0, "friction_factor"] == pytest.approx(0.25, rel=1e-6)
+    assert sw.loc[0, "friction_angle_deg"] == pytest.approx(14.036, abs=1e-3)
+
+
+def test_scene_file_source_with_friction_override(tmp_path):
+    """examples/reference.json (H = 50 N, P = 100 N, no self-weight) is admissible at
+    load factor 1 exactly when f >= 0.5; at load factor 0 always (no shear)."""
+    fr = [0.3, 0.49, 0.51, 0.8, "infinite"]
+    res = study.run(str(EXAMPLES / "reference.json"),
+                    grid={"load_factor": [1.0, 0.0], "friction": fr},
+                    analyses=["check"], workers=1, progress=False,
+                    output=tmp_path / "ref.csv")
+    df = pd.read_csv(tmp_path / "ref.csv")
+    assert res.n_cases == len(df) == 10
+    assert list(df["check_status"]) == ["inadmissible"] * 2 + ["admissible"] * 8
+    assert list(df["friction"])[:5] == ["0.3", "0.49", "0.51", "0.8", "infinite"]
+    with pytest.raises(InputError, match="min_thickness needs a generator"):
+        study.make_sweep(str(EXAMPLES / "reference.json"), grid={"friction": [0.5]},
+                         analyses=["min_thickness"])
+
+
+# -- resume -------------------------------------------------------------------------------
+class Stop(Exception):
+    pass
+
+
+def stop_after(n: int):
+    seen = []
+
+    def hook(row):
+        seen.append(row["case_id"])
+        if len(seen) == n:
+            raise Stop(f"stopped after {n} cases")
+    return hook, seen
+
+
+@pytest.mark.parametrize("ext,workers", [(".parquet", 1), (".csv", 2)])
+def test_resume_after_interruption(tmp_path, ext, workers):
+    """A study stopped after 7 cases keeps them; the rerun runs only the others, and the
+    output holds each case once, equal to a clean run."""
+    grid = {"voussoirs": [3, 5, 7, 9], "load_factor": [0.0, 0.1, 0.2, 0.4]}
+    kw = dict(grid=grid, analyses=["check"], progress=False, workers=workers,
+              batch_size=3)
+    out = tmp_path / f"r{ext}"
+    hook, seen = stop_after(7)
+    with pytest.raises(Stop):
+        study.run("flat_arch", output=out, on_case=hook, flush_every=0.0, **kw)
+    parts = list((tmp_path / f"r{ext}.parts").glob(f"*{ext}"))
+    kept = pd.concat([pd.read_parquet(p) if ext == ".parquet" else
+                      pd.read_csv(p, dtype={"case_id": str}) for p in parts])
+    assert len(kept) >= 7 and set(seen) <= set(kept["case_id"])
+    ran = []
+    res = study.run("flat_arch", output=out, on_case=lambda r: ran.append(r["case_id"]),
+                    **kw)
+    assert res.n_skipped == len(kept) and res.n_run == 16 - len(kept)
+    assert not set(ran) & set(kept["case_id"])
+    assert not (tmp_path / f"r{ext}.parts").exists()
+    final = pd.read_parquet(out) if ext == ".parquet" else pd.read_csv(
+        out, dtype={"case_id": str})
+    assert len(final) == 16 and final["case_id"].is_unique
+    assert list(final["case"]) == list(range(16))
+    clean = study.run("flat_arch", output=tmp_path / f"clean{ext}", **kw)
+    same_answers(final, clean.frame)
+    # a third run has nothing to do
+    again = study.run("flat_arch", output=out, **kw)
+    assert again.n_run == 0 and len(again.frame) == 16
+    # another sweep is refused on this output
+    with pytest.raises(InputError, match="another sweep"):
+        study.run("flat_arch", output=out, **{**kw, "grid": {"voussoirs": [11]}})
+
+
+# -- cases, random, plot -------------------------------------------------------------------
+def test_expand_cases_grid_order_and_random_seed():
+    g = study.expand_cases(grid={"a": [1, 2], "b": ["x", "y", "z"]}, parameters={"c": 0})
+    assert g[:2] == [{"c": 0, "a": 1, "b": "x"}, {"c": 0, "a": 1, "b": "y"}]
+    assert len(g) == 6
+    spec = {"samples": 40, "seed": 3, "uniform": {"centre_depth": [0.5, 4.0]},
+            "integers": {"voussoirs": [3, 9]}}
+    r1, r2 = study.expand_cases(random=spec), study.expand_cases(random=spec)
+    assert r1 == r2 and len(r1) <= 40
+    assert all(0.5 <= c["centre_depth"] < 4.0 and 3 <= c["voussoirs"] <= 9 for c in r1)
+    assert {c["voussoirs"] for c in r1} == set(range(3, 10))  # 40 draws cover 7 values
+    assert r1 != study.expand_cases(random={**spec, "seed": 4})
+    with pytest.raises(InputError, match="exactly one"):
+        study.expand_cases(grid={"a": [1]}, cases=[{"a": 2}])
+
+
+def test_plot_friction_angle_vs_joint_inclination():
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    res = study.run("flat_arch", grid={"voussoirs": [3, 5, 0], "centre_depth": [1.0, 2.0]},
+                    parameters={"load_factor": 0.0}, workers=1, progress=False)
+    ax = res.plot(x="centre_depth", y="friction_angle_deg", hue="voussoirs")
+    lines = ax.get_lines()
+    assert len(lines) == 2  # the failed voussoirs = 0 cases are left out
+    assert ax.get_xlabel() == "centre_depth"
+    y = lines[0].get_ydata()
+    assert np.allclose(y, res.frame["friction_angle_deg"].iloc[:2])
+    with pytest.raises(InputError, match="no column"):
+        res.plot(x="nope", y="friction_factor")
+
+
+# -- spec files and the CLI ---------------------------------------------------------------
+def write(tmp_path, doc, name="s.json"):
+    p = tmp_path / name
+    p.write_text(json.dumps(doc))
+    return p
+
+
+BASE = {"format": "rigidblocks-sweep", "version": 1, "generator": "flat_arch",
+        "grid": {"voussoirs": [3]}, "analyses": ["min_friction"]}
+
+
+@pytest.mark.parametrize("change,match", [
+    ({"colour": 1}, r'unknown key "colour"'),
+    ({"generator": "bridge"}, r"unknown example 'bridge'"),
+    ({"grid": {"vousoirs": [3]}}, r"grid\.vousoirs: unknown parameter 'vousoirs'"),
+    ({"grid": {"voussoirs": [2.5]}}, r"voussoirs \(case 0\): expected an integer"),
+    ({"grid": {"voussoirs": 3}}, r"grid\.voussoirs: expected a list"),
+    ({"analyses": ["min_fricton"]}, r"analyses\[0\]: unknown analysis 'min_fricton'"),
+    ({"analyses": [{"analysis": "min_thickness", "step": 1}]}, r'unknown option "step"'),
+    ({"format": "rigidblocks-scene"}, r'"format" must be'),
+    ({"random": {"samples": 3, "seed": 1}}, r"exactly one of grid, cases, random"),
+    ({"cases": [{"voussoirs": 3}], "grid": None}, r'"grid": expected an object'),
+    ({"parameters": {"friction": -1}}, r"must be >= 0"),
+])
+def test_spec_errors_name_file_and_key(tmp_path, change, match):
+    p = write(tmp_path, {**BASE, **change})
+    with pytest.raises(InputError, match=match) as err:
+        study.read_spec(p)
+    msg = str(err.value)
+    assert msg.startswith(str(p)) and "\n" not in msg
+
+
+def test_spec_random_and_scene(tmp_path):
+    doc = {**BASE, "grid": None}
+    del doc["grid"]
+    doc["random"] = {"samples": 5, "seed": 0, "uniform": {"centre_depth": [1.0, 2.0]}}
+    sw = study.read_spec(write(tmp_path, doc))
+    assert len(sw.cases) == 5 and sw.generator == "flat_arch"
+    scene_doc = {"format": "rigidblocks-sweep", "version": 1,
+                 "scene": str(EXAMPLES / "reference.json"),
+                 "cases": [{"friction": 0.4}, {"friction": "infinite"}],
+                 "analyses": ["check"]}
+    sw = study.read_spec(write(tmp_path, scene_doc, "scene.json"))
+    assert sw.scene is not None and sw.cases[1]["friction"] == "infinite"
+    bad = {**scene_doc, "cases": [{"voussoirs": 3}]}
+    with pytest.raises(InputError, match="unknown parameter 'voussoirs' for a scene"):
+        study.read_spec(write(tmp_path, bad, "bad.json"))
+
+
+def test_cli_sweep_end_to_end(tmp_path, capsys):
+    spec = EXAMPLES / "sweep_flat_arch.json"
+    out = tmp_path / "flat.parquet"
+    assert main(["sweep", str(spec), "-o", str(out), "--workers", "1",
+                 "--no-progress"]) == 0
+    text = capsys.readouterr().out
+    assert "cases     15 (15 run, 0 done before)" in text and str(out) in text
+    df = pd.read_parquet(out)
+    assert len(df) == 15 and (df["status"] == "ok").all()
+    # steeper radial joints (centre nearer the intrados) need less friction
+    for _, g in df.groupby("voussoirs"):
+        f = g.sort_values("centre_depth")["friction_factor"].to_numpy()
+        assert np.all(np.diff(f) >= -1e-9)
+    assert main(["sweep", str(spec), "-o", str(out), "--workers", "1",
+                 "--no-progress"]) == 0
+    assert "(0 run, 15 done before)" in capsys.readouterr().out
+    bad = write(tmp_path, {**BASE, "colour": 1})
+    assert main(["sweep", str(bad), "-o", str(tmp_path / "x.parquet")]) == 2
+    err = capsys.readouterr().err
+    assert 'unknown key "colour"' in err and err.count("\n") == 1
+    assert main(["sweep", str(spec), "-o", str(tmp_path / "x.txt")]) == 2
+
+
+def test_doc_example_is_the_example_file():
+    """docs/sweep-format.md shows the keys of examples/sweep_flat_arch.json."""
+    doc = json.loads((EXAMPLES / "sweep_flat_arch.json").read_text())
+    text = (ROOT / "docs" / "sweep-format.md").read_text()
+    assert '"generator": "flat_arch"' in text and doc["generator"] == "flat_arch"
+    assert study.read_spec(EXAMPLES / "sweep_flat_arch.json").cases[0]["voussoirs"] == 3
+
+
+# -- throughput -----------------------------------------------------------------------------
+@pytest.mark.slow
+def test_thousand_small_arches_throughput(tmp_path):
+    """1,000 small arches (min friction) on 2 processes: all stable, at a useful rate."""
+    res = study.run("arch", grid={"voussoirs": list(range(4, 14)),
+                                  "thickness": list(np.linspace(0.12, 0.3, 100))},
+                    parameters={"load_factor": 0.0, "arc_points": 2},
+                    analyses=["min_friction"], workers=2, progress=False,
+                    output=tmp_path / "k.parquet")
+    assert len(res.frame) == 1000 and res.n_failed == 0
+    assert res.rate > 20 and math.isfinite(res.frame["friction_factor"].max())
