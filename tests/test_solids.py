@@ -254,3 +254,15 @@ def test_distortion_method_refuses_3d_scenes(tmp_path, capsys):
         err = capsys.readouterr().err.strip()
         assert "not supported for 3D scenes" in err and "Traceback" not in err
         assert len(err.splitlines()) == 1
+
+
+@pytest.mark.parametrize("fname, gen, params", [
+    ("box_stack_3d.json", "box_stack", {"boxes": 4, "offset": 0.15, "load_azimuth": 30.0}),
+    ("corbel_dome.json", "corbel_dome", {"rings": 4, "blocks_per_ring": 10}),
+])
+def test_bundled_3d_examples_are_the_generators_output(fname, gen, params):
+    from conftest import EXAMPLES
+
+    scene = rb.read_scene(EXAMPLES / fname)
+    assert scene.dimension == 3
+    assert dumps_scene(build(gen, **params)) == (EXAMPLES / fname).read_text()
