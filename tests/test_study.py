@@ -329,3 +329,19 @@ def test_thousand_small_arches_throughput(tmp_path):
                     output=tmp_path / "k.parquet")
     assert len(res.frame) == 1000 and res.n_failed == 0
     assert res.rate > 20 and math.isfinite(res.frame["friction_factor"].max())
+
+
+def test_bench_study_tiny(tmp_path):
+    """The throughput benchmark runs on its tiny size and writes its JSON and markdown."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("bench_study",
+                                                  ROOT / "benchmarks" / "bench_study.py")
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    data = bench.main(["--tiny", "--workers", "1", "--out", str(tmp_path)])
+    (row,) = data["rows"]
+    assert row["cases"] == 20 and row["failed"] == 0 and row["cases_per_s"] > 0
+    doc = json.loads((tmp_path / "bench_study.json").read_text())
+    assert doc["benchmark"] == "bench_study" and doc["rows"][0]["cases"] == 20
+    assert "| check | 1 | 20 |" in (tmp_path / "bench_study.md").read_text()
