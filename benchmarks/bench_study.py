@@ -23,12 +23,11 @@ from pathlib import Path
 
 import numpy as np
 
-try:
-    from common import markdown_table, write_results
-except ImportError:  # imported as benchmarks.bench_study
-    from benchmarks.common import markdown_table, write_results
-
 from rigidblocks.studies.sweep import run
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from common import markdown_table, write_results  # noqa: E402
 
 NAME = "bench_study"
 
