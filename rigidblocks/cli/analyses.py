@@ -71,7 +71,10 @@ def report(scene, res) -> str:
         if not res.admissible and math.isfinite(res.violation):
             lines.append(f"violation  {res.violation:.4g} {fu} (smallest possible breach "
                          "of the joint laws)")
+        if not res.admissible:
+            lines += _live_hint(scene, res)
     elif res.analysis == "min_friction":
+        lines.append(f"lambda     {res.load_factor:g}   (load factor)")
         if res.status == "stable":
             lines.append(f"f*         {res.friction_factor:.6g}   (friction angle "
                          f"{res.friction_angle_deg:.4f} deg)")
@@ -79,6 +82,7 @@ def report(scene, res) -> str:
             lines.append(f"governing  {gov}")
         else:
             lines.append("verdict    UNSTABLE: no friction suffices (hinging mechanism)")
+            lines += _live_hint(scene, res)
     else:
         f = d["friction"]
         lines.append(f"friction   {f}")
@@ -94,6 +98,17 @@ def report(scene, res) -> str:
             lines.append("verdict    UNSTABLE: the dead load alone has no admissible state")
     lines.append(f"solver     {res.solver}, {res.n_solves} solve(s), {res.solve_time:.3g} s")
     return "\n".join(lines)
+
+
+def _live_hint(scene, res) -> list[str]:
+    """Where live loads at a nonzero load factor made the verdict, say how to ask the
+    two questions an engineer usually means."""
+    if not (scene.has_live_load and res.load_factor):
+        return []
+    src = scene.source or "SCENE"
+    return [f"hint       the live loads are included at load factor {res.load_factor:g}; "
+            f"--load-factor 0 for the dead load alone, `rigidblocks load {src}` for the "
+            "collapse multiplier"]
 
 
 __all__ = ["add_args", "run", "report", "InputError"]
