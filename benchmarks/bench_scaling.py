@@ -60,18 +60,19 @@ STAGE_SIZES_2D = (100, 1_000, 5_000, 20_000, 50_000)
 SIZES_3D = (100, 1_000, 5_000)
 TINY_2D = (12, 40)
 TINY_3D = (12,)
-#: largest walls for the analyses that take many solves (minutes beyond)
-MIN_FRICTION_MAX = {2: 5_000, 3: 1_000}
-CHECK_MAX = {2: 20_000, 3: 5_000}
+#: largest walls per analysis (the rest would take tens of minutes on a shared machine)
+LIMITS = {"min_friction": {2: 5_000, 3: 1_000}, "check": {2: 5_000, 3: 1_000},
+          "max_load_no_state": {2: 20_000, 3: 0}, "max_load_multiplier": {2: 20_000, 3: 5_000},
+          "reference": {2: 5_000, 3: 1_000}}
+#: cases above these sizes run last, after the settings trials and the cvxpy comparison
+BIG = {2: 5_000, 3: 1_000}
 CVXPY_SIZES = (1_000, 5_000)
 TARGET_SIZE = 5_000
 #: Clarabel settings tried at the target size (max_load without the force state)
 TRIALS: dict[str, dict[str, Any]] = {
-    "default (presolve on)": {},
     "presolve off": {"presolve_enable": False},
     "equilibration off": {"equilibrate_enable": False},
     "direct_solve_method faer": {"direct_solve_method": "faer"},
-    "faer, 2 threads": {"direct_solve_method": "faer", "max_threads": 2},
 }
 TARGETS = {"max_load_ratio": 1.5, "min_friction_ratio": 5.0, "non_solver_exponent": 1.1,
            "non_solver_share": 0.10}
@@ -518,16 +519,23 @@ def plan(tiny: bool, sizes2d: Sequence[int], stage_sizes: Sequence[int],
     for dim, sizes in ((2, sizes2d), (3, sizes3d)):
         for n in sizes:
             specs.append({"kind": "bare", "dim": dim, "target": n})
-            specs.append({"kind": "reference", "dim": dim, "target": n})
+            if tiny or n <= LIMITS["reference"][dim]:
+                specs.append({"kind": "reference", "dim": dim, "target": n})
+            else:
+                skipped.append(f"reference (1e-10) {dim}D {n}")
             for a in ANALYSES:
-                limit = {"min_friction": MIN_FRICTION_MAX, "check": CHECK_MAX}.get(a)
                 if a == "max_load_no_state" and dim == 3:
                     continue
-                if not tiny and limit is not None and n > limit[dim]:
-                    skipped.append(f"{a} {dim}D {n} (time budget)")
+                if not tiny and n > LIMITS[a][dim]:
+                    skipped.append(f"{a} {dim}D {n}")
                     continue
                 specs.append({"kind": "ours", "dim": dim, "target": n, "analysis": a})
     return specs, skipped
+
+
+def _key(spec: dict[str, Any]) -> str:
+    return json.dumps({k: spec.get(k) for k in ("kind", "dim", "target", "analysis",
+                                                 "options")}, sort_keys=True)
 
 
 def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
@@ -538,9 +546,11 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     p.add_argument("--sizes2d", type=int, nargs="+", default=None)
     p.add_argument("--stage-sizes", type=int, nargs="+", default=None)
     p.add_argument("--sizes3d", type=int, nargs="*", default=None)
-    p.add_argument("--timeout", type=float, default=1800.0, help="seconds per case")
+    p.add_argument("--timeout", type=float, default=900.0, help="seconds per case")
     p.add_argument("--no-extras", action="store_true",
                    help="skip the Clarabel settings trials and the cvxpy comparison")
+    p.add_argument("--resume", action="store_true",
+                   help="reuse the cases already in RESULTS/bench_scaling.cases.jsonl")
     p.add_argument("--case", help=argparse.SUPPRESS)
     args = p.parse_args(argv)
     if args.case:
@@ -554,10 +564,29 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     stage_sizes = args.stage_sizes or (TINY_2D if tiny else STAGE_SIZES_2D)
     sizes3d = args.sizes3d if args.sizes3d is not None else (TINY_3D if tiny else SIZES_3D)
     specs, skipped = plan(tiny, sizes2d, stage_sizes, sizes3d)
-    runner = run_case if tiny else (lambda s: run_isolated(s, args.timeout))
+    d = out_dir(args.out)
+    cache_path = d / f"{NAME}.cases.jsonl"
+    cache: dict[str, dict[str, Any]] = {}
+    if args.resume and cache_path.exists():
+        for line in cache_path.read_text().splitlines():
+            c = json.loads(line)
+            cache[_key(c)] = c
+    elif not tiny:
+        cache_path.write_text("")
+
+    def runner(spec: dict[str, Any]) -> dict[str, Any]:
+        if _key(spec) in cache:
+            return cache[_key(spec)]
+        res = run_case(spec) if tiny else run_isolated(spec, args.timeout)
+        if not tiny:
+            with cache_path.open("a") as fh:
+                fh.write(json.dumps(res, default=float) + "\n")
+        return res
+
     cases: list[dict[str, Any]] = []
     extra: dict[str, Any] = {"skipped": skipped}
-    d = out_dir(args.out)
+    small = [s for s in specs if s["kind"] == "stages" or s["target"] <= BIG[s["dim"]]]
+    big = [s for s in specs if s not in small]
     with tempfile.TemporaryDirectory() as tmp:
         paths: dict[tuple[int, int], tuple[str, int]] = {}
 
@@ -569,18 +598,26 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
                 paths[dim, n] = (str(path), len(scene.blocks))
             return paths[dim, n]
 
-        for s in specs:
-            path, nb = scene_path(s["dim"], s["target"])
-            t0 = time.perf_counter()
-            res = runner({**s, "path": path, "blocks": nb})
-            print(f"{s['kind']:>6} {s.get('analysis', ''):>20} {s['dim']}D {nb:>6} blocks: "
-                  f"{time.perf_counter() - t0:8.2f} s {res.get('error', '')}",
-                  file=sys.stderr, flush=True)
-            cases.append(res)
+        def run_all(todo: list[dict[str, Any]]) -> None:
+            for s in todo:
+                path, nb = scene_path(s["dim"], s["target"])
+                t0 = time.perf_counter()
+                res = runner({**s, "path": path, "blocks": nb})
+                print(f"{s['kind']:>9} {s.get('analysis', ''):>20} {s['dim']}D {nb:>6} "
+                      f"blocks: {time.perf_counter() - t0:8.2f} s {res.get('error', '')}",
+                      file=sys.stderr, flush=True)
+                cases.append(res)
+
+        run_all(small)
         if not tiny and not args.no_extras:
             extra["trials"] = []
             if TARGET_SIZE in sizes2d:
                 path, nb = scene_path(2, TARGET_SIZE)
+                base = next((c for c in cases if c["kind"] == "ours" and c["dim"] == 2
+                             and c["target"] == TARGET_SIZE and "error" not in c
+                             and c.get("analysis") == "max_load_no_state"), None)
+                if base is not None:
+                    extra["trials"].append({"label": "default (presolve on, qdldl)", **base})
                 for label, st in TRIALS.items():
                     r = runner({"kind": "ours", "dim": 2, "target": TARGET_SIZE, "path": path,
                                 "blocks": nb, "analysis": "max_load_no_state",
@@ -603,6 +640,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
                                        "cvxpy": cv["total"], "ratio": cv["total"] / nat["total"],
                                        "lambda_native": nat["answer"],
                                        "lambda_cvxpy": cv["answer"]})
+        run_all(big)
     summary = summarise(cases, tiny)
     png = d / f"{NAME}.png"
     chart(cases, summary, png)
