@@ -1,0 +1,258 @@
+"""Speed against accuracy: the error in f* and lambda* against the time to the answer.
+
+For every method and each of its tolerance settings, the minimum friction f*
+(:func:`rigidblocks.min_friction`) and the maximum load multiplier lambda*
+(:func:`rigidblocks.max_load_multiplier`) of a few scenes of different size are
+computed from the scene object to the answer (assembly, problem build, solves) and
+compared with a reference solved to 1e-10: HiGHS (simplex, an exact vertex up to
+round-off) with primal and dual feasibility tolerances 1e-10 and f* bisected to 1e-10
+relative, cross-checked against Clarabel with every tolerance at 1e-10. The error
+is relative, |x - x_ref| / |x_ref|; an answer with the wrong status (no number where
+the reference has one) counts as a failure and is drawn at the top of the chart.
+
+Settings swept:
+
+* Clarabel: ``tol_gap_abs = tol_gap_rel = tol_feas = t`` for t = 1e-3 ... 1e-10, with
+  the friction bisection to ``max(t, 1e-7)`` relative; "default" is the call without
+  settings (the analyses' own defaults).
+* HiGHS: its defaults through the same problem builder.
+* SCS (through cvxpy): ``eps_abs = eps_rel = e`` for e = 1e-3, 1e-5, 1e-7.
+* The distortion solver (2D, :mod:`rigidblocks.solvers.distortion`): violation
+  tolerance ``tol`` 1e-5 / 1e-7 / 1e-9 with bisection ``rtol`` 1e-3 / 1e-5 / 1e-6.
+
+The default settings are on the Pareto front of a scene and quantity when no other
+setting answers both at least 10 % faster (timing noise) and at least as accurately
+(errors below 1e-8 count as equal: f* is bisected to 1e-7 by default, and the two
+references differ by up to ~1e-9). Times are the fastest of up to 3 runs after one
+untimed warm-up call per scene.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from common import markdown_table, out_dir, write_results  # noqa: E402
+
+from rigidblocks.examples import build  # noqa: E402
+from rigidblocks.io.scene_file import read_scene  # noqa: E402
+from rigidblocks.problems.analysis import max_load_multiplier, min_friction  # noqa: E402
+from rigidblocks.scene.model import Scene  # noqa: E402
+from rigidblocks.solvers import distortion  # noqa: E402
+
+NAME = "bench_accuracy"
+ROOT = Path(__file__).resolve().parents[1]
+ERR_FLOOR = 1e-8
+HIGHS_TIGHT = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10}
+CLARABEL_TOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10)
+SCS_EPS = (1e-3, 1e-5, 1e-7)
+WARM = {"method": "clarabel", "kw": {}}
+DISTORTION = ((1e-5, 1e-3), (1e-7, 1e-5), (1e-9, 1e-6))
+
+
+def clarabel_tol(t: float) -> dict[str, float]:
+    return {"tol_gap_abs": t, "tol_gap_rel": t, "tol_feas": t}
+
+
+def scenes(tiny: bool) -> list[dict[str, Any]]:
+    """(name, scene, which quantities, distortion allowed) of the benchmark."""
+    ref = read_scene(ROOT / "examples" / "reference.json")
+    out = [dict(name="reference (4 blocks)", scene=ref, lf=1.0, qty=("f*", "lambda*"),
+                distortion=True)]
+    out.append(dict(name="arch, 30 voussoirs", lf=0.0, qty=("f*", "lambda*"),
+                    scene=build("arch", voussoirs=30, thickness=0.15), distortion=True))
+    if tiny:
+        return out
+    out.append(dict(name="wall 10x10 (106 blocks)", lf=1.0, qty=("f*", "lambda*"),
+                    scene=build("wall", courses=10, blocks_per_course=10), distortion=False))
+    out.append(dict(name="wall 32x31 (1009 blocks)", lf=1.0, qty=("lambda*",),
+                    scene=build("wall", courses=32, blocks_per_course=31), distortion=False))
+    return out
+
+
+def settings_list(tiny: bool, with_distortion: bool) -> list[dict[str, Any]]:
+    """Every (method, label, default?, f*-caller, lambda*-caller)."""
+    out: list[dict[str, Any]] = [dict(method="clarabel", label="default", default=True,
+                                      kw={})]
+    tols = (1e-3, 1e-6, 1e-10) if tiny else CLARABEL_TOLS
+    for t in tols:
+        out.append(dict(method="clarabel", label=f"tol {t:.0e}", default=False,
+                        kw=dict(settings=clarabel_tol(t)), rtol=max(t, 1e-7)))
+    out.append(dict(method="highs", label="default", default=False, kw={}))
+    for e in SCS_EPS[:1] if tiny else SCS_EPS:
+        out.append(dict(method="scs", label=f"eps {e:.0e}", default=False,
+                        kw=dict(settings={"eps_abs": e, "eps_rel": e})))
+    if with_distortion:
+        for tol, rtol in DISTORTION[:1] if tiny else DISTORTION:
+            out.append(dict(method="distortion", label=f"tol {tol:.0e}, rtol {rtol:.0e}",
+                            default=False, tol=tol, rtol=rtol))
+    return out
+
+
+def answer(scene: Scene, qty: str, lf: float, s: dict[str, Any]) -> float | None:
+    """f* or lambda* with the setting ``s`` (None when the status has no number)."""
+    if s["method"] == "distortion":
+        if qty == "f*":
+            r = distortion.min_friction_distortion(scene, lf, state=False, rtol=s["rtol"],
+                                                   tol=s["tol"])
+            return r.friction_factor
+        r = distortion.max_load_distortion(scene, scene.effective_friction, state=False,
+                                           rtol=s["rtol"], tol=s["tol"])
+        return r.load_multiplier
+    kw = dict(s["kw"])
+    if qty == "f*":
+        if "rtol" in s:
+            kw["rtol"] = s["rtol"]
+        return min_friction(scene, lf, method=s["method"], state=False, **kw).friction_factor
+    return max_load_multiplier(scene, method=s["method"], state=False, **kw).load_multiplier
+
+
+def timed_answer(fn: Callable[[], float | None], repeat: int) -> tuple[float | None, float,
+                                                                          str]:
+    """(answer, fastest seconds, error text) of ``repeat`` calls."""
+    times, val, err = [], None, ""
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        try:
+            val = fn()
+        except Exception as e:  # a failure is a data point of this benchmark
+            val, err = None, f"{type(e).__name__}: {str(e)[:80]}"
+        times.append(time.perf_counter() - t0)
+        if times[-1] > 1.0:
+            break
+    return val, min(times), err
+
+
+def reference(scene: Scene, qty: str, lf: float) -> tuple[float, float]:
+    """(reference value by HiGHS at 1e-10, |Clarabel 1e-10 - HiGHS| / reference)."""
+    if qty == "f*":
+        a = min_friction(scene, lf, method="highs", state=False, rtol=1e-10,
+                         settings=HIGHS_TIGHT).friction_factor
+        b = min_friction(scene, lf, state=False, rtol=1e-10,
+                         settings=clarabel_tol(1e-10)).friction_factor
+    else:
+        a = max_load_multiplier(scene, method="highs", state=False,
+                                settings=HIGHS_TIGHT).load_multiplier
+        b = max_load_multiplier(scene, state=False,
+                                settings=clarabel_tol(1e-10)).load_multiplier
+    return float(a), abs(float(a) - float(b)) / abs(float(a))
+
+
+def pareto_verdict(rows: list[dict[str, Any]]) -> dict[str, Any]:
+    """Is the default row of one scene and quantity on the Pareto front?"""
+    d = next(r for r in rows if r["default"])
+    de = max(d["error"], ERR_FLOOR)
+    dominated_by = [f'{r["method"]} {r["label"]}' for r in rows
+                    if not r["default"] and math.isfinite(r["error"])
+                    and r["seconds"] <= d["seconds"] / 1.1 and max(r["error"], ERR_FLOOR) <= de]
+    return {"on_front": not dominated_by, "dominated_by": dominated_by,
+            "default_error": d["error"], "default_seconds": d["seconds"]}
+
+
+def chart(rows: list[dict[str, Any]], path: Path) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    names = list(dict.fromkeys(r["scene"] for r in rows))
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5), sharey=True)
+    markers = {"clarabel": "o", "highs": "s", "scs": "^", "distortion": "D"}
+    colours = dict(zip(names, plt.rcParams["axes.prop_cycle"].by_key()["color"], strict=False))
+    top = 1e1
+    for ax, qty in zip(axes, ("f*", "lambda*"), strict=True):
+        for r in rows:
+            if r["quantity"] != qty:
+                continue
+            err = r["error"] if math.isfinite(r["error"]) else top
+            err = max(err, ERR_FLOOR)
+            kw = dict(marker=markers[r["method"]], color=colours[r["scene"]], alpha=0.8,
+                      ms=6, ls="none")
+            if r["default"]:
+                kw.update(ms=16, mfc="none", mew=2.5, alpha=1.0)
+            ax.plot(r["seconds"], err, **kw)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.axhline(top, color="grey", lw=0.5, ls=":")
+        ax.set_title(f"{qty}: relative error vs time to the answer")
+        ax.set_xlabel("seconds (scene to answer)")
+        ax.grid(True, which="both", lw=0.3)
+    axes[0].set_ylabel(f"relative error (floor {ERR_FLOOR:g}; failures at {top:g})")
+    from matplotlib.lines import Line2D
+    handles = [Line2D([], [], marker=m, ls="none", color="k", label=k)
+               for k, m in markers.items()]
+    handles += [Line2D([], [], marker="o", ls="none", color=colours[n], label=n)
+                for n in names]
+    handles.append(Line2D([], [], marker="o", ls="none", mfc="none", mew=2.5, ms=14,
+                          color="k", label="default settings"))
+    axes[1].legend(handles=handles, fontsize=8, loc="center right")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main(argv: list[str] | None = None) -> dict[str, Any]:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--out", default=None, help="results folder (default benchmarks/results)")
+    p.add_argument("--tiny", action="store_true", help="smallest scenes and few settings")
+    a = p.parse_args(argv)
+    rows: list[dict[str, Any]] = []
+    refs: dict[str, dict[str, Any]] = {}
+    verdicts: list[dict[str, Any]] = []
+    for sc in scenes(a.tiny):
+        scene = sc["scene"]
+        for qty in sc["qty"]:
+            ref, spread = reference(scene, qty, sc["lf"])
+            refs[f'{sc["name"]} {qty}'] = {"value": ref, "clarabel_vs_highs": spread}
+            group = []
+            lf = sc["lf"]
+            timed_answer(lambda sc_=scene, q=qty, lf=lf: answer(sc_, q, lf, WARM), 1)
+            repeat = 1 if len(scene.blocks) > 500 else 3
+            for s in settings_list(a.tiny, sc["distortion"]):
+                val, sec, err = timed_answer(
+                    lambda s=s, sc_=scene, q=qty, lf=lf: answer(sc_, q, lf, s), repeat)
+                e = abs(val - ref) / abs(ref) if val is not None else math.inf
+                row = dict(scene=sc["name"], blocks=len(scene.blocks), quantity=qty,
+                           method=s["method"], label=s["label"], default=s["default"],
+                           value=val, reference=ref, error=e, seconds=sec, failure=err)
+                rows.append(row)
+                group.append(row)
+            v = pareto_verdict(group)
+            verdicts.append({"scene": sc["name"], "quantity": qty, **v})
+    d = out_dir(a.out)
+    chart(rows, d / f"{NAME}.png")
+    table = markdown_table(
+        ["scene", "qty", "method", "setting", "value", "rel. error", "seconds"],
+        [[r["scene"], r["quantity"], r["method"], r["label"] + (" **(default)**"
+          if r["default"] else ""), "—" if r["value"] is None else r["value"],
+          r["error"], r["seconds"]] for r in rows])
+    vt = markdown_table(["scene", "qty", "default on Pareto front", "dominated by",
+                         "default error", "default s"],
+                        [[v["scene"], v["quantity"], "yes" if v["on_front"] else "**no**",
+                          ", ".join(v["dominated_by"]) or "—", v["default_error"],
+                          v["default_seconds"]] for v in verdicts])
+    md = (f"## Speed against accuracy ({NAME}.py)\n\n"
+          f"![error vs time]({NAME}.png)\n\n"
+          "Relative error of f* and lambda* against a reference (HiGHS at 1e-10, f* "
+          "bisected to 1e-10; its spread against Clarabel at 1e-10 is in the JSON) vs "
+          "seconds from the scene object to the answer (fastest of up to 3 runs after a "
+          "warm-up). "
+          "The default is dominated when another setting is >= 10 % faster and at least "
+          f"as accurate (errors below {ERR_FLOOR:g} are equal).\n\n{vt}\n\n"
+          f"<details><summary>all rows</summary>\n\n{table}\n\n</details>\n")
+    data = {"rows": rows, "references": refs, "pareto": verdicts}
+    write_results(a.out, NAME, data, md)
+    return data
+
+
+if __name__ == "__main__":
+    res = main()
+    for v in res["pareto"]:
+        print(v["scene"], v["quantity"], "on front" if v["on_front"] else
+              f"dominated by {v['dominated_by']}")
