@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 import sys
 import time
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -121,6 +122,117 @@ def _disagreements() -> str:
             f"distortion iteration can stop above it: {rows}.")
 
 
+#: one table: header cells and rows of cells
+Table = tuple[list[str], list[list[str]]]
+#: joint inclinations (deg) of the corbel arch and Arpino gate sweeps
+INCLINATIONS = (0.0, 5.0, 10.0, 15.0)
+
+
+def markdown(table: Table) -> list[str]:
+    """The lines of a markdown table."""
+    header, rows = table
+    return (["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+            + ["| " + " | ".join(r) + " |" for r in rows])
+
+
+def reference_table(both: bool = True) -> tuple[Table, dict[str, Any]]:
+    """Seed Fig. 4a: the reference model without and with self-weight; the table and
+    the two :func:`friction` answers (keys ``no self-weight``, ``self-weight``)."""
+    a = friction("reference", load_factor=1.0, both=both)
+    b = friction("reference", load_factor=1.0, both=both, self_weight=True)
+    header = ["case", "seed", "by hand", "convex path", "distortion", "scene"]
+    rows = [["no self-weight", "0.5 (26.56 deg)", "0.5 (26.57 deg)", fmt(a["convex"]),
+             fmt(a["distortion"]), "`examples/reference.json`"],
+            ["self-weight", "0.25 (14.03 deg)", "0.25 (14.04 deg)", fmt(b["convex"]),
+             fmt(b["distortion"]), "`examples/reference_self_weight.json`"]]
+    return (header, rows), {"no self-weight": a, "self-weight": b}
+
+
+def flat_arch_table(both: bool = True) -> tuple[Table, dict[str, Any]]:
+    """Seed Fig. 6: the flat arch with vertical and radial joints; the table and the two
+    :func:`friction` answers (keys ``vertical``, ``radial``)."""
+    v = friction("flat_arch", both=both, joints="vertical")
+    r = friction("flat_arch", both=both, joints="radial")
+    header = ["joints", "seed", "convex path", "distortion", "governing joints", "scene"]
+    rows = [["vertical", "phi_v", fmt(v["convex"]), fmt(v["distortion"]), gov(v["convex"]),
+             "`examples/flat_arch_vertical.json`"],
+            ["radial, c = 1.5 m", "phi_v / 23", fmt(r["convex"]), fmt(r["distortion"]),
+             gov(r["convex"]), "`examples/flat_arch_radial.json`"]]
+    return (header, rows), {"vertical": v, "radial": r}
+
+
+def flat_arch_sweep(vertical: Any,
+                    centre_depths: Sequence[float] = (0.5, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0,
+                                                      10.0, 20.0)) -> Table:
+    """Radial joints converging at each centre depth c, on free and bonded piers, against
+    the vertical joints (``vertical``: the convex path's answer on free piers)."""
+    header = ["c (m)", "skewback angle from vertical (deg)", "phi radial, free piers",
+              "ratio", "phi radial, bonded piers", "phi vertical, bonded piers", "ratio"]
+    vb = friction("flat_arch", both=False, joints="vertical", bonded_piers=True)["convex"]
+    rows = []
+    for c in centre_depths:
+        rf = friction("flat_arch", both=False, centre_depth=c)["convex"]
+        rb = friction("flat_arch", both=False, centre_depth=c, bonded_piers=True)["convex"]
+        rows.append([f"{c:g}", f"{math.degrees(math.atan(1.0 / c)):.1f}", f"{deg(rf):.2f}",
+                     ratio(deg(vertical), deg(rf)), f"{deg(rb):.2f}", f"{deg(vb):.2f}",
+                     ratio(deg(vb), deg(rb))])
+    return header, rows
+
+
+def seven_table(both: bool = True) -> Table:
+    """Seed Fig. 7: the stocky arch and the corbel arches."""
+    header = ["structure", "seed", "convex path", "distortion", "governing joints", "scene"]
+    rows = []
+    for label, gen, params, fname in (
+            ("stocky arch (7a)", "stocky_arch", {}, "stocky_arch.json"),
+            ("corbel arch, horizontal joints (7b)", "corbel_arch",
+             {"pattern": "horizontal"}, "corbel_arch_horizontal.json"),
+            ("corbel arch, inclined joints (7c)", "corbel_arch", {"pattern": "inclined"},
+             "corbel_arch_inclined.json")):
+        x = friction(gen, both=both, **params)
+        rows.append([label, "friction governs (no value given)", fmt(x["convex"]),
+                     fmt(x["distortion"]), gov(x["convex"]), f"`examples/{fname}`"])
+    return header, rows
+
+
+def corbel_sweep(block_lengths: Sequence[float] = (0.45, 0.6, 0.8, 1.0),
+                 inclinations: Sequence[float] = INCLINATIONS) -> Table:
+    """Corbel arch: required friction angle (deg, convex path) against block length
+    (rows) and bed-joint inclination (columns)."""
+    header = ["block length (m)"] + [f"{b:g} deg" for b in inclinations]
+    rows = []
+    for bl in block_lengths:
+        cells = [f"{bl:g}"]
+        for b in inclinations:
+            p = {"pattern": "inclined", "inclination": b} if b else {}
+            x = friction("corbel_arch", both=False, block_length=bl, **p)["convex"]
+            cells.append(f"{deg(x):.2f}")
+        rows.append(cells)
+    return header, rows
+
+
+def arpino_table(both: bool = True) -> Table:
+    """Seed Fig. 8: the Arpino gate with the generator's defaults."""
+    x = friction("arpino_gate", both=both)
+    header = ["case", "seed", "convex path", "distortion", "governing joints", "scene"]
+    rows = [["default (wall 0.4 m, joints 5 deg)", "0.40 (21.80 deg)", fmt(x["convex"]),
+             fmt(x["distortion"]), gov(x["convex"]), "`examples/arpino_gate.json`"]]
+    return header, rows
+
+
+def arpino_sweep(walls: Sequence[float] = (0.2, 0.3, 0.4, 0.6, 1.0),
+                 inclinations: Sequence[float] = INCLINATIONS) -> Table:
+    """Arpino gate: required friction angle (deg, convex path) against wall thickness
+    (rows) and bed-joint inclination towards the inside (columns)."""
+    header = ["wall (m)"] + [f"{b:g} deg" for b in inclinations]
+    rows = []
+    for wall in walls:
+        rows.append([f"{wall:g}"] + [f"{deg(x['convex']):.2f}" for x in (
+            friction("arpino_gate", both=False, wall=wall, joint_inclination=b)
+            for b in inclinations)])
+    return header, rows
+
+
 def page() -> str:
     L: list[str] = []
     w = L.append
@@ -136,8 +248,7 @@ def page() -> str:
       "horizontal live body force [1, 0] for `rigidblocks load`).")
     w("")
     # -- reference model
-    a = friction("reference", load_factor=1.0)
-    b = friction("reference", load_factor=1.0, self_weight=True)
+    table, ref = reference_table()
     w("## Reference mechanical model (seed Fig. 4a)")
     w("")
     w("P = 100 N down on the top block, H = 50 N pulling each central block outwards. By "
@@ -147,14 +258,9 @@ def page() -> str:
       "0.10 x 0.10 m, top block 0.20 x 0.05 m, depth 0.25 m, 20 kN/m^3) weigh "
       "W_top = W_central = 50 N.")
     w("")
-    w("| case | seed | by hand | convex path | distortion | scene |")
-    w("|---|---|---|---|---|---|")
-    w(f"| no self-weight | 0.5 (26.56 deg) | 0.5 (26.57 deg) | {fmt(a['convex'])} | "
-      f"{fmt(a['distortion'])} | `examples/reference.json` |")
-    w(f"| self-weight | 0.25 (14.03 deg) | 0.25 (14.04 deg) | {fmt(b['convex'])} | "
-      f"{fmt(b['distortion'])} | `examples/reference_self_weight.json` |")
+    L.extend(markdown(table))
     w("")
-    w(f"Governing joints: {gov(a['convex'])}.")
+    w(f"Governing joints: {gov(ref['no self-weight']['convex'])}.")
     w("")
     # -- flat arch
     w("## Flat arch (seed Fig. 6)")
@@ -167,30 +273,16 @@ def page() -> str:
       "one tuned number. Radial joints converge at `centre_depth` c below the intrados; "
       "the skewbacks lean by atan(span / 2c) from the vertical.")
     w("")
-    v = friction("flat_arch", joints="vertical")
-    r = friction("flat_arch", joints="radial")
-    w("| joints | seed | convex path | distortion | governing joints | scene |")
-    w("|---|---|---|---|---|---|")
-    w(f"| vertical | phi_v | {fmt(v['convex'])} | {fmt(v['distortion'])} | "
-      f"{gov(v['convex'])} | `examples/flat_arch_vertical.json` |")
-    w(f"| radial, c = 1.5 m | phi_v / 23 | {fmt(r['convex'])} | {fmt(r['distortion'])} | "
-      f"{gov(r['convex'])} | `examples/flat_arch_radial.json` |")
+    table, flat = flat_arch_table()
+    L.extend(markdown(table))
     w("")
     w(f"Ratio phi_vertical / phi_radial (convex path): "
-      f"{ratio(deg(v['convex']), deg(r['convex']))}. With free piers the piers' own "
+      f"{ratio(deg(flat['vertical']['convex']), deg(flat['radial']['convex']))}. With "
+      "free piers the piers' own "
       "sliding on the ground governs the radial case; with piers that cannot slide "
       "(`bonded_piers`) only the platband's joints count:")
     w("")
-    w("| c (m) | skewback angle from vertical (deg) | phi radial, free piers | ratio | "
-      "phi radial, bonded piers | phi vertical, bonded piers | ratio |")
-    w("|---|---|---|---|---|---|---|")
-    vb = friction("flat_arch", both=False, joints="vertical", bonded_piers=True)["convex"]
-    for c in (0.5, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 10.0, 20.0):
-        rf = friction("flat_arch", both=False, centre_depth=c)["convex"]
-        rb = friction("flat_arch", both=False, centre_depth=c, bonded_piers=True)["convex"]
-        w(f"| {c:g} | {math.degrees(math.atan(1.0 / c)):.1f} | {deg(rf):.2f} | "
-          f"{ratio(deg(v['convex']), deg(rf))} | {deg(rb):.2f} | {deg(vb):.2f} | "
-          f"{ratio(deg(vb), deg(rb))} |")
+    L.extend(markdown(flat_arch_sweep(flat["vertical"]["convex"])))
     w("")
     w("Between the joint slopes that need no friction at all and the nearly vertical "
       "ones, the ratio sweeps every value from 1 to infinity; the seed's 23 lies on "
@@ -205,31 +297,12 @@ def page() -> str:
       "courses meeting at a vertical crown joint; pattern 7b horizontal bed joints, 7c "
       "bed joints dipping 10 deg towards the opening.")
     w("")
-    w("| structure | seed | convex path | distortion | governing joints | scene |")
-    w("|---|---|---|---|---|---|")
-    for label, gen, params, fname in (
-            ("stocky arch (7a)", "stocky_arch", {}, "stocky_arch.json"),
-            ("corbel arch, horizontal joints (7b)", "corbel_arch",
-             {"pattern": "horizontal"}, "corbel_arch_horizontal.json"),
-            ("corbel arch, inclined joints (7c)", "corbel_arch", {"pattern": "inclined"},
-             "corbel_arch_inclined.json")):
-        x = friction(gen, **params)
-        w(f"| {label} | friction governs (no value given) | {fmt(x['convex'])} | "
-          f"{fmt(x['distortion'])} | {gov(x['convex'])} | `examples/{fname}` |")
+    L.extend(markdown(seven_table()))
     w("")
     w("Corbel arch: required friction angle (deg, convex path) against block length "
       "and joint inclination:")
     w("")
-    incl = (0.0, 5.0, 10.0, 15.0)
-    w("| block length (m) | " + " | ".join(f"{b:g} deg" for b in incl) + " |")
-    w("|---|" + "---|" * len(incl))
-    for bl in (0.45, 0.6, 0.8, 1.0):
-        cells = []
-        for b in incl:
-            p = {"pattern": "inclined", "inclination": b} if b else {}
-            x = friction("corbel_arch", both=False, block_length=bl, **p)["convex"]
-            cells.append(f"{deg(x):.2f}")
-        w(f"| {bl:g} | " + " | ".join(cells) + " |")
+    L.extend(markdown(corbel_sweep()))
     w("")
     # -- Arpino
     w("## Arched gate of Arpino (seed Fig. 8)")
@@ -241,22 +314,12 @@ def page() -> str:
       "crown joint; the wall thickness beyond the opening and the joint inclination are "
       "the unknown parameters swept below.")
     w("")
-    x = friction("arpino_gate")
-    w("| case | seed | convex path | distortion | governing joints | scene |")
-    w("|---|---|---|---|---|---|")
-    w(f"| default (wall 0.4 m, joints 5 deg) | 0.40 (21.80 deg) | {fmt(x['convex'])} | "
-      f"{fmt(x['distortion'])} | {gov(x['convex'])} | `examples/arpino_gate.json` |")
+    L.extend(markdown(arpino_table()))
     w("")
     w("Required friction angle (deg, convex path) against wall thickness and bed-joint "
       "inclination towards the inside:")
     w("")
-    w("| wall (m) | " + " | ".join(f"{b:g} deg" for b in incl) + " |")
-    w("|---|" + "---|" * len(incl))
-    for wall in (0.2, 0.3, 0.4, 0.6, 1.0):
-        cells = [f"{deg(x['convex']):.2f}" for x in (
-            friction("arpino_gate", both=False, wall=wall, joint_inclination=b)
-            for b in incl)]
-        w(f"| {wall:g} | " + " | ".join(cells) + " |")
+    L.extend(markdown(arpino_sweep()))
     w("")
     w("In a slender gate, whose two stacks lean on each other at the crown, the "
       "required friction first falls as the joints incline towards the inside (the "
