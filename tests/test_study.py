@@ -321,14 +321,18 @@ def test_doc_example_is_the_example_file():
 # -- throughput -----------------------------------------------------------------------------
 @pytest.mark.slow
 def test_thousand_small_arches_throughput(tmp_path):
-    """1,000 small arches (min friction) on 2 processes: all stable, at a useful rate."""
+    """1,000 semicircular arches, t/R from 0.12 to 0.30, no sliding, self-weight, on 2
+    processes: every one admissible, since t/R >= 0.12 exceeds Heyman's minimum 0.1075
+    (The Stone Skeleton, 1995), which finite voussoir counts approach from below."""
     res = study.run("arch", grid={"voussoirs": list(range(4, 14)),
                                   "thickness": list(np.linspace(0.12, 0.3, 100))},
-                    parameters={"load_factor": 0.0, "arc_points": 2},
-                    analyses=["min_friction"], workers=2, progress=False,
+                    parameters={"load_factor": 0.0, "arc_points": 2,
+                                "friction": "infinite"},
+                    analyses=["check"], workers=2, progress=False,
                     output=tmp_path / "k.parquet")
     assert len(res.frame) == 1000 and res.n_failed == 0
-    assert res.rate > 20 and math.isfinite(res.frame["friction_factor"].max())
+    assert (res.frame["check_status"] == "admissible").all()
+    assert res.rate > 5 and math.isfinite(res.elapsed)
 
 
 def test_bench_study_tiny(tmp_path):
