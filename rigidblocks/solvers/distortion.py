@@ -13,36 +13,57 @@ X0 is the equilibrium state of least complementary energy 1/2 X'CX, and X0 + X_N
 onto the self-stress states, ``A X_N = 0``. The seed iterates on delta until no normal
 link is in tension and no shear link exceeds its friction threshold (Eq. 2, 4).
 
-Here that iteration is Dykstra's alternating projection algorithm in the metric of C
-between the equilibrium subspace E = {A X = -F} and the admissible set K of the joint
-laws (per joint: N_k >= -sigma_t a_k, |T| <= f (N_1 + N_2) + c a):
+The fixed point the seed's iteration seeks, the admissible state closest to the
+elastic one, is the quadratic program
 
-    z = X_k + p_k;   Y = P_K(z);   p_{k+1} = z - Y;   X_{k+1} = P_E(Y)
-        = X0 + (I - Ã (A Ã)^-1 A) (Y - X0)      (delta_{k+1} = Y - X0)
+    min 1/2 ||X - X0||_C^2   s.t.   A X + F = 0,  X in K,
 
-E is affine, so Dykstra's correction is needed only for K. When E and K intersect
-(an admissible state exists) X_k converges to the admissible state closest to X0 in
-the C metric, which is the least-complementary-energy state of the convex path
-(:func:`rigidblocks.problems.formulation.build_energy_qp`); plain alternating
-projections would only find some admissible state. ``P_K`` is exact and separable per
-joint: a 3-variable polyhedral projection solved by enumerating active sets, with the
-per-joint matrices computed once per friction value. ``P_E`` uses one sparse LU
-factorisation of A K A^T per scene, reused by every iteration and every trial f or
-lambda; no dense projector is formed.
+K being the joint laws (per joint: N_k >= -sigma_t a_k, |T| <= f (N_1 + N_2) + c a);
+for X in E = {A X + F = 0} the objective differs from the complementary energy
+1/2 X'CX by a constant, so this is :func:`rigidblocks.problems.formulation.build_energy_qp`.
+The iteration here is the alternating direction method of multipliers (ADMM, a
+Douglas-Rachford splitting) on E and K in the metric of C, each step being a step of
+the seed's method:
 
-Verdicts. Admissible: violation of the joint laws <= ``tol`` (in units of the
-reference force of :class:`~rigidblocks.problems.formulation.Scaling`) and the last
-step <= ``tol``. Not admissible: when E and K do not meet, the violation decreases to
-a positive limit (the C-distance between the two sets), approached linearly, while a
-run that converges to an admissible state keeps reducing it (sublinearly at worst,
-like 1/k). Every ``window`` iterations, from iteration ``2 window`` on, the violation
-at iteration k is compared with that at k/2: above ``100 tol`` and above 0.99 of it,
-the run stops as not admissible. Failure, with a reason: A K A^T singular or
-ill-conditioned (a mechanism of the bilateral linked structure: some block motion
-stretches no link), and the iteration budget exhausted. Near a limit state (f close to
-f*, lambda close to lambda*) the intersection shrinks to a point and the convergence
-slows down: a run that ends its budget with a violation below ``sqrt(tol)`` is
-reported as "undecided" rather than forced into a verdict.
+    delta_k  = rho / (1 + rho) (Z_k - U_k - X0)          an impressed distortion
+    X_{k+1}  = X0 + (I - Ã (A Ã)^-1 A) delta_k           its self-stress added to X0
+    Z_{k+1}  = P_K(alpha X_{k+1} + (1 - alpha) Z_k + U_k)  the joint laws applied
+    U_{k+1}  = U_k + alpha X_{k+1} + (1 - alpha) Z_k - Z_{k+1}
+
+(over-relaxation alpha = 1.6; U accumulates the part of the distortion the joint laws
+reject). X_k is always in equilibrium; the verdict is on its violation of K. Because
+the quadratic term and the penalty share the metric C, the projector does not depend on
+rho, which is rebalanced (primal against dual residual) at iterations 20, 40, 80, ...
+at no cost. Dykstra's alternating projections, which the seed's iteration amounts to
+when the distortion is simply the rejected part, converge to the same state but much
+more slowly (tens of thousands of iterations on a 100-block wall). ``P_K`` is exact and
+in closed form per joint (:meth:`_Laws.project`). ``P_E`` uses one sparse LU
+factorisation of A K A^T (K = C^-1) per scene, reused by every iteration and every
+trial f or lambda; no dense projector is formed.
+
+Verdicts (status of a run, with a reason):
+
+* ``admissible``: X_k violates no joint law by more than ``tol`` (reference-force
+  units of :class:`~rigidblocks.problems.formulation.Scaling`); with ``optimal`` the
+  steps must also be below ``tol``, so that X_k is the QP's state.
+* ``inadmissible``: when E and K do not meet, the violation tends to a positive limit
+  and U drifts by the shortest vector g from K to E per iteration. Every ``window``
+  iterations (from ``2 window`` on) the limit is extrapolated from the violations at
+  k/2 and k as if they fell like 1/sqrt(k) (slower than a converging run does), and
+  the drift g is turned into block velocities y = (A K A^T)^-1 A g. The run stops as
+  inadmissible when the extrapolated limit exceeds half the violation and ``GAP`` x
+  tol, and y is a collapse mechanism: the loads do positive work on it beyond what the
+  links resist, and its joint deformations follow the associative flow rule to within
+  ``FLOW_TOL`` of the largest (Farkas' certificate, see :meth:`mechanism_of`). Both
+  tests together: a feasible run can pass through plateaus of the violation, but its
+  drift is then no mechanism.
+* ``undecided``: near f* (or lambda*) the gap between E and K shrinks to zero and the
+  iteration needs of the order of 1/gap iterations to see it. A run that stalls with a
+  violation below ``GAP`` x tol (less than 1% decrease between k/2 and k) is "stalled";
+  a run that uses its budget is "no convergence within the iteration budget". Both are
+  reported as undecided, never as a number.
+* ``failure``: A K A^T singular or ill-conditioned: a mechanism of the bilateral
+  linked structure (a block motion that stretches no link).
 
 Joint behaviours for :func:`load_path` (the seed's Fig. 2 and 5):
 
@@ -76,10 +97,21 @@ from ..scene.model import Scene
 TOL = 1e-9
 #: iteration budget of one run
 MAX_ITER = 20000
-#: iterations between two divergence / stalling tests
+#: iterations between two stalling tests
 WINDOW = 50
 #: a violation above this fraction of its value at half the iterations counts as stalled
 STALL = 0.99
+#: a stalled violation above GAP x tol is a gap between equilibrium and the joint laws
+GAP = 100.0
+SQRT2 = math.sqrt(2.0)
+#: relative breach of the flow rule accepted in a mechanism certifying inadmissibility
+FLOW_TOL = 0.02
+#: initial penalty of the iteration (the ratio of the two terms of the x step)
+RHO = 1.0
+#: over-relaxation of the iteration (1: none; 1.6 as usual for ADMM)
+ALPHA = 1.6
+#: iterations at which the penalty is first rebalanced (then at twice as many, ...)
+ADAPT = 20
 #: reciprocal condition estimate of A K A^T below which the scene counts as a mechanism
 RCOND_MIN = 1e-12
 
@@ -133,6 +165,7 @@ class DistortionSolver:
         self.i0 = c.joint_start[:-1]
         self.it = self.P + np.arange(self.m)
         self.mechanism = ""
+        self.loose_rows = np.zeros(0, dtype=bool)
         self.lu = None
         n = self.As.shape[0]
         if n:
@@ -148,6 +181,7 @@ class DistortionSolver:
                 ids = [scene.blocks[b].id for b in free]
                 rows = np.asarray(abs(self.As).sum(axis=1)).ravel().reshape(-1, sysm.dofs)
                 loose = [ids[k] for k in range(len(ids)) if np.all(rows[k] == 0)]
+                self.loose_rows = np.repeat(np.all(rows == 0, axis=1), sysm.dofs)
                 extra = f" (blocks without joints: {', '.join(loose)})" if loose else ""
                 self.mechanism = ("A C^-1 A^T is singular or ill-conditioned: the linked "
                                   "structure is a mechanism" + extra)
@@ -187,66 +221,165 @@ class DistortionSolver:
         x[self.i0], x[self.i0 + 1], x[self.it] = v[:, 0], v[:, 1], v[:, 2]
         return x
 
+    def mechanism_of(self, laws: _Laws, g: np.ndarray, b: np.ndarray,
+                     flow_tol: float = FLOW_TOL) -> tuple[float, float] | None:
+        """The virtual motion read off the iteration's drift, if it is a collapse mechanism.
+
+        When equilibrium E and the joint laws K do not meet, the multiplier increment
+        g = x_hat - z (per iteration) tends to the C-shortest vector from K to E, and
+        C g = A^T y with block velocities y = (A K A^T)^-1 A g: a motion whose joint
+        deformations w = A^T y satisfy the associative flow rule (per point
+        w_N + f |w_T| <= 0: the joint opens by at least f times its slip; no slip where
+        f is infinite) and on which the loads do positive work beyond what the links can
+        resist, y'b - sigma_K(w) > 0, with sigma_K(w) = sum_k t_k (-w_N - f |w_T|)_k
+        + sum_j c_j |w_T|_j (tensile strength t, cohesion c). That is Farkas' certificate
+        (the kinematic theorem). Returned as (work, breach) when the work is positive and
+        the flow rule holds to ``flow_tol`` of the largest deformation, else None.
+        """
+        if self.lu is None:
+            return None
+        y = self.lu.solve(self.As @ self.scatter(g))
+        wv = self.gather(self.AsT @ y)
+        scale = float(np.abs(wv).max(initial=0.0))
+        if not scale > 0:
+            return None
+        fin = np.isfinite(laws.f)
+        aw = np.abs(wv[:, 2])
+        s = wv[:, :2] + np.where(fin, laws.f, 0.0)[:, None] * aw[:, None]
+        breach = max(float(np.maximum(s, 0.0).max(initial=0.0)),
+                     float(np.where(fin, 0.0, aw).max(initial=0.0))) / scale
+        resist = float(np.sum(laws.h[:, :2] * np.maximum(-s, 0.0))
+                       + np.sum(np.where(fin, laws.h[:, 2], 0.0) * aw))
+        work = float(y @ b) - resist
+        if work <= 0 or breach > flow_tol:
+            return None
+        return work, breach
+
     # -- the iteration -----------------------------------------------------------------
     def run(self, laws: _Laws, load_factor: float, tol: float = TOL,
-            max_iter: int = MAX_ITER, window: int = WINDOW, keep_history: bool = False) -> Run:
-        """Dykstra's iteration from the elastic solution; see the module docstring."""
+            max_iter: int = MAX_ITER, window: int = WINDOW, keep_history: bool = False,
+            optimal: bool = True, rho: float = RHO, alpha: float = ALPHA) -> Run:
+        """The accelerated distortion iteration from the elastic solution.
+
+        See the module docstring. ``optimal=False`` stops at the first iterate that is
+        admissible within ``tol`` (enough for a verdict); ``optimal=True`` goes on until
+        the step is below ``tol`` too, so that the state is the least-energy one.
+        """
         t0 = time.perf_counter()
         n = self.P + self.m
+        b = self.rhs(load_factor)
         if self.mechanism:
+            if self.loose_rows.any() and np.any(b[self.loose_rows] != 0):
+                # a loaded block without joints: no equilibrium state at all
+                return Run("inadmissible", np.full(n, np.nan), 0, math.inf, math.inf,
+                           self.mechanism + ", and they carry loads: no equilibrium state",
+                           time=time.perf_counter() - t0)
             return Run("failure", np.full(n, np.nan), 0, math.inf, math.inf, self.mechanism,
                        time=time.perf_counter() - t0)
-        b = self.rhs(load_factor)
-        x = self.project_equilibrium(np.zeros(n), b)
-        res0 = float(np.abs(self.As @ x - b).max(initial=0.0))
+        x0 = self.project_equilibrium(np.zeros(n), b)
+        res0 = float(np.abs(self.As @ x0 - b).max(initial=0.0))
         if res0 > 1e-6 * max(1.0, float(np.abs(b).max(initial=0.0))):
-            return Run("failure", x, 0, math.inf, res0, "the elastic solution does not meet "
-                       "the equilibrium equations (A C^-1 A^T nearly singular: mechanism)",
+            return Run("failure", x0, 0, math.inf, res0, "mechanism: the elastic solution "
+                       "does not meet the equilibrium equations (A C^-1 A^T nearly singular)",
                        time=time.perf_counter() - t0)
-        v = self.gather(x)
-        pv = np.zeros_like(v)
+        v0 = self.gather(x0)
+        v = v0
+        z = laws.project(v0)
+        u = np.zeros_like(v0)
         viol = laws.violation(v)
         hist = [viol]
         status, reason, k = "", "", 0
         if viol <= tol:
             status = "admissible"
+        next_adapt = ADAPT
         while not status and k < max_iter:
-            z = v + pv
-            y = laws.project(z)
-            pv = z - y
-            xn = self.project_equilibrium(self.scatter(y), b)
-            vn = self.gather(xn)
+            # distortion delta = rho/(1+rho) (z - u - X0); its self-stress via the projector
+            delta = self.scatter(rho / (1.0 + rho) * (z - u - v0))
+            xs = self.project_equilibrium(delta, np.zeros(self.As.shape[0]))
+            vn = v0 + self.gather(xs)
+            vh = alpha * vn + (1.0 - alpha) * z
+            zn = laws.project(vh + u)
+            du = vh - zn
+            u = u + du
+            dual = rho * float(np.abs(zn - z).max(initial=0.0))
             step = float(np.abs(vn - v).max(initial=0.0))
-            v = vn
+            z, v = zn, vn
             viol = laws.violation(v)
             k += 1
             hist.append(viol)
-            if viol <= tol and step <= tol:
+            if viol <= tol and (not optimal or (step <= tol and dual <= tol)):
                 status = "admissible"
                 break
+            if k == next_adapt:
+                # residual balancing: the projector does not depend on rho (same metric)
+                prim = float(np.abs(v - z).max(initial=0.0))
+                if dual > 0 and prim > 0 and not 0.2 < prim / dual < 5.0:
+                    new = min(max(rho * math.sqrt(prim / dual), 1e-4), 1e4)
+                    u *= rho / new
+                    rho = new
+                next_adapt *= 2
             if k % window == 0 and k >= 2 * window:
                 half = hist[k // 2]
-                if viol > 100 * tol and viol > STALL * half:
+                # the limit of the violation if it fell like 1/sqrt(k) (slower than the
+                # iteration does when the sets meet): a positive limit is a gap
+                limit = (SQRT2 * viol - half) / (SQRT2 - 1.0)
+                cert = (self.mechanism_of(laws, du, b)
+                        if viol > GAP * tol and limit > 0.5 * viol else None)
+                if cert is not None:
                     status = "inadmissible"
-                    reason = (f"the violation stalls at {viol:.3g} (reference-force units; "
-                              f"{half:.3g} at iteration {k // 2}): equilibrium and joint "
-                              "laws do not meet")
+                    reason = (f"the violation tends to {limit:.3g} > 0 (reference-force "
+                              f"units; {half:.3g} at iteration {k // 2}, {viol:.3g} at {k}) "
+                              f"and the loads do work {cert[0]:.3g} on a virtual motion "
+                              f"that follows the flow rule to {cert[1]:.2g} of its largest "
+                              "joint deformation: equilibrium and joint laws do not meet")
+                elif viol <= GAP * tol and viol > STALL * half:
+                    status = "undecided"
+                    reason = (f"stalled: the violation stays at {viol:.3g}, within {GAP:g} "
+                              "x tol of admissibility: a limit state the method cannot "
+                              "decide")
         x = self.scatter(v)
         residual = float(np.abs(self.As @ x - b).max(initial=0.0))
         if not status:
-            if viol <= math.sqrt(tol):
-                status = "undecided"
-                reason = (f"violation {viol:.3g} after {k} iterations is still decreasing "
-                          "slowly: a limit state, where the method cannot decide")
-            else:
-                status = "failure"
-                reason = f"no convergence within {max_iter} iterations (violation {viol:.3g})"
+            status = "undecided"
+            reason = (f"no convergence within the iteration budget ({max_iter} iterations, "
+                      f"violation {viol:.3g})")
         return Run(status, x, k, viol, residual, reason, hist if keep_history else [],
                    time.perf_counter() - t0)
 
 
+def _clip_root(alpha: np.ndarray, beta: np.ndarray, w: np.ndarray, y: np.ndarray,
+               p: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Root theta of g = alpha - beta theta - w sum_i max(y_i + p_i theta, -t_i), i = 1, 2.
+
+    g is continuous, piecewise linear and decreasing (beta >= 0, w > 0, p > 0), with
+    breakpoints (-t_i - y_i) / p_i; slopes -beta below both, -beta - w p_i between them,
+    -beta - w (p_1 + p_2) above. The root is found on its segment. Where g has no root
+    below the first breakpoint with beta = 0, the breakpoint is returned.
+    """
+    br = (-t - y) / p
+    first = np.argmin(br, axis=1)
+    idx = np.arange(len(alpha))
+    blo, bhi = br[idx, first], br[idx, 1 - first]
+
+    def g(th):
+        return alpha - beta * th - w * np.maximum(y + p * th[:, None], -t).sum(axis=1)
+
+    g_lo, g_hi = g(blo), g(bhi)
+    s1 = -beta - w * p[idx, first]
+    s2 = -beta - w * p.sum(axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        below = np.where(beta > 0, blo + g_lo / np.where(beta > 0, beta, 1.0), blo)
+        mid = blo - g_lo / s1
+        above = bhi - g_hi / s2
+    return np.where(g_lo <= 0, below, np.where(g_hi <= 0, mid, above))
+
+
 class _Laws:
-    """Joint laws of one run, with the affine maps of every active set of P_K."""
+    """The joint laws of one run: rows G v <= h per joint (v = N1, N2, T) and P_K.
+
+    Rows: -N_k <= t_k (no tension beyond the tensile capacity t_k), +-T - f (N1 + N2)
+    <= c (friction with cohesion capacity c); f = inf drops the friction rows.
+    """
 
     def __init__(self, f: np.ndarray, t: np.ndarray, c: np.ndarray, cflex: np.ndarray):
         m = len(f)
@@ -260,47 +393,84 @@ class _Laws:
         G[~fin, 2:] = 0.0
         h = np.stack([t[0::2], t[1::2], c, c], axis=1)
         h[~fin, 2:] = 0.0
+        self.f = f
+        self.fin, self.ff = fin, ff
         self.G, self.h, self.active = G, h, np.stack([np.ones(m, bool)] * 2 + [fin] * 2, 1)
-        self.W = 1.0 / cflex  # the C metric acts on the joint's (N1, N2, T) with weights C
-        winv = cflex
-        R, q, ok = [], [], []
-        for S in _SUBSETS:
-            S = list(S)
-            if not S:
-                R.append(np.broadcast_to(np.eye(3), (m, 3, 3)))
-                q.append(np.zeros((m, 3)))
-                ok.append(np.ones(m, bool))
-                continue
-            GS, hS = G[:, S, :], h[:, S]
-            Q = winv[:, :, None] * np.swapaxes(GS, 1, 2)        # (m, 3, k)
-            Mk = GS @ Q                                          # (m, k, k)
-            Q = Q @ np.linalg.pinv(Mk)
-            R.append(np.eye(3)[None] - Q @ GS)
-            q.append(np.einsum("mik,mk->mi", Q, hS))
-            ok.append(np.all(self.active[:, S], axis=1))
-        self.R = np.stack(R)
-        self.q = np.stack(q)
-        self.ok = np.stack(ok)
-        self.cw = cflex  # distance weights: the C metric
+        self.cw = cflex  # the C metric: weights C on the joint's (N1, N2, T)
 
     def rows(self, v: np.ndarray) -> np.ndarray:
-        r = np.einsum("...ij,...j->...i", self.G, v) - self.h
-        return np.where(self.active, r, -np.inf)
+        G = self.G
+        r = G[..., 0] * v[:, None, 0] + G[..., 1] * v[:, None, 1] + G[..., 2] * v[:, None, 2]
+        return np.where(self.active, r - self.h, -np.inf)
 
     def violation(self, v: np.ndarray) -> float:
         return float(np.maximum(self.rows(v), 0.0).max(initial=0.0))
 
     def project(self, y: np.ndarray) -> np.ndarray:
-        """Exact C-metric projection of every joint's (N1, N2, T) onto its law."""
-        V = np.einsum("smij,mj->smi", self.R, y) + self.q       # (subsets, m, 3)
-        r = np.einsum("mij,smj->smi", self.G, V) - self.h[None]
-        r = np.where(self.active[None], r, -np.inf)
-        scale = 1e-12 * (1.0 + np.abs(y).max(axis=1))
-        feas = np.all(r <= scale[None, :, None], axis=2) & self.ok
-        d = np.einsum("smi,mi->sm", (V - y[None]) ** 2, 1.0 / self.cw)
-        d = np.where(feas, d, np.inf)
-        best = np.argmin(d, axis=0)
-        return V[best, np.arange(len(y))]
+        """Exact C-metric projection of every joint's (N1, N2, T) onto its law, in closed form.
+
+        With weights (a1, a2, a_T) = C and the friction row's multiplier mu >= 0 the KKT
+        conditions give N_i = max(y_i + f mu / a_i, -t_i), |T| = |y_T| - mu / a_T, and mu
+        is the root of the decreasing piecewise-linear |T| - f (N1 + N2) - c (or 0 when
+        that is <= 0 at mu = 0). If this makes |T| < 0 the projection is the cone's apex
+        edge T = 0, N1 + N2 = -c / f, with N_i = max(y_i + lam / a_i, -t_i).
+        """
+        a = self.cw[:, :2]
+        at = self.cw[:, 2]
+        t = self.h[:, :2]
+        c = self.h[:, 2]
+        f = self.ff
+        n = np.maximum(y[:, :2], -t)
+        tabs = np.abs(y[:, 2])
+        sg = np.where(y[:, 2] < 0, -1.0, 1.0)
+        phi = tabs - f * n.sum(axis=1) - c
+        need = self.fin & (phi > 0)
+        out = np.column_stack([n, y[:, 2]])
+        if not need.any():
+            return out
+        k = np.flatnonzero(need)
+        fk, ak = f[k], a[k]
+        pos = fk > 0
+        mu = (tabs[k] - c[k]) * at[k]  # f = 0: the shear alone is clipped to c
+        if pos.any():
+            kp = k[pos]
+            mu[pos] = _clip_root(tabs[kp] - c[kp], 1.0 / at[kp], fk[pos], y[kp, :2],
+                                 fk[pos, None] / ak[pos], t[kp])
+        mu = np.maximum(mu, 0.0)
+        nk = np.maximum(y[k, :2] + fk[:, None] * mu[:, None] / ak, -t[k])
+        tk = tabs[k] - mu / at[k]
+        apex = tk < 0
+        if apex.any():
+            j = np.flatnonzero(apex)
+            s0 = -c[k][j] / np.where(fk[j] > 0, fk[j], 1.0)
+            lam = _clip_root(s0, np.zeros(j.size), np.ones(j.size), y[k[j], :2],
+                             1.0 / ak[j], t[k[j]])
+            nk[j] = np.maximum(y[k[j], :2] + lam[:, None] / ak[j], -t[k[j]])
+            tk[j] = 0.0
+        out[k, :2] = nk
+        out[k, 2] = sg[k] * tk
+        return out
+
+    def project_enumerated(self, y: np.ndarray) -> np.ndarray:
+        """The same projection by enumerating the 15 active sets (reference for tests)."""
+        m = len(y)
+        winv = 1.0 / self.cw
+        best = np.full((m, 3), np.nan)
+        dist = np.full(m, np.inf)
+        for S in _SUBSETS:
+            S = list(S)
+            V = y.copy()
+            if S:
+                GS, hS = self.G[:, S, :], self.h[:, S]
+                Q = winv[:, :, None] * np.swapaxes(GS, 1, 2)
+                Q = Q @ np.linalg.pinv(GS @ Q)
+                V = y - np.einsum("mik,mk->mi", Q, np.einsum("mkj,mj->mk", GS, y) - hS)
+            ok = np.all(self.active[:, S], axis=1) & np.all(
+                self.rows(V) <= 1e-10 * (1.0 + np.abs(y).max(axis=1))[:, None], axis=1)
+            d = np.where(ok, np.sum((V - y) ** 2 * self.cw, axis=1), np.inf)
+            take = d < dist
+            best[take], dist[take] = V[take], d[take]
+        return best
 
 
 # -- analyses ------------------------------------------------------------------------------
@@ -419,13 +589,13 @@ def min_friction_distortion(scene: Scene, load_factor: float = 1.0, state: bool 
     """
     rtol = max(rtol, 1e-9)
     w = _Work(scene)
-    if not w.uniform.any():
+    if w.solver.m and not w.uniform.any():
         raise InputError("every joint has its own friction override: there is no uniform "
                          "friction to minimise", scene.source)
     lf = float(load_factor)
 
     def decide(f: float):
-        r = w.run(f, lf, tol=tol)
+        r = w.run(f, lf, tol=tol, optimal=False)
         if r.status == "failure":
             w.describe(r)
             return "failure", r
@@ -438,6 +608,7 @@ def min_friction_distortion(scene: Scene, load_factor: float = 1.0, state: bool 
             if v_inf is None:
                 w.describe(r_inf)
             return FrictionResult(**w.common("min_friction", status, None, lf))
+        w.describe(r_inf)
         return FrictionResult(**w.common("min_friction", "unstable", None, lf))
     v0, r0 = decide(0.0)
     if v0 is True:
@@ -490,7 +661,7 @@ def max_load_distortion(scene: Scene, f: float, state: bool = True, rtol: float 
     label = _label(f)
 
     def decide(lam: float):
-        r = w.run(f, lam, tol=tol)
+        r = w.run(f, lam, tol=tol, optimal=False)
         if r.status == "failure":
             w.describe(r)
         return {"admissible": True, "inadmissible": False}.get(r.status), r
@@ -499,6 +670,7 @@ def max_load_distortion(scene: Scene, f: float, state: bool = True, rtol: float 
     if r0.status == "failure":
         return LoadResult(**w.common("max_load_multiplier", "failure", label, None))
     if v0 is not True:
+        w.describe(r0)
         return LoadResult(**w.common("max_load_multiplier", "unstable", label, None))
     lo, hi, best = 0.0, 1.0, r0
     while True:
