@@ -288,7 +288,7 @@ def test_spec_random_and_scene(tmp_path):
 
 
 def test_cli_sweep_end_to_end(tmp_path, capsys):
-    spec = EXAMPLES / "sweep_flat_arch.json"
+    spec = EXAMPLES / "sweeps" / "flat_arch.json"
     out = tmp_path / "flat.parquet"
     assert main(["sweep", str(spec), "-o", str(out), "--workers", "1",
                  "--no-progress"]) == 0
@@ -311,11 +311,11 @@ def test_cli_sweep_end_to_end(tmp_path, capsys):
 
 
 def test_doc_example_is_the_example_file():
-    """docs/sweep-format.md shows the keys of examples/sweep_flat_arch.json."""
-    doc = json.loads((EXAMPLES / "sweep_flat_arch.json").read_text())
+    """docs/sweep-format.md shows the keys of examples/sweeps/flat_arch.json."""
+    doc = json.loads((EXAMPLES / "sweeps" / "flat_arch.json").read_text())
     text = (ROOT / "docs" / "sweep-format.md").read_text()
     assert '"generator": "flat_arch"' in text and doc["generator"] == "flat_arch"
-    assert study.read_spec(EXAMPLES / "sweep_flat_arch.json").cases[0]["voussoirs"] == 3
+    assert study.read_spec(EXAMPLES / "sweeps" / "flat_arch.json").cases[0]["voussoirs"] == 3
 
 
 # -- throughput -----------------------------------------------------------------------------
