@@ -168,3 +168,111 @@ def test_make_readme_order_and_machine(tmp_path):
     assert "](results/bench_scaling.png)" in text
     assert "(3.00x)" in text
     assert "python benchmarks/bench_scaling.py" in text
+
+
+def test_bench_accuracy_tiny(tmp_path):
+    """Errors fall as Clarabel's tolerances tighten; the references match closed forms.
+
+    Reference model: f* = 0.5 (seed paper; by hand, a central block sliding out is held
+    by friction on its base and top, 2 f P/2 >= H with P = 100 N, H = 50 N) and, at
+    f = 0.6, lambda* = 0.6 x 100 / 50 = 1.2.
+    """
+    data = load_script("bench_accuracy").main(["--tiny", "--out", str(tmp_path)])
+    for ext in ("json", "md", "png"):
+        assert (tmp_path / f"bench_accuracy.{ext}").stat().st_size > 0
+    refs = data["references"]
+    assert refs["reference (4 blocks) f*"]["value"] == pytest.approx(0.5, rel=1e-7)
+    assert refs["reference (4 blocks) lambda*"]["value"] == pytest.approx(1.2, rel=1e-7)
+    for qty in ("f*", "lambda*"):
+        rows = [r for r in data["rows"] if r["scene"].startswith("reference")
+                and r["quantity"] == qty and r["method"] == "clarabel" and not r["default"]]
+        errs = [r["error"] for r in sorted(rows, key=lambda r: -float(r["label"][4:]))]
+        assert len(errs) == 3
+        assert errs[0] > errs[1] > errs[2] or errs[2] < 1e-8
+        assert errs[0] > 10 * max(errs[2], 1e-12)
+    for r in data["rows"]:
+        if r["default"]:
+            assert r["error"] < 1e-6, r
+    assert {v["quantity"] for v in data["pareto"]} == {"f*", "lambda*"}
+
+
+def test_bench_refinement_tiny(tmp_path):
+    """Pyramids converge to the cone from the safe side; split joints change nothing.
+
+    Closed forms: a k-facet pyramid inscribed in the Coulomb cone contains the cone
+    shrunk by cos(pi / k), so cos(pi / k) lambda*_cone <= lambda*_k <= lambda*_cone.
+    The cone's wall slides on its bed joints: lambda* = f = 0.6 and, at load factor 0.5,
+    f* = 0.5. The split reference model keeps f* = 0.5, lambda* = 1.2 (seed paper).
+    """
+    import math
+
+    data = load_script("bench_refinement").main(["--tiny", "--out", str(tmp_path)])
+    assert (tmp_path / "bench_refinement.png").stat().st_size > 0
+    pyr = data["pyramid"]
+    cone = pyr[-1]
+    assert cone["facets"] == "cone"
+    assert cone["lambda*"] == pytest.approx(0.6, rel=1e-6)
+    assert cone["f*"] == pytest.approx(0.5, rel=1e-6)
+    diffs = [r["diff_lambda*"] for r in pyr[:-1]]
+    assert diffs == sorted(diffs, reverse=True) and diffs[0] > 10 * diffs[-1]
+    for r in pyr[:-1]:
+        k = r["facets"]
+        assert math.cos(math.pi / k) * cone["lambda*"] * (1 - 1e-7) <= r["lambda*"]
+        assert r["lambda*"] <= cone["lambda*"] * (1 + 1e-7)
+        assert r["f*"] >= cone["f*"] * (1 - 1e-7)
+    for r in data["points_per_joint"]:
+        assert r["f*"] == pytest.approx(0.5, rel=1e-6)
+        assert r["lambda*"] == pytest.approx(1.2, rel=1e-6)
+    assert [r["points_per_joint"] for r in data["points_per_joint"]] == [4, 8, 16]
+    assert data["coarsest"]["points_per_3d_joint"] == 4
+
+
+def test_bench_hard_cases_tiny(tmp_path):
+    """Every hard case on the default path gets the answer statics gives (the expected
+    values and their sources are in the benchmark's cases)."""
+    import sys
+
+    spec = importlib.util.spec_from_file_location(
+        "bench_hard_cases", ROOT / "benchmarks" / "bench_hard_cases.py")
+    bench = importlib.util.module_from_spec(spec)
+    sys.modules["bench_hard_cases"] = bench  # its dataclasses look their module up
+    spec.loader.exec_module(bench)
+    data = bench.main(["--tiny", "--out", str(tmp_path)])
+    default = [r for r in data["rows"] if r["method"] == "clarabel"]
+    assert len(default) >= 25
+    assert [r for r in default if r["verdict"] != "right"] == []
+    assert data["default_wrong"] == 0
+    assert bench.verdict("admissible", "inadmissible") == "wrong"
+    assert bench.verdict(0.5, 0.5 * (1 + 1e-7)) == "right"
+    assert bench.verdict(0.5, 0.5 * (1 + 1e-5)) == "wrong"
+    assert bench.verdict(0.0, 1e-3) == "wrong"
+    assert bench.verdict(0.5, "error: SolverFailure: x") == "flagged"
+    assert bench.verdict("inadmissible", "undecided") == "flagged"
+
+
+def test_bench_methods_tiny(tmp_path):
+    """The methods comparison on the seed's reference model, with and without
+    self-weight: f* = 0.5 and 0.25 (seed paper, numerical example 1) by every method,
+    the distortion solver within 1e-4 of Clarabel, and plain bisection to 1e-6 needs
+    more solves than the Newton strategy (each halving gains one bit: about 20)."""
+    import json
+
+    spec = importlib.util.spec_from_file_location(
+        "bench_methods", ROOT / "benchmarks" / "bench_methods.py")
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    data = bench.main(["--tiny", "--out", str(tmp_path)])
+    rows = {r["scene"]: r for r in data["rows"]}
+    assert set(rows) == {"reference", "reference_self_weight"}
+    for name, fstar in (("reference", 0.5), ("reference_self_weight", 0.25)):
+        r = rows[name]
+        assert r["clarabel"]["fstar"] == pytest.approx(fstar, rel=1e-6)
+        assert r["highs"]["fstar"] == pytest.approx(fstar, rel=1e-6)
+        assert r["scs"]["fstar"] == pytest.approx(fstar, rel=1e-3)
+        assert r["bisection"]["fstar"] == pytest.approx(fstar, rel=1e-6)
+        assert r["distortion"]["fstar"] == pytest.approx(fstar, rel=1e-4)
+        assert r["relative_difference"] <= 1e-4
+        assert r["bisection"]["solves"] > r["clarabel"]["solves"]
+    saved = json.loads((tmp_path / "bench_methods.json").read_text())
+    assert saved["benchmark"] == "bench_methods" and len(saved["rows"]) == 2
+    assert "| reference |" in (tmp_path / "bench_methods.md").read_text()
