@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import make_scene, rect
+from conftest import EXAMPLES, make_scene, rect
 
 import rigidblocks as rb
 from rigidblocks.errors import InputError
@@ -147,3 +147,34 @@ def test_nonconvex_block_cannot_be_extruded():
     ], unit_weight=1.0)
     with pytest.raises(InputError, match="block 'L'.*convex"):
         extrude(s2)
+
+
+def test_limit_state_of_a_dome_sliding_all_round_has_a_force_state():
+    """At the collapse of the bundled corbel dome (f = 0.6) the least-energy QP is out
+    of the interior-point solver's reach (the admissible set is nearly one point); the
+    result then carries the limit problem's own state, says so, and that state is in
+    equilibrium: the bed joint on the slab carries the dome's weight W vertically and
+    lambda* W horizontally, against the load (global equilibrium of the free blocks)."""
+    from rigidblocks.scene.geometry import block_weights
+
+    s = rb.read_scene(EXAMPLES / "corbel_dome.json")
+    r = rb.max_load_multiplier(s)
+    assert r.status == "collapse" and r.state is not None
+    if r.state.method != "least complementary energy":
+        assert any("limit problem" in n for n in r.notes)
+    c = r.contacts
+    sup = s.support_mask
+    W = block_weights(s)[0][~sup].sum()
+    # force on the free block at each point: N n + T1 t1 + T2 t2 (n from pairs[:, 0] into
+    # pairs[:, 1]), summed over the joints with the slab
+    pj = c.point_joint
+    F = (r.state.normal[:, None] * c.normals[pj]
+         + np.einsum("pk,pkd->pd", r.state.shear, c.tangents[pj]))
+    first_is_support = sup[c.pairs[:, 0]]
+    on_slab = first_is_support | sup[c.pairs[:, 1]]
+    sign = np.where(first_is_support, 1.0, -1.0)[pj]
+    total = (F * sign[:, None])[on_slab[pj]].sum(axis=0)
+    direction = np.array(s.live_body_force, float) / np.linalg.norm(s.live_body_force)
+    assert total[2] == pytest.approx(W, rel=1e-6)
+    assert -total @ direction == pytest.approx(r.load_multiplier * W
+                                              * np.linalg.norm(s.live_body_force), rel=1e-5)

@@ -187,15 +187,19 @@ def example_files():
 @pytest.mark.parametrize("path", example_files() + [pytest.param(None, id="built-stack")])
 def test_render_every_example(path, tmp_path):
     sc = stack(4, shift=0.05) if path is None else read_scene(path)
-    if sc.dimension != 2:
-        pytest.skip("3D scenes are not drawn")
     ax = rb.plot(sc)
-    assert n_paths(ax, "rb-blocks") + n_paths(ax, "rb-supports") == len(sc.blocks)
-    assert_contains_blocks(ax, [b.points for b in sc.blocks])
+    if sc.dimension == 3:  # one polygon per face (tests/test_plot3d.py checks the rest)
+        ax.figure.canvas.draw()
+        drawn = sum(len(a.get_paths()) for a in ax.get_children()
+                    if a.get_gid() in ("rb-blocks", "rb-supports"))
+        assert drawn == sum(len(b.faces) for b in sc.blocks)
+    else:
+        assert n_paths(ax, "rb-blocks") + n_paths(ax, "rb-supports") == len(sc.blocks)
+        assert_contains_blocks(ax, [b.points for b in sc.blocks])
     if sc.has_live_load:
         res = rb.max_load_multiplier(sc)
         ax = rb.plot(sc, res)
-        if res.status == "collapse":
+        if res.status == "collapse" and sc.dimension == 2:
             assert n_paths(ax, "rb-displaced") == int((~sc.support_mask).sum())
     out = tmp_path / "x.png"
     ax.figure.savefig(out)

@@ -192,15 +192,28 @@ def _relaxation(ctx: _Context, f_uniform: float, load_factor: float) -> _Relax:
 
 
 def _state(ctx: _Context, f_uniform: float, load_factor: float, relax: float,
-           method: str = "least complementary energy") -> ForceState:
-    """The admissible state of least complementary energy (a QP)."""
+           limit: SolverResult, limit_x: slice) -> ForceState:
+    """The admissible state of least complementary energy (a QP).
+
+    At a limit state the admissible set shrinks to (nearly) one point and the QP can be
+    out of the interior-point solver's reach (3D cones sliding all round a bed joint);
+    the state of the solved limit problem ``limit`` (an admissible state, not the
+    least-energy one) is then returned, and the result's notes say so.
+    """
     prob = build_energy_qp(ctx.system, ctx.scaling, ctx.f_joint(f_uniform), load_factor,
                            relax, ctx.pyramid)
-    res = ctx.run(prob, "force-state")
-    if res.status != OPTIMAL:
-        raise SolverFailure(f"the force-state problem has status {res.raw_status} although "
-                            "an admissible state exists", res.solver, res.raw_status)
-    return force_state(ctx.system, res.z[prob.cols["x"]] * ctx.scaling.force, method)
+    try:
+        res = ctx.run(prob, "force-state")
+        status = res.raw_status if res.status != OPTIMAL else None
+    except SolverFailure as exc:
+        status = exc.status
+    if status is None:
+        return force_state(ctx.system, res.z[prob.cols["x"]] * ctx.scaling.force,
+                           "least complementary energy")
+    ctx.notes.append(f"force state: the solution of the limit problem (the "
+                     f"least-energy QP ended with status {status})")
+    return force_state(ctx.system, limit.z[limit_x] * ctx.scaling.force,
+                       "solution of the limit problem")
 
 
 def force_state(system: EquilibriumSystem, x: np.ndarray, method: str) -> ForceState:
@@ -334,7 +347,8 @@ def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
         ok, viol = False, math.inf
     else:
         ok, viol = rx.zero, rx.R * ctx.scaling.force
-    st = _state(ctx, f, float(load_factor), rx.R + STATE_SLACK) if (ok and state) else None
+    st = (_state(ctx, f, float(load_factor), rx.R + STATE_SLACK, rx.res, rx.prob.cols["x"])
+          if (ok and state) else None)
     return CheckResult(**ctx.common("check", "admissible" if ok else "inadmissible",
                                     friction_label(f), float(load_factor)),
                        state=st, admissible=ok, violation=0.0 if ok else viol)
@@ -372,14 +386,14 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
         if rx.R is None:
             ctx.notes.append("the equilibrium equations have no solution (mechanism)")
         return FrictionResult(**ctx.common("min_friction", "unstable", None, lf))
-    lo, hi, R_hi = 0.0, math.inf, 0.0
+    lo, hi, R_hi, at_hi = 0.0, math.inf, 0.0, rx
     rx = _relaxation(ctx, 0.0, lf)
     if rx.R is None:
         raise SolverFailure("the relaxation at f = 0 has no solution although infinite "
                             "friction has one", ctx.solver, rx.res.raw_status)
     last = None
     if rx.zero:
-        hi, R_hi = 0.0, rx.R
+        hi, R_hi, at_hi = 0.0, rx.R, rx
     else:
         last = rx
     R_lo, s_lo = rx.R, rx.slope
@@ -407,7 +421,7 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
             raise SolverFailure("relaxation problem lost its solution", ctx.solver,
                                 rx.res.raw_status)
         if rx.zero:
-            hi, R_hi = trial, rx.R
+            hi, R_hi, at_hi = trial, rx.R, rx
         else:
             lo, R_lo, s_lo = trial, rx.R, rx.slope
             last = rx
@@ -425,7 +439,8 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
         if w.size and w.max() > 0:
             strong = w > 1e-3 * w.max()
             governing = tuple(sorted({int(j) for j in jr.fric_joint[strong]}))
-    st = _state(ctx, fstar, lf, R_hi + STATE_SLACK) if state else None
+    st = (_state(ctx, fstar, lf, R_hi + STATE_SLACK, at_hi.res, at_hi.prob.cols["x"])
+          if state else None)
     return FrictionResult(**ctx.common("min_friction", "stable", fstar, lf), state=st,
                           governing=governing, friction_factor=fstar,
                           friction_angle_deg=math.degrees(math.atan(fstar)),
@@ -479,7 +494,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         return LoadResult(**ctx.common("max_load_multiplier", "unstable", label, None))
     mech = mechanism(ctx.system, ctx.scaling, res.y[prob.rows["equilibrium"]])
     sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
-    st = _state(ctx, f, lam, STATE_SLACK) if state else None
+    st = _state(ctx, f, lam, STATE_SLACK, res, prob.cols["x"]) if state else None
     return LoadResult(**ctx.common("max_load_multiplier", "collapse", label, lam), state=st,
                       governing=sliding, load_multiplier=lam, mechanism=mech)
 
