@@ -454,3 +454,18 @@ def test_large_wall_verdicts_hold_across_the_admissible_interval():
     for k in (0.0, 0.5, 0.999):
         assert check(wall, load_factor=k * lam, state=False).admissible, k
     assert not check(wall, load_factor=1.01 * lam, state=False).admissible
+
+
+@pytest.mark.parametrize("voussoirs,thickness", [(4, 0.3), (7, 0.2), (13, 0.2)])
+def test_min_friction_of_thick_arches_in_few_solves(voussoirs, thickness):
+    """R(f) of these arches is slightly concave below f*, so plain Newton overshoots and
+    a bracket shrinks by halves (about 30 solves); the curvature-corrected step needs
+    fewer than 10. The answer is certified by admissibility on either side of it."""
+    from rigidblocks.examples import build
+
+    arch = build("arch", voussoirs=voussoirs, thickness=thickness)
+    r = min_friction(arch, load_factor=0.0, state=False)
+    assert r.status == "stable" and r.n_solves <= 10
+    f = r.friction_factor
+    assert check(arch, friction=f * (1 + 1e-6), load_factor=0.0, state=False).admissible
+    assert not check(arch, friction=f * (1 - 1e-6), load_factor=0.0, state=False).admissible

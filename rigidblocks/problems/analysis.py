@@ -397,11 +397,12 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
     else:
         last = rx
     R_lo, s_lo = rx.R, rx.slope
+    prev: tuple[float, float] | None = None  # (f, slope) of the previous lower point
     probe_below_hi = True  # next time Newton lands on or past hi, probe just below hi
     for _ in range(100):
         if math.isfinite(hi) and hi - lo <= rtol * hi:
             break
-        newton = lo + R_lo / s_lo if s_lo > 0 else math.inf
+        newton = lo + _root_step(R_lo, s_lo, lo, prev) if s_lo > 0 else math.inf
         if math.isinf(hi):
             trial = newton if math.isfinite(newton) else max(2.0 * lo, 1.0)
             if trial - lo <= 0.5 * rtol * trial:
@@ -423,6 +424,7 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
         if rx.zero:
             hi, R_hi, at_hi = trial, rx.R, rx
         else:
+            prev = (lo, s_lo)
             lo, R_lo, s_lo = trial, rx.R, rx.slope
             last = rx
     else:
@@ -445,6 +447,19 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
                           governing=governing, friction_factor=fstar,
                           friction_angle_deg=math.degrees(math.atan(fstar)),
                           lower=lo, upper=hi)
+
+
+def _root_step(R: float, s: float, f: float, prev: tuple[float, float] | None) -> float:
+    """Step from a lower point (R(f) = R > 0, -dR/df = s > 0) to the estimated root.
+
+    Newton's step R / s, or, where the slope has grown since the previous lower point
+    (R concave there, so Newton overshoots), the root of the quadratic model
+    R - s d - c d^2 / 2 with the curvature c = ds/df from the two slopes.
+    """
+    if prev is not None and f > prev[0] and s > prev[1]:
+        c = (s - prev[1]) / (f - prev[0])
+        return 2.0 * R / (s + math.sqrt(s * s + 2.0 * c * R))
+    return R / s
 
 
 # -- maximum load multiplier -------------------------------------------------------------
