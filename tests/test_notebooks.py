@@ -151,6 +151,7 @@ def test_methods_compared(tmp_path):
     for method in ("clarabel", "distortion"):
         m = re.search(rf"{method} +f\* = ([0-9.]+)", text)
         assert m and abs(float(m[1]) - 0.5) < 1e-5
-    assert "benchmark data:" in text
+    assert text.count("benchmark data:") == 2
+    assert "| reference | 4 | 1 | 0.5 | 0.5 |" in text  # bench_methods: f* of Fig. 4a
     assert "fastest time (ms)" in text
     assert images_of(nb) >= 1
