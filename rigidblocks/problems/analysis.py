@@ -9,10 +9,11 @@ back end (:mod:`rigidblocks.solvers`) and returns an immutable result
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
+import scipy.sparse as sp
 
 from ..contacts import Contacts
 from ..equilibrium import EquilibriumSystem, assemble
@@ -94,6 +95,8 @@ class _Context:
     solve_time: float = 0.0
     iterations: int = 0
     notes: list[str] = field(default_factory=list)
+    #: relaxation problems by load factor, with the entries proportional to f
+    relax_cache: dict = field(default_factory=dict)
 
     @property
     def contacts(self) -> Contacts:
@@ -173,10 +176,43 @@ class _Relax:
         return self.R is not None and self.R <= self.tol
 
 
+def _relaxation_problem(ctx: _Context, f_uniform: float, load_factor: float):
+    """The relaxation at friction ``f_uniform``, built once per load factor.
+
+    The uniform friction enters the constraint matrix only as coefficients proportional
+    to f (the f N term of each friction row): the problem is built at f = 1 and f = 2,
+    the entries that double are located, and later values of f only rescale them.
+    """
+    def build(f: float):
+        return build_relaxation(ctx.system, ctx.scaling, ctx.f_joint(f), load_factor,
+                                ctx.pyramid)
+
+    if not math.isfinite(f_uniform):
+        return build(f_uniform)
+    cached = ctx.relax_cache.get(load_factor)
+    if cached is None:
+        (p1, jr), (p2, _) = build(1.0), build(2.0)
+        A1, A2 = p1.A, p2.A
+        same = (np.array_equal(A1.indptr, A2.indptr) and np.array_equal(A1.indices, A2.indices)
+                and np.array_equal(p1.b, p2.b))
+        mask = A1.data != A2.data if same else None
+        if same and np.allclose(A2.data[mask], 2.0 * A1.data[mask], rtol=1e-14, atol=0):
+            cached = (p1, jr, mask, A1.data[mask])
+        else:
+            cached = False
+        ctx.relax_cache[load_factor] = cached
+    if not cached:
+        return build(f_uniform)
+    p1, jr, mask, coef = cached
+    data = p1.A.data.copy()
+    data[mask] = coef * f_uniform
+    A = sp.csc_matrix((data, p1.A.indices, p1.A.indptr), shape=p1.A.shape)
+    return replace(p1, A=A), jr
+
+
 def _relaxation(ctx: _Context, f_uniform: float, load_factor: float) -> _Relax:
     """R(f) and dR/df (from the duals of the friction rows of the uniform joints)."""
-    fj = ctx.f_joint(f_uniform)
-    prob, jr = build_relaxation(ctx.system, ctx.scaling, fj, load_factor, ctx.pyramid)
+    prob, jr = _relaxation_problem(ctx, f_uniform, load_factor)
     res = ctx.run(prob, "relaxation", tight=True)
     if res.status != OPTIMAL:
         return _Relax(None, 0.0, res, jr, prob, ADMISSIBLE_TOL)

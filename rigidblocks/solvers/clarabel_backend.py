@@ -51,9 +51,12 @@ def solve_clarabel(problem: ConicProblem, **settings) -> SolverResult:
     import clarabel
 
     n = problem.n
-    P = problem.P if problem.P is not None else sp.csc_matrix((n, n))
-    P = sp.triu(P, format="csc")
-    A = sp.csc_matrix(problem.A)
+    if problem.P is None:
+        P = sp.csc_matrix((np.zeros(0), np.zeros(0, np.int32), np.zeros(n + 1, np.int32)),
+                          shape=(n, n))
+    else:
+        P = sp.triu(problem.P, format="csc")
+    A = problem.A if problem.A.format == "csc" else sp.csc_matrix(problem.A)
     t0 = time.perf_counter()
     solver = clarabel.DefaultSolver(P, np.asarray(problem.c, float), A,
                                     np.asarray(problem.b, float), cones(problem),
