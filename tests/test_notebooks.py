@@ -129,8 +129,8 @@ def test_seed_examples(tmp_path):
 
 def test_parametric_study(tmp_path):
     """Minimum thickness of a semicircular arch of n radial voussoirs: below the
-    continuous ring's t/R = 0.1075 (Milankovitch; Heyman 1995), growing with n; with
-    n = 3 none (the symmetric funicular through the springings and one 60 deg joint
+    continuous ring's t/R = 0.1075 (Milankovitch; Heyman 1995) and close to it at n = 15;
+    with n = 3 none (the symmetric funicular through the springings and one 60 deg joint
     passes through the other), so that case is recorded as failed and the study goes on."""
     text = text_of(execute("03_parametric_study", tmp_path))
     pairs = [(int(n), float(t)) for n, t in re.findall(r"n = (\d+): t_min/R = ([0-9.]+)",
@@ -138,7 +138,7 @@ def test_parametric_study(tmp_path):
     assert len(pairs) >= 3 and min(n for n, _ in pairs) > 3
     ts = [t for _, t in sorted(pairs)]
     assert all(0.05 < t < 0.1075 * 1.005 for t in ts)
-    assert ts == sorted(ts)
+    assert dict(pairs)[15] > 0.97 * 0.1075
     assert re.search(r"n = 3: InputError: .*already admissible at the lower bound", text)
     assert text.count("failures 0") == 2 and text.count("failures 1") == 1
 
