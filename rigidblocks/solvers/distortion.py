@@ -45,7 +45,9 @@ Verdicts (status of a run, with a reason):
 
 * ``admissible``: X_k violates no joint law by more than ``tol`` (reference-force
   units of :class:`~rigidblocks.problems.formulation.Scaling`); with ``optimal`` the
-  steps must also be below ``tol``, so that X_k is the QP's state.
+  step of X and the dual residual must also be below ``max(tol, STATE_TOL)``, so that
+  X_k is the QP's state (to about that, relative to the largest force). If the budget
+  ends first, the last admissible iterate is returned, with a note.
 * ``inadmissible``: when E and K do not meet, the violation tends to a positive limit
   and U drifts by the shortest vector g from K to E per iteration. Every ``window``
   iterations (from ``2 window`` on) the limit is extrapolated from the violations at
@@ -106,6 +108,16 @@ GAP = 100.0
 SQRT2 = math.sqrt(2.0)
 #: relative breach of the flow rule accepted in a mechanism certifying inadmissibility
 FLOW_TOL = 0.02
+#: step and dual residual below which an admissible iterate is the QP's state
+STATE_TOL = 1e-8
+#: last iteration at which the penalty is rebalanced
+ADAPT_LAST = 160
+#: memory of the Anderson acceleration (0: none, the default; see :meth:`DistortionSolver.run`)
+ANDERSON = 0
+#: largest Anderson correction, in units of the plain step
+AA_STEP = 1e4
+#: iteration budget of the accelerated first phase of a run (see :meth:`run`)
+AA_BUDGET = 5000
 #: initial penalty of the iteration (the ratio of the two terms of the x step)
 RHO = 1.0
 #: over-relaxation of the iteration (1: none; 1.6 as usual for ADMM)
@@ -255,16 +267,86 @@ class DistortionSolver:
             return None
         return work, breach
 
+    @staticmethod
+    def _anderson(aa: dict[str, Any], z: np.ndarray, u: np.ndarray, zn: np.ndarray,
+                  un: np.ndarray, memory: int) -> tuple[np.ndarray, np.ndarray]:
+        """Anderson acceleration (type II) of the fixed-point map (z, u) -> (zn, un).
+
+        With the last ``memory`` differences of the iterates s and of the residuals
+        g = T(s) - s, the next iterate is s + g - (dS + dG) gamma, gamma the least-squares
+        solution of dG gamma = g. Safeguards: when the residual more than doubles, or
+        the correction (dS + dG) gamma exceeds ``AA_STEP`` times the residual, the memory
+        is dropped and the plain step taken. ``memory = 0``: the plain iteration.
+        """
+        if memory <= 0:
+            return zn, un
+        s = np.concatenate([z.ravel(), u.ravel()])
+        g = np.concatenate([zn.ravel(), un.ravel()]) - s
+        gn = float(np.linalg.norm(g))
+        S, G = aa["S"], aa["G"]
+        if gn > 2.0 * aa["g"] and S:
+            S.clear()
+            G.clear()
+            aa["restarts"] += 1
+        aa["g"] = gn
+        S.append(s)
+        G.append(g)
+        if len(S) > memory + 1:
+            S.pop(0)
+            G.pop(0)
+        if len(S) < 2:
+            return zn, un
+        dS = np.diff(np.array(S), axis=0).T
+        dG = np.diff(np.array(G), axis=0).T
+        gamma = np.linalg.lstsq(dG, g, rcond=1e-10)[0]
+        corr = (dS + dG) @ gamma
+        if not np.all(np.isfinite(corr)) or np.linalg.norm(corr) > AA_STEP * gn:
+            # an extrapolation far beyond the plain step (a drifting, infeasible run)
+            S.clear()
+            G.clear()
+            return zn, un
+        nxt = s + g - corr
+        return nxt[:z.size].reshape(z.shape), nxt[z.size:].reshape(u.shape)
+
     # -- the iteration -----------------------------------------------------------------
     def run(self, laws: _Laws, load_factor: float, tol: float = TOL,
             max_iter: int = MAX_ITER, window: int = WINDOW, keep_history: bool = False,
-            optimal: bool = True, rho: float = RHO, alpha: float = ALPHA) -> Run:
+            optimal: bool = True, rho: float = RHO, alpha: float = ALPHA,
+            anderson: int = ANDERSON) -> Run:
+        """One run: an accelerated phase that can only prove admissibility, then the plain one.
+
+        With ``anderson > 0`` the iteration first runs with Anderson acceleration for at
+        most ``AA_BUDGET`` iterations and stops there only if it finds an admissible
+        state (a certificate whatever the path to it: X in equilibrium, checked, and
+        within the joint laws). Acceleration extrapolates the drift of a run whose sets
+        do not meet, so inadmissibility and stalling are decided by the plain iteration,
+        which then starts afresh with the rest of the budget.
+        """
+        if anderson > 0 and not self.mechanism:
+            first = self._iterate(laws, load_factor, tol, min(max_iter, AA_BUDGET), window,
+                                  keep_history, optimal, rho, alpha, anderson, decide=False)
+            if first.status == "admissible" or first.iterations >= max_iter:
+                return first
+            r = self._iterate(laws, load_factor, tol, max_iter - first.iterations, window,
+                              keep_history, optimal, rho, alpha, 0, decide=True)
+            r.iterations += first.iterations
+            r.time += first.time
+            return r
+        return self._iterate(laws, load_factor, tol, max_iter, window, keep_history,
+                             optimal, rho, alpha, 0, decide=True)
+
+    def _iterate(self, laws: _Laws, load_factor: float, tol: float, max_iter: int,
+                 window: int, keep_history: bool, optimal: bool, rho: float,
+                 alpha: float, anderson: int, decide: bool) -> Run:
         """The accelerated distortion iteration from the elastic solution.
 
         See the module docstring. ``optimal=False`` stops at the first iterate that is
         admissible within ``tol`` (enough for a verdict); ``optimal=True`` goes on until
-        the step is below ``tol`` too, so that the state is the least-energy one.
+        the step and the dual residual are below ``max(tol, STATE_TOL)`` too, so that
+        the state is the least-energy one.
         """
+        stol = max(tol, STATE_TOL)
+        last_ok = None
         t0 = time.perf_counter()
         n = self.P + self.m
         b = self.rhs(load_factor)
@@ -292,6 +374,7 @@ class DistortionSolver:
         if viol <= tol:
             status = "admissible"
         next_adapt = ADAPT
+        aa: dict[str, Any] = {"S": [], "G": [], "g": math.inf, "restarts": 0}
         while not status and k < max_iter:
             # distortion delta = rho/(1+rho) (z - u - X0); its self-stress via the projector
             delta = self.scatter(rho / (1.0 + rho) * (z - u - v0))
@@ -300,16 +383,19 @@ class DistortionSolver:
             vh = alpha * vn + (1.0 - alpha) * z
             zn = laws.project(vh + u)
             du = vh - zn
-            u = u + du
             dual = rho * float(np.abs(zn - z).max(initial=0.0))
             step = float(np.abs(vn - v).max(initial=0.0))
-            z, v = zn, vn
+            z, u = self._anderson(aa, z, u, zn, u + du, anderson)
+            v = vn
             viol = laws.violation(v)
             k += 1
             hist.append(viol)
-            if viol <= tol and (not optimal or (step <= tol and dual <= tol)):
-                status = "admissible"
-                break
+            if viol <= tol and float(np.abs(self.As @ self.scatter(v) - b).max()) <= \
+                    1e-9 * (1.0 + float(np.abs(b).max(initial=0.0))):
+                last_ok = v
+                if not optimal or (step <= stol and dual <= stol):
+                    status = "admissible"
+                    break
             if k == next_adapt:
                 # residual balancing: the projector does not depend on rho (same metric)
                 prim = float(np.abs(v - z).max(initial=0.0))
@@ -317,8 +403,10 @@ class DistortionSolver:
                     new = min(max(rho * math.sqrt(prim / dual), 1e-4), 1e4)
                     u *= rho / new
                     rho = new
-                next_adapt *= 2
-            if k % window == 0 and k >= 2 * window:
+                    aa["S"].clear()
+                    aa["G"].clear()
+                next_adapt = 2 * next_adapt if next_adapt < ADAPT_LAST else -1
+            if decide and k % window == 0 and k >= 2 * window:
                 half = hist[k // 2]
                 # the limit of the violation if it fell like 1/sqrt(k) (slower than the
                 # iteration does when the sets meet): a positive limit is a gap
@@ -339,6 +427,13 @@ class DistortionSolver:
                               "decide")
         x = self.scatter(v)
         residual = float(np.abs(self.As @ x - b).max(initial=0.0))
+        if not status and last_ok is not None:
+            status, v = "admissible", last_ok
+            x = self.scatter(v)
+            viol = laws.violation(v)
+            residual = float(np.abs(self.As @ x - b).max(initial=0.0))
+            reason = (f"admissible; the iteration budget ({max_iter}) ended before the "
+                      f"state settled (last step {step:.2g}, dual residual {dual:.2g})")
         if not status:
             status = "undecided"
             reason = (f"no convergence within the iteration budget ({max_iter} iterations, "
@@ -548,7 +643,7 @@ def check_distortion(scene: Scene, f: float, load_factor: float, state: bool = T
     violation of the last iterate (an upper bound of the smallest one).
     """
     w = _Work(scene)
-    r = w.run(f, load_factor, tol=tol, max_iter=max_iter)
+    r = w.run(f, load_factor, tol=tol, max_iter=max_iter, optimal=state)
     w.describe(r)
     ok = r.status == "admissible"
     st = w.state(r) if (ok and state) else None
