@@ -169,13 +169,15 @@ def chart(arch: list, split: list, pyr: list, path: Path) -> None:
     panel(axes[0], [r["voussoirs"] for r in arch], arch, "voussoirs N",
           f"semicircular arch t/R = 0.15: finest N = {arch[-1]['voussoirs']}")
     panel(axes[1], [r["points_per_joint"] for r in split], split, "points per 3D joint",
-          "reference model extruded, edges split")
+          "reference model extruded, edges split", logx=False)
     xs = [r["facets"] for r in pyr[:-1]]
     panel(axes[2], xs, pyr[:-1], "pyramid facets k",
           f"extruded wall, load at {LOAD_ANGLE:g} deg: pyramid vs SOC cone")
     k = np.array(xs, dtype=float)
     axes[2].plot(k, 1 - np.cos(np.pi / k), color="grey", lw=0.8, label="1 - cos(pi/k)")
-    axes[2].legend(fontsize=8, loc="lower left")
+    h1, l1 = axes[2].get_legend_handles_labels()
+    h2, l2 = fig.axes[-1].get_legend_handles_labels()
+    axes[2].legend(h1 + h2, l1 + l2, fontsize=8, loc="lower left")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
