@@ -56,14 +56,16 @@ from common import markdown_table, out_dir, write_results  # noqa: E402
 NAME = "bench_scaling"
 STAGES = ("read", "contacts", "assembly", "build", "solve", "results")
 NON_SOLVER = ("read", "contacts", "assembly", "build", "results")
-ANALYSES = ("check", "min_friction", "max_load_multiplier", "max_load_no_state")
+ANALYSES = ("check", "min_friction", "min_friction_no_state", "max_load_multiplier",
+            "max_load_no_state")
 SIZES_2D = (100, 1_000, 5_000, 20_000)
 STAGE_SIZES_2D = (100, 1_000, 5_000, 20_000, 50_000)
 SIZES_3D = (100, 1_000, 5_000)
 TINY_2D = (12, 40)
 TINY_3D = (12,)
 #: largest walls per analysis (the rest would take tens of minutes on a shared machine)
-LIMITS = {"min_friction": {2: 5_000, 3: 1_000}, "check": {2: 5_000, 3: 1_000},
+LIMITS = {"min_friction": {2: 5_000, 3: 1_000}, "min_friction_no_state": {2: 5_000, 3: 0},
+          "check": {2: 5_000, 3: 1_000},
           "max_load_no_state": {2: 20_000, 3: 0}, "max_load_multiplier": {2: 20_000, 3: 5_000},
           "reference": {2: 5_000, 3: 1_000}}
 #: cases above these sizes run last, after the settings trials and the cvxpy comparison
@@ -248,6 +250,8 @@ def run_case(spec: dict[str, Any]) -> dict[str, Any]:
                 res = check(scene, **kw)
             elif a == "min_friction":
                 res = min_friction(scene, rtol=1e-6, **kw)
+            elif a == "min_friction_no_state":
+                res = min_friction(scene, rtol=1e-6, state=False, **kw)
             elif a == "max_load_no_state":
                 res = max_load_multiplier(scene, state=False, **kw)
             else:
@@ -392,7 +396,8 @@ def summarise(cases: list[dict[str, Any]], tiny: bool) -> dict[str, Any]:
         return min(sel, key=lambda r: abs(math.log(r["blocks"] / want)))
     for a, key in (("max_load_multiplier", "max_load_ratio"),
                    ("max_load_no_state", "max_load_ratio_no_state"),
-                   ("min_friction", "min_friction_ratio")):
+                   ("min_friction", "min_friction_ratio"),
+                   ("min_friction_no_state", "min_friction_ratio_no_state")):
         r = pick(a)
         if r is not None:
             lim = TARGETS[key.removesuffix("_no_state")]
@@ -514,7 +519,8 @@ def chart(cases: list[dict[str, Any]], summary: dict[str, Any], path: Path) -> N
         ax.loglog([c["blocks"] for c in st], [max(c["seconds"][s], 1e-6) for c in st],
                   "o--", lw=1, ms=3, label=s)
     for a, style in (("max_load_multiplier", "s-"), ("max_load_no_state", "^-"),
-                     ("min_friction", "d-"), ("check", "v-")):
+                     ("min_friction", "d-"), ("min_friction_no_state", "D-"),
+                     ("check", "v-")):
         sel = sorted((r for r in summary["rows"] if r["dim"] == 2 and r["analysis"] == a),
                      key=lambda r: r["blocks"])
         if sel:
@@ -551,7 +557,7 @@ def plan(tiny: bool, sizes2d: Sequence[int], stage_sizes: Sequence[int],
             else:
                 skipped.append(f"reference (1e-10) {dim}D {n}")
             for a in ANALYSES:
-                if a == "max_load_no_state" and dim == 3:
+                if a.endswith("_no_state") and dim == 3:
                     continue
                 if not tiny and n > LIMITS[a][dim]:
                     skipped.append(f"{a} {dim}D {n}")
