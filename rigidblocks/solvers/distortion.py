@@ -110,8 +110,8 @@ SQRT2 = math.sqrt(2.0)
 FLOW_TOL = 0.02
 #: step and dual residual below which an admissible iterate is the QP's state
 STATE_TOL = 1e-8
-#: last iteration at which the penalty is rebalanced
-ADAPT_LAST = 160
+#: last iteration at which the penalty may be rebalanced
+ADAPT_LAST = MAX_ITER
 #: memory of the Anderson acceleration (0: none, the default; see :meth:`DistortionSolver.run`)
 ANDERSON = 0
 #: largest Anderson correction, in units of the plain step
@@ -396,7 +396,7 @@ class DistortionSolver:
                 if not optimal or (step <= stol and dual <= stol):
                     status = "admissible"
                     break
-            if k == next_adapt:
+            if k == next_adapt and not anderson:  # the accelerated phase keeps rho
                 # residual balancing: the projector does not depend on rho (same metric)
                 prim = float(np.abs(v - z).max(initial=0.0))
                 if dual > 0 and prim > 0 and not 0.2 < prim / dual < 5.0:
