@@ -256,6 +256,29 @@ def run(tiny: bool) -> list[dict[str, Any]]:
     return rows
 
 
+def _show(v: Any) -> Any:
+    return f"{v:.10g}" if isinstance(v, float) else v
+
+
+def report(rows: list[dict[str, Any]], counts: dict[str, dict[str, int]],
+           default_wrong: int) -> str:
+    """The markdown section: counts per method, every row, the sources."""
+    table = markdown_table(
+        ["case", "method", "expected", "answer", "verdict", "seconds"],
+        [[r["case"], r["method"], _show(r["expected"]), _show(r["answer"]),
+          f"**{r['verdict']}**" if r["verdict"] == "wrong" else r["verdict"],
+          "—" if r["seconds"] is None else r["seconds"]] for r in rows])
+    summary = markdown_table(["method", "right", "wrong", "flagged"],
+                             [[m, c["right"], c["wrong"], c["flagged"]]
+                              for m, c in counts.items()])
+    whys = "\n".join(f"- {w}" for w in dict.fromkeys(r["why"] for r in rows))
+    return (f"## Hard cases ({NAME}.py)\n\n"
+            f"Verdict: right (status, and numbers within {RTOL:g} relative), wrong, or "
+            "flagged (an error raised, or an undecided / failure status).\n\n"
+            f"{summary}\n\nWrong answers on the default path: {default_wrong}.\n\n"
+            f"{table}\n\nWhere the expected answers come from:\n\n{whys}\n")
+
+
 def main(argv: list[str] | None = None) -> dict[str, Any]:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--out", default=None, help="results folder (default benchmarks/results)")
@@ -265,20 +288,7 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     counts = {m: {v: sum(1 for r in rows if r["method"] == m and r["verdict"] == v)
                   for v in ("right", "wrong", "flagged")} for m in METHODS}
     default_wrong = [r for r in rows if r["method"] == "clarabel" and r["verdict"] == "wrong"]
-    table = markdown_table(
-        ["case", "method", "expected", "answer", "verdict", "seconds"],
-        [[r["case"], r["method"], r["expected"], r["answer"],
-          f"**{r['verdict']}**" if r["verdict"] == "wrong" else r["verdict"],
-          "—" if r["seconds"] is None else r["seconds"]] for r in rows])
-    summary = markdown_table(["method", "right", "wrong", "flagged"],
-                             [[m, c["right"], c["wrong"], c["flagged"]]
-                              for m, c in counts.items()])
-    whys = "\n".join(f"- {w}" for w in dict.fromkeys(r["why"] for r in rows))
-    md = (f"## Hard cases ({NAME}.py)\n\n"
-          f"Verdict: right (status, and numbers within {RTOL:g} relative), wrong, or "
-          "flagged (an error raised, or an undecided / failure status).\n\n"
-          f"{summary}\n\nWrong answers on the default path: {len(default_wrong)}.\n\n"
-          f"{table}\n\nWhere the expected answers come from:\n\n{whys}\n")
+    md = report(rows, counts, len(default_wrong))
     data = {"rows": rows, "counts": counts, "default_wrong": len(default_wrong)}
     write_results(a.out, NAME, data, md)
     return data
