@@ -62,7 +62,9 @@ from rigidblocks.errors import InputError  # noqa: E402
 from rigidblocks.examples import build  # noqa: E402
 from rigidblocks.examples.walls import running_bond_wall  # noqa: E402
 from rigidblocks.scene.extrude import extrude  # noqa: E402
+from rigidblocks.scene.geometry import scene_size  # noqa: E402
 from rigidblocks.scene.model import Scene, make_block  # noqa: E402
+from rigidblocks.scene.validate import validate_scene  # noqa: E402
 
 NAME = "bench_peer"
 RUNNER = Path(__file__).resolve().parent / "peer_runner.py"
@@ -180,15 +182,19 @@ def joint_forces(result: Any) -> dict[tuple[str, str], float]:
     return out
 
 
-def run_ours(scene: Scene, pyramid: int | None = None, forces: bool = False) -> dict:
+def run_ours(scene: Scene, pyramid: int | None = None, forces: bool = False,
+             contact_tol: float | None = None) -> dict:
     """Time ``check`` (verdict only); with ``forces``, also the state's joint forces."""
     t0 = time.perf_counter()
-    res = check(scene, load_factor=0.0, state=False, pyramid=pyramid)
+    res = check(scene, load_factor=0.0, state=False, pyramid=pyramid, contact_tol=contact_tol)
     total = time.perf_counter() - t0
     out = {"verdict": res.status, "total": total, "solve": res.solve_time,
            "joints": res.contacts.n_joints}
+    if contact_tol is not None:
+        out["contact_tol"] = contact_tol
     if forces and res.status == "admissible":
-        state = check(scene, load_factor=0.0, state=True, pyramid=pyramid)
+        state = check(scene, load_factor=0.0, state=True, pyramid=pyramid,
+                      contact_tol=contact_tol)
         out["forces"] = joint_forces(state)
     return out
 
@@ -254,11 +260,22 @@ def compare_forces(ours: dict[tuple[str, str], float], peer: dict) -> dict | Non
 
 
 def sample_scene(blocks: list[dict], mu: float) -> Scene:
-    """Our 3D scene of the peer's exported blocks (unit weight = its density)."""
+    """Our 3D scene of the peer's exported blocks (unit weight = its density).
+
+    Validated like a scene file (convex polyhedra, no overlaps): a sample with a
+    non-convex block raises :class:`InputError` naming it, and is reported as not
+    modelled rather than analysed with wrongly oriented faces.
+    """
     bl = tuple(make_block(b["id"], b["vertices"], faces=b["faces"], support=b["support"],
                           unit_weight=b["density"]) for b in blocks)
-    return Scene(dimension=3, blocks=bl, friction=mu, unit_weight=1.0,
-                 name="peer sample")
+    scene = Scene(dimension=3, blocks=bl, friction=mu, unit_weight=1.0, name="peer sample")
+    validate_scene(scene)
+    return scene
+
+
+def sample_contact_tol(scene: Scene, case: dict) -> float:
+    """The peer's interface tolerance tmax (a length) as our relative contact tolerance."""
+    return float(case["interfaces"]["tmax"]) / scene_size(scene)
 
 
 def bench(sizes: dict, python: str | None, timeouts: dict, log=sys.stdout) -> list[dict]:
@@ -290,8 +307,9 @@ def bench(sizes: dict, python: str | None, timeouts: dict, log=sys.stdout) -> li
                 if st["scene3d"] is None and peer["rbe"].get("blocks"):
                     try:
                         s3 = sample_scene(peer["rbe"]["blocks"], st["peer"]["mu"])
-                        ours["3d_cone"] = run_ours(s3, forces=True)
-                        ours["3d_pyr8"] = run_ours(s3, pyramid=8)
+                        tol = sample_contact_tol(s3, st["peer"])
+                        ours["3d_cone"] = run_ours(s3, forces=True, contact_tol=tol)
+                        ours["3d_pyr8"] = run_ours(s3, pyramid=8, contact_tol=tol)
                         row["blocks"] = sum(not b["support"] for b in peer["rbe"]["blocks"])
                     except InputError as exc:
                         ours["3d_cone"] = {"verdict": f"not modelled: {exc}"}
@@ -449,7 +467,9 @@ def markdown(rows: list[dict], tg: dict | None, hard: list[dict], python: str | 
     samples = [r for r in rows if r["kind"] == "peer sample" and "3d_cone" in r["ours"]]
     if samples:
         lines += ["The peer's samples as convex polyhedra in our 3D model: joints found by "
-                  "our contact detection (tolerance 1e-7) against the peer's interfaces "
+                  "our contact detection (tolerance: the peer's tmax over the scene size; "
+                  "a sample with a non-convex block is not modelled) against the peer's "
+                  "interfaces "
                   "(its tolerances tmax of 1e-4 to 1e-2, several interfaces per pair on "
                   "curved or stepped contacts): " + "; ".join(
                       f"{r['name'].split()[-1]} {r['ours']['3d_cone'].get('joints', '-')} vs "

@@ -20,10 +20,11 @@ from .model import Contacts
 
 def plane_frame(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Two unit tangents (t1, t2) with (n, t1, t2) right-handed."""
-    helper = np.array([1.0, 0.0, 0.0]) if abs(n[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    t1 = np.cross(n, helper)
+    x, y, z = float(n[0]), float(n[1]), float(n[2])
+    # n x e1 when n is far from e1, else n x e2
+    t1 = np.array([0.0, z, -y]) if abs(x) < 0.9 else np.array([-z, 0.0, x])
     t1 /= np.linalg.norm(t1)
-    return t1, np.cross(n, t1)
+    return t1, np.array([y * t1[2] - z * t1[1], z * t1[0] - x * t1[2], x * t1[1] - y * t1[0]])
 
 
 def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:

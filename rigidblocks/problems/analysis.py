@@ -145,8 +145,14 @@ class _Context:
 
 
 def _context(scene: Scene, solver: str, settings: dict | None,
-             pyramid: int | None = None) -> _Context:
-    system = assemble(scene)
+             pyramid: int | None = None, contact_tol: float | None = None) -> _Context:
+    if contact_tol is None:
+        system = assemble(scene)
+    else:
+        tol = float(contact_tol)
+        if not (tol > 0 and math.isfinite(tol)):
+            raise InputError(f"contact_tol must be a number > 0, got {contact_tol!r}")
+        system = assemble(scene, tol=tol)
     ctx = _Context(scene, system, Scaling.of(system), solver, dict(settings or {}),
                    pyramid=pyramid)
     if pyramid is not None:
@@ -157,6 +163,12 @@ def _context(scene: Scene, solver: str, settings: dict | None,
         ctx.notes.append(f"friction cones linearised as inscribed {int(pyramid)}-facet "
                          "pyramids (an approximation: not the Coulomb cone)")
     return ctx
+
+
+def _no_contact_tol(contact_tol: float | None) -> None:
+    if contact_tol is not None:
+        raise InputError("contact_tol is an option of the convex path, not of the "
+                         "distortion method")
 
 
 # -- relaxation ----------------------------------------------------------------------
@@ -339,7 +351,8 @@ def chain_order(system: EquilibriumSystem) -> np.ndarray:
 # -- check ---------------------------------------------------------------------------
 def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
           method: str = "clarabel", *, solver: str | None = None, state: bool = True,
-          settings: dict | None = None, pyramid: int | None = None) -> CheckResult:
+          settings: dict | None = None, pyramid: int | None = None,
+          contact_tol: float | None = None) -> CheckResult:
     """Is there an admissible equilibrium state under dead + load_factor x live?
 
     Admissible: equilibrium of every free block with compression-only contacts (or
@@ -356,6 +369,12 @@ def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
         state: compute the force state (least complementary energy) when admissible.
         pyramid: 3D only: linearise each Coulomb cone as an inscribed pyramid of this
             many facets (an approximation, labelled in the result's notes).
+        contact_tol: contact-detection tolerance relative to the scene's size (None:
+            the default 1e-7, see :func:`rigidblocks.contacts.detect_contacts`). Faces
+            or edges whose planes (lines) are closer than ``contact_tol x scene size``
+            are taken as touching: raise it for geometry with gaps or overlaps from
+            rounding (e.g. 1e-5 for coordinates exported to micrometres on a 5 m
+            model). Convex path only.
 
     Returns:
         :class:`~rigidblocks.results.CheckResult` with status "admissible" or
@@ -374,8 +393,9 @@ def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
     if path == "distortion":
         from ..solvers.distortion import check_distortion
 
+        _no_contact_tol(contact_tol)
         return check_distortion(scene, f, float(load_factor), state=state)
-    ctx = _context(scene, solver, settings, pyramid)
+    ctx = _context(scene, solver, settings, pyramid, contact_tol)
     rx = _relaxation(ctx, f, float(load_factor))
     if rx.R is None:  # equilibrium equations cannot be met at all: a mechanism
         ctx.notes.append("the equilibrium equations have no solution with these joints "
@@ -393,7 +413,8 @@ def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
 # -- minimum friction ------------------------------------------------------------------
 def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel", *,
                  solver: str | None = None, state: bool = True, rtol: float = FRICTION_RTOL,
-                 settings: dict | None = None, pyramid: int | None = None) -> FrictionResult:
+                 settings: dict | None = None, pyramid: int | None = None,
+                 contact_tol: float | None = None) -> FrictionResult:
     """The smallest uniform friction coefficient f* that admits equilibrium.
 
     Joints with their own friction override keep it. Status "unstable" (no number)
@@ -412,8 +433,9 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
     if path == "distortion":
         from ..solvers.distortion import min_friction_distortion
 
+        _no_contact_tol(contact_tol)
         return min_friction_distortion(scene, lf, state=state, rtol=rtol)
-    ctx = _context(scene, solver, settings, pyramid)
+    ctx = _context(scene, solver, settings, pyramid, contact_tol)
     if ctx.contacts.n_joints and not ctx.uniform.any():
         raise InputError("every joint has its own friction override: there is no uniform "
                          "friction to minimise", scene.source)
@@ -501,8 +523,8 @@ def _root_step(R: float, s: float, f: float, prev: tuple[float, float] | None) -
 # -- maximum load multiplier -------------------------------------------------------------
 def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clarabel", *,
                         solver: str | None = None, state: bool = True,
-                        settings: dict | None = None,
-                        pyramid: int | None = None) -> LoadResult:
+                        settings: dict | None = None, pyramid: int | None = None,
+                        contact_tol: float | None = None) -> LoadResult:
     """The largest multiplier lambda* of the live loads (associative friction).
 
     Status "collapse" with lambda* and the collapse mechanism; "unbounded" when no
@@ -524,8 +546,9 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     if path == "distortion":
         from ..solvers.distortion import max_load_distortion
 
+        _no_contact_tol(contact_tol)
         return max_load_distortion(scene, f, state=state)
-    ctx = _context(scene, solver, settings, pyramid)
+    ctx = _context(scene, solver, settings, pyramid, contact_tol)
     prob, jr = build_max_load(ctx.system, ctx.scaling, ctx.f_joint(f), ctx.pyramid)
     res = ctx.run(prob, "maximum load")
     label = friction_label(f)

@@ -26,33 +26,76 @@ def face_normal(pts: np.ndarray) -> np.ndarray:
     ])
 
 
-def outward_faces(block: Block) -> list[np.ndarray]:
-    """The block's faces as vertex-index arrays ordered counter-clockwise seen from outside."""
+_FACE_CACHE = "_rigidblocks_faces"
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise cross product of (n, 3) arrays."""
+    return np.stack([a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1],
+                     a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
+                     a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]], axis=1)
+
+
+def _oriented(block: Block) -> tuple[list[np.ndarray], np.ndarray]:
+    """Faces ordered counter-clockwise seen from outside, and their Newell normals.
+
+    All faces in one vectorised pass (Newell's normal summed per face with bincount),
+    cached on the block (blocks are immutable). A face is reversed when its normal
+    points towards the mean of the block's vertices: right for convex blocks, which is
+    what :func:`validate_polyhedra` demands (a non-convex block fails its convexity
+    test whichever way its faces are oriented).
+    """
+    cached = block.__dict__.get(_FACE_CACHE)
+    if cached is not None:
+        return cached
     pts = block.points
-    inside = pts.mean(axis=0)
-    out = []
-    for f in block.faces or ():
-        idx = np.asarray(f)
-        n = face_normal(pts[idx])
-        if np.dot(n, pts[idx].mean(axis=0) - inside) < 0:
-            idx = idx[::-1]
-        out.append(idx)
+    faces = [np.asarray(f, dtype=int) for f in block.faces or ()]
+    if not faces:
+        out: tuple[list[np.ndarray], np.ndarray] = ([], np.zeros((0, 3)))
+        block.__dict__[_FACE_CACHE] = out
+        return out
+    cnt = np.array([len(f) for f in faces])
+    starts = np.concatenate([[0], np.cumsum(cnt)])
+    flat = np.concatenate(faces)
+    owner = np.repeat(np.arange(len(faces)), cnt)
+    nxt = np.arange(len(flat)) + 1
+    nxt[starts[1:] - 1] = starts[:-1]
+    p, q = pts[flat], pts[flat[nxt]]
+    comp = [(p[:, 1] - q[:, 1]) * (p[:, 2] + q[:, 2]),
+            (p[:, 2] - q[:, 2]) * (p[:, 0] + q[:, 0]),
+            (p[:, 0] - q[:, 0]) * (p[:, 1] + q[:, 1])]
+    k = len(faces)
+    normals = np.stack([np.bincount(owner, c, minlength=k) for c in comp], axis=1)
+    centres = np.stack([np.bincount(owner, p[:, j], minlength=k) for j in range(3)],
+                       axis=1) / cnt[:, None]
+    flip = np.einsum("ij,ij->i", normals, centres - pts.mean(axis=0)) < 0
+    normals[flip] *= -1.0
+    out = ([f[::-1] if fl else f for f, fl in zip(faces, flip, strict=True)], normals)
+    block.__dict__[_FACE_CACHE] = out
     return out
 
 
+def outward_faces(block: Block) -> list[np.ndarray]:
+    """The block's faces as vertex-index arrays ordered counter-clockwise seen from outside."""
+    return list(_oriented(block)[0])
+
+
 def polyhedron_volume_centroid(block: Block) -> tuple[float, np.ndarray]:
-    """Volume and centroid of a closed polyhedron (faces oriented outward)."""
+    """Volume and centroid of a closed polyhedron (faces oriented outward).
+
+    Divergence theorem on a fan triangulation of each face: tetrahedra (o, a, b, c)
+    with o the mean vertex, V = sum a.(b x c) / 6, centroid = o + sum V_t (a+b+c)/4 / V.
+    """
     pts = block.points
     o = pts.mean(axis=0)
-    vol = 0.0
-    mom = np.zeros(3)
-    for idx in outward_faces(block):
-        p = pts[idx]
-        for k in range(1, len(idx) - 1):
-            a, b, c = p[0] - o, p[k] - o, p[k + 1] - o
-            v = np.dot(a, np.cross(b, c)) / 6.0
-            vol += v
-            mom += v * (a + b + c) / 4.0
+    tri = [np.stack([np.full(len(f) - 2, f[0]), f[1:-1], f[2:]], axis=1)
+           for f in _oriented(block)[0]]
+    t = np.concatenate(tri) if tri else np.zeros((0, 3), dtype=int)
+    a, b, c = pts[t[:, 0]] - o, pts[t[:, 1]] - o, pts[t[:, 2]] - o
+    v = (a * _cross(b, c)).sum(axis=1) / 6.0
+    # running sums in face order (the same round-off as summing tetrahedron by tetrahedron)
+    vol = float(np.cumsum(v)[-1]) if len(v) else 0.0
+    mom = np.cumsum(v[:, None] * (a + b + c) / 4.0, axis=0)[-1] if len(v) else np.zeros(3)
     return abs(vol), o + mom / vol
 
 
@@ -98,14 +141,10 @@ def validate_polyhedra(scene: Scene) -> None:
 
 def block_planes(block: Block) -> tuple[np.ndarray, np.ndarray]:
     """Outward unit normals (k, 3) and offsets (k,) of the block's face planes."""
-    pts = block.points
-    normals, offsets = [], []
-    for idx in outward_faces(block):
-        n = face_normal(pts[idx])
-        n = n / np.linalg.norm(n)
-        normals.append(n)
-        offsets.append(float(n @ pts[idx[0]]))
-    return np.array(normals), np.array(offsets)
+    faces, normals = _oriented(block)
+    n = normals / np.linalg.norm(normals, axis=1)[:, None]
+    first = np.array([f[0] for f in faces], dtype=int)
+    return n, np.einsum("ij,ij->i", n, block.points[first])
 
 
 def candidate_pairs(scene: Scene, pad: float) -> np.ndarray:
