@@ -102,8 +102,8 @@ def build(results: Path, readme_dir: Path = HERE) -> str:
                      f"{machine.get('clarabel', '?')} ({machine.get('platform', '?')}); "
                      f"figures of {date or '?'}.")
         lines.append("")
-    lines += ["Rerun (each script also takes `--tiny` for a seconds-long smoke run and "
-              "`--out DIR`):", ""]
+    lines += ["Rerun (the scripts following benchmarks/common.py also take `--tiny` for a "
+              "seconds-long smoke run and `--out DIR`):", ""]
     scripts = sorted(HERE.glob("bench_*.py"), key=lambda p: _rank(p.stem))
     lines += [_script_line(p) for p in scripts]
     lines += ["- `python benchmarks/make_readme.py`: this file", ""]
