@@ -469,3 +469,15 @@ def test_min_friction_of_thick_arches_in_few_solves(voussoirs, thickness):
     f = r.friction_factor
     assert check(arch, friction=f * (1 + 1e-6), load_factor=0.0, state=False).admissible
     assert not check(arch, friction=f * (1 - 1e-6), load_factor=0.0, state=False).admissible
+
+
+@pytest.mark.slow
+def test_large_wall_collapse_multiplier_agrees_with_the_simplex():
+    """lambda* of a 32-course wall of 992 blocks by the default path agrees with HiGHS's
+    simplex vertex to 1e-5 (at Clarabel's default tolerances it was 7e-5 off). ~30 s."""
+    from rigidblocks.examples import build
+
+    wall = build("wall", courses=32, blocks_per_course=31)
+    ours = max_load_multiplier(wall, state=False).load_multiplier
+    simplex = max_load_multiplier(wall, solver="highs", state=False).load_multiplier
+    assert ours == pytest.approx(simplex, rel=1e-5)
