@@ -178,3 +178,35 @@ def test_limit_state_of_a_dome_sliding_all_round_has_a_force_state():
     assert total[2] == pytest.approx(W, rel=1e-6)
     assert -total @ direction == pytest.approx(r.load_multiplier * W
                                               * np.linalg.norm(s.live_body_force), rel=1e-5)
+
+
+@pytest.mark.parametrize("gap,overlaps", [(0.05, False), (-0.05, True)])
+def test_overlap_decided_by_an_edge_edge_axis(gap, overlaps):
+    """Two cubes standing on an edge, turned 90 degrees to each other, the upper one's
+    bottom edge (along y) crossing the lower one's top edge (along x) at a distance
+    ``gap``. No face normal of either cube separates them (checked below by projection);
+    only the cross product of the two edges (the vertical) does, so the separating-axis
+    test must try edge pairs: apart at gap > 0, overlapping at gap < 0."""
+    r = math.sqrt(0.5)
+    # cube of side 1 turned 45 degrees about x: its top edge runs along x at z = 2r
+    sec = [[0, -r, r], [0, 0, 2 * r], [0, r, r], [0, 0, 0]]
+    lower = [[x, y, z] for x in (-0.5, 0.5) for _, y, z in sec]
+    # the same turned about y and lifted: its bottom edge runs along y at z = 2r + gap
+    upper = [[y, x, z + 2 * r + gap] for x in (-0.5, 0.5) for _, y, z in sec]
+    faces = [[0, 1, 2, 3], [7, 6, 5, 4], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3],
+             [3, 7, 4, 0]]
+    pl, pu = np.array(lower), np.array(upper)
+    normals = [np.array(n) / np.linalg.norm(n) for n in
+               ([1, 0, 0], [0, 1, 1], [0, 1, -1], [0, 1, 0], [1, 0, 1], [1, 0, -1])]
+    for n in normals:  # no face normal separates them
+        a, b = pl @ n, pu @ n
+        assert a.max() > b.min() and b.max() > a.min()
+    base_v, base_f = box(-3, -3, -2, 6, 6, 1)
+    blocks = [{"id": "base", "vertices": base_v, "faces": base_f, "support": True},
+              {"id": "lower", "vertices": lower, "faces": faces},
+              {"id": "upper", "vertices": upper, "faces": faces}]
+    if overlaps:
+        with pytest.raises(InputError, match="'lower' and 'upper' overlap"):
+            scene3d(blocks)
+    else:
+        assert len(scene3d(blocks).blocks) == 3
