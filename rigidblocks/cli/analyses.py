@@ -78,8 +78,7 @@ def report(scene, res) -> str:
         if res.status == "stable":
             lines.append(f"f*         {res.friction_factor:.6g}   (friction angle "
                          f"{res.friction_angle_deg:.4f} deg)")
-            gov = ", ".join(f"{a}-{b}" for a, b in res.governing_joints) or "-"
-            lines.append(f"governing  {gov}")
+            lines.append(f"governing  {_joint_list(res.governing_joints)}")
         else:
             lines.append("verdict    UNSTABLE: no friction suffices (hinging mechanism)")
             lines += _live_hint(scene, res)
@@ -90,14 +89,21 @@ def report(scene, res) -> str:
             lines.append(f"lambda*    {res.load_multiplier:.6g}")
             mech = d.get("mechanism", {})
             for key in ("hinges", "sliding", "open"):
-                vals = ", ".join(f"{a}-{b}" for a, b in mech.get(key, [])) or "-"
-                lines.append(f"{key:<10} {vals}")
+                lines.append(f"{key:<10} {_joint_list(mech.get(key, []))}")
         elif res.status == "unbounded":
             lines.append("verdict    UNBOUNDED: no multiplier of the live load makes it collapse")
         else:
             lines.append("verdict    UNSTABLE: the dead load alone has no admissible state")
     lines.append(f"solver     {res.solver}, {res.n_solves} solve(s), {res.solve_time:.3g} s")
     return "\n".join(lines)
+
+
+def _joint_list(joints, most: int = 12) -> str:
+    """Joints as ``a-b`` names; a long list is cut, with its length (``--json`` has all)."""
+    names = [f"{a}-{b}" for a, b in joints]
+    if len(names) <= most:
+        return ", ".join(names) or "-"
+    return f"{len(names)} joints: " + ", ".join(names[:most]) + ", ... (--json lists all)"
 
 
 def _live_hint(scene, res) -> list[str]:

@@ -42,6 +42,10 @@ METHODS = ("clarabel", "distortion")
 #: slack (reference-force units) granted to the force-state QP at a limit state, where
 #: the admissible set shrinks to a point and round-off would make it empty
 STATE_SLACK = 1e-9
+#: a joint's opening or slip below this fraction of the mechanism's largest counts as
+#: none when joints are classified (interior-point duals spread round-off of the order
+#: of the solver's tolerance over every joint)
+MODE_TOL = 1e-6
 #: back ends that solve linear programs only (the force-state QP goes to Clarabel)
 LP_ONLY = ("highs",)
 
@@ -610,7 +614,7 @@ def mechanism(system: EquilibriumSystem, scaling: Scaling, y_eq: np.ndarray) -> 
     c = system.contacts
     opening = delta[lay.normal]
     slip = delta[lay.tangential]
-    tol = 1e-6 * max(np.abs(delta).max(initial=0.0), 1e-300)
+    tol = MODE_TOL * max(np.abs(delta).max(initial=0.0), 1e-300)
     modes = []
     for k in range(c.n_joints):
         pts = slice(c.joint_start[k], c.joint_start[k + 1])
