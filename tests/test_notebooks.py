@@ -23,21 +23,15 @@ import re
 import sys
 from pathlib import Path
 
+import ipykernel  # noqa: F401  (the kernel the notebooks run in; in the test extra)
+import nbclient
+import nbformat
 import pytest
 from conftest import ROOT
-
-nbformat = pytest.importorskip("nbformat")
-nbclient = pytest.importorskip("nbclient")
-pytest.importorskip("ipykernel")
 
 NOTEBOOKS = ROOT / "notebooks"
 NAMES = ["01_quick_start", "02_seed_examples", "03_parametric_study", "04_methods_compared"]
 TIMEOUT = 120
-#: without committed benchmark results the methods notebook runs both benchmark scripts
-#: (--tiny), about 20 s on an idle machine: then its test is a slow one
-BENCH_RESULTS = all((ROOT / "benchmarks" / "results" / f"{n}.json").exists()
-                    for n in ("bench_accuracy", "bench_methods"))
-slow_without_results = (lambda f: f) if BENCH_RESULTS else pytest.mark.slow
 
 
 def _kernel_manager(tmp: Path):
@@ -148,7 +142,6 @@ def test_parametric_study(tmp_path):
     assert text.count("failures 0") == 2 and text.count("failures 1") == 1
 
 
-@slow_without_results
 def test_methods_compared(tmp_path):
     """The methods notebook charts the benchmark's data; the convex path's f* of the
     seed reference model is 0.5 (seed Fig. 4a)."""
