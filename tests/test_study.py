@@ -62,7 +62,8 @@ def same_answers(a: pd.DataFrame, b: pd.DataFrame, tol: float = 1e-9) -> None:
 # -- executors -------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def dask_client():
-    distributed = pytest.importorskip("dask.distributed")
+    import dask.distributed as distributed
+
     cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                        dashboard_address=None)
     client = distributed.Client(cluster)
@@ -224,7 +225,8 @@ def test_expand_cases_grid_order_and_random_seed():
 
 
 def test_plot_friction_angle_vs_joint_inclination():
-    matplotlib = pytest.importorskip("matplotlib")
+    import matplotlib
+
     matplotlib.use("Agg")
     res = study.run("flat_arch", grid={"voussoirs": [3, 5, 0], "centre_depth": [1.0, 2.0]},
                     parameters={"load_factor": 0.0}, workers=1, progress=False)
