@@ -27,7 +27,7 @@ def solve_osqp(problem: ConicProblem, **settings) -> SolverResult:
     solver = osqp.OSQP()
     solver.setup(P=sp.triu(P, format="csc"), q=problem.c, A=sp.csc_matrix(problem.A),
                  l=lower, u=problem.b, **opts)
-    res = solver.solve()
+    res = solver.solve(raise_error=False)  # a status, not an exception
     elapsed = time.perf_counter() - t0
     raw = str(res.info.status)
     status = (OPTIMAL if raw == "solved" else INFEASIBLE if raw == "primal infeasible"
