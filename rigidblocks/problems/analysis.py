@@ -38,6 +38,9 @@ TIGHT_SETTINGS = {
 }
 #: relative accuracy of the minimum friction
 FRICTION_RTOL = 1e-7
+#: absolute accuracy of the minimum friction: a structure that stands with f <= 1e-9
+#: needs no friction (round-off keeps R(0) just above the threshold)
+FRICTION_ATOL = 1e-9
 METHODS = ("clarabel", "distortion")
 #: slack (reference-force units) granted to the force-state QP at a limit state, where
 #: the admissible set shrinks to a point and round-off would make it empty
@@ -462,7 +465,7 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
     prev: tuple[float, float] | None = None  # (f, slope) of the previous lower point
     probe_below_hi = True  # next time Newton lands on or past hi, probe just below hi
     for _ in range(100):
-        if math.isfinite(hi) and hi - lo <= rtol * hi:
+        if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
             break
         newton = lo + _root_step(R_lo, s_lo, lo, prev) if s_lo > 0 else math.inf
         if math.isinf(hi):
