@@ -210,3 +210,18 @@ def test_overlap_decided_by_an_edge_edge_axis(gap, overlaps):
             scene3d(blocks)
     else:
         assert len(scene3d(blocks).blocks) == 3
+
+
+def test_min_friction_where_the_relaxation_below_f_star_is_degenerate():
+    """A 10 x 10 running-bond wall extruded to 3D under a horizontal body force equal to
+    its weight: the foundation joint carries the weight W and the horizontal force W,
+    so f* >= 1, and a state with |T| = N on every bed joint reaches it (f* = 1, as in
+    2D). Just below f* the relaxation is too degenerate for Clarabel (AlmostSolved); the
+    analysis probes further below and reports f* = 1 with its bracket, not a failure."""
+    from rigidblocks.examples.walls import running_bond_wall
+    from rigidblocks.scene.extrude import extrude
+
+    r = rb.min_friction(extrude(running_bond_wall(10, 10)), rtol=1e-6)
+    assert r.status == "stable"
+    assert r.friction_factor == pytest.approx(1.0, rel=1e-6)
+    assert r.lower <= 1.0 <= r.upper * (1 + 1e-9)

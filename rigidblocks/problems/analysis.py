@@ -464,11 +464,15 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
     R_lo, s_lo = rx.R, rx.slope
     prev: tuple[float, float] | None = None  # (f, slope) of the previous lower point
     probe_below_hi = True  # next time Newton lands on or past hi, probe just below hi
+    forced: float | None = None  # the next trial, after a relaxation the solver missed
+    undecided = ""  # the solver's status where it could not decide near f*
     for _ in range(100):
         if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
             break
         newton = lo + _root_step(R_lo, s_lo, lo, prev) if s_lo > 0 else math.inf
-        if math.isinf(hi):
+        if forced is not None:
+            trial, forced = forced, None
+        elif math.isinf(hi):
             trial = newton if math.isfinite(newton) else max(2.0 * lo, 1.0)
             if trial - lo <= 0.5 * rtol * trial:
                 trial = trial * (1.0 + 0.5 * rtol)  # certify from above
@@ -482,7 +486,18 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
         else:
             trial = 0.5 * (lo + hi)
             probe_below_hi = True
-        rx = _relaxation(ctx, trial, lf)
+        try:
+            rx = _relaxation(ctx, trial, lf)
+        except SolverFailure as exc:
+            # just below f* the relaxation can be too degenerate for the interior-point
+            # solver: probe four times further below the certified upper end
+            if not math.isfinite(hi) or trial < hi * (1.0 - 1e3 * rtol):
+                raise
+            undecided = exc.status
+            forced = hi - 4.0 * (hi - trial)
+            if forced <= lo:
+                break
+            continue
         if rx.R is None:
             raise SolverFailure("relaxation problem lost its solution", ctx.solver,
                                 rx.res.raw_status)
@@ -495,6 +510,10 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
     else:
         raise SolverFailure("minimum friction did not converge in 100 solves", ctx.solver,
                             "iteration limit")
+    if undecided:
+        ctx.notes.append(f"near f* some relaxations ended with status {undecided}; f* is "
+                         f"bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
+                         f"{(hi - lo) / hi:.1e})")
     fstar = hi
     governing: tuple[int, ...] = ()
     if last is not None:
