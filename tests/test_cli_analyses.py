@@ -179,3 +179,20 @@ def test_unstable_under_live_load_hints_at_the_two_usual_questions(capsys):
     assert main(["friction", path, "--load-factor", "0"]) == 0
     out = capsys.readouterr().out
     assert "f*" in out and "hint" not in out
+
+
+def test_contact_tolerance_option(tmp_path, capsys):
+    """A 1 x 2 block drawn 1e-6 above its base (scene size about 5.4, so the gap is
+    2e-7 of it): at the default tolerance (1e-7 of the size) it does not touch and
+    cannot stand; with --contact-tol 1e-6 it rests on the base and stands (lambda = 0,
+    f = 0.3: its weight goes straight down)."""
+    path = write(tmp_path, "gap.json", [
+        {"id": "base", "vertices": rect(-2, -1, 5, 1), "support": True},
+        {"id": "B", "vertices": rect(0, 1e-6, 1, 2)},
+    ], unit_weight=1.0, friction=0.3)
+    assert main(["check", path, "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["status"] == "inadmissible"
+    assert main(["check", path, "--contact-tol", "1e-6", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["status"] == "admissible"
+    assert main(["check", path, "--contact-tol", "0"]) == 2
+    assert "contact_tol" in capsys.readouterr().err

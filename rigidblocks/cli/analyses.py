@@ -25,20 +25,24 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("--solver", default=None,
                    help="back end of the convex path: clarabel, highs, scs, ecos, "
                    "cvxpy-NAME")
+    p.add_argument("--contact-tol", type=float, default=None,
+                   help="contact tolerance relative to the scene's size (default 1e-7): "
+                   "faces this close count as touching")
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
 def run(args: argparse.Namespace) -> int:
     scene = read_scene(args.scene)
+    tol = {} if args.contact_tol is None else {"contact_tol": args.contact_tol}
     if args.command == "check":
         res = check(scene, friction=args.friction, load_factor=args.load_factor,
-                    method=args.method, solver=args.solver, state=False)
+                    method=args.method, solver=args.solver, state=False, **tol)
     elif args.command == "friction":
         res = min_friction(scene, load_factor=args.load_factor, method=args.method,
-                           solver=args.solver, state=False)
+                           solver=args.solver, state=False, **tol)
     else:
         res = max_load_multiplier(scene, friction=args.friction, method=args.method,
-                                  solver=args.solver, state=False)
+                                  solver=args.solver, state=False, **tol)
     out = res.to_dict()
     if args.json:
         print(json.dumps(_jsonable(out)))
