@@ -36,6 +36,13 @@ process under a time limit (``peer_runner.py``, run with the peer's Python:
 ``none`` skips the peer).
 
     python benchmarks/bench_peer.py [--tiny] [--out DIR] [--peer-python PATH]
+
+``--redraw`` rewrites the tables and chart from an existing ``bench_peer.json``;
+``--ours-only`` reruns our side of every structure of that JSON and keeps the peer's
+results as they were measured (its date is kept as ``peer_date``): the peer's samples
+are loaded by the peer's Python for their geometry only (no peer solve), and the force
+comparisons, which need the peer's per-joint forces, are kept from the run that
+measured them.
 """
 
 from __future__ import annotations
@@ -427,9 +434,20 @@ def _t(d: dict, key: str = "total") -> Any:
     return "-" if x is None else float(x)
 
 
-def markdown(rows: list[dict], tg: dict | None, hard: list[dict], python: str | None) -> str:
-    """The results section for benchmarks/README.md."""
+def markdown(rows: list[dict], tg: dict | None, hard: list[dict], python: str | None,
+             data: dict | None = None) -> str:
+    """The results section for benchmarks/README.md (``data``: the run's provenance)."""
     lines = ["## The peer: compas_cra", ""]
+    if data and data.get("ours_date"):
+        lines += [f"Two runs: the peer's results (verdicts, times, its forces) were measured "
+                  f"on {data['peer_date']} (`bench_peer.py "
+                  f"{' '.join(data.get('peer_argv') or [])}`); our side was rerun on "
+                  f"{data['ours_date']} (`--ours-only`, the peer unchanged). The force "
+                  "comparisons (in bench_peer.json), which need its per-joint forces, are those "
+                  "of its run, with our forces of that date."
+                  + (f" Our side of {', '.join(data['ours_kept'])} is kept from the earlier "
+                     "run (the peer's Python was not available to load them)."
+                     if data.get("ours_kept") else ""), ""]
     if python is None:
         lines += ["The peer was not available in this run: our side only.", ""]
     head = ["structure", "blocks", "ours 2D", "ours 3D cone", "ours 3D 8-pyr",
@@ -493,6 +511,86 @@ def markdown(rows: list[dict], tg: dict | None, hard: list[dict], python: str | 
     return "\n".join(lines)
 
 
+def sample_blocks(python: str, case: dict) -> list[dict]:
+    """The peer's sample assembly as polyhedra, loaded by the peer's Python (no solve)."""
+    code = ("import json, sys; sys.path.insert(0, sys.argv[1]); import peer_runner as p; "
+            "a, k = p.load_sample(json.loads(sys.argv[2])); "
+            "print(json.dumps(p.export_blocks(a, k)))")
+    proc = subprocess.run([python, "-c", code, str(RUNNER.parent), json.dumps(case)],
+                          capture_output=True, text=True, timeout=300, check=True)
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def structure_named(name: str) -> dict:
+    """The structure of :func:`structures` called ``name`` (only that one is built)."""
+    empty: dict = {"arches": (), "walls": (), "hard": (), "samples": ()}
+    candidates = ([("arches", n) for n in ARCHES] + [("hard", h) for h in HARD_ARCHES]
+                  + [("samples", c) for c in SAMPLES] + [("walls", n) for n in WALLS])
+    for key, item in candidates:
+        if key == "arches" and name != f"arch {item} v, t/R {ARCH_T}":
+            continue
+        if key == "hard" and name != f"arch {item[0]} v, t/R {item[1]}":
+            continue
+        if key == "samples" and name != f"peer sample {item['name']}":
+            continue
+        if key == "walls" and not name.startswith("wall "):
+            continue
+        st = structures({**empty, key: (item,)})[0]
+        if st["name"] == name:
+            return st
+    raise ValueError(f"{name!r} of bench_peer.json is not a known structure")
+
+
+def ours_only(out: str | Path | None, python: str | None, log=sys.stdout) -> dict:
+    """Rerun our side of every structure of an existing bench_peer.json; keep the peer's.
+
+    Structures are rebuilt from their names' sizes (arches, walls) or, for the peer's
+    samples, from the blocks its Python exports; without the peer's Python a sample's
+    previous our-side results are kept and marked so. Force comparisons need the peer's
+    per-joint forces, which the JSON does not keep: they stay as measured before."""
+    d = out_dir(out)
+    data = json.loads((d / f"{NAME}.json").read_text())
+    previous = data.get("ours_date", data["date"])
+    data.setdefault("peer_date", data["date"])
+    data.setdefault("peer_argv", data.get("argv"))
+    kept: list[str] = []
+    for row in data["rows"]:
+        st = structure_named(row["name"])
+        ours: dict[str, Any] = {}
+        if st["scene2d"] is not None:
+            ours["2d"] = run_ours(st["scene2d"])
+            ours["3d_cone"] = run_ours(st["scene3d"])
+            ours["3d_pyr8"] = run_ours(st["scene3d"], pyramid=8)
+        elif python is not None:
+            try:
+                s3 = sample_scene(sample_blocks(python, st["peer"]), st["peer"]["mu"])
+                tol = sample_contact_tol(s3, st["peer"])
+                ours["3d_cone"] = run_ours(s3, contact_tol=tol)
+                ours["3d_pyr8"] = run_ours(s3, pyramid=8, contact_tol=tol)
+            except InputError as exc:
+                ours["3d_cone"] = {"verdict": f"not modelled: {exc}"}
+        else:
+            kept.append(row["name"])
+            ours = {m: {**o, "kept_from": previous} for m, o in row["ours"].items()}
+        for m, o in ours.items():
+            old = row["ours"].get(m, {})
+            if "verdict" in old and old["verdict"] != o["verdict"]:
+                print(f"{row['name']} {m}: verdict {old['verdict']} -> {o['verdict']}",
+                      file=log)
+        row["ours"] = ours
+        print(summary_line(row), file=log, flush=True)
+    data["ours_date"] = time.strftime("%Y-%m-%d %H:%M %Z")
+    data["ours_kept"] = kept
+    data["targets"], data["hard_cases"] = targets(data["rows"]), hard_cases(data["rows"])
+    data["date"] = time.strftime("%Y-%m-%d")
+    (d / f"{NAME}.json").write_text(json.dumps(data, indent=1) + "\n")
+    pyth = data["peer_python"] if data["peer_available"] else None
+    (d / f"{NAME}.md").write_text(markdown(data["rows"], data["targets"],
+                                           data["hard_cases"], pyth, data).rstrip() + "\n")
+    chart(data["rows"], d / f"{NAME}.png")
+    return data
+
+
 def redraw(out: str | Path | None) -> dict:
     """Rewrite bench_peer.md, the PNG and the targets from an existing bench_peer.json."""
     d = out_dir(out)
@@ -502,7 +600,7 @@ def redraw(out: str | Path | None) -> dict:
     (d / f"{NAME}.json").write_text(json.dumps(data, indent=1) + "\n")
     python = data["peer_python"] if data["peer_available"] else None
     (d / f"{NAME}.md").write_text(markdown(rows, data["targets"], data["hard_cases"],
-                                           python).rstrip() + "\n")
+                                           python, data).rstrip() + "\n")
     chart(rows, d / f"{NAME}.png")
     return data
 
@@ -520,9 +618,14 @@ def main(argv: Sequence[str] | None = None) -> dict:
                         help="time limit of CRA on the 1,000-block wall")
     parser.add_argument("--redraw", action="store_true",
                         help="rewrite the tables and chart from the existing JSON")
+    parser.add_argument("--ours-only", action="store_true",
+                        help="rerun our side of the existing JSON's structures, keep the "
+                             "peer's results as measured")
     args = parser.parse_args(argv)
     if args.redraw:
         return redraw(args.out)
+    if args.ours_only:
+        return ours_only(args.out, peer_python(args.peer_python))
     sizes = dict(TINY) if args.tiny else {"arches": ARCHES, "walls": WALLS,
                                           "hard": HARD_ARCHES, "samples": SAMPLES}
     python = peer_python(args.peer_python)
