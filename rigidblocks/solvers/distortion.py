@@ -112,12 +112,16 @@ FLOW_TOL = 0.02
 STATE_TOL = 1e-8
 #: last iteration at which the penalty may be rebalanced
 ADAPT_LAST = MAX_ITER
-#: memory of the Anderson acceleration (0: none, the default; see :meth:`DistortionSolver.run`)
-ANDERSON = 0
+#: memory of the Anderson acceleration (0: none; see :meth:`DistortionSolver.run`)
+ANDERSON = 5
 #: largest Anderson correction, in units of the plain step
 AA_STEP = 1e4
-#: iteration budget of the accelerated first phase of a run (see :meth:`run`)
+#: iteration budget of the accelerated phase of a run (see :meth:`DistortionSolver.run`)
 AA_BUDGET = 5000
+#: plain iterations before the accelerated phase (see :meth:`DistortionSolver.run`)
+PLAIN_FIRST = 1000
+#: the accelerated phase ends from here on when its best violation no longer halves
+AA_GIVE_UP = 500
 #: initial penalty of the iteration (the ratio of the two terms of the x step)
 RHO = 1.0
 #: over-relaxation of the iteration (1: none; 1.6 as usual for ADMM)
@@ -126,6 +130,8 @@ ALPHA = 1.6
 ADAPT = 20
 #: reciprocal condition estimate of A K A^T below which the scene counts as a mechanism
 RCOND_MIN = 1e-12
+#: a bisection stopped by an undecided trial with a wider relative bracket gives no number
+BRACKET_RTOL = 1e-3
 
 _SUBSETS = [s for k in range(4) for s in itertools.combinations(range(4), k)]
 
@@ -148,6 +154,7 @@ class Run:
     reason: str = ""
     history: list[float] = field(default_factory=list)
     time: float = 0.0
+    resume: dict[str, Any] | None = field(default=None, repr=False)
 
 
 class DistortionSolver:
@@ -312,38 +319,63 @@ class DistortionSolver:
     def run(self, laws: _Laws, load_factor: float, tol: float = TOL,
             max_iter: int = MAX_ITER, window: int = WINDOW, keep_history: bool = False,
             optimal: bool = True, rho: float = RHO, alpha: float = ALPHA,
-            anderson: int = ANDERSON) -> Run:
-        """One run: an accelerated phase that can only prove admissibility, then the plain one.
+            anderson: int | None = None) -> Run:
+        """One run: plain, then an accelerated phase that can only prove admissibility,
+        then the plain iteration resumed where it stopped.
 
-        With ``anderson > 0`` the iteration first runs with Anderson acceleration for at
-        most ``AA_BUDGET`` iterations and stops there only if it finds an admissible
-        state (a certificate whatever the path to it: X in equilibrium, checked, and
-        within the joint laws). Acceleration extrapolates the drift of a run whose sets
-        do not meet, so inadmissibility and stalling are decided by the plain iteration,
-        which then starts afresh with the rest of the budget.
+        With ``anderson > 0``: the plain iteration first runs for ``PLAIN_FIRST``
+        iterations, with all its verdicts (the inadmissible and stalled runs of a
+        bisection are decided there). If it has not decided, the iteration starts again
+        from X0 with Anderson acceleration for at most ``AA_BUDGET`` iterations and stops
+        there only if it finds an admissible state (a certificate whatever the path to
+        it: X in equilibrium, checked, and within the joint laws; with ``optimal`` also
+        settled). The phase is abandoned early when, from ``AA_GIVE_UP`` iterations on,
+        its best violation has not halved between k/2 and k, or when an admissible state
+        has not settled within ``PLAIN_FIRST`` more iterations. Acceleration
+        extrapolates the drift of a run whose sets do not meet, so otherwise the plain
+        iteration is resumed from its own state with the rest of the budget and decides
+        as without acceleration (an unsettled admissible state of the accelerated phase
+        is still returned if the plain iteration ends without one). ``anderson = 0``: the
+        plain iteration only; None: ``ANDERSON``.
         """
-        if anderson > 0 and not self.mechanism:
-            first = self._iterate(laws, load_factor, tol, min(max_iter, AA_BUDGET), window,
-                                  keep_history, optimal, rho, alpha, anderson, decide=False)
-            if first.status == "admissible" or first.iterations >= max_iter:
-                return first
-            r = self._iterate(laws, load_factor, tol, max_iter - first.iterations, window,
-                              keep_history, optimal, rho, alpha, 0, decide=True)
-            r.iterations += first.iterations
-            r.time += first.time
-            return r
-        return self._iterate(laws, load_factor, tol, max_iter, window, keep_history,
-                             optimal, rho, alpha, 0, decide=True)
+        if anderson is None:
+            anderson = ANDERSON
+        if anderson <= 0 or self.mechanism or max_iter <= PLAIN_FIRST:
+            return self._iterate(laws, load_factor, tol, max_iter, window, keep_history,
+                                 optimal, rho, alpha, 0, decide=True)
+        first = self._iterate(laws, load_factor, tol, PLAIN_FIRST, window, keep_history,
+                              optimal, rho, alpha, 0, decide=True, partial=True)
+        if first.status:
+            return first
+        acc = self._iterate(laws, load_factor, tol, min(AA_BUDGET, max_iter - PLAIN_FIRST),
+                            window, False, optimal, rho, alpha, anderson, decide=False)
+        acc.iterations += first.iterations
+        acc.time += first.time
+        if acc.status == "admissible" and not acc.reason:
+            acc.history = first.history + acc.history if keep_history else []
+            return acc
+        rest = self._iterate(laws, load_factor, tol, max_iter - acc.iterations + PLAIN_FIRST,
+                             window, keep_history, optimal, rho, alpha, 0, decide=True,
+                             resume=first.resume)
+        if acc.status == "admissible" and rest.status != "admissible":
+            # an admissible state (not yet the least-energy one) is still a certificate
+            return acc
+        rest.iterations += acc.iterations - PLAIN_FIRST
+        rest.time += acc.time
+        return rest
 
     def _iterate(self, laws: _Laws, load_factor: float, tol: float, max_iter: int,
                  window: int, keep_history: bool, optimal: bool, rho: float,
-                 alpha: float, anderson: int, decide: bool) -> Run:
-        """The accelerated distortion iteration from the elastic solution.
+                 alpha: float, anderson: int, decide: bool, partial: bool = False,
+                 resume: dict[str, Any] | None = None) -> Run:
+        """The (accelerated) distortion iteration from the elastic solution.
 
         See the module docstring. ``optimal=False`` stops at the first iterate that is
         admissible within ``tol`` (enough for a verdict); ``optimal=True`` goes on until
         the step and the dual residual are below ``max(tol, STATE_TOL)`` too, so that
-        the state is the least-energy one.
+        the state is the least-energy one. ``partial``: a run that reaches ``max_iter``
+        undecided returns status "" and its state in ``resume``, from which a later call
+        (``resume=``, ``max_iter`` counted from the start) goes on.
         """
         stol = max(tol, STATE_TOL)
         last_ok = None
@@ -374,6 +406,13 @@ class DistortionSolver:
         if viol <= tol:
             status = "admissible"
         next_adapt = ADAPT
+        step = dual = math.inf
+        first_ok: int | None = None
+        if resume is not None:
+            z, u, v, rho, hist = resume["z"], resume["u"], resume["v"], resume["rho"], \
+                resume["hist"]
+            k, next_adapt, last_ok = resume["k"], resume["next_adapt"], resume["last_ok"]
+            step, dual = resume["step"], resume["dual"]
         aa: dict[str, Any] = {"S": [], "G": [], "g": math.inf, "restarts": 0}
         while not status and k < max_iter:
             # distortion delta = rho/(1+rho) (z - u - X0); its self-stress via the projector
@@ -393,9 +432,15 @@ class DistortionSolver:
             if viol <= tol and float(np.abs(self.As @ self.scatter(v) - b).max()) <= \
                     1e-9 * (1.0 + float(np.abs(b).max(initial=0.0))):
                 last_ok = v
+                first_ok = k if first_ok is None else first_ok
                 if not optimal or (step <= stol and dual <= stol):
                     status = "admissible"
                     break
+            if anderson and first_ok is not None and k - first_ok >= PLAIN_FIRST:
+                break  # admissible but not settling: the plain iteration settles it
+            if anderson and k % window == 0 and k >= AA_GIVE_UP and \
+                    min(hist[k // 2:]) > 0.5 * min(hist[:k // 2 + 1]):
+                break  # the best violation has not halved since k/2: no help from here
             if k == next_adapt and not anderson:  # the accelerated phase keeps rho
                 # residual balancing: the projector does not depend on rho (same metric)
                 prim = float(np.abs(v - z).max(initial=0.0))
@@ -427,6 +472,12 @@ class DistortionSolver:
                               "decide")
         x = self.scatter(v)
         residual = float(np.abs(self.As @ x - b).max(initial=0.0))
+        if partial and not status:
+            state = {"z": z, "u": u, "v": v, "rho": rho, "hist": hist, "k": k,
+                     "next_adapt": next_adapt, "last_ok": last_ok, "step": step,
+                     "dual": dual}
+            return Run("", x, k, viol, residual, "", list(hist) if keep_history else [],
+                       time.perf_counter() - t0, resume=state)
         if not status and last_ok is not None:
             status, v = "admissible", last_ok
             x = self.scatter(v)
@@ -679,8 +730,11 @@ def min_friction_distortion(scene: Scene, load_factor: float = 1.0, state: bool 
 
     f = infinite first (if not admissible: status "unstable"), then f = 0, then doubling
     from 1 to bracket f*, then bisection to ``rtol`` (at least 1e-9: the verdict is only
-    as sharp as the violation tolerance). An undecided trial ends the bisection: f* is
-    then the upper end of the bracket and the bracket is reported.
+    as sharp as the violation tolerance). An undecided trial while doubling does not
+    raise the lower end. An undecided trial ends the bisection: f* is then the upper
+    (certified admissible) end of the bracket, the bracket is in ``lower``/``upper`` and
+    the notes; if it is wider than ``BRACKET_RTOL`` relative, the status is "undecided"
+    and no f* is given. Undecided at f = infinite: status "undecided".
     """
     rtol = max(rtol, 1e-9)
     w = _Work(scene)
@@ -717,8 +771,16 @@ def min_friction_distortion(scene: Scene, load_factor: float = 1.0, state: bool 
             if v is True:
                 best = r
                 break
-            lo, hi = hi, 2 * hi
+            if v is False:
+                lo = hi
+            else:
+                w.notes.append(f"the iteration could not decide at f = {hi:.9g}")
+            hi = 2 * hi
             if hi > 1e8:
+                if lo < hi / 2:  # some trial was undecided: nothing is certified
+                    w.notes.append(f"no finite friction up to 1e8 is certified admissible; "
+                                   f"f = {lo:.9g} is not admissible")
+                    return FrictionResult(**w.common("min_friction", "undecided", None, lf))
                 w.notes.append("no finite friction up to 1e8 is admissible")
                 return FrictionResult(**w.common("min_friction", "unstable", None, lf))
 
@@ -731,6 +793,10 @@ def min_friction_distortion(scene: Scene, load_factor: float = 1.0, state: bool 
         if und is not None:
             w.notes.append(f"the iteration could not decide at f = {und:.9g}: f* is "
                            f"bracketed in [{lo:.9g}, {hi:.9g}]")
+            if hi - lo > BRACKET_RTOL * hi:
+                w.notes.append(f"bracket wider than {BRACKET_RTOL:g} relative: undecided")
+                return FrictionResult(**w.common("min_friction", "undecided", None, lf),
+                                      lower=lo, upper=hi)
     fstar = hi
     final = w.run(fstar, lf, tol=tol) if state else best
     w.describe(final)
@@ -749,8 +815,13 @@ def max_load_distortion(scene: Scene, f: float, state: bool = True, rtol: float 
 
     lambda = 0 must be admissible (else "unstable"); lambda is doubled from 1 until
     inadmissible ("unbounded" if still admissible at ``unbounded_at``), then bisected to
-    ``rtol``. No collapse mechanism is returned (the iteration has no dual variables);
-    ``governing`` lists the joints at their friction threshold at lambda*.
+    ``rtol``. lambda* is the lower (certified admissible) end of the bracket. Where the
+    iteration cannot decide the status says so, with the reason in the notes and no
+    number: "undecided" at lambda = 0, while doubling (no inadmissible upper end), or
+    when an undecided bisection trial leaves a bracket wider than ``BRACKET_RTOL``
+    relative (a narrower one is reported in the notes). No collapse mechanism is
+    returned (the iteration has no dual variables); ``governing`` lists the joints at
+    their friction threshold at lambda*.
     """
     w = _Work(scene)
     label = _label(f)
@@ -766,14 +837,19 @@ def max_load_distortion(scene: Scene, f: float, state: bool = True, rtol: float 
         return LoadResult(**w.common("max_load_multiplier", "failure", label, None))
     if v0 is not True:
         w.describe(r0)
-        return LoadResult(**w.common("max_load_multiplier", "unstable", label, None))
+        status = "undecided" if v0 is None else "unstable"
+        return LoadResult(**w.common("max_load_multiplier", status, label, None))
     lo, hi, best = 0.0, 1.0, r0
     while True:
         v, r = decide(hi)
         if r.status == "failure":
             return LoadResult(**w.common("max_load_multiplier", "failure", label, None))
         if v is None:
-            break
+            # no inadmissible upper end: lambda* is not bracketed
+            w.describe(r)
+            w.notes.append(f"the iteration could not decide at lambda = {hi:.9g}; "
+                           f"lambda = {lo:.9g} is admissible, no upper bound is certified")
+            return LoadResult(**w.common("max_load_multiplier", "undecided", label, None))
         if v is False:
             break
         lo, best = hi, r
@@ -786,6 +862,9 @@ def max_load_distortion(scene: Scene, f: float, state: bool = True, rtol: float 
     if und is not None:
         w.notes.append(f"the iteration could not decide at lambda = {und:.9g}: lambda* is "
                        f"bracketed in [{lo:.9g}, {hi:.9g}]")
+        if hi - lo > BRACKET_RTOL * hi:
+            w.notes.append(f"bracket wider than {BRACKET_RTOL:g} relative: undecided")
+            return LoadResult(**w.common("max_load_multiplier", "undecided", label, None))
     final = w.run(f, lam, tol=tol) if state else (last or best)
     w.describe(final)
     gov = w.at_threshold(final, f) if math.isfinite(f) else ()
