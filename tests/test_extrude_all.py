@@ -17,6 +17,7 @@ from __future__ import annotations
 import functools
 import json
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -149,3 +150,24 @@ def test_glued_pieces_keep_the_plane_answer():
     l_cut = rb.max_load_multiplier(cut, state=False).load_multiplier
     assert l_cut == pytest.approx(rb.max_load_multiplier(s2, state=False).load_multiplier,
                                   rel=RTOL)
+
+
+@pytest.mark.parametrize("dx,dy", [(1e-12, 0.0), (0.0, 1e-12), (3.0, 2.0), (10.0, 0.0)])
+def test_glued_extruded_arch_is_not_decided_by_rounding(dx, dy):
+    """The extruded stocky arch cut into glued pieces, moved by (dx, dy): the same
+    lambda* as the plane arch (static theorem, as above). Its max-load SOCP is
+    near-degenerate at the optimum: moved by any of these, Clarabel ended it
+    "AlmostSolved" at its default and tight tolerances alike, and the analysis raised
+    SolverFailure, until such a solve was retried with a stronger static regularisation
+    and refined KKT solves (REFINE_SETTINGS in rigidblocks/problems/analysis.py)."""
+    s2 = build("stocky_arch")
+    moved = s2.with_changes(
+        blocks=tuple(replace(b, vertices=tuple((x + dx, y + dy) for x, y in b.vertices))
+                     for b in s2.blocks),
+        loads=tuple(replace(ld, point=None if ld.point is None else
+                            (ld.point[0] + dx, ld.point[1] + dy)) for ld in s2.loads))
+    l3 = rb.max_load_multiplier(extrude(glued_convex(moved)), state=True)
+    l2 = rb.max_load_multiplier(s2, state=False)
+    assert l3.status == l2.status == "collapse"
+    assert _same(l3.load_multiplier, l2.load_multiplier)
+    assert l3.state is not None
