@@ -16,6 +16,8 @@ including starting the processes and writing the Parquet output.
 from __future__ import annotations
 
 import argparse
+import math
+import os
 import sys
 import tempfile
 from collections.abc import Sequence
@@ -73,8 +75,10 @@ def main(argv: Sequence[str] | None = None) -> dict:
         p.error("--cases and --workers must be >= 1")
     if args.tiny:
         args.cases, args.analyses = 20, ["check"]
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan
     with tempfile.TemporaryDirectory() as tmp:
         rows = bench(args.cases, args.workers, args.analyses, Path(tmp))
+    load_end = os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan
     header = ["analysis", "workers", "cases", "seconds", "cases/s", "speed-up", "failed",
               "mean case s", "mean solver s"]
     table = markdown_table(header, [[r["analysis"], r["workers"], r["cases"], r["seconds"],
@@ -82,8 +86,12 @@ def main(argv: Sequence[str] | None = None) -> dict:
                                      r["case_s"], r["solver_s_per_case"]] for r in rows])
     md = (f"## Parametric studies: throughput\n\n{args.cases} small arches (10 voussoir "
           "counts x thicknesses, self-weight), one process against local processes "
-          "(`python benchmarks/bench_study.py`).\n\n" + table)
-    data = {"cases": args.cases, "workers": args.workers, "rows": rows}
+          "(`python benchmarks/bench_study.py`). Wall-clock rates on a machine of "
+          f"{os.cpu_count()} cores shared with other jobs (1-minute load average "
+          f"{load:.1f} at the start, {load_end:.1f} at the end): the speed-up of more "
+          "processes is bounded by the cores the other jobs leave free.\n\n" + table)
+    data = {"cases": args.cases, "workers": args.workers, "rows": rows,
+            "load_average": [load, load_end]}
     write_results(args.out, NAME, data, md)
     print(table)
     return data
