@@ -53,6 +53,15 @@ def _vector(v: Any, n: int, where: str) -> tuple:
     return tuple(_number(c, where) for c in v)
 
 
+def _plain_points(points: list, dim: int) -> bool:
+    """Is every point a list of ``dim`` finite JSON numbers (the common case, checked
+    without building an error location per coordinate)?"""
+    kinds = (int, float)
+    return (all(type(p) is list and len(p) == dim for p in points)
+            and all(type(c) in kinds for p in points for c in p)
+            and all(map(math.isfinite, (c for p in points for c in p))))
+
+
 def _friction(v: Any, where: str):
     if v == INFINITE:
         return INFINITE
@@ -169,7 +178,11 @@ def _parse_block(b: Any, i: int, dim: int) -> Block:
     minimum = 3 if dim == 2 else 4
     if len(verts) < minimum:
         raise InputError(f"needs at least {minimum} vertices, got {len(verts)}", where)
-    vertices = tuple(_vector(v, dim, f'{where} "vertices"[{k}]') for k, v in enumerate(verts))
+    if _plain_points(verts, dim):
+        vertices = tuple(map(tuple, verts))
+    else:  # the slow path finds and names the bad vertex
+        vertices = tuple(_vector(v, dim, f'{where} "vertices"[{k}]')
+                         for k, v in enumerate(verts))
     faces = None
     if "faces" in b:
         if dim == 2:

@@ -214,8 +214,9 @@ def _relaxation_problem(ctx: _Context, f_uniform: float, load_factor: float):
     """The relaxation at friction ``f_uniform``, built once per load factor.
 
     The uniform friction enters the constraint matrix only as coefficients proportional
-    to f (the f N term of each friction row): the problem is built at f = 1 and f = 2,
-    the entries that double are located, and later values of f only rescale them.
+    to f (the f N term of each friction row): from the second finite f at a load factor
+    on, the problem is built at f = 1 and f = 2, the entries that double are located,
+    and later values of f only rescale them.
     """
     def build(f: float):
         return build_relaxation(ctx.system, ctx.scaling, ctx.f_joint(f), load_factor,
@@ -224,7 +225,10 @@ def _relaxation_problem(ctx: _Context, f_uniform: float, load_factor: float):
     if not math.isfinite(f_uniform):
         return build(f_uniform)
     cached = ctx.relax_cache.get(load_factor)
-    if cached is None:
+    if cached is None:  # a single check builds once; a second f builds the template
+        ctx.relax_cache[load_factor] = "seen"
+        return build(f_uniform)
+    if cached == "seen":
         (p1, jr), (p2, _) = build(1.0), build(2.0)
         A1, A2 = p1.A, p2.A
         same = (np.array_equal(A1.indptr, A2.indptr) and np.array_equal(A1.indices, A2.indices)
