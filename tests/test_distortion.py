@@ -301,9 +301,11 @@ def test_running_bond_wall():
         assert r.admissible is ok and r.status == rb.check(scene, friction=f,
                                                             state=False).status
     # at 1.1 the plain iteration needs more than its budget; Anderson acceleration not
+    # (measured: 3639 iterations, 1000 plain and 2639 accelerated), so check() decides
     ds = DistortionSolver(scene)
     run = ds.run(ds.laws(np.full(ds.m, 1.1)), 1.0, optimal=False, anderson=5)
     assert run.status == "admissible" and run.iterations < 10000
+    assert rb.check(scene, friction=1.1, method="distortion", state=False).admissible
     d = rb.min_friction(scene, method="distortion", state=False)
     assert d.status == "stable" and d.friction_factor == pytest.approx(1.0, rel=1e-4)
 
