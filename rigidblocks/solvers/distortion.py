@@ -130,8 +130,10 @@ ALPHA = 1.6
 ADAPT = 20
 #: reciprocal condition estimate of A K A^T below which the scene counts as a mechanism
 RCOND_MIN = 1e-12
-#: a bisection stopped by an undecided trial with a wider relative bracket gives no number
+#: a bisection stopped by an undecided trial with a bracket wider than BRACKET_RTOL
+#: relative plus BRACKET_ATOL gives no number (the floor: f* or lambda* = 0)
 BRACKET_RTOL = 1e-3
+BRACKET_ATOL = 1e-6
 
 _SUBSETS = [s for k in range(4) for s in itertools.combinations(range(4), k)]
 
@@ -733,8 +735,8 @@ def min_friction_distortion(scene: Scene, load_factor: float = 1.0, state: bool 
     as sharp as the violation tolerance). An undecided trial while doubling does not
     raise the lower end. An undecided trial ends the bisection: f* is then the upper
     (certified admissible) end of the bracket, the bracket is in ``lower``/``upper`` and
-    the notes; if it is wider than ``BRACKET_RTOL`` relative, the status is "undecided"
-    and no f* is given. Undecided at f = infinite: status "undecided".
+    the notes; if it is wider than ``BRACKET_RTOL`` relative (plus ``BRACKET_ATOL``), the
+    status is "undecided" and no f* is given. Undecided at f = infinite: status "undecided".
     """
     rtol = max(rtol, 1e-9)
     w = _Work(scene)
@@ -793,7 +795,7 @@ def min_friction_distortion(scene: Scene, load_factor: float = 1.0, state: bool 
         if und is not None:
             w.notes.append(f"the iteration could not decide at f = {und:.9g}: f* is "
                            f"bracketed in [{lo:.9g}, {hi:.9g}]")
-            if hi - lo > BRACKET_RTOL * hi:
+            if hi - lo > BRACKET_RTOL * hi + BRACKET_ATOL:
                 w.notes.append(f"bracket wider than {BRACKET_RTOL:g} relative: undecided")
                 return FrictionResult(**w.common("min_friction", "undecided", None, lf),
                                       lower=lo, upper=hi)
@@ -819,9 +821,9 @@ def max_load_distortion(scene: Scene, f: float, state: bool = True, rtol: float 
     iteration cannot decide the status says so, with the reason in the notes and no
     number: "undecided" at lambda = 0, while doubling (no inadmissible upper end), or
     when an undecided bisection trial leaves a bracket wider than ``BRACKET_RTOL``
-    relative (a narrower one is reported in the notes). No collapse mechanism is
-    returned (the iteration has no dual variables); ``governing`` lists the joints at
-    their friction threshold at lambda*.
+    relative plus ``BRACKET_ATOL`` (a narrower one is reported in the notes). No
+    collapse mechanism is returned (the iteration has no dual variables); ``governing``
+    lists the joints at their friction threshold at lambda*.
     """
     w = _Work(scene)
     label = _label(f)
@@ -862,7 +864,7 @@ def max_load_distortion(scene: Scene, f: float, state: bool = True, rtol: float 
     if und is not None:
         w.notes.append(f"the iteration could not decide at lambda = {und:.9g}: lambda* is "
                        f"bracketed in [{lo:.9g}, {hi:.9g}]")
-        if hi - lo > BRACKET_RTOL * hi:
+        if hi - lo > BRACKET_RTOL * hi + BRACKET_ATOL:
             w.notes.append(f"bracket wider than {BRACKET_RTOL:g} relative: undecided")
             return LoadResult(**w.common("max_load_multiplier", "undecided", label, None))
     final = w.run(f, lam, tol=tol) if state else (last or best)
