@@ -55,7 +55,7 @@ def test_reference_model_min_friction():
     assert gov == {frozenset(p) for p in (("base", "L"), ("base", "R"), ("L", "T"), ("R", "T"))}
 
 
-@pytest.mark.parametrize("b,h,f", [(1.0, 2.0, 0.3), (1.0, 2.0, 1.0)])
+@pytest.mark.parametrize("b,h,f", [(1.0, 2.0, 0.3), (1.0, 2.0, 1.0), (1.0, 2.0, 0.0)])
 def test_block_on_base_max_load(block_on_base, b, h, f):
     """Rigid block b x h on a base under a horizontal body force lambda W: it slides at
     lambda = f and overturns about its toe at lambda = b / h (moments about the toe)."""
