@@ -214,7 +214,7 @@ def test_bench_accuracy_tiny(tmp_path):
     for r in data["rows"]:
         if r["default"]:
             assert r["error"] < 1e-6, r
-        assert 3 <= r["runs"] <= 5 or (r["runs"] == 1 and r["seconds"] > 5), r
+        assert 3 <= r["runs"] <= 30 or (r["runs"] == 1 and r["seconds"] > 5), r
     assert {v["quantity"] for v in data["pareto"]} == {"f*", "lambda*"}
     assert "best of N CPU-time runs" in (tmp_path / "bench_accuracy.md").read_text()
 
