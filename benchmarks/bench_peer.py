@@ -444,7 +444,9 @@ def markdown(rows: list[dict], tg: dict | None, hard: list[dict], python: str | 
                   f"{' '.join(data.get('peer_argv') or [])}`); our side was rerun on "
                   f"{data['ours_date']} (`--ours-only`, the peer unchanged). The force "
                   "comparisons (in bench_peer.json), which need its per-joint forces, are those "
-                  "of its run, with our forces of that date."
+                  "of its run, with our forces of that date. The machine is shared and its "
+                  "load differed between the two runs, so the time ratios carry that "
+                  "difference too (our side alone varied by up to 2x between runs)."
                   + (f" Our side of {', '.join(data['ours_kept'])} is kept from the earlier "
                      "run (the peer's Python was not available to load them)."
                      if data.get("ours_kept") else ""), ""]
