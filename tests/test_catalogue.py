@@ -481,3 +481,13 @@ def test_large_wall_collapse_multiplier_agrees_with_the_simplex():
     ours = max_load_multiplier(wall, state=False).load_multiplier
     simplex = max_load_multiplier(wall, solver="highs", state=False).load_multiplier
     assert ours == pytest.approx(simplex, rel=1e-5)
+
+
+def test_loose_solver_tolerances_are_noted(block_on_base):
+    """Tolerances given by the user go to the verdict problems too; looser than the
+    verdict threshold (1e-9), the result says its verdicts may be wrong near a limit."""
+    scene = block_on_base()
+    r = check(scene, settings={"tol_feas": 1e-6}, state=False)
+    assert any("tol_feas" in n and "may be wrong" in n for n in r.notes)
+    r = check(scene, settings={"tol_feas": 1e-10}, state=False)
+    assert not any("may be wrong" in n for n in r.notes)

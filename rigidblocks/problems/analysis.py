@@ -184,6 +184,12 @@ def _context(scene: Scene, solver: str, settings: dict | None,
             raise InputError(f"a friction pyramid needs at least 3 facets, got {pyramid}")
         ctx.notes.append(f"friction cones linearised as inscribed {int(pyramid)}-facet "
                          "pyramids (an approximation: not the Coulomb cone)")
+    loose = sorted(k for k, v in ctx.settings.items()
+                   if k.startswith("tol") and isinstance(v, int | float) and v > 1e-9)
+    if loose:
+        ctx.notes.append(f"solver tolerances looser than 1e-9 ({', '.join(loose)}): "
+                         "verdicts rest on a relaxation compared with 1e-9 of the largest "
+                         "force and may be wrong near a limit")
     return ctx
 
 
