@@ -16,16 +16,6 @@ def _size(block: Block) -> float:
     return float(np.linalg.norm(p.max(axis=0) - p.min(axis=0)))
 
 
-def face_normal(pts: np.ndarray) -> np.ndarray:
-    """Newell's normal of a polygon (unnormalised; its length is twice the area)."""
-    nxt = np.roll(pts, -1, axis=0)
-    return np.array([
-        np.sum((pts[:, 1] - nxt[:, 1]) * (pts[:, 2] + nxt[:, 2])),
-        np.sum((pts[:, 2] - nxt[:, 2]) * (pts[:, 0] + nxt[:, 0])),
-        np.sum((pts[:, 0] - nxt[:, 0]) * (pts[:, 1] + nxt[:, 1])),
-    ])
-
-
 _FACE_CACHE = "_rigidblocks_faces"
 
 
@@ -110,29 +100,38 @@ def validate_polyhedra(scene: Scene) -> None:
         for k, f in enumerate(b.faces or ()):
             if len(set(f)) != len(f):
                 raise InputError(f"face {k} repeats a vertex", where)
-            p = pts[list(f)]
-            n = face_normal(p)
-            nn = np.linalg.norm(n)
-            if nn <= 1e-12 * size**2:
-                raise InputError(f"face {k} has zero area", where)
-            if np.abs((p - p[0]) @ (n / nn)).max() > tol:
-                raise InputError(f"face {k} is not planar", where)
             for a, c in zip(f, f[1:] + f[:1], strict=True):
                 key = (min(a, c), max(a, c))
                 edges[key] = edges.get(key, 0) + 1
+        faces, normals = _oriented(b)  # same order as b.faces
+        nn = np.linalg.norm(normals, axis=1)
+        small = np.flatnonzero(nn <= 1e-12 * size**2)
+        if small.size:
+            raise InputError(f"face {small[0]} has zero area", where)
+        nhat = normals / nn[:, None]
+        first = pts[[f[0] for f in faces]]
+        offset = np.einsum("ij,ij->i", first, nhat)
+        # planarity: every vertex of a face on the face's plane
+        owner = np.repeat(np.arange(len(faces)), [len(f) for f in faces])
+        flat = np.concatenate(faces)
+        dev = np.abs(np.einsum("ij,ij->i", pts[flat], nhat[owner]) - offset[owner])
+        worst = np.zeros(len(faces))
+        np.maximum.at(worst, owner, dev)
+        off = np.flatnonzero(worst > tol)
+        if off.size:
+            raise InputError(f"face {off[0]} is not planar", where)
         if any(v != 2 for v in edges.values()):
             raise InputError("the faces do not close the polyhedron (every edge must belong "
                              "to exactly two faces)", where)
         used = {i for f in b.faces or () for i in f}
         if len(used) != len(pts):
             raise InputError("some vertices belong to no face", where)
-        for k, idx in enumerate(outward_faces(b)):
-            p = pts[idx]
-            n = face_normal(p)
-            n = n / np.linalg.norm(n)
-            if ((pts - p[0]) @ n).max() > tol:
-                raise InputError(f"the polyhedron is not convex (vertices lie outside the "
-                                 f"plane of face {k}); split it into convex blocks", where)
+        # convexity: no vertex outside the plane of any (outward) face
+        outside = np.flatnonzero((pts @ nhat.T - offset).max(axis=0) > tol)
+        if outside.size:
+            raise InputError(f"the polyhedron is not convex (vertices lie outside the "
+                             f"plane of face {outside[0]}); split it into convex blocks",
+                             where)
         vol, _ = polyhedron_volume_centroid(b)
         if vol <= 1e-12 * size**3:
             raise InputError("polyhedron has zero volume", where)
