@@ -16,15 +16,9 @@ from conftest import EXAMPLES, make_scene, rect
 
 import rigidblocks as rb
 from rigidblocks.errors import InputError
+from rigidblocks.examples.solids import box
 from rigidblocks.io.scene_file import scene_from_dict
 from rigidblocks.scene.extrude import extrude
-
-
-def box(x0, y0, z0, a, b, c):
-    v = [[x0, y0, z0], [x0 + a, y0, z0], [x0 + a, y0 + b, z0], [x0, y0 + b, z0],
-         [x0, y0, z0 + c], [x0 + a, y0, z0 + c], [x0 + a, y0 + b, z0 + c], [x0, y0 + b, z0 + c]]
-    faces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]
-    return v, faces
 
 
 def scene3d(blocks, **top):

@@ -476,14 +476,14 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
         if rx.R is None:
             ctx.notes.append("the equilibrium equations have no solution (mechanism)")
         return FrictionResult(**ctx.common("min_friction", "unstable", None, lf))
-    lo, hi, R_hi, at_hi = 0.0, math.inf, 0.0, rx
+    lo, hi, at_hi = 0.0, math.inf, rx  # at_hi: the relaxation at the upper end
     rx = _relaxation(ctx, 0.0, lf)
     if rx.R is None:
         raise SolverFailure("the relaxation at f = 0 has no solution although infinite "
                             "friction has one", ctx.solver, rx.res.raw_status)
     last = None
     if rx.zero:
-        hi, R_hi, at_hi = 0.0, rx.R, rx
+        hi, at_hi = 0.0, rx
     else:
         last = rx
     R_lo, s_lo = rx.R, rx.slope
@@ -527,7 +527,7 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
             raise SolverFailure("relaxation problem lost its solution", ctx.solver,
                                 rx.res.raw_status)
         if rx.zero:
-            hi, R_hi, at_hi = trial, rx.R, rx
+            hi, at_hi = trial, rx
         else:
             prev = (lo, s_lo)
             lo, R_lo, s_lo = trial, rx.R, rx.slope
@@ -550,7 +550,7 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
         if w.size and w.max() > 0:
             strong = w > 1e-3 * w.max()
             governing = tuple(sorted({int(j) for j in jr.fric_joint[strong]}))
-    st = (_state(ctx, fstar, lf, R_hi + STATE_SLACK, at_hi.res, at_hi.prob.cols["x"])
+    st = (_state(ctx, fstar, lf, at_hi.R + STATE_SLACK, at_hi.res, at_hi.prob.cols["x"])
           if state else None)
     return FrictionResult(**ctx.common("min_friction", "stable", fstar, lf), state=st,
                           governing=governing, friction_factor=fstar,
