@@ -45,11 +45,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from common import markdown_table, out_dir, write_results  # noqa: E402
 
+from rigidblocks.analyses import max_load_multiplier, min_friction  # noqa: E402
 from rigidblocks.examples import build  # noqa: E402
 from rigidblocks.io.scene_file import read_scene  # noqa: E402
-from rigidblocks.problems.analysis import max_load_multiplier, min_friction  # noqa: E402
 from rigidblocks.scene.model import Scene  # noqa: E402
-from rigidblocks.solvers import distortion  # noqa: E402
 
 NAME = "bench_accuracy"
 ROOT = Path(__file__).resolve().parents[1]
@@ -114,11 +113,11 @@ def answer(scene: Scene, qty: str, lf: float, s: dict[str, Any]) -> float | None
     """f* or lambda* with the setting ``s`` (None when the status has no number)."""
     if s["method"] == "distortion":
         if qty == "f*":
-            r = distortion.min_friction_distortion(scene, lf, state=False, rtol=s["rtol"],
-                                                   tol=s["tol"])
+            r = min_friction(scene, lf, method="distortion", state=False, rtol=s["rtol"],
+                             settings={"tol": s["tol"]})
             return r.friction_factor
-        r = distortion.max_load_distortion(scene, scene.effective_friction, state=False,
-                                           rtol=s["rtol"], tol=s["tol"])
+        r = max_load_multiplier(scene, method="distortion", state=False, rtol=s["rtol"],
+                                settings={"tol": s["tol"]})
         return r.load_multiplier
     kw = dict(s["kw"])
     if qty == "f*":

@@ -33,7 +33,6 @@ log-log axes between 1,000 and 50,000 blocks.
 from __future__ import annotations
 
 import argparse
-import contextlib
 import json
 import math
 import resource
@@ -41,7 +40,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -162,61 +161,6 @@ def bare_max_load(scene, tight: bool = False) -> dict[str, Any]:
             "variables": n, "constraints": int(A.shape[0])}
 
 
-# -- stage timers --------------------------------------------------------------------------
-@contextlib.contextmanager
-def stage_timers(store: dict[str, float]) -> Iterator[None]:
-    """Time the stages inside :mod:`rigidblocks.problems.analysis` by wrapping the
-    functions it calls (contact detection and assembly, the three problem builders,
-    the solver back end); the wrappers are removed on exit."""
-    from rigidblocks.contacts import detect_contacts
-    from rigidblocks.problems import analysis
-
-    saved = {k: getattr(analysis, k) for k in
-             ("assemble", "build_relaxation", "build_max_load", "build_energy_qp", "solve")}
-
-    def add(key: str, dt: float) -> None:
-        store[key] = store.get(key, 0.0) + dt
-
-    def assemble(scene, contacts=None, **kw):
-        t0 = _now()
-        if contacts is None:
-            contacts = detect_contacts(scene)
-        t1 = _now()
-        system = saved["assemble"](scene, contacts, **kw)
-        add("contacts", t1 - t0)
-        add("assembly", _now() - t1)
-        return system
-
-    def builder(name):
-        def wrapped(*a, **kw):
-            t0 = _now()
-            out = saved[name](*a, **kw)
-            add("build", _now() - t0)
-            return out
-        return wrapped
-
-    def solve(*a, **kw):
-        t0 = _now()
-        res = saved["solve"](*a, **kw)
-        dt = _now() - t0
-        if _clock[0] == "wall" and 0 < res.solve_time < dt:
-            add("solve", res.solve_time)
-            add("build", dt - res.solve_time)  # conversion to the back end's own format
-        else:  # CPU clock: the back end's whole call counts as the solve
-            add("solve", dt)
-        return res
-
-    try:
-        analysis.assemble = assemble
-        for name in ("build_relaxation", "build_max_load", "build_energy_qp"):
-            setattr(analysis, name, builder(name))
-        analysis.solve = solve
-        yield
-    finally:
-        for k, v in saved.items():
-            setattr(analysis, k, v)
-
-
 def _maxrss_mib() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
@@ -235,7 +179,7 @@ def run_case(spec: dict[str, Any]) -> dict[str, Any]:
     elif kind == "stages":
         out["seconds"] = non_solver_stages(path)
     else:
-        from rigidblocks.problems.analysis import check, max_load_multiplier, min_friction
+        from rigidblocks.analyses import check, max_load_multiplier, min_friction
 
         t: dict[str, float] = {}
         t0 = _now()
@@ -245,18 +189,21 @@ def run_case(spec: dict[str, Any]) -> dict[str, Any]:
         kw: dict[str, Any] = dict(spec.get("options", {}))
         if kind == "cvxpy":
             kw["solver"] = "cvxpy-CLARABEL"
-        with stage_timers(t):
-            if a == "check":
-                res = check(scene, **kw)
-            elif a == "min_friction":
-                res = min_friction(scene, rtol=1e-6, **kw)
-            elif a == "min_friction_no_state":
-                res = min_friction(scene, rtol=1e-6, state=False, **kw)
-            elif a == "max_load_no_state":
-                res = max_load_multiplier(scene, state=False, **kw)
-            else:
-                res = max_load_multiplier(scene, **kw)
+        if a == "check":
+            res = check(scene, **kw)
+        elif a == "min_friction":
+            res = min_friction(scene, rtol=1e-6, **kw)
+        elif a == "min_friction_no_state":
+            res = min_friction(scene, rtol=1e-6, state=False, **kw)
+        elif a == "max_load_no_state":
+            res = max_load_multiplier(scene, state=False, **kw)
+        else:
+            res = max_load_multiplier(scene, **kw)
         total = _now() - t0
+        # the analysis' own stage timings (contacts, assembly, build, solve: the back
+        # end's whole call; state: post-processing, counted under "results")
+        stages = res.timings if _clock[0] == "wall" else res.cpu_timings
+        t.update({k: v for k, v in stages.items() if k in STAGES})
         t["results"] = total - sum(v for k, v in t.items() if k != "results")
         out["seconds"] = {s: t.get(s, 0.0) for s in STAGES}
         out["total"] = total
@@ -281,9 +228,8 @@ def non_solver_stages(path: str) -> dict[str, float]:
     """Read, contacts, assembly, the three builds of max_load_multiplier's path and the
     result post-processing (mechanism and force state of a dummy solution), no solve."""
     from rigidblocks.contacts import detect_contacts
-    from rigidblocks.equilibrium import assemble
+    from rigidblocks.equilibrium import assemble, force_state, mechanism
     from rigidblocks.io.scene_file import read_scene
-    from rigidblocks.problems.analysis import force_state, mechanism
     from rigidblocks.problems.formulation import (
         Scaling,
         build_energy_qp,
@@ -306,7 +252,7 @@ def non_solver_stages(path: str) -> dict[str, float]:
     build_energy_qp(system, scaling, fj, 1.0)
     t4 = _now()
     rng = np.random.default_rng(0)
-    mechanism(system, scaling, rng.standard_normal(system.n_rows))
+    mechanism(system, scaling.row, rng.standard_normal(system.n_rows))
     force_state(system, rng.random(system.layout.size), "dummy")
     t5 = _now()
     t.update(read=t1 - t0, contacts=t2 - t1, assembly=t3 - t2, build=t4 - t3,

@@ -1,12 +1,11 @@
 """rigidblocks: limit analysis of rigid-block masonry with unilateral frictional joints."""
 
+from .analyses import check, load_path, max_load_multiplier, min_friction
 from .contacts import Contacts, detect_contacts
 from .equilibrium import EquilibriumSystem, assemble
 from .errors import InputError, RigidBlocksError, SolverFailure
 from .io import read_scene, write_scene
-from .problems import check, max_load_multiplier, min_friction
 from .scene import INFINITE, Block, JointOverride, Load, Scene, make_block
-from .solvers.distortion import load_path
 from .studies import min_thickness
 
 __version__ = "0.1.0"

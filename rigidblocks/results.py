@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from .contacts import Contacts
+from .scene.model import friction_label
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,6 +94,9 @@ class Result:
     state: ForceState | None = field(default=None, repr=False)
     governing: tuple[int, ...] = ()
     notes: tuple[str, ...] = ()
+    #: seconds per stage (contacts, assembly, build, solve, state), wall clock and CPU
+    timings: dict[str, float] = field(default_factory=dict, repr=False)
+    cpu_timings: dict[str, float] = field(default_factory=dict, repr=False)
 
     @property
     def governing_joints(self) -> list[tuple[str, str]]:
@@ -108,12 +112,36 @@ class Result:
         raise NotImplementedError
 
 
-def _friction_json(f: Any) -> Any:
-    if f is None:
-        return None
-    if isinstance(f, str) or math.isinf(f):
-        return "infinite"
-    return float(f)
+def headline(result: Any, symbols: bool = False) -> str:
+    """The answer of a result in one line: what the CLI prints as its verdict, what a
+    picture's title and a drawing's note say. ``symbols``: write lambda, phi and the
+    degree sign as symbols (pictures) rather than ASCII (text, DXF)."""
+    if result is None:
+        return ""
+    lam, deg, inf = ("\N{GREEK SMALL LETTER LAMDA}", "\N{DEGREE SIGN}", "\N{INFINITY}") \
+        if symbols else ("lambda", " deg", "infinite")
+    status = getattr(result, "status", "")
+    a = getattr(result, "analysis", "")
+    if a == "min_friction" and result.friction_factor is not None:
+        return (f"minimum friction f* = {result.friction_factor:.4g} "
+                f"(friction angle {result.friction_angle_deg:.2f}{deg})")
+    if a == "max_load_multiplier" and result.load_multiplier is not None:
+        return (f"collapse load multiplier {lam}* = {result.load_multiplier:.4g}, "
+                f"f = {_friction_text(result.friction, deg, inf)}")
+    if a == "check" and status in ("admissible", "inadmissible"):
+        verdict = "admissible" if status == "admissible" else "not admissible"
+        return (f"{verdict} at f = {_friction_text(result.friction, deg, inf)}, "
+                f"{lam} = {result.load_factor:g}")
+    words = {"unstable": "unstable: no friction suffices" if a == "min_friction" else
+             "unstable: the dead load alone has no admissible state",
+             "unbounded": "unbounded: no multiplier of the live load makes it collapse"}
+    return words.get(status, f"{a.replace('_', ' ')}: {status}")
+
+
+def _friction_text(f: Any, deg: str, inf: str) -> str:
+    if f is None or isinstance(f, str) or math.isinf(f):
+        return inf
+    return f"{float(f):.4g} ({math.degrees(math.atan(float(f))):.2f}{deg})"
 
 
 @dataclass(frozen=True, eq=False)
@@ -129,7 +157,7 @@ class CheckResult(Result):
 
     def to_dict(self) -> dict[str, Any]:
         return {**self._common(), "admissible": self.admissible,
-                "friction": _friction_json(self.friction), "load_factor": self.load_factor,
+                "friction": friction_label(self.friction), "load_factor": self.load_factor,
                 "violation": self.violation}
 
 
@@ -167,7 +195,7 @@ class LoadResult(Result):
 
     def to_dict(self) -> dict[str, Any]:
         out = {**self._common(), "load_multiplier": self.load_multiplier,
-               "friction": _friction_json(self.friction)}
+               "friction": friction_label(self.friction)}
         if self.mechanism is not None:
             m = self.mechanism
             ids = self.contacts.block_ids

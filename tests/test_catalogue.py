@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 from conftest import make_scene, rect
 
+from rigidblocks.analyses import check, max_load_multiplier, min_friction
 from rigidblocks.equilibrium import assemble
 from rigidblocks.errors import InputError
-from rigidblocks.problems import check, max_load_multiplier, min_friction
 
 RTOL = 1e-6
 #: the back ends every case is run with; SCS is a first-order method, checked loosely

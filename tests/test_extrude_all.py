@@ -159,7 +159,7 @@ def test_glued_extruded_arch_is_not_decided_by_rounding(dx, dy):
     near-degenerate at the optimum: moved by any of these, Clarabel ended it
     "AlmostSolved" at its default and tight tolerances alike, and the analysis raised
     SolverFailure, until such a solve was retried with a stronger static regularisation
-    and refined KKT solves (REFINE_SETTINGS in rigidblocks/problems/analysis.py)."""
+    and refined KKT solves (REFINE_SETTINGS in rigidblocks/solvers/policy.py)."""
     s2 = build("stocky_arch")
     moved = s2.with_changes(
         blocks=tuple(replace(b, vertices=tuple((x + dx, y + dy) for x, y in b.vertices))

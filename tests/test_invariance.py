@@ -21,8 +21,8 @@ import math
 import pytest
 from conftest import rect
 
+from rigidblocks.analyses import max_load_multiplier, min_friction
 from rigidblocks.io.scene_file import scene_from_dict
-from rigidblocks.problems import max_load_multiplier, min_friction
 
 RTOL = 1e-6
 

@@ -342,7 +342,7 @@ def test_clockwise_and_counter_clockwise_agree(tmp_path, clockwise):
 
 def test_clockwise_same_min_friction(tmp_path):
     """The minimum friction of a pulled block does not depend on vertex order."""
-    from rigidblocks.problems import min_friction
+    from rigidblocks.analyses import min_friction
 
     doc = copy.deepcopy(_stack_doc(set()))
     del doc["joints"]

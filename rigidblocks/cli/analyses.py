@@ -7,9 +7,11 @@ import json
 import math
 from typing import Any
 
+from ..analyses import analysis
 from ..errors import InputError
 from ..io import read_scene
-from ..problems import check, max_load_multiplier, min_friction
+from ..methods import METHODS
+from ..results import headline
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
@@ -21,7 +23,8 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
         p.add_argument("--load-factor", type=float, default=1.0,
                        help="lambda multiplying the live loads (default 1)")
     p.add_argument("--method", default="clarabel",
-                   help='"clarabel" (convex path, default) or "distortion"')
+                   help=" or ".join(f'"{m}"' for m in METHODS)
+                   + ' (default "clarabel": the convex path)')
     p.add_argument("--solver", default=None,
                    help="back end of the convex path: clarabel, highs, scs, ecos, "
                    "cvxpy-NAME")
@@ -33,16 +36,10 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
 
 def run(args: argparse.Namespace) -> int:
     scene = read_scene(args.scene)
-    tol = {} if args.contact_tol is None else {"contact_tol": args.contact_tol}
-    if args.command == "check":
-        res = check(scene, friction=args.friction, load_factor=args.load_factor,
-                    method=args.method, solver=args.solver, state=False, **tol)
-    elif args.command == "friction":
-        res = min_friction(scene, load_factor=args.load_factor, method=args.method,
-                           solver=args.solver, state=False, **tol)
-    else:
-        res = max_load_multiplier(scene, friction=args.friction, method=args.method,
-                                  solver=args.solver, state=False, **tol)
+    res = analysis(args.command).run(
+        scene, friction=getattr(args, "friction", None),
+        load_factor=getattr(args, "load_factor", 1.0), method=args.method,
+        solver=args.solver, state=False, contact_tol=args.contact_tol)
     out = res.to_dict()
     if args.json:
         print(json.dumps(_jsonable(out)))
@@ -71,11 +68,12 @@ def report(scene, res) -> str:
     if res.analysis == "check":
         f = d["friction"]
         lines.append(f"friction   {f if f is not None else '-'}   load factor {res.load_factor:g}")
-        lines.append(f"verdict    {'ADMISSIBLE' if res.admissible else 'NOT ADMISSIBLE'}")
-        if not res.admissible and math.isfinite(res.violation):
+        verdict = {"admissible": "ADMISSIBLE", "inadmissible": "NOT ADMISSIBLE"}
+        lines.append(f"verdict    {verdict.get(res.status, headline(res).upper())}")
+        if res.status == "inadmissible" and math.isfinite(res.violation):
             lines.append(f"violation  {res.violation:.4g} {fu} (smallest possible breach "
                          "of the joint laws)")
-        if not res.admissible:
+        if res.status == "inadmissible":
             lines += _live_hint(scene, res)
     elif res.analysis == "min_friction":
         lines.append(f"lambda     {res.load_factor:g}   (load factor)")
@@ -84,20 +82,18 @@ def report(scene, res) -> str:
                          f"{res.friction_angle_deg:.4f} deg)")
             lines.append(f"governing  {_joint_list(res.governing_joints)}")
         else:
-            lines.append("verdict    UNSTABLE: no friction suffices (hinging mechanism)")
-            lines += _live_hint(scene, res)
+            lines.append(f"verdict    {headline(res).upper()}")
+            if res.status == "unstable":
+                lines += _live_hint(scene, res)
     else:
-        f = d["friction"]
-        lines.append(f"friction   {f}")
+        lines.append(f"friction   {d['friction']}")
         if res.status == "collapse":
             lines.append(f"lambda*    {res.load_multiplier:.6g}")
             mech = d.get("mechanism", {})
             for key in ("hinges", "sliding", "open"):
                 lines.append(f"{key:<10} {_joint_list(mech.get(key, []))}")
-        elif res.status == "unbounded":
-            lines.append("verdict    UNBOUNDED: no multiplier of the live load makes it collapse")
         else:
-            lines.append("verdict    UNSTABLE: the dead load alone has no admissible state")
+            lines.append(f"verdict    {headline(res).upper()}")
     lines.append(f"solver     {res.solver}, {res.n_solves} solve(s), {res.solve_time:.3g} s")
     return "\n".join(lines)
 

@@ -13,13 +13,12 @@ import importlib
 import sys
 from collections.abc import Sequence
 
+from ..analyses import ANALYSES
 from ..errors import InputError, SolverFailure
 
 #: command name -> (module, one-line help)
 COMMANDS: dict[str, tuple[str, str]] = {
-    "check": ("analyses", "is there an admissible equilibrium state?"),
-    "friction": ("analyses", "minimum friction coefficient and angle, governing joints"),
-    "load": ("analyses", "maximum load multiplier and collapse mechanism"),
+    **{a.command: ("analyses", a.help) for a in ANALYSES.values()},
     "example": ("example", "list the structure generators, or write a generated scene file"),
     "thickness": ("thickness", "minimum thickness of a generator's family (bisection)"),
     "path": ("path", "load path of the distortion solver: cracks, plastic joints, collapse"),

@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 import json
 
+from ..analyses import load_path
 from ..io import read_scene
-from ..solvers.distortion import load_path
 from .analyses import _jsonable
 
 

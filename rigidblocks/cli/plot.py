@@ -5,16 +5,17 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..analyses import ANALYSES
 from ..errors import InputError
 from ..io import read_scene
 
-ANALYSES = ("check", "friction", "load")
 FORMATS = (".png", ".svg", ".pdf")
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("scene", help="scene file (JSON)")
-    p.add_argument("--analysis", choices=ANALYSES, default=None,
+    p.add_argument("--analysis", choices=[a.command for a in ANALYSES.values()],
+                   default=None,
                    help="run this analysis and draw its result (forces and thrust line "
                    "for check/friction, the collapse mechanism for load)")
     p.add_argument("--friction", default=None,
@@ -53,16 +54,10 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def analyse(scene, analysis: str | None, friction, load_factor: float):
+def analyse(scene, name: str | None, friction, load_factor: float):
     """Run the named analysis (None: no analysis) with a force state."""
-    from ..problems import check, max_load_multiplier, min_friction
+    from ..analyses import analysis
 
-    if analysis is None:
+    if name is None:
         return None
-    if analysis == "check":
-        return check(scene, friction=friction, load_factor=load_factor)
-    if analysis == "friction":
-        return min_friction(scene, load_factor=load_factor)
-    if analysis == "load":
-        return max_load_multiplier(scene, friction=friction)
-    raise InputError(f"unknown analysis '{analysis}': use {', '.join(ANALYSES)}")
+    return analysis(name).run(scene, friction=friction, load_factor=load_factor)

@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
+from ..results import headline
 from ..scene.geometry import signed_area
 from ..scene.model import Scene, Units, make_block
 
@@ -499,13 +500,13 @@ def write_dxf(scene: Scene, path: str | os.PathLike, result: Any = None, *,
             for sgn in (1, -1):
                 msp.add_line(tuple(q), tuple(q - head * u + sgn * 0.4 * head * nrm),
                              dxfattribs={"layer": LAYERS["forces"]})
-    headline = _headline(result)
-    if headline:
+    title = headline(result)
+    if title:
         allpts = np.concatenate([b.points for b in scene.blocks])
         hi = allpts.max(axis=0)
         lo = allpts.min(axis=0)
         h = 0.03 * float(np.linalg.norm(hi - lo))
-        msp.add_text(headline, height=h, dxfattribs={"layer": LAYERS["text"]}).set_placement(
+        msp.add_text(title, height=h, dxfattribs={"layer": LAYERS["text"]}).set_placement(
             (float(lo[0]), float(hi[1] + h)))
     try:
         doc.saveas(os.fspath(path))
@@ -518,20 +519,6 @@ def joint_force_vectors(contacts: Any, state: Any) -> np.ndarray:
     n = contacts.normals
     s = contacts.tangents[:, 0, :]
     return state.joint_normal[:, None] * n + state.joint_shear[:, None] * s
-
-
-def _headline(result: Any) -> str:
-    if result is None:
-        return ""
-    a = getattr(result, "analysis", "")
-    if a == "min_friction" and result.friction_factor is not None:
-        return (f"f* = {result.friction_factor:.4g} "
-                f"(friction angle {result.friction_angle_deg:.2f} deg)")
-    if a == "max_load_multiplier" and result.load_multiplier is not None:
-        return f"lambda* = {result.load_multiplier:.4g}"
-    if a == "check":
-        return "admissible" if result.admissible else "not admissible"
-    return f"{a}: {result.status}"
 
 
 __all__ = ["DEFAULT_SNAP_TOL", "DxfReport", "LAYERS", "joint_force_vectors", "read_dxf",

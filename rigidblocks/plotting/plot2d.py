@@ -30,6 +30,7 @@ from typing import Any
 
 import numpy as np
 
+from ..results import headline
 from ..scene.geometry import block_weights, scene_size
 from ..scene.model import Scene
 
@@ -122,34 +123,8 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
 
 def _title(scene: Scene, result: Any) -> str:
     name = scene.name or ""
-    if result is None:
-        return name
-    a = getattr(result, "analysis", "")
-    if a == "min_friction":
-        if result.friction_factor is None:
-            txt = "unstable: no friction suffices"
-        else:
-            txt = (f"minimum friction f* = {result.friction_factor:.4g} "
-                   f"(friction angle {result.friction_angle_deg:.2f}\N{DEGREE SIGN})")
-    elif a == "max_load_multiplier":
-        if result.load_multiplier is None:
-            txt = f"load multiplier: {result.status}"
-        else:
-            txt = (f"collapse load multiplier \N{GREEK SMALL LETTER LAMDA}* = "
-                   f"{result.load_multiplier:.4g}, f = {_fmt_f(result.friction)}")
-    elif a == "check":
-        verdict = "admissible" if result.admissible else "not admissible"
-        txt = (f"{verdict} at f = {_fmt_f(result.friction)}, "
-               f"\N{GREEK SMALL LETTER LAMDA} = {result.load_factor:g}")
-    else:
-        txt = f"{a}: {result.status}"
-    return f"{name}\n{txt}" if name else txt
-
-
-def _fmt_f(f: Any) -> str:
-    if f is None or isinstance(f, str) or (isinstance(f, float) and math.isinf(f)):
-        return "\N{INFINITY}"
-    return f"{float(f):.4g} ({math.degrees(math.atan(float(f))):.2f}\N{DEGREE SIGN})"
+    txt = headline(result, symbols=True)
+    return f"{name}\n{txt}" if (name and txt) else (name or txt)
 
 
 def available_friction(result: Any) -> float:

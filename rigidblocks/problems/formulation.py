@@ -71,6 +71,8 @@ class JointRows:
     ``fric_head`` are the rows whose N coefficients are -f_j (one per friction
     inequality or cone); ``fric_joint`` their joints; ``fric_nsum`` a sparse matrix
     whose row r sums the normal forces in row ``fric_head[r]`` (for dR/df).
+    ``f_entries`` (block, row, column, joint, value) locate every coefficient -f_j (x a
+    constant) on a normal force: ``block`` 0 for a row of ``G_lin``, 1 of ``G_soc``.
     """
 
     G_lin: sp.csr_matrix
@@ -82,6 +84,7 @@ class JointRows:
     fric_head: np.ndarray
     fric_joint: np.ndarray
     fric_nsum: sp.csr_matrix
+    f_entries: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
 
 def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
@@ -137,6 +140,7 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
             fric_joint = np.concatenate([J, J])
             nsum = sp.coo_matrix((np.ones(2 * len(pts)), (rows_n, cols_n)),
                                  shape=(2 * nJ, n_cols)).tocsr()
+            f_ent = (P + rows_n, cols_n, J[np.concatenate([owner, owner])], vals_n)
         else:
             # one inequality pair per point: +-T_k - f_j N_k <= c_j a_k
             K = np.flatnonzero(finite[pj])
@@ -153,6 +157,7 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
             nsum = sp.coo_matrix((np.ones(2 * nK), (np.concatenate([r, r + nK]),
                                                     np.concatenate([K, K]))),
                                  shape=(2 * nK, n_cols)).tocsr()
+            f_ent = (P + rows[:2 * nK], cols[:2 * nK], fric_joint, vals[:2 * nK])
         n_fric = len(fric_joint)
         fric_head = P + np.arange(n_fric)
     elif pyramid is not None:
@@ -177,6 +182,7 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
         nsum = sp.coo_matrix((np.full(k * nK, cosk), (np.arange(k * nK), np.tile(K, k))),
                              shape=(k * nK, n_cols)).tocsr()
         fric_head = P + np.arange(k * nK)
+        f_ent = (P + np.arange(k * nK), np.tile(K, k), fric_joint, np.tile(-fk * cosk, k))
     else:
         # 3D: (f N_k + c a_k (+ r), T1_k, T2_k) in SOC(3) for points of finite-f joints
         K = np.flatnonzero(finite[pj])
@@ -196,6 +202,7 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
         soc = (3,) * nK
         fric_joint = pj[K]
         fric_head = None  # set below, after the linear rows are counted
+        f_ent = (r, K, fric_joint, -fk)
         nsum = sp.coo_matrix((np.ones(nK), (np.arange(nK), K)), shape=(nK, n_cols)).tocsr()
     G_lin = sp.vstack(lin_blocks, format="csr")
     h_lin = np.concatenate(h_parts)
@@ -206,11 +213,34 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
         G_lin = (G_lin + extra).tocsr()
     if soc_rows is None:
         soc_rows = sp.csr_matrix((0, n_cols))
+        block = np.zeros(len(f_ent[0]), dtype=int)
     else:
         fric_head = G_lin.shape[0] + np.arange(len(fric_joint)) * 3
+        block = np.ones(len(f_ent[0]), dtype=int)
     return JointRows(G_lin=G_lin, h_lin=h_lin, G_soc=soc_rows, h_soc=h_soc, soc=soc,
                      n_normal_rows=P, fric_head=fric_head, fric_joint=fric_joint,
-                     fric_nsum=nsum)
+                     fric_nsum=nsum, f_entries=(block, *f_ent))
+
+
+def friction_parameter(A: sp.csc_matrix, jr: JointRows, first_joint_row: int,
+                       f_joint: np.ndarray, uniform: np.ndarray,
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """Positions in ``A.data`` and coefficients of the entries proportional to the
+    uniform friction (the -f N terms of the joints marked ``uniform``), for
+    :meth:`~rigidblocks.solvers.base.ConicProblem.with_parameter`.
+
+    ``A`` has sorted indices; ``first_joint_row`` is the row of A where ``G_lin``
+    starts (``G_soc`` follows it). The problem must have been built with a finite,
+    nonzero f on the uniform joints.
+    """
+    block, rows, cols, joint, vals = jr.f_entries
+    keep = uniform[joint]
+    rows = rows[keep] + first_joint_row + block[keep] * jr.G_lin.shape[0]
+    cols, coef = cols[keep], vals[keep] / f_joint[joint[keep]]
+    counts = np.diff(A.indptr)
+    keys = np.repeat(np.arange(A.shape[1], dtype=np.int64), counts) * A.shape[0] + A.indices
+    pos = np.searchsorted(keys, cols.astype(np.int64) * A.shape[0] + rows)
+    return pos, coef
 
 
 def _equilibrium(system: EquilibriumSystem, scaling: Scaling) -> sp.csr_matrix:
@@ -233,8 +263,13 @@ def _stack(eq_A, eq_b, jr: JointRows, extra_lin=None, extra_h=None):
 
 def build_relaxation(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
                      load_factor: float, pyramid: int | None = None,
-                     ) -> tuple[ConicProblem, JointRows]:
-    """min r  s.t.  equilibrium at ``load_factor``, joint laws relaxed by r, r >= 0."""
+                     uniform: np.ndarray | None = None) -> tuple[ConicProblem, JointRows]:
+    """min r  s.t.  equilibrium at ``load_factor``, joint laws relaxed by r, r >= 0.
+
+    ``uniform`` (a mask of joints, with finite nonzero ``f_joint`` there) makes their
+    friction the problem's parameter "f" (:func:`friction_parameter`), so that the
+    relaxation at another uniform f is ``problem.with_parameter("f", f)``.
+    """
     n = system.layout.size
     nc = n + 1
     Aeq = sp.hstack([_equilibrium(system, scaling), sp.csr_matrix((system.n_rows, 1))])
@@ -245,9 +280,14 @@ def build_relaxation(system: EquilibriumSystem, scaling: Scaling, f_joint: np.nd
     cvec = np.zeros(nc)
     cvec[n] = 1.0
     ne, nl = system.n_rows, jr.G_lin.shape[0] + 1
+    params = {}
+    if uniform is not None and np.any(uniform & np.isfinite(f_joint)):
+        A.sort_indices()
+        params["f"] = friction_parameter(A, jr, ne + 1, f_joint, uniform)
     prob = ConicProblem(c=cvec, A=A, b=b, n_eq=ne, n_nonneg=nl, soc=jr.soc,
                         cols={"x": slice(0, n), "r": slice(n, n + 1)},
-                        rows={"equilibrium": slice(0, ne), "joints": slice(ne + 1, len(b))})
+                        rows={"equilibrium": slice(0, ne), "joints": slice(ne + 1, len(b))},
+                        params=params)
     return prob, jr
 
 

@@ -16,13 +16,43 @@ from typing import Literal
 
 import numpy as np
 
+from ..errors import InputError
+
 INFINITE = "infinite"
 Friction = float | Literal["infinite"]
 
 
-def friction_value(f: Friction) -> float:
-    """The friction coefficient as a float (``math.inf`` for ``"infinite"``)."""
-    return math.inf if f == INFINITE else float(f)
+def friction_value(f: object) -> float:
+    """The friction coefficient as a float: ``math.inf`` for ``"infinite"`` (or
+    ``"inf"``, any case), a number or a numeric string otherwise; >= 0 and not NaN.
+
+    The one converter from user input (API arguments, CLI options, scene values) to the
+    number the analyses use; :func:`friction_label` goes back.
+    """
+    if isinstance(f, str):
+        if f.strip().lower() in (INFINITE, "inf"):
+            return math.inf
+        try:
+            f = float(f)
+        except ValueError:
+            raise InputError(f'friction must be a number >= 0 or "infinite", got {f!r}') \
+                from None
+    try:
+        v = float(f)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise InputError(f'friction must be a number >= 0 or "infinite", got {f!r}') \
+            from None
+    if not (v >= 0):
+        raise InputError(f"friction must be >= 0, got {v}")
+    return v
+
+
+def friction_label(f: object) -> Friction | None:
+    """The friction as results and files show it: ``"infinite"``, a float, or None."""
+    if f is None:
+        return None
+    v = friction_value(f)
+    return INFINITE if math.isinf(v) else v
 
 
 @dataclass(frozen=True, eq=False)

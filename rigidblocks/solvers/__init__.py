@@ -1,41 +1,12 @@
-"""Solver back ends behind one interface (:func:`solve`)."""
+"""Solver back ends behind one interface (:func:`solve`), and the policy that drives
+them (:mod:`.policy`). The distortion iteration (:mod:`.distortion`) is the other solver:
+it solves the force-state QP by impressed distortions."""
 
 from __future__ import annotations
 
-from ..errors import InputError
 from .base import FAILURE, INFEASIBLE, OPTIMAL, UNBOUNDED, ConicProblem, SolverResult
+from .policy import Runner, check_solver
+from .registry import SOLVERS, solve
 
-#: back ends by name; "cvxpy-NAME" reaches any solver installed for cvxpy
-SOLVERS = ("clarabel", "highs", "osqp", "scs", "ecos")
-
-
-def solve(problem: ConicProblem, solver: str = "clarabel", **settings) -> SolverResult:
-    """Solve a standard-form problem with the named back end.
-
-    Names: ``clarabel`` (native, default), ``highs`` (scipy's HiGHS, LPs), ``osqp``
-    (QPs and LPs with linear constraints), ``scs`` / ``ecos`` (through cvxpy), or
-    ``cvxpy-NAME`` for any solver cvxpy has installed.
-    """
-    name = solver.lower()
-    if name == "clarabel":
-        from .clarabel_backend import solve_clarabel
-
-        return solve_clarabel(problem, **settings)
-    if name == "highs":
-        from .highs_backend import solve_highs
-
-        return solve_highs(problem, **settings)
-    if name == "osqp":
-        from .osqp_backend import solve_osqp
-
-        return solve_osqp(problem, **settings)
-    if name in ("scs", "ecos") or name.startswith("cvxpy-"):
-        from .cvxpy_backend import solve_cvxpy
-
-        return solve_cvxpy(problem, name.removeprefix("cvxpy-"), **settings)
-    raise InputError(f"unknown solver {solver!r} (choose from {', '.join(SOLVERS)} "
-                     "or cvxpy-NAME)")
-
-
-__all__ = ["FAILURE", "INFEASIBLE", "OPTIMAL", "UNBOUNDED", "ConicProblem", "SolverResult",
-           "SOLVERS", "solve"]
+__all__ = ["FAILURE", "INFEASIBLE", "OPTIMAL", "UNBOUNDED", "ConicProblem", "Runner",
+           "SOLVERS", "SolverResult", "check_solver", "solve"]

@@ -18,7 +18,7 @@ Duals ``y`` follow the sign convention of the KKT condition ``P z + c + A' y = 0
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -46,10 +46,22 @@ class ConicProblem:
     P: sp.csc_matrix | None = None
     cols: dict[str, slice] = field(default_factory=dict)
     rows: dict[str, slice] = field(default_factory=dict)
+    #: parametric entries of A by name: (positions in ``A.data``, coefficients), so that
+    #: ``with_parameter(name, p)`` sets those entries to ``coefficients * p``
+    params: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
 
     @property
     def n(self) -> int:
         return len(self.c)
+
+    def with_parameter(self, name: str, value: float) -> ConicProblem:
+        """The same problem with the entries of parameter ``name`` set for ``value``
+        (a copy of ``A.data``; the sparsity pattern is shared)."""
+        pos, coef = self.params[name]
+        A = self.A.tocsc()
+        data = A.data.copy()
+        data[pos] = coef * value
+        return replace(self, A=sp.csc_matrix((data, A.indices, A.indptr), shape=A.shape))
 
     @property
     def is_lp(self) -> bool:

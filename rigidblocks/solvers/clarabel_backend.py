@@ -12,6 +12,7 @@ import time
 import numpy as np
 import scipy.sparse as sp
 
+from ..errors import InputError
 from .base import FAILURE, INFEASIBLE, OPTIMAL, UNBOUNDED, ConicProblem, SolverResult
 
 _STATUS = {
@@ -32,7 +33,7 @@ def clarabel_settings(**overrides):
     s.direct_solve_method = "qdldl"
     for k, v in overrides.items():
         if not hasattr(s, k):
-            raise ValueError(f"unknown Clarabel setting {k!r}")
+            raise InputError(f"unknown Clarabel setting {k!r}")
         setattr(s, k, v)
     return s
 

@@ -456,7 +456,7 @@ def _scene_of(job: _Job, params: Mapping[str, Any]) -> Scene:
 
 def run_case(job: _Job, params: Mapping[str, Any]) -> dict[str, Any]:
     """The answers of one case (never raises: an error is recorded in the row)."""
-    from ..problems import check, max_load_multiplier, min_friction
+    from ..analyses import check, max_load_multiplier, min_friction
 
     row: dict[str, Any] = {"status": "ok", "error": None, "solve_time": 0.0}
     for a in job.analyses:

@@ -18,8 +18,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..analyses import bisect, check
 from ..errors import InputError
-from ..problems import check
 from ..scene.model import Scene
 
 
@@ -34,6 +34,9 @@ class ThicknessResult:
         param: the generator's parameter that was varied.
         n_checks: number of admissibility checks solved.
         params: the generator's other parameters.
+        status: "found" (the bracket is ``rtol`` wide), or "undecided" when a check
+            could not decide (the distortion method near the limit): the bracket
+            ``[lower, thickness]`` is then wider, and ``notes`` say where it stopped.
     """
 
     generator: str
@@ -43,9 +46,12 @@ class ThicknessResult:
     n_checks: int
     friction: Any
     params: dict[str, Any] = field(default_factory=dict)
+    status: str = "found"
+    notes: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        return {"generator": self.generator, "param": self.param,
+        return {"status": self.status, "notes": list(self.notes),
+                "generator": self.generator, "param": self.param,
                 "min_thickness": self.thickness, "lower": self.lower,
                 "n_checks": self.n_checks, "friction": self.friction,
                 "params": dict(self.params)}
@@ -87,26 +93,28 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
                          "give it")
     n = 0
 
-    def admissible(t: float) -> bool:
+    def admissible(t: float) -> tuple[bool | None, str]:
         nonlocal n
         n += 1
         scene = gen(**params, **{param: t})
-        return check(scene, friction=friction, load_factor=0.0, method=method,
-                     state=False).admissible
+        r = check(scene, friction=friction, load_factor=0.0, method=method, state=False)
+        return {"admissible": True, "inadmissible": False}.get(r.status), r.status
 
-    if not admissible(hi):
+    if admissible(hi)[0] is not True:
         raise InputError(f"min_thickness: {name} is not admissible at the upper bound "
                          f"{param}={hi:g}; raise hi")
-    if admissible(lo):
-        raise InputError(f"min_thickness: {name} is already admissible at the lower bound "
+    at_lo, status = admissible(lo)
+    if at_lo is not False:
+        what = "already admissible" if at_lo else f"{status}, not certified inadmissible,"
+        raise InputError(f"min_thickness: {name} is {what} at the lower bound "
                          f"{param}={lo:g}; lower lo")
-    while hi - lo > rtol * hi:
-        mid = 0.5 * (lo + hi)
-        if admissible(mid):
-            hi = mid
-        else:
-            lo = mid
-    return ThicknessResult(name, param, hi, lo, n, friction, dict(params))
+    br = bisect(admissible, lo, hi, rtol)
+    if br.undecided_at is not None:
+        note = (f"the check could not decide at {param}={br.undecided_at:.6g}: the minimum "
+                f"is bracketed in [{br.bad:.6g}, {br.good:.6g}]")
+        return ThicknessResult(name, param, br.good, br.bad, n, friction, dict(params),
+                               status="undecided", notes=(note,))
+    return ThicknessResult(name, param, br.good, br.bad, n, friction, dict(params))
 
 
 __all__ = ["ThicknessResult", "min_thickness"]

@@ -1,0 +1,174 @@
+"""The analyses: admissibility, minimum friction and maximum load multiplier.
+
+Each is written once, on top of the method interface (:mod:`rigidblocks.methods`):
+:func:`check` asks a method for its verdict at (f, lambda); :func:`min_friction` and
+:func:`max_load_multiplier` take the method's fast path where it has one and otherwise
+bisect on its verdicts (:mod:`.search`). Results are immutable
+(:mod:`rigidblocks.results`). Solver failures of the convex path raise
+:class:`~rigidblocks.errors.SolverFailure`; "no admissible state" is a status.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from ..errors import InputError
+from ..methods import ADMISSIBLE, Limit, Method, open_method
+from ..methods.convex import FRICTION_RTOL
+from ..results import CheckResult, FrictionResult, LoadResult
+from ..scene.model import Scene, friction_label, friction_value
+from .search import friction_by_bisection, load_by_bisection
+
+#: relative accuracy of lambda* where it is bisected (methods without a fast path)
+LOAD_RTOL = 1e-6
+
+
+def _fields(m: Method, analysis: str, status: str, friction: Any,
+            load_factor: float | None) -> dict[str, Any]:
+    """The fields every result shares, from the method's record of its work."""
+    return dict(analysis=analysis, status=status, friction=friction_label(friction),
+                load_factor=load_factor, contacts=m.system.contacts, solver=m.solver,
+                n_solves=m.n_solves, solve_time=m.solve_time, iterations=m.iterations,
+                units=(m.scene.length_unit, m.scene.force_unit), notes=tuple(m.notes),
+                timings=dict(m.timings.wall), cpu_timings=dict(m.timings.cpu))
+
+
+def _load_factor(value: Any) -> float:
+    lf = float(value)
+    if not math.isfinite(lf):
+        raise InputError(f"load factor must be a finite number, got {value!r}")
+    return lf
+
+
+def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
+          method: str = "clarabel", *, solver: str | None = None, state: bool = True,
+          settings: dict | None = None, pyramid: int | None = None,
+          contact_tol: float | None = None) -> CheckResult:
+    """Is there an admissible equilibrium state under dead + load_factor x live?
+
+    Admissible: equilibrium of every free block with compression-only contacts (or
+    bounded tension where a joint has a tensile strength) and shear within the Coulomb
+    limit |T| <= f N + c A (static theorem of limit analysis).
+
+    Args:
+        scene: the structure.
+        friction: uniform friction coefficient (None: the scene's; "infinite":
+            Heyman's no-sliding hypothesis). Joints with an override keep theirs.
+        load_factor: lambda multiplying the live loads.
+        method: "clarabel" (convex path) or "distortion" (the iterative solver); see
+            :mod:`rigidblocks.methods`.
+        solver: back end of the convex path (see :func:`rigidblocks.solvers.solve`).
+        state: compute the force state (least complementary energy) when admissible.
+        settings: the back end's settings (convex path), or the distortion method's
+            ``tol``, ``max_iter`` and ``anderson``.
+        pyramid: 3D only: linearise each Coulomb cone as an inscribed pyramid of this
+            many facets (an approximation, labelled in the result's notes).
+        contact_tol: contact-detection tolerance relative to the scene's size (None:
+            the default 1e-7, see :func:`rigidblocks.contacts.detect_contacts`). Faces
+            or edges whose planes (lines) are closer than ``contact_tol x scene size``
+            are taken as touching: raise it for geometry with gaps or overlaps from
+            rounding (e.g. 1e-5 for coordinates exported to micrometres on a 5 m
+            model). Convex path only.
+
+    Returns:
+        :class:`~rigidblocks.results.CheckResult` with status "admissible",
+        "inadmissible", or (distortion method) "undecided" or "failure".
+
+    Notes:
+        Convex path: posed as the relaxation R = min r over equilibrium states whose
+        joint-law violations are all <= r (r >= 0, forces scaled to order one);
+        admissible iff R <= 1e-9 of the largest force of the relaxation's state (see
+        :mod:`rigidblocks.methods.convex`).
+    """
+    f = friction_value(scene.effective_friction if friction is None else friction)
+    lf = _load_factor(load_factor)
+    m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
+                    contact_tol=contact_tol)
+    v = m.admissible(f, lf, for_state=state)
+    m.explain(v)
+    ok = v.status == ADMISSIBLE
+    st = m.state(f, lf, v) if (ok and state) else None
+    return CheckResult(**_fields(m, "check", v.status, f, lf), state=st, admissible=ok,
+                       violation=0.0 if ok else v.violation)
+
+
+def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel", *,
+                 solver: str | None = None, state: bool = True, rtol: float = FRICTION_RTOL,
+                 settings: dict | None = None, pyramid: int | None = None,
+                 contact_tol: float | None = None) -> FrictionResult:
+    """The smallest uniform friction coefficient f* that admits equilibrium.
+
+    Joints with their own friction override keep it. Status "stable" with f*;
+    "unstable" (no number) when even infinite friction admits no equilibrium: the
+    structure fails by hinging; "undecided" or "failure" where the method says so.
+
+    Notes:
+        Convex path: Newton steps on the relaxation R(f) (a few solves reach ``rtol``,
+        see :meth:`rigidblocks.methods.convex.ConvexMethod.friction_limit`). Other
+        methods: bracketing and bisection on their verdicts to ``rtol`` (at least 1e-9:
+        a verdict is only as sharp as its violation tolerance).
+    """
+    lf = _load_factor(load_factor)
+    m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
+                    contact_tol=contact_tol)
+    if m.contacts.n_joints and not m.uniform.any():
+        raise InputError("every joint has its own friction override: there is no uniform "
+                         "friction to minimise", scene.source)
+    lim = m.friction_limit(lf, rtol) or friction_by_bisection(m, lf, max(rtol, 1e-9))
+    if lim.status != "stable":
+        return FrictionResult(**_fields(m, "min_friction", lim.status, None, lf),
+                              lower=lim.lower, upper=lim.upper)
+    fstar = float(lim.value)
+    at = m.at_limit(fstar, lf, lim.at, state)
+    gov = lim.governing
+    if at is not None:
+        m.explain(at)
+        gov = gov or m.governing_friction(fstar, at)
+    st = m.state(fstar, lf, at) if (state and at is not None) else None
+    return FrictionResult(**_fields(m, "min_friction", "stable", fstar, lf), state=st,
+                          governing=gov, friction_factor=fstar,
+                          friction_angle_deg=math.degrees(math.atan(fstar)),
+                          lower=lim.lower, upper=lim.upper)
+
+
+def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clarabel", *,
+                        solver: str | None = None, state: bool = True,
+                        settings: dict | None = None, pyramid: int | None = None,
+                        contact_tol: float | None = None,
+                        rtol: float = LOAD_RTOL) -> LoadResult:
+    """The largest multiplier lambda* of the live loads (associative friction).
+
+    Status "collapse" with lambda* and (convex path) the collapse mechanism; "unbounded"
+    when no multiplier makes the structure collapse; "unstable" when the dead load alone
+    has no admissible state; "undecided" or "failure" where the method says so.
+
+    Notes:
+        Convex path: one LP (SOCP in 3D), max lambda s.t. A x + F_dead + lambda F_live
+        = 0 and the joint laws; its duals on the equilibrium rows are the mechanism (see
+        :meth:`rigidblocks.methods.convex.ConvexMethod.load_limit`). Other methods:
+        bisection on their verdicts to ``rtol``, without a mechanism; ``governing``
+        lists the joints at their friction threshold at lambda*.
+    """
+    if not scene.has_live_load:
+        raise InputError("the scene has no live load (no \"live\": true load and no "
+                         "live_body_force): there is nothing to multiply", scene.source)
+    f = friction_value(scene.effective_friction if friction is None else friction)
+    m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
+                    contact_tol=contact_tol)
+    lim: Limit = m.load_limit(f, rtol) or load_by_bisection(m, f, rtol)
+    if lim.status != "collapse":
+        return LoadResult(**_fields(m, "max_load_multiplier", lim.status, f, None))
+    lam = float(lim.value)
+    at = m.at_limit(f, lam, lim.at, state)
+    gov = lim.governing
+    if at is not None:
+        m.explain(at)
+        if lim.mechanism is None:
+            gov = gov or m.governing_load(f, at)
+    st = m.state(f, lam, at) if (state and at is not None) else None
+    return LoadResult(**_fields(m, "max_load_multiplier", "collapse", f, lam), state=st,
+                      governing=gov, load_multiplier=lam, mechanism=lim.mechanism)
+
+
+__all__ = ["check", "max_load_multiplier", "min_friction"]

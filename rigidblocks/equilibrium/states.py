@@ -1,0 +1,140 @@
+"""The two readings of the equilibrium matrix A: link forces x as joint resultants
+(statics: :func:`force_state`) and the duals of the equilibrium rows as block velocities
+(kinematics: :func:`mechanism`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..results import ForceState, Mechanism
+from .assembly import EquilibriumSystem
+
+#: a joint's opening or slip below this fraction of the mechanism's largest counts as
+#: none when joints are classified (interior-point duals spread round-off of the order
+#: of the solver's tolerance over every joint)
+MODE_TOL = 1e-6
+
+
+def force_state(system: EquilibriumSystem, x: np.ndarray, method: str) -> ForceState:
+    """Joint resultants, eccentricities and the thrust line of link forces ``x``."""
+    c = system.contacts
+    lay = system.layout
+    pj = c.point_joint
+    m = c.n_joints
+    N = x[lay.normal]
+    Nj = np.bincount(pj, N, minlength=m)
+    d = c.dimension
+    if d == 2:
+        if lay.shear == "joint":
+            Tj = x[lay.tangential]
+            share = np.where(Nj[pj] > 0, N / np.where(Nj[pj] > 0, Nj[pj], 1.0),
+                             1.0 / np.diff(c.joint_start)[pj])
+            T = Tj[pj] * share
+        else:
+            T = x[lay.tangential]
+            Tj = np.bincount(pj, T, minlength=m)
+        mid = 0.5 * (c.points[c.joint_start[:-1]] + c.points[c.joint_start[1:] - 1])
+        s = c.tangents[:, 0, :]
+        arm = np.einsum("ij,ij->i", c.points - mid[pj], s[pj])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ecc = np.bincount(pj, N * arm, minlength=m) / Nj
+        ecc = np.where(np.abs(Nj) > 0, ecc, np.nan)
+        thrust = mid + np.nan_to_num(ecc)[:, None] * s
+        Tabs = np.abs(Tj)
+    else:
+        T = x[lay.tangential].reshape(-1, 2)
+        Tvec = np.zeros((m, 3))
+        for k in range(2):
+            np.add.at(Tvec, pj, T[:, k:k + 1] * c.tangents[pj, k, :])
+        Tabs = np.linalg.norm(Tvec, axis=1)
+        Tj = Tabs
+        with np.errstate(invalid="ignore", divide="ignore"):
+            centre = np.stack([np.bincount(pj, N * c.points[:, k], minlength=m)
+                               for k in range(3)], axis=1) / Nj[:, None]
+        ecc = np.full(m, np.nan)
+        thrust = np.where(np.isfinite(centre), centre, 0.0)
+    scale = max(float(np.abs(Nj).max(initial=0.0)), 1e-300)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        demand = np.where(Nj > 1e-12 * scale, Tabs / np.where(Nj > 0, Nj, 1.0),
+                          np.where(Tabs > 1e-12 * scale, np.inf, 0.0))
+    return ForceState(normal=N, shear=T, joint_normal=Nj, joint_shear=Tj, eccentricity=ecc,
+                      demand=demand, thrust_points=thrust,
+                      thrust_order=chain_order(system), method=method)
+
+
+def chain_order(system: EquilibriumSystem) -> np.ndarray:
+    """Joints in order along the structure when the blocks form a chain (an arch).
+
+    A chain: every free block has exactly two joints, to different neighbours, and the
+    walk from a support reaches every joint. Otherwise joints keep detection order.
+    """
+    c = system.contacts
+    m = c.n_joints
+    fallback = np.arange(m)
+    free = system.block_rows >= 0
+    deg = np.bincount(c.pairs.ravel(), minlength=len(free))
+    if m == 0 or np.any(deg[free] != 2):
+        return fallback
+    by_block: dict[int, list[int]] = {}
+    for k, (a, b) in enumerate(c.pairs):
+        by_block.setdefault(int(a), []).append(k)
+        by_block.setdefault(int(b), []).append(k)
+    starts = [k for k in range(m) if not (free[c.pairs[k, 0]] and free[c.pairs[k, 1]])]
+    if not starts:
+        return fallback
+    k = starts[0]
+    a, b = c.pairs[k]
+    here = int(b) if free[b] else int(a)
+    order = [k]
+    used = {k}
+    while free[here]:
+        nxt = [j for j in by_block[here] if j not in used]
+        if len(nxt) != 1:
+            return fallback
+        k = nxt[0]
+        used.add(k)
+        order.append(k)
+        a, b = c.pairs[k]
+        here = int(b) if int(a) == here else int(a)
+    return np.array(order) if len(order) == m else fallback
+
+
+def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray) -> Mechanism:
+    """Virtual velocities from the duals ``y_eq`` of the equilibrium rows, scaled by
+    ``row_scale`` (the rows' scaling in the problem, :class:`Scaling` ``.row``)."""
+    v = row_scale * y_eq
+    if v @ system.live < 0:
+        v = -v
+    d = system.dofs
+    free = system.free_blocks
+    vb = v.reshape(-1, d)
+    nd = system.contacts.dimension
+    mag = np.linalg.norm(vb[:, :nd], axis=1) + np.linalg.norm(vb[:, nd:], axis=1) * \
+        system.sizes[free]
+    top = mag.max(initial=0.0)
+    if top > 0:
+        v = v / top
+    vel = np.zeros((len(system.block_rows), d))
+    vel[free] = v.reshape(-1, d)
+    delta = system.A.T @ v  # relative displacements at the links
+    lay = system.layout
+    c = system.contacts
+    opening = delta[lay.normal]
+    slip = delta[lay.tangential]
+    tol = MODE_TOL * max(np.abs(delta).max(initial=0.0), 1e-300)
+    modes = []
+    for k in range(c.n_joints):
+        pts = slice(c.joint_start[k], c.joint_start[k + 1])
+        dn = opening[pts]
+        if lay.shear == "joint" and nd == 2:
+            ds = abs(slip[k])
+        else:
+            ds = float(np.abs(slip.reshape(len(opening), -1)[pts]).max())
+        uneven = dn.max() - dn.min() > tol
+        if ds > tol:
+            modes.append("slide+hinge" if uneven else "slide")
+        elif dn.max() > tol:
+            modes.append("hinge" if dn.min() <= tol else "open")
+        else:
+            modes.append("closed")
+    return Mechanism(velocities=vel, opening=opening, slip=slip, modes=tuple(modes))

@@ -1,0 +1,92 @@
+"""Solution methods behind one interface (:class:`~.base.Method`), by name.
+
+``clarabel`` (alias ``convex``): the convex path (relaxation, LP/SOCP), with any back end
+of :mod:`rigidblocks.solvers` as ``solver``. ``distortion``: the seed's iterative
+solver (2D). :func:`open_method` opens one on a scene (contacts and assembly included)
+and refuses options that do not apply to it.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..contacts import detect_contacts
+from ..equilibrium import assemble
+from ..errors import InputError
+from ..scene.model import Scene
+from ..solvers import SOLVERS
+from .base import ADMISSIBLE, FAILURE, INADMISSIBLE, UNDECIDED, Limit, Method, Timings, Verdict
+from .convex import ConvexMethod
+from .distortion import DistortionMethod
+
+#: the methods by name, with what each is
+METHODS: dict[str, str] = {
+    "clarabel": "the convex path (relaxation and LP/SOCP); back end chosen by solver=",
+    "distortion": "the seed's iterative impressed-distortion solver (2D)",
+}
+_ALIASES = {"convex": "clarabel"}
+
+
+def method_name(method: str, solver: str | None = None) -> tuple[str, str | None]:
+    """(method, back end) from the ``method`` and ``solver`` arguments.
+
+    A back end's name given as the method (``method="highs"``) means the convex path
+    with that back end, as before there was a ``solver`` argument.
+    """
+    m = str(method).lower()
+    m = _ALIASES.get(m, m)
+    if m in METHODS:
+        return m, solver
+    if m in SOLVERS or m.startswith("cvxpy-"):
+        if solver is not None and solver.lower() != m:
+            raise InputError(f"method {method!r} is a back end of the convex path, and "
+                             f"solver={solver!r} names another")
+        return "clarabel", m
+    raise InputError(f"unknown method {method!r} (choose from {', '.join(METHODS)}, or a "
+                     "solver name for the convex path)")
+
+
+def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = None,
+                settings: dict | None = None, pyramid: int | None = None,
+                contact_tol: float | None = None) -> Method:
+    """The named method on ``scene``: contacts detected, equilibrium assembled.
+
+    Options that the method does not take are refused with an :class:`InputError`:
+    ``solver``, ``pyramid`` and ``contact_tol`` are options of the convex path; the
+    distortion method takes the settings ``tol``, ``max_iter`` and ``anderson``.
+    """
+    name, solver = method_name(method, solver)
+    if name == "distortion":
+        given = [k for k, v in (("solver", solver), ("pyramid", pyramid),
+                                ("contact_tol", contact_tol)) if v is not None]
+        if given:
+            raise InputError(f"{', '.join(given)}: an option of the convex path, not of "
+                             "the distortion method")
+        unknown = sorted(set(settings or {}) - set(DistortionMethod.setting_keys))
+        if unknown:
+            raise InputError(f"unknown setting(s) of the distortion method: "
+                             f"{', '.join(unknown)} (it takes "
+                             f"{', '.join(DistortionMethod.setting_keys)})")
+        if scene.dimension != 2:
+            raise InputError("the distortion method is not supported for 3D scenes; use "
+                             "method='clarabel' (the convex path)", scene.source)
+    timings = Timings()
+    kw = {}
+    if contact_tol is not None:
+        tol = float(contact_tol)
+        if not (tol > 0 and math.isfinite(tol)):
+            raise InputError(f"contact_tol must be a number > 0, got {contact_tol!r}")
+        kw["tol"] = tol
+    with timings.stage("contacts"):
+        contacts = detect_contacts(scene, **kw)
+    with timings.stage("assembly"):
+        system = assemble(scene, contacts)
+    if name == "distortion":
+        return DistortionMethod(scene, system, timings, settings=settings)
+    return ConvexMethod(scene, system, timings, solver=solver or "clarabel",
+                        settings=settings, pyramid=pyramid)
+
+
+__all__ = ["ADMISSIBLE", "FAILURE", "INADMISSIBLE", "METHODS", "UNDECIDED", "ConvexMethod",
+           "DistortionMethod", "Limit", "Method", "Timings", "Verdict", "method_name",
+           "open_method"]

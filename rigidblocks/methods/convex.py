@@ -1,0 +1,343 @@
+"""The convex path: verdicts from the relaxation R(f, lambda), f* by Newton steps on R,
+lambda* from one LP (SOCP in 3D), the force state from the least-energy QP.
+
+Admissible iff R <= 1e-9 of the largest force of the relaxation's own state (the
+interior-point solver's accuracy is relative to the size of its solution). The
+relaxation is always feasible when the equilibrium equations can be met, so it avoids
+the degenerate feasibility problems at the limit. The problems come from
+:mod:`rigidblocks.problems.formulation`; the back ends and their policy from
+:mod:`rigidblocks.solvers`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..equilibrium import EquilibriumSystem, force_state, mechanism
+from ..errors import InputError, SolverFailure
+from ..problems.formulation import Scaling, build_energy_qp, build_max_load, build_relaxation
+from ..results import ForceState
+from ..scene.model import Scene
+from ..solvers import INFEASIBLE, OPTIMAL, UNBOUNDED, Runner, SolverResult
+from .base import ADMISSIBLE, INADMISSIBLE, Limit, Method, Timings, Verdict
+
+#: a relaxation below this fraction of the largest force of its state counts as zero
+#: (interior-point residuals are relative to the size of the solution: a 30-course wall
+#: carries 30 block weights at its base, and R carries round-off of that order)
+ADMISSIBLE_TOL = 1e-9
+#: relative accuracy of the minimum friction
+FRICTION_RTOL = 1e-7
+#: absolute accuracy of the minimum friction: a structure that stands with f <= 1e-9
+#: needs no friction (round-off keeps R(0) just above the threshold)
+FRICTION_ATOL = 1e-9
+#: slack (reference-force units) granted to the force-state QP at a limit state, where
+#: the admissible set shrinks to a point and round-off would make it empty
+STATE_SLACK = 1e-9
+#: the note of a relaxation whose equilibrium equations have no solution
+NO_EQUILIBRIUM = ("the equilibrium equations have no solution with these joints (the "
+                  "scene is a mechanism)")
+
+
+@dataclass(frozen=True, eq=False)
+class Relaxation:
+    """One relaxation solve: R(f), dR/df, and what the analyses read from it."""
+
+    R: float | None  # None: the equilibrium equations have no solution
+    slope: float
+    res: SolverResult
+    jr: Any
+    prob: Any
+    tol: float  # R <= tol counts as zero (ADMISSIBLE_TOL x the largest scaled force)
+    f: float = math.nan
+
+    @property
+    def zero(self) -> bool:
+        return self.R is not None and self.R <= self.tol
+
+
+class ConvexMethod(Method):
+    """The convex path with one back end (:mod:`rigidblocks.solvers`)."""
+
+    name = "clarabel"
+    setting_keys = None  # the back end checks its own settings
+
+    def __init__(self, scene: Scene, system: EquilibriumSystem, timings: Timings, *,
+                 solver: str = "clarabel", settings: dict | None = None,
+                 pyramid: int | None = None):
+        super().__init__(scene, system, timings)
+        self.runner = Runner(solver, settings or {}, scene.source or "")
+        self.solver = self.runner.solver
+        with timings.stage("build"):
+            self.scaling = Scaling.of(system)
+        self.pyramid = pyramid
+        #: relaxation problems by load factor, with the uniform friction as parameter
+        self._relax: dict[float, tuple[Any, Any]] = {}
+        if pyramid is not None:
+            if scene.dimension != 3:
+                raise InputError("the friction pyramid is an option of 3D scenes only")
+            if int(pyramid) < 3:
+                raise InputError(f"a friction pyramid needs at least 3 facets, got {pyramid}")
+            self.pyramid = int(pyramid)
+            self.notes.append(f"friction cones linearised as inscribed {int(pyramid)}-facet "
+                              "pyramids (an approximation: not the Coulomb cone)")
+        loose = self.runner.loose_settings()
+        if loose:
+            self.notes.append(f"solver tolerances looser than 1e-9 ({', '.join(loose)}): "
+                              "verdicts rest on a relaxation compared with 1e-9 of the "
+                              "largest force and may be wrong near a limit")
+
+    # -- work done -------------------------------------------------------------------
+    @property
+    def n_solves(self) -> int:
+        return self.runner.n_solves
+
+    @property
+    def solve_time(self) -> float:
+        return self.runner.solve_time
+
+    @property
+    def iterations(self) -> int:
+        return self.runner.iterations
+
+    def _run(self, problem: Any, what: str, tight: bool = False) -> SolverResult:
+        w0, c0 = self.runner.wall_time, time.process_time()
+        try:
+            return self.runner.run(problem, what, tight)
+        finally:
+            self.timings.add("solve", self.runner.wall_time - w0, time.process_time() - c0)
+
+    # -- the relaxation ----------------------------------------------------------------
+    def _relaxation_problem(self, f: float, load_factor: float) -> tuple[Any, Any]:
+        """The relaxation at uniform friction ``f``: built once per load factor with the
+        uniform friction as a parameter of the problem (its -f N coefficients), so that
+        later values of f only set those entries."""
+        if not math.isfinite(f):
+            with self.timings.stage("build"):
+                return build_relaxation(self.system, self.scaling, self.f_joint(f),
+                                        load_factor, self.pyramid)
+        cached = self._relax.get(load_factor)
+        if cached is None:
+            with self.timings.stage("build"):
+                cached = build_relaxation(self.system, self.scaling, self.f_joint(1.0),
+                                          load_factor, self.pyramid, uniform=self.uniform)
+            self._relax[load_factor] = cached
+        prob, jr = cached
+        if "f" in prob.params:
+            prob = prob.with_parameter("f", f)
+        return prob, jr
+
+    def relaxation(self, f: float, load_factor: float) -> Relaxation:
+        """R(f) and dR/df (from the duals of the friction rows of the uniform joints)."""
+        prob, jr = self._relaxation_problem(f, load_factor)
+        res = self._run(prob, "relaxation", tight=True)
+        if res.status != OPTIMAL:
+            return Relaxation(None, 0.0, res, jr, prob, ADMISSIBLE_TOL, f)
+        z, y = res.z, res.y
+        R = max(float(z[prob.cols["r"]][0]), 0.0)
+        x = z[prob.cols["x"]]
+        tol = ADMISSIBLE_TOL * max(1.0, float(np.max(np.abs(x), initial=0.0)))
+        head = prob.rows["joints"].start + jr.fric_head
+        uni = self.uniform[jr.fric_joint]
+        nsum = jr.fric_nsum @ z
+        slope = float(np.sum(y[head][uni] * nsum[uni]))
+        return Relaxation(R, slope, res, jr, prob, tol, f)
+
+    def _verdict(self, rx: Relaxation) -> Verdict:
+        if rx.R is None:  # equilibrium equations cannot be met at all: a mechanism
+            return Verdict(INADMISSIBLE, math.inf, (NO_EQUILIBRIUM,), rx)
+        if rx.zero:
+            return Verdict(ADMISSIBLE, 0.0, (), rx)
+        return Verdict(INADMISSIBLE, rx.R * self.scaling.force, (), rx)
+
+    def admissible(self, f: float, load_factor: float, for_state: bool = False) -> Verdict:
+        return self._verdict(self.relaxation(f, load_factor))
+
+    # -- the force state ---------------------------------------------------------------
+    def state(self, f: float, load_factor: float, verdict: Verdict) -> ForceState | None:
+        """The admissible state of least complementary energy (a QP).
+
+        At a limit state the admissible set shrinks to (nearly) one point and the QP can
+        be out of the interior-point solver's reach (3D cones sliding all round a bed
+        joint); the state of the solved limit problem (an admissible state, not the
+        least-energy one) is then returned, and the result's notes say so.
+        """
+        data = verdict.data
+        if isinstance(data, Relaxation):
+            relax, limit, limit_x = data.R + STATE_SLACK, data.res, data.prob.cols["x"]
+        else:  # the max-load LP: (result, problem)
+            res, prob = data
+            relax, limit, limit_x = STATE_SLACK, res, prob.cols["x"]
+        with self.timings.stage("build"):
+            prob = build_energy_qp(self.system, self.scaling, self.f_joint(f), load_factor,
+                                   relax, self.pyramid)
+        try:
+            res = self._run(prob, "force-state")
+            status = res.raw_status if res.status != OPTIMAL else None
+        except SolverFailure as exc:
+            status = exc.status
+        with self.timings.stage("state"):
+            if status is None:
+                return force_state(self.system, res.z[prob.cols["x"]] * self.scaling.force,
+                                   "least complementary energy")
+            self.notes.append(f"force state: the solution of the limit problem (the "
+                              f"least-energy QP ended with status {status})")
+            return force_state(self.system, limit.z[limit_x] * self.scaling.force,
+                               "solution of the limit problem")
+
+    # -- f*: Newton steps on R(f) ------------------------------------------------------
+    def friction_limit(self, load_factor: float, rtol: float) -> Limit:
+        """f* by safeguarded Newton steps on R(f).
+
+        R(f), the smallest violation of the joint laws at friction f, is zero for
+        f >= f* and positive below. Starting from f = 0, Newton steps
+        f <- f + R(f) / (-dR/df) use the derivative from the duals of the friction rows
+        (dR/df = -sum_r y_r N_r, envelope theorem), with a bracket [lower, upper] and
+        bisection as a safeguard. Every step solves an always feasible LP (SOCP in 3D);
+        a few solves reach ``rtol``.
+        """
+        lf = load_factor
+        rx = self.relaxation(math.inf, lf)
+        if not rx.zero:
+            if rx.R is None:
+                self.notes.append(NO_EQUILIBRIUM)
+            return Limit("unstable")
+        lo, hi, at_hi = 0.0, math.inf, rx  # at_hi: the relaxation at the upper end
+        rx = self.relaxation(0.0, lf)
+        if rx.R is None:
+            raise SolverFailure("the relaxation at f = 0 has no solution although infinite "
+                                "friction has one", self.solver, rx.res.raw_status)
+        last = None
+        if rx.zero:
+            hi, at_hi = 0.0, rx
+        else:
+            last = rx
+        R_lo, s_lo = rx.R, rx.slope
+        prev: tuple[float, float] | None = None  # (f, slope) of the previous lower point
+        probe_below_hi = True  # next time Newton lands on or past hi, probe just below hi
+        forced: float | None = None  # the next trial, after a relaxation the solver missed
+        undecided = ""  # the solver's status where it could not decide near f*
+        for _ in range(100):
+            if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
+                break
+            newton = lo + _root_step(R_lo, s_lo, lo, prev) if s_lo > 0 else math.inf
+            if forced is not None:
+                trial, forced = forced, None
+            elif math.isinf(hi):
+                trial = newton if math.isfinite(newton) else max(2.0 * lo, 1.0)
+                if trial - lo <= 0.5 * rtol * trial:
+                    trial = trial * (1.0 + 0.5 * rtol)  # certify from above
+            elif lo < newton < hi * (1.0 - 0.5 * rtol):
+                trial = newton
+                if trial - lo <= 0.5 * rtol * trial:
+                    trial = min(trial * (1.0 + 0.5 * rtol), hi * (1.0 - 0.25 * rtol))
+            elif probe_below_hi:
+                trial = hi * (1.0 - 0.5 * rtol)
+                probe_below_hi = False
+            else:
+                trial = 0.5 * (lo + hi)
+                probe_below_hi = True
+            try:
+                rx = self.relaxation(trial, lf)
+            except SolverFailure as exc:
+                # just below f* the relaxation can be too degenerate for the interior-point
+                # solver: probe four times further below the certified upper end
+                if not math.isfinite(hi) or trial < hi * (1.0 - 1e3 * rtol):
+                    raise
+                undecided = exc.status
+                forced = hi - 4.0 * (hi - trial)
+                if forced <= lo:
+                    break
+                continue
+            if rx.R is None:
+                raise SolverFailure("relaxation problem lost its solution", self.solver,
+                                    rx.res.raw_status)
+            if rx.zero:
+                hi, at_hi = trial, rx
+            else:
+                prev = (lo, s_lo)
+                lo, R_lo, s_lo = trial, rx.R, rx.slope
+                last = rx
+        else:
+            raise SolverFailure("minimum friction did not converge in 100 solves",
+                                self.solver, "iteration limit")
+        if undecided:
+            self.notes.append(f"near f* some relaxations ended with status {undecided}; f* "
+                              f"is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
+                              f"{(hi - lo) / hi:.1e})")
+        governing: tuple[int, ...] = ()
+        if last is not None:
+            res, jr, prob = last.res, last.jr, last.prob
+            head = prob.rows["joints"].start + jr.fric_head
+            # each friction row's share of -dR/df, y_r N_r: a joint whose normal force
+            # vanishes (an opening joint carrying only the relaxation's slack) does not
+            # govern
+            w = res.y[head] * (jr.fric_nsum @ res.z) * self.uniform[jr.fric_joint]
+            if w.size and w.max() > 0:
+                strong = w > 1e-3 * w.max()
+                governing = tuple(sorted({int(j) for j in jr.fric_joint[strong]}))
+        return Limit("stable", hi, lo, hi, governing=governing, at=self._verdict(at_hi))
+
+    # -- lambda*: one LP ---------------------------------------------------------------
+    def load_limit(self, f: float, rtol: float) -> Limit:
+        """lambda* from max lambda s.t. A x + F_dead + lambda F_live = 0 and the joint
+        laws; by LP duality the multipliers of the equilibrium rows are the virtual
+        velocities of the collapse mechanism (associative flow rule, kinematic theorem).
+        Solved at the tight tolerances of the relaxations: at Clarabel's defaults (1e-8)
+        lambda* of a 1,000-block wall is off by 7e-5 (its toe carries a thousand block
+        weights, and the residuals are relative to that), at 1e-10 by 4e-6 of the
+        simplex (HiGHS) answer, for 1.4x the interior-point iterations."""
+        with self.timings.stage("build"):
+            prob, jr = build_max_load(self.system, self.scaling, self.f_joint(f),
+                                      self.pyramid)
+        res = self._run(prob, "maximum load", tight=True)
+        if res.status == UNBOUNDED:
+            return Limit("unbounded" if self._dead_admissible(f) else "unstable")
+        if res.status == INFEASIBLE:
+            return Limit("unstable")
+        lam = float(res.z[prob.cols["lambda"]][0])
+        if lam < -ADMISSIBLE_TOL:
+            self.notes.append(f"the largest admissible multiplier is negative ({lam:.6g}): "
+                              "the dead load alone is not admissible")
+            return Limit("unstable")
+        if not self._dead_admissible(f):
+            self.notes.append(f"largest admissible multiplier {lam:.6g}, but only with the "
+                              "live load propping the structure up")
+            return Limit("unstable")
+        with self.timings.stage("state"):
+            mech = mechanism(self.system, self.scaling.row, res.y[prob.rows["equilibrium"]])
+        sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
+        return Limit("collapse", lam, lam, lam, governing=sliding, mechanism=mech,
+                     at=Verdict(ADMISSIBLE, 0.0, (), (res, prob)))
+
+    def _dead_admissible(self, f: float) -> bool:
+        """Is lambda = 0 admissible? The admissible multipliers form an interval, which
+        may lie wholly above 0 when the live load props up a structure that cannot stand
+        under its dead load alone. One relaxation solve (none without a dead load)."""
+        if not np.any(self.system.dead):
+            return True
+        if not self.relaxation(f, 0.0).zero:
+            self.notes.append("the dead load alone is not admissible")
+            return False
+        return True
+
+
+def _root_step(R: float, s: float, f: float, prev: tuple[float, float] | None) -> float:
+    """Step from a lower point (R(f) = R > 0, -dR/df = s > 0) to the estimated root.
+
+    Newton's step R / s, or, where the slope has grown since the previous lower point
+    (R concave there, so Newton overshoots), the root of the quadratic model
+    R - s d - c d^2 / 2 with the curvature c = ds/df from the two slopes.
+    """
+    if prev is not None and f > prev[0] and s > prev[1]:
+        c = (s - prev[1]) / (f - prev[0])
+        return 2.0 * R / (s + math.sqrt(s * s + 2.0 * c * R))
+    return R / s
+
+
+__all__ = ["ADMISSIBLE_TOL", "ConvexMethod", "FRICTION_ATOL", "FRICTION_RTOL", "Relaxation",
+           "STATE_SLACK"]
