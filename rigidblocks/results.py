@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -68,9 +68,22 @@ class Mechanism:
     opening: np.ndarray
     slip: np.ndarray
     modes: tuple[str, ...]
+    #: (m,) each joint's largest relative velocity (opening or slip), same units
+    rates: np.ndarray | None = None
+    #: "vertex" (one mechanism of the optimal face, which can be drawn) or "blend" (the
+    #: interior-point dual: the centre of the optimal face, a mix of every optimal one)
+    kind: str = "blend"
 
     def joints_with(self, mode: str) -> np.ndarray:
         return np.array([k for k, m in enumerate(self.modes) if m == mode], dtype=int)
+
+    @property
+    def ranking(self) -> tuple[int, ...]:
+        """The joints that move (not "closed"), fastest first."""
+        moving = [k for k, m in enumerate(self.modes) if m != "closed"]
+        if self.rates is None:
+            return tuple(moving)
+        return tuple(sorted(moving, key=lambda k: -float(self.rates[k])))
 
 
 @dataclass(frozen=True, eq=False)
@@ -94,21 +107,80 @@ class Result:
     state: ForceState | None = field(default=None, repr=False)
     governing: tuple[int, ...] = ()
     notes: tuple[str, ...] = ()
+    #: [lower, upper] around the answer where the method bracketed it (None otherwise)
+    bracket: tuple[float, float] | None = None
     #: seconds per stage (contacts, assembly, build, solve, state), wall clock and CPU
     timings: dict[str, float] = field(default_factory=dict, repr=False)
     cpu_timings: dict[str, float] = field(default_factory=dict, repr=False)
 
+    #: the statuses that are not verdicts: the method could not decide, or broke down
+    UNDECIDED: ClassVar[tuple[str, ...]] = ("undecided", "failure")
+
+    @property
+    def decided(self) -> bool:
+        """False when the status is "undecided" or "failure": no verdict, no number."""
+        return self.status not in self.UNDECIDED
+
+    def joint_name(self, k: int) -> tuple[str, str]:
+        ids = self.contacts.block_ids
+        return ids[self.contacts.pairs[k, 0]], ids[self.contacts.pairs[k, 1]]
+
     @property
     def governing_joints(self) -> list[tuple[str, str]]:
-        ids = self.contacts.block_ids
-        return [(ids[self.contacts.pairs[k, 0]], ids[self.contacts.pairs[k, 1]])
-                for k in self.governing]
+        return [self.joint_name(k) for k in self.governing]
+
+    def joint_table(self) -> list[dict[str, Any]]:
+        """One row per joint: its blocks, N, T, eccentricity e (2D), |T|/N, its
+        ``state`` in the force state ("open": no compression; "edge": the resultant at
+        an edge of the joint, where a hinge forms; "friction limit": |T| = f N;
+        "closed") and its ``mode`` in the mechanism, if any; empty without a state."""
+        st = self.state
+        if st is None:
+            return []
+        mech = getattr(self, "mechanism", None)
+        c = self.contacts
+        f_uniform = math.inf if self.friction is None else \
+            (math.inf if isinstance(self.friction, str) else float(self.friction))
+        fj = np.where(np.isnan(c.override_friction), f_uniform, c.override_friction)
+        big = float(np.abs(st.joint_normal).max(initial=0.0))
+        half = None
+        if c.dimension == 2:
+            half = 0.5 * np.linalg.norm(c.points[c.joint_start[1:] - 1]
+                                        - c.points[c.joint_start[:-1]], axis=1)
+        rows = []
+        for k in range(c.n_joints):
+            a, b = self.joint_name(k)
+            N, T = float(st.joint_normal[k]), float(st.joint_shear[k])
+            e = float(st.eccentricity[k])
+            if N <= 1e-9 * big:
+                state = "open"
+            elif math.isfinite(fj[k]) and abs(T) >= fj[k] * N * (1 - 1e-6):
+                state = "friction limit"
+            elif half is not None and math.isfinite(e) and abs(e) >= half[k] * (1 - 1e-6):
+                state = "edge"
+            else:
+                state = "closed"
+            rows.append({"joint": [a, b], "N": N, "T": T,
+                         "eccentricity": e if math.isfinite(e) else None,
+                         "demand": float(st.demand[k]), "state": state,
+                         "mode": mech.modes[k] if mech is not None else None})
+        return rows
 
     def _common(self) -> dict[str, Any]:
-        return {"status": self.status, "solver": self.solver, "n_solves": self.n_solves,
+        return {"status": self.status, "notes": list(self.notes),
+                "bracket": list(self.bracket) if self.bracket is not None else None,
+                "solver": self.solver, "n_solves": self.n_solves,
                 "solve_time": self.solve_time}
 
-    def to_dict(self) -> dict[str, Any]:  # pragma: no cover - overridden
+    def to_dict(self, joints: bool = False) -> dict[str, Any]:
+        """The result as plain data (the CLI's ``--json``); ``joints`` adds the
+        per-joint table (:meth:`joint_table`)."""
+        out = {**self._common(), **self._answer()}
+        if joints:
+            out["joints"] = self.joint_table()
+        return out
+
+    def _answer(self) -> dict[str, Any]:  # pragma: no cover - overridden
         raise NotImplementedError
 
 
@@ -148,17 +220,35 @@ def _friction_text(f: Any, deg: str, inf: str) -> str:
 class CheckResult(Result):
     """Admissibility at given friction and load factor.
 
-    status: "admissible" or "inadmissible". ``violation`` is the smallest achievable
-    violation of the joint laws (force units; 0 when admissible).
+    status: "admissible" or "inadmissible"; "undecided" or "failure" when the method
+    could not tell (``admissible`` is then None). ``violation`` is the smallest
+    achievable violation of the joint laws (force units; 0 when admissible).
+    ``breaches``: where the joint laws are breached in that least-violation state,
+    (joint, breach in force units), largest first.
     """
 
-    admissible: bool = False
+    admissible: bool | None = False
     violation: float = 0.0
+    breaches: tuple[tuple[int, float], ...] = ()
 
-    def to_dict(self) -> dict[str, Any]:
-        return {**self._common(), "admissible": self.admissible,
-                "friction": friction_label(self.friction), "load_factor": self.load_factor,
-                "violation": self.violation}
+    @property
+    def friction_demand(self) -> tuple[float, int] | None:
+        """The largest |T|/N over the joints of the force state and its joint (None
+        without a state): the friction the state of least complementary energy needs."""
+        st = self.state
+        if st is None or not len(st.demand):
+            return None
+        k = int(np.argmax(st.demand))
+        return float(st.demand[k]), k
+
+    def _answer(self) -> dict[str, Any]:
+        fd = self.friction_demand
+        return {"admissible": self.admissible, "friction": friction_label(self.friction),
+                "load_factor": self.load_factor, "violation": self.violation,
+                "friction_demand": fd[0] if fd else None,
+                "friction_demand_joint": list(self.joint_name(fd[1])) if fd else None,
+                "breaches": [{"joint": list(self.joint_name(k)), "breach": v}
+                             for k, v in self.breaches]}
 
 
 @dataclass(frozen=True, eq=False)
@@ -175,8 +265,8 @@ class FrictionResult(Result):
     lower: float | None = None
     upper: float | None = None
 
-    def to_dict(self) -> dict[str, Any]:
-        return {**self._common(), "friction_factor": self.friction_factor,
+    def _answer(self) -> dict[str, Any]:
+        return {"friction_factor": self.friction_factor,
                 "friction_angle_deg": self.friction_angle_deg,
                 "governing_joints": [list(p) for p in self.governing_joints],
                 "load_factor": self.load_factor}
@@ -187,26 +277,31 @@ class LoadResult(Result):
     """Maximum load multiplier (associative friction).
 
     status: "collapse" (finite lambda*), "unbounded" (no multiplier makes it collapse)
-    or "unstable" (the dead load alone has no admissible state).
+    or "unstable" (the dead load alone has no admissible state); "undecided" or
+    "failure" when the method could not tell (no number). ``tilt_angle_deg``: where the
+    live load is a horizontal body force a (in g), the tilt angle atan(lambda* |a|) of
+    the ground that loads the structure the same way (a tilting-table test).
     """
 
     load_multiplier: float | None = None
     mechanism: Mechanism | None = field(default=None, repr=False)
+    tilt_angle_deg: float | None = None
 
-    def to_dict(self) -> dict[str, Any]:
-        out = {**self._common(), "load_multiplier": self.load_multiplier,
-               "friction": friction_label(self.friction)}
+    def _answer(self) -> dict[str, Any]:
+        out = {"load_multiplier": self.load_multiplier,
+               "friction": friction_label(self.friction),
+               "tilt_angle_deg": self.tilt_angle_deg}
         if self.mechanism is not None:
             m = self.mechanism
-            ids = self.contacts.block_ids
+            order = m.ranking
             out["mechanism"] = {
-                "hinges": [self._pair(k, ids) for k in m.joints_with("hinge")],
-                "sliding": [self._pair(k, ids) for k in range(len(m.modes))
+                "kind": m.kind,
+                "hinges": [list(self.joint_name(k)) for k in order if m.modes[k] == "hinge"],
+                "sliding": [list(self.joint_name(k)) for k in order
                             if m.modes[k].startswith("slide")],
-                "open": [self._pair(k, ids) for k in m.joints_with("open")],
+                "open": [list(self.joint_name(k)) for k in order if m.modes[k] == "open"],
+                "ranked": [{"joint": list(self.joint_name(k)), "mode": m.modes[k],
+                            "rate": float(m.rates[k]) if m.rates is not None else None}
+                           for k in order],
             }
         return out
-
-    def _pair(self, k: int, ids: tuple[str, ...]) -> list[str]:
-        a, b = self.contacts.pairs[k]
-        return [ids[a], ids[b]]

@@ -167,13 +167,13 @@ def test_human_report(capsys, seed_file):
 def test_unstable_under_live_load_hints_at_the_two_usual_questions(capsys):
     """A horizontal body force of 1 g tilts the gravity field by 45 degrees; a thin
     semicircular ring (t/R = 0.15, barely above Milankovitch's 0.1075 for vertical
-    gravity) cannot contain a thrust line under it, so `friction` at the default load
-    factor 1 is unstable, and the report names --load-factor 0 and the `load` command.
+    gravity) cannot contain a thrust line under it, so `friction` at load factor 1 is
+    unstable, and the report names --load-factor 0 and the `load` command.
     Under self-weight alone the arch stands (t/R > 0.1075) and needs finite friction."""
     from rigidblocks.cli.main import main
 
     path = str(EXAMPLES / "arch.json")
-    assert main(["friction", path]) == 0
+    assert main(["friction", path, "--load-factor", "1"]) == 0
     out = capsys.readouterr().out
     assert "UNSTABLE" in out and "--load-factor 0" in out and "rigidblocks load" in out
     assert main(["friction", path, "--load-factor", "0"]) == 0

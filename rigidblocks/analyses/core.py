@@ -14,7 +14,7 @@ import math
 from typing import Any
 
 from ..errors import InputError
-from ..methods import ADMISSIBLE, Limit, Method, open_method
+from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, open_method
 from ..methods.convex import FRICTION_RTOL
 from ..results import CheckResult, FrictionResult, LoadResult
 from ..scene.model import Scene, friction_label, friction_value
@@ -34,14 +34,38 @@ def _fields(m: Method, analysis: str, status: str, friction: Any,
                 timings=dict(m.timings.wall), cpu_timings=dict(m.timings.cpu))
 
 
-def _load_factor(value: Any) -> float:
-    lf = float(value)
+def _load_factor(scene: Scene, value: Any) -> float:
+    """The load factor asked for, or the scene's (``load_factor`` key, default 1)."""
+    if value is None:
+        return scene.effective_load_factor
+    try:
+        lf = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"load factor must be a number, got {value!r}") from None
     if not math.isfinite(lf):
         raise InputError(f"load factor must be a finite number, got {value!r}")
     return lf
 
 
-def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
+def _bracket(lim: Limit) -> tuple[float, float] | None:
+    if lim.lower is None or lim.upper is None:
+        return None
+    return (float(lim.lower), float(lim.upper))
+
+
+def tilt_angle_deg(scene: Scene, load_multiplier: float | None) -> float | None:
+    """atan(lambda* |a|) in degrees where the live load is a horizontal body force a
+    (in g) and nothing else: the tilt of the ground that loads the structure the same
+    way (a tilting-table test). None otherwise."""
+    a = scene.live_body_force
+    if load_multiplier is None or a is None or any(ld.is_live for ld in scene.loads):
+        return None
+    if abs(a[-1]) > 0:  # a vertical component: not a tilt
+        return None
+    return math.degrees(math.atan(load_multiplier * math.hypot(*a[:-1])))
+
+
+def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
           method: str = "clarabel", *, solver: str | None = None, state: bool = True,
           settings: dict | None = None, pyramid: int | None = None,
           contact_tol: float | None = None) -> CheckResult:
@@ -55,7 +79,8 @@ def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
         scene: the structure.
         friction: uniform friction coefficient (None: the scene's; "infinite":
             Heyman's no-sliding hypothesis). Joints with an override keep theirs.
-        load_factor: lambda multiplying the live loads.
+        load_factor: lambda multiplying the live loads (None: the scene's
+            ``load_factor``, default 1).
         method: "clarabel" (convex path) or "distortion" (the iterative solver); see
             :mod:`rigidblocks.methods`.
         solver: back end of the convex path (see :func:`rigidblocks.solvers.solve`).
@@ -82,18 +107,21 @@ def check(scene: Scene, friction: Any = None, load_factor: float = 1.0,
         :mod:`rigidblocks.methods.convex`).
     """
     f = friction_value(scene.effective_friction if friction is None else friction)
-    lf = _load_factor(load_factor)
+    lf = _load_factor(scene, load_factor)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol)
     v = m.admissible(f, lf, for_state=state)
     m.explain(v)
     ok = v.status == ADMISSIBLE
     st = m.state(f, lf, v) if (ok and state) else None
-    return CheckResult(**_fields(m, "check", v.status, f, lf), state=st, admissible=ok,
-                       violation=0.0 if ok else v.violation)
+    breaches = m.breaches(f, v) if v.status == INADMISSIBLE else ()
+    return CheckResult(**_fields(m, "check", v.status, f, lf), state=st,
+                       admissible=v.admissible, violation=0.0 if ok else v.violation,
+                       breaches=breaches)
 
 
-def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel", *,
+def min_friction(scene: Scene, load_factor: float | None = None,
+                 method: str = "clarabel", *,
                  solver: str | None = None, state: bool = True, rtol: float = FRICTION_RTOL,
                  settings: dict | None = None, pyramid: int | None = None,
                  contact_tol: float | None = None) -> FrictionResult:
@@ -109,7 +137,7 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
         methods: bracketing and bisection on their verdicts to ``rtol`` (at least 1e-9:
         a verdict is only as sharp as its violation tolerance).
     """
-    lf = _load_factor(load_factor)
+    lf = _load_factor(scene, load_factor)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol)
     if m.contacts.n_joints and not m.uniform.any():
@@ -118,7 +146,7 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
     lim = m.friction_limit(lf, rtol) or friction_by_bisection(m, lf, max(rtol, 1e-9))
     if lim.status != "stable":
         return FrictionResult(**_fields(m, "min_friction", lim.status, None, lf),
-                              lower=lim.lower, upper=lim.upper)
+                              lower=lim.lower, upper=lim.upper, bracket=_bracket(lim))
     fstar = float(lim.value)
     at = m.at_limit(fstar, lf, lim.at, state)
     gov = lim.governing
@@ -129,14 +157,14 @@ def min_friction(scene: Scene, load_factor: float = 1.0, method: str = "clarabel
     return FrictionResult(**_fields(m, "min_friction", "stable", fstar, lf), state=st,
                           governing=gov, friction_factor=fstar,
                           friction_angle_deg=math.degrees(math.atan(fstar)),
-                          lower=lim.lower, upper=lim.upper)
+                          lower=lim.lower, upper=lim.upper, bracket=_bracket(lim))
 
 
 def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clarabel", *,
                         solver: str | None = None, state: bool = True,
                         settings: dict | None = None, pyramid: int | None = None,
-                        contact_tol: float | None = None,
-                        rtol: float = LOAD_RTOL) -> LoadResult:
+                        contact_tol: float | None = None, rtol: float = LOAD_RTOL,
+                        mechanism: str = "vertex") -> LoadResult:
     """The largest multiplier lambda* of the live loads (associative friction).
 
     Status "collapse" with lambda* and (convex path) the collapse mechanism; "unbounded"
@@ -148,17 +176,23 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         = 0 and the joint laws; its duals on the equilibrium rows are the mechanism (see
         :meth:`rigidblocks.methods.convex.ConvexMethod.load_limit`). Other methods:
         bisection on their verdicts to ``rtol``, without a mechanism; ``governing``
-        lists the joints at their friction threshold at lambda*.
+        lists the joints at their friction threshold at lambda*. ``mechanism``:
+        "vertex" (default) gives one mechanism of the optimal face, which can be drawn,
+        its joints ranked by relative velocity; "blend" the interior-point duals (a mix
+        of every optimal mechanism where there are several).
     """
+    if mechanism not in ("vertex", "blend"):
+        raise InputError(f'mechanism must be "vertex" or "blend", got {mechanism!r}')
     if not scene.has_live_load:
         raise InputError("the scene has no live load (no \"live\": true load and no "
                          "live_body_force): there is nothing to multiply", scene.source)
     f = friction_value(scene.effective_friction if friction is None else friction)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol)
-    lim: Limit = m.load_limit(f, rtol) or load_by_bisection(m, f, rtol)
+    lim: Limit = m.load_limit(f, rtol, mechanism) or load_by_bisection(m, f, rtol)
     if lim.status != "collapse":
-        return LoadResult(**_fields(m, "max_load_multiplier", lim.status, f, None))
+        return LoadResult(**_fields(m, "max_load_multiplier", lim.status, f, None),
+                          bracket=_bracket(lim))
     lam = float(lim.value)
     at = m.at_limit(f, lam, lim.at, state)
     gov = lim.governing
@@ -168,7 +202,9 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
             gov = gov or m.governing_load(f, at)
     st = m.state(f, lam, at) if (state and at is not None) else None
     return LoadResult(**_fields(m, "max_load_multiplier", "collapse", f, lam), state=st,
-                      governing=gov, load_multiplier=lam, mechanism=lim.mechanism)
+                      governing=gov, load_multiplier=lam, mechanism=lim.mechanism,
+                      bracket=_bracket(lim) if lim.lower != lim.upper else None,
+                      tilt_angle_deg=tilt_angle_deg(scene, lam))
 
 
 __all__ = ["check", "max_load_multiplier", "min_friction"]

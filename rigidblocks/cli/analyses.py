@@ -20,8 +20,9 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
         p.add_argument("--friction", help='friction coefficient f, or "infinite" '
                        "(default: the scene's)")
     if name in ("check", "friction"):
-        p.add_argument("--load-factor", type=float, default=1.0,
-                       help="lambda multiplying the live loads (default 1)")
+        p.add_argument("--load-factor", type=float, default=None,
+                       help="lambda multiplying the live loads (default: the scene's "
+                       "load_factor, or 1)")
     p.add_argument("--method", default="clarabel",
                    help=" or ".join(f'"{m}"' for m in METHODS)
                    + ' (default "clarabel": the convex path)')
@@ -31,21 +32,70 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("--contact-tol", type=float, default=None,
                    help="contact tolerance relative to the scene's size (default 1e-7): "
                    "faces this close count as touching")
+    if name == "load":
+        p.add_argument("--mechanism", choices=("vertex", "blend"), default="vertex",
+                       help="vertex: one collapse mechanism, joints ranked by relative "
+                       "velocity (default); blend: the interior-point mix of every "
+                       "optimal mechanism")
+    p.add_argument("--joints", nargs="?", const="-", default=None, metavar="CSV",
+                   help="the per-joint table (N, T, eccentricity, |T|/N, mode): in the "
+                   "JSON with --json, else printed, or written to the CSV file given")
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
+#: exit status by result status: 3 undecided, 1 failure, 0 decided
+EXIT = {"undecided": 3, "failure": 1}
+
+
 def run(args: argparse.Namespace) -> int:
+    csv_path = args.joints if args.joints not in (None, "-") else None
+    if csv_path is not None:
+        _writable(csv_path)
     scene = read_scene(args.scene)
+    options = {"mechanism": args.mechanism} if args.command == "load" else {}
+    # check reports the friction demand of its force state; the others compute a state
+    # only for the joint table
+    state = args.command == "check" or args.joints is not None
     res = analysis(args.command).run(
         scene, friction=getattr(args, "friction", None),
-        load_factor=getattr(args, "load_factor", 1.0), method=args.method,
-        solver=args.solver, state=False, contact_tol=args.contact_tol)
-    out = res.to_dict()
+        load_factor=getattr(args, "load_factor", None), method=args.method,
+        solver=args.solver, state=state, contact_tol=args.contact_tol, **options)
+    if csv_path is not None:
+        _write_csv(res, csv_path)
     if args.json:
-        print(json.dumps(_jsonable(out)))
+        print(json.dumps(_jsonable(res.to_dict(joints=args.joints == "-"))))
     else:
-        print(report(scene, res))
-    return 0
+        print(report(scene, res, joints=args.joints == "-"))
+        if csv_path is not None:
+            print(f"wrote {csv_path}")
+    return EXIT.get(res.status, 0)
+
+
+def _writable(path: str) -> None:
+    """Refuse an output path before any work is done."""
+    import os
+
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise InputError(f"cannot write: no folder {folder}", path)
+    if not os.access(folder, os.W_OK):
+        raise InputError(f"cannot write: folder {folder} is not writable", path)
+
+
+def _write_csv(res: Any, path: str) -> None:
+    import csv
+
+    rows = res.joint_table()
+    try:
+        with open(path, "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(["block_a", "block_b", "N", "T", "eccentricity", "demand", "state",
+                        "mode"])
+            for r in rows:
+                w.writerow([*r["joint"], r["N"], r["T"], r["eccentricity"], r["demand"],
+                            r["state"], r["mode"]])
+    except OSError as err:
+        raise InputError(f"cannot write: {err}", path) from None
 
 
 def _jsonable(v: Any) -> Any:
@@ -58,8 +108,8 @@ def _jsonable(v: Any) -> Any:
     return v
 
 
-def report(scene, res) -> str:
-    """A short human-readable table of a result."""
+def report(scene, res, joints: bool = False) -> str:
+    """A short human-readable table of a result (``joints``: with the joint table)."""
     fu = scene.force_unit or "force units"
     lines = [f"scene      {scene.name or scene.source}",
              f"blocks     {len(scene.blocks)} ({int(scene.support_mask.sum())} supports), "
@@ -68,15 +118,30 @@ def report(scene, res) -> str:
     if res.analysis == "check":
         f = d["friction"]
         lines.append(f"friction   {f if f is not None else '-'}   load factor {res.load_factor:g}")
+    elif res.analysis == "min_friction":
+        lines.append(f"lambda     {res.load_factor:g}   (load factor)")
+    else:
+        lines.append(f"friction   {d['friction']}")
+    if not res.decided:
+        lines += _undecided(res)
+    elif res.analysis == "check":
         verdict = {"admissible": "ADMISSIBLE", "inadmissible": "NOT ADMISSIBLE"}
-        lines.append(f"verdict    {verdict.get(res.status, headline(res).upper())}")
+        lines.append(f"verdict    {verdict[res.status]}")
+        fd = res.friction_demand
+        if fd is not None:
+            a, b = res.joint_name(fd[1])
+            lines.append(f"demand     |T|/N up to {fd[0]:.4g} (joint {a}-{b}) in the state "
+                         "of least complementary energy")
         if res.status == "inadmissible" and math.isfinite(res.violation):
             lines.append(f"violation  {res.violation:.4g} {fu} (smallest possible breach "
                          "of the joint laws)")
+            if res.breaches:
+                lines.append("breached   " + _joint_list(
+                    [res.joint_name(k) for k, _ in res.breaches],
+                    [f"{v:.3g}" for _, v in res.breaches]))
         if res.status == "inadmissible":
             lines += _live_hint(scene, res)
     elif res.analysis == "min_friction":
-        lines.append(f"lambda     {res.load_factor:g}   (load factor)")
         if res.status == "stable":
             lines.append(f"f*         {res.friction_factor:.6g}   (friction angle "
                          f"{res.friction_angle_deg:.4f} deg)")
@@ -86,21 +151,59 @@ def report(scene, res) -> str:
             if res.status == "unstable":
                 lines += _live_hint(scene, res)
     else:
-        lines.append(f"friction   {d['friction']}")
         if res.status == "collapse":
-            lines.append(f"lambda*    {res.load_multiplier:.6g}")
-            mech = d.get("mechanism", {})
-            for key in ("hinges", "sliding", "open"):
-                lines.append(f"{key:<10} {_joint_list(mech.get(key, []))}")
+            tilt = (f"   (tilt angle theta* = atan(lambda* a) = {res.tilt_angle_deg:.4f} deg)"
+                    if res.tilt_angle_deg is not None else "")
+            lines.append(f"lambda*    {res.load_multiplier:.6g}{tilt}")
+            mech = d.get("mechanism")
+            if mech is not None:
+                for key in ("hinges", "sliding", "open"):
+                    lines.append(f"{key:<10} {_joint_list(mech.get(key, []))}")
+                if mech["kind"] == "blend":
+                    lines.append("mechanism  the blend of every optimal mechanism "
+                                 "(interior-point duals)")
+            else:
+                lines.append(f"mechanism  none from the {res.solver} method; joints at "
+                             f"their friction limit: {_joint_list(res.governing_joints)}")
         else:
             lines.append(f"verdict    {headline(res).upper()}")
+    lines += [f"note       {n}" for n in res.notes]
+    if joints:
+        lines += _table(res)
     lines.append(f"solver     {res.solver}, {res.n_solves} solve(s), {res.solve_time:.3g} s")
     return "\n".join(lines)
 
 
-def _joint_list(joints, most: int = 12) -> str:
-    """Joints as ``a-b`` names; a long list is cut, with its length (``--json`` has all)."""
+def _undecided(res) -> list[str]:
+    """An answer the method could not give: never a verdict, always the reason."""
+    word = "UNDECIDED" if res.status == "undecided" else "FAILURE"
+    out = [f"status     {word}: the {res.solver} method could not decide (no verdict, "
+           "no number)"]
+    if res.bracket is not None:
+        what = {"min_friction": "f*", "max_load_multiplier": "lambda*"}.get(res.analysis, "")
+        out.append(f"bracket    {what} in [{res.bracket[0]:.6g}, {res.bracket[1]:.6g}]")
+    return out
+
+
+def _table(res) -> list[str]:
+    rows = res.joint_table()
+    if not rows:
+        return ["joints     no force state (the analysis found no admissible state)"]
+    out = [f"{'joint':<24} {'N':>12} {'T':>12} {'e':>10} {'|T|/N':>8}  {'state':<15} mode"]
+    for r in rows:
+        e = "-" if r["eccentricity"] is None else f"{r['eccentricity']:.4g}"
+        name = "-".join(r["joint"])
+        out.append(f"{name:<24} {r['N']:12.5g} {r['T']:12.5g} {e:>10} {r['demand']:8.4g}  "
+                   f"{r['state']:<15} {r['mode'] or '-'}")
+    return out
+
+
+def _joint_list(joints, values=None, most: int = 12) -> str:
+    """Joints as ``a-b`` names (with a value each, if given); a long list is cut, with
+    its length (``--json`` has all)."""
     names = [f"{a}-{b}" for a, b in joints]
+    if values is not None:
+        names = [f"{n} ({v})" for n, v in zip(names, values, strict=True)]
     if len(names) <= most:
         return ", ".join(names) or "-"
     return f"{len(names)} joints: " + ", ".join(names[:most]) + ", ... (--json lists all)"

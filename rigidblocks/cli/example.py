@@ -61,6 +61,13 @@ def convert(gen: str, key: str, value: str, default: Any) -> Any:
             return float(value)
         except ValueError:
             return value
+    if default is None:  # an optional number: as written
+        for kind in (int, float):
+            try:
+                return kind(value)
+            except ValueError:
+                pass
+        return value
     if isinstance(default, tuple | list):
         try:
             return [tuple(int(v) for v in item.split(",")) for item in value.split(";")

@@ -39,11 +39,18 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(res.to_dict()))
     else:
         extra = ", ".join(f"{k}={v}" for k, v in params.items()) or "defaults"
+        what = next((p.help for p in gen.params if p.name == args.param), "") or args.param
         print(f"generator  {res.generator} ({extra})")
         print(f"friction   {res.friction}   load factor 0 (dead load only)")
+        print(f"minimised  {args.param}: {what}")
+        if res.status == "undecided":
+            print("status     UNDECIDED: a check could not decide; the minimum is only "
+                  "bracketed")
         print(f"{res.param:<10} min {res.thickness:.6g}   (bracket [{res.lower:.6g}, "
               f"{res.thickness:.6g}], {res.n_checks} checks)")
-    return 0
+        for n in res.notes:
+            print(f"note       {n}")
+    return 3 if res.status == "undecided" else 0
 
 
 _OWN = {"--param": str, "--lo": float, "--hi": float, "--rtol": float, "--friction": str,

@@ -2,7 +2,7 @@
 read as joint resultants and duals read as block velocities."""
 
 from .assembly import EquilibriumSystem, Layout, assemble, load_vectors
-from .states import chain_order, force_state, mechanism
+from .states import chain_order, force_state, joint_breaches, mechanism
 
 __all__ = ["EquilibriumSystem", "Layout", "assemble", "chain_order", "force_state",
-           "load_vectors", "mechanism"]
+           "joint_breaches", "load_vectors", "mechanism"]

@@ -62,6 +62,32 @@ def force_state(system: EquilibriumSystem, x: np.ndarray, method: str) -> ForceS
                       thrust_order=chain_order(system), method=method)
 
 
+def joint_breaches(system: EquilibriumSystem, x: np.ndarray, f_joint: np.ndarray,
+                   ) -> np.ndarray:
+    """(m,) how far each joint's forces in the state ``x`` (force units) breach its laws:
+    the largest of the tension beyond the tensile strength at a point and the shear
+    beyond f N + c a (per joint in 2D, per point in 3D); 0 where the laws hold."""
+    c = system.contacts
+    lay = system.layout
+    pj = c.point_joint
+    m = c.n_joints
+    N = x[lay.normal]
+    cap = c.tensile_strength[pj] * c.point_areas
+    out = np.zeros(m)
+    np.maximum.at(out, pj, np.maximum(-(N + cap), 0.0))
+    fin = np.isfinite(f_joint)
+    fj = np.where(fin, f_joint, 0.0)
+    if c.dimension == 2 and lay.shear == "joint":
+        Nj = np.bincount(pj, N, minlength=m)
+        over = np.abs(x[lay.tangential]) - fj * Nj - c.cohesion * c.areas
+        out = np.maximum(out, np.where(fin, over, 0.0))
+    else:
+        T = x[lay.tangential].reshape(len(N), -1)
+        over = np.linalg.norm(T, axis=1) - fj[pj] * N - c.cohesion[pj] * c.point_areas
+        np.maximum.at(out, pj, np.where(fin[pj], over, 0.0))
+    return np.maximum(out, 0.0)
+
+
 def chain_order(system: EquilibriumSystem) -> np.ndarray:
     """Joints in order along the structure when the blocks form a chain (an arch).
 
@@ -99,9 +125,11 @@ def chain_order(system: EquilibriumSystem) -> np.ndarray:
     return np.array(order) if len(order) == m else fallback
 
 
-def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray) -> Mechanism:
+def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray,
+              kind: str = "blend") -> Mechanism:
     """Virtual velocities from the duals ``y_eq`` of the equilibrium rows, scaled by
-    ``row_scale`` (the rows' scaling in the problem, :class:`Scaling` ``.row``)."""
+    ``row_scale`` (the rows' scaling in the problem, :class:`Scaling` ``.row``);
+    ``kind`` says how the duals were chosen (see :class:`Mechanism`)."""
     v = row_scale * y_eq
     if v @ system.live < 0:
         v = -v
@@ -123,6 +151,7 @@ def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray
     slip = delta[lay.tangential]
     tol = MODE_TOL * max(np.abs(delta).max(initial=0.0), 1e-300)
     modes = []
+    rates = np.zeros(c.n_joints)
     for k in range(c.n_joints):
         pts = slice(c.joint_start[k], c.joint_start[k + 1])
         dn = opening[pts]
@@ -130,6 +159,7 @@ def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray
             ds = abs(slip[k])
         else:
             ds = float(np.abs(slip.reshape(len(opening), -1)[pts]).max())
+        rates[k] = max(ds, float(np.abs(dn).max(initial=0.0)))
         uneven = dn.max() - dn.min() > tol
         if ds > tol:
             modes.append("slide+hinge" if uneven else "slide")
@@ -137,4 +167,5 @@ def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray
             modes.append("hinge" if dn.min() <= tol else "open")
         else:
             modes.append("closed")
-    return Mechanism(velocities=vel, opening=opening, slip=slip, modes=tuple(modes))
+    return Mechanism(velocities=vel, opening=opening, slip=slip, modes=tuple(modes),
+                     rates=rates, kind=kind)

@@ -87,7 +87,9 @@ def make_scene(name: str, blocks: list[dict], *, unit_weight: float, friction: A
     if loads:
         doc["loads"] = loads
     if live_body_force is not None:
+        # a seismic body force, for `load`: check and friction answer for the dead load
         doc["live_body_force"] = list(live_body_force)
+        doc["load_factor"] = 0
     if joints:
         doc["joints"] = joints
     return scene_from_dict(doc, source=name)
@@ -144,7 +146,7 @@ def _springing_blocks(left: tuple[Point, Point], right: tuple[Point, Point], spr
 
 
 # -- curved arches --------------------------------------------------------------------
-def arch(shape: str = "semicircular", voussoirs: int = 15, thickness: float = 0.15,
+def arch(shape: str = "semicircular", voussoirs: int | None = None, thickness: float = 0.15,
          radius: float = 2.0, joints: str = "radial", springing: str = "abutments",
          half_angle: float = 60.0, pointedness: float = 0.25, pier_width: float = 0.6,
          pier_height: float = 1.5, unit_weight: float = 20.0, friction: Any = 0.6,
@@ -156,7 +158,8 @@ def arch(shape: str = "semicircular", voussoirs: int = 15, thickness: float = 0.
             degrees about the crown) or ``pointed`` (two arcs of mean radius R whose
             centres lie ``pointedness`` x R either side of the span's axis, meeting at a
             vertical crown joint).
-        voussoirs: number of voussoirs (a pointed arch needs an even number).
+        voussoirs: number of voussoirs (None: 15, or 16 for a pointed arch, which
+            needs an even number).
         thickness: ring thickness ratio t / R, R the mean radius.
         radius: mean radius R (m).
         joints: ``radial`` (through the centre) or ``vertical``.
@@ -173,6 +176,8 @@ def arch(shape: str = "semicircular", voussoirs: int = 15, thickness: float = 0.
     shape = choice("shape", shape, SHAPES, g)
     joints = choice("joints", joints, JOINTS, g)
     springing = choice("springing", springing, SPRINGINGS, g)
+    if voussoirs is None:
+        voussoirs = 16 if shape == "pointed" else 15
     n = integer("voussoirs", voussoirs, g, 1)
     ratio = positive("thickness", thickness, g)
     R = positive("radius", radius, g)

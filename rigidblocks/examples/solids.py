@@ -64,7 +64,9 @@ def make_scene3d(name: str, blocks: list[dict], *, unit_weight: float, friction:
                            "unit_weight": unit_weight, "friction": friction,
                            "blocks": blocks}
     if live_body_force is not None:
+        # a seismic body force, for `load`: check and friction answer for the dead load
         doc["live_body_force"] = [float(v) for v in live_body_force]
+        doc["load_factor"] = 0
     if loads:
         doc["loads"] = loads
     return scene_from_dict(doc, source=name)

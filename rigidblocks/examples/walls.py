@@ -149,7 +149,7 @@ def running_bond_wall(courses: int = 10, blocks_per_course: int = 10, block_leng
                  name=f"running-bond wall, {C} courses x {N} blocks",
                  units=Units("m", "kN"), depth=depth, unit_weight=float(unit_weight),
                  friction=float(friction),
-                 live_body_force=(float(horizontal_load), 0.0))
+                 live_body_force=(float(horizontal_load), 0.0), load_factor=0.0)
 
 
 def joint_count(courses: int, blocks_per_course: int) -> int:

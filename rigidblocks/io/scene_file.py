@@ -22,7 +22,7 @@ FORMAT = "rigidblocks-scene"
 VERSION = 1
 
 TOP_KEYS = {"format", "version", "name", "dimension", "units", "depth", "unit_weight",
-            "friction", "blocks", "loads", "live_body_force", "joints"}
+            "friction", "blocks", "loads", "live_body_force", "joints", "load_factor"}
 TOP_REQUIRED = ("format", "version", "dimension", "blocks")
 BLOCK_KEYS = {"id", "vertices", "faces", "support", "unit_weight"}
 LOAD_KEYS = {"block", "force", "point", "moment", "live"}
@@ -146,6 +146,8 @@ def _parse(doc: Any, source: str | None) -> Scene:
     friction = _friction(top["friction"], '"friction"') if "friction" in top else None
     lbf = (_vector(top["live_body_force"], dim, '"live_body_force"')
            if "live_body_force" in top else None)
+    load_factor = (_number(top["load_factor"], '"load_factor"', minimum=0)
+                   if "load_factor" in top else None)
 
     if not isinstance(top["blocks"], list):
         raise InputError('"blocks" must be a list of blocks')
@@ -154,7 +156,7 @@ def _parse(doc: Any, source: str | None) -> Scene:
     joints = tuple(_parse_joint(j, i) for i, j in enumerate(_list(top, "joints")))
     return Scene(dimension=dim, blocks=blocks, loads=loads, joints=joints, name=name,
                  units=units, depth=depth, unit_weight=unit_weight, friction=friction,
-                 live_body_force=lbf, source=source)
+                 live_body_force=lbf, load_factor=load_factor, source=source)
 
 
 def _list(top: dict, key: str) -> list:
@@ -295,6 +297,8 @@ def scene_to_dict(scene: Scene) -> dict:
                         for ld in scene.loads]
     if scene.live_body_force is not None:
         doc["live_body_force"] = list(scene.live_body_force)
+    if scene.load_factor is not None:
+        doc["load_factor"] = scene.load_factor
     if scene.joints:
         doc["joints"] = [_drop_none({"blocks": list(j.blocks), "friction": j.friction,
                                      "cohesion": j.cohesion,

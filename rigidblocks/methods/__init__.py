@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..contacts import detect_contacts
 from ..equilibrium import assemble
 from ..errors import InputError
@@ -44,6 +46,20 @@ def method_name(method: str, solver: str | None = None) -> tuple[str, str | None
         return "clarabel", m
     raise InputError(f"unknown method {method!r} (choose from {', '.join(METHODS)}, or a "
                      "solver name for the convex path)")
+
+
+def unsupported_blocks(scene: Scene, contacts: object) -> list[str]:
+    """Ids of the free blocks without a single joint."""
+    pairs = contacts.pairs  # type: ignore[attr-defined]
+    touched = np.bincount(np.asarray(pairs, dtype=int).ravel(), minlength=len(scene.blocks))
+    return [b.id for b, t, sup in zip(scene.blocks, touched, scene.support_mask, strict=True)
+            if not sup and t == 0]
+
+
+def _names(ids: list[str], most: int = 5) -> str:
+    head = ", ".join(f"'{i}'" for i in ids[:most])
+    more = f" and {len(ids) - most} more" if len(ids) > most else ""
+    return f"block{'s' if len(ids) > 1 else ''} {head}{more}"
 
 
 def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = None,
@@ -82,9 +98,18 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
     with timings.stage("assembly"):
         system = assemble(scene, contacts)
     if name == "distortion":
-        return DistortionMethod(scene, system, timings, settings=settings)
-    return ConvexMethod(scene, system, timings, solver=solver or "clarabel",
-                        settings=settings, pyramid=pyramid)
+        m: Method = DistortionMethod(scene, system, timings, settings=settings)
+    else:
+        m = ConvexMethod(scene, system, timings, solver=solver or "clarabel",
+                         settings=settings, pyramid=pyramid)
+    loose = unsupported_blocks(scene, contacts)
+    if loose:
+        one = len(loose) == 1
+        m.notes.append(f"{_names(loose)} touch{'es' if one else ''} no other block (no "
+                       f"joint within the contact tolerance): nothing holds "
+                       f"{'it' if one else 'them'}; check the geometry, or raise the "
+                       "contact tolerance for gaps from rounding")
+    return m
 
 
 __all__ = ["ADMISSIBLE", "FAILURE", "INADMISSIBLE", "METHODS", "UNDECIDED", "ConvexMethod",

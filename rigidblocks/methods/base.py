@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from ..equilibrium import EquilibriumSystem
+from ..equilibrium import EquilibriumSystem, joint_breaches
 from ..results import ForceState, Mechanism
 from ..scene.model import Scene
 
@@ -131,7 +131,8 @@ class Method:
     def friction_limit(self, load_factor: float, rtol: float) -> Limit | None:
         return None
 
-    def load_limit(self, f: float, rtol: float) -> Limit | None:
+    def load_limit(self, f: float, rtol: float, mechanism_kind: str = "vertex",
+                   ) -> Limit | None:
         return None
 
     def at_limit(self, f: float, load_factor: float, verdict: Verdict | None,
@@ -139,6 +140,11 @@ class Method:
         """The verdict at a limit (f*, lambda*) to read the state and the governing
         joints from; ``verdict`` is the one found by the search."""
         return verdict
+
+    def breaches(self, f: float, verdict: Verdict) -> tuple[tuple[int, float], ...]:
+        """Where an inadmissible verdict's least-violation state breaches the joint
+        laws: (joint, breach in force units), largest first (see :func:`ranked_breaches`)."""
+        return ()
 
     # -- governing joints after a bisection --------------------------------------------
     def governing_friction(self, f: float, verdict: Verdict) -> tuple[int, ...]:
@@ -180,5 +186,20 @@ class Method:
         self.notes.extend(n for n in verdict.notes if n not in self.notes)
 
 
+def ranked_breaches(system: EquilibriumSystem, x: np.ndarray, f_joint: np.ndarray,
+                    rel: float = 1e-3) -> tuple[tuple[int, float], ...]:
+    """(joint, breach) of the state ``x`` (force units), largest first, down to ``rel``
+    of the largest breach."""
+    if not np.all(np.isfinite(x)):
+        return ()
+    b = joint_breaches(system, x, f_joint)
+    top = float(b.max(initial=0.0))
+    if not top > 0:
+        return ()
+    k = np.flatnonzero(b >= rel * top)
+    k = k[np.argsort(-b[k], kind="stable")]
+    return tuple((int(j), float(b[j])) for j in k)
+
+
 __all__ = ["ADMISSIBLE", "FAILURE", "INADMISSIBLE", "Limit", "Method", "Timings",
-           "UNDECIDED", "Verdict"]
+           "UNDECIDED", "Verdict", "ranked_breaches"]

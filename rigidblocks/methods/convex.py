@@ -24,7 +24,16 @@ from ..problems.formulation import Scaling, build_energy_qp, build_max_load, bui
 from ..results import ForceState
 from ..scene.model import Scene
 from ..solvers import INFEASIBLE, OPTIMAL, UNBOUNDED, Runner, SolverResult
-from .base import ADMISSIBLE, INADMISSIBLE, Limit, Method, Timings, Verdict
+from .base import (
+    ADMISSIBLE,
+    INADMISSIBLE,
+    Limit,
+    Method,
+    Timings,
+    Verdict,
+    ranked_breaches,
+)
+from .vertex import vertex_dual
 
 #: a relaxation below this fraction of the largest force of its state counts as zero
 #: (interior-point residuals are relative to the size of the solution: a 30-course wall
@@ -157,6 +166,13 @@ class ConvexMethod(Method):
     def admissible(self, f: float, load_factor: float, for_state: bool = False) -> Verdict:
         return self._verdict(self.relaxation(f, load_factor))
 
+    def breaches(self, f: float, verdict: Verdict) -> tuple[tuple[int, float], ...]:
+        rx = verdict.data
+        if not isinstance(rx, Relaxation) or rx.R is None:
+            return ()
+        x = rx.res.z[rx.prob.cols["x"]] * self.scaling.force
+        return ranked_breaches(self.system, x, self.f_joint(f))
+
     # -- the force state ---------------------------------------------------------------
     def state(self, f: float, load_factor: float, verdict: Verdict) -> ForceState | None:
         """The admissible state of least complementary energy (a QP).
@@ -283,14 +299,18 @@ class ConvexMethod(Method):
         return Limit("stable", hi, lo, hi, governing=governing, at=self._verdict(at_hi))
 
     # -- lambda*: one LP ---------------------------------------------------------------
-    def load_limit(self, f: float, rtol: float) -> Limit:
+    def load_limit(self, f: float, rtol: float, mechanism_kind: str = "vertex") -> Limit:
         """lambda* from max lambda s.t. A x + F_dead + lambda F_live = 0 and the joint
         laws; by LP duality the multipliers of the equilibrium rows are the virtual
         velocities of the collapse mechanism (associative flow rule, kinematic theorem).
         Solved at the tight tolerances of the relaxations: at Clarabel's defaults (1e-8)
         lambda* of a 1,000-block wall is off by 7e-5 (its toe carries a thousand block
         weights, and the residuals are relative to that), at 1e-10 by 4e-6 of the
-        simplex (HiGHS) answer, for 1.4x the interior-point iterations."""
+        simplex (HiGHS) answer, for 1.4x the interior-point iterations.
+
+        ``mechanism_kind``: "vertex" (default) picks one mechanism of the optimal face
+        (:func:`~rigidblocks.methods.vertex.vertex_dual`); "blend" keeps the
+        interior-point duals (the centre of the face)."""
         with self.timings.stage("build"):
             prob, jr = build_max_load(self.system, self.scaling, self.f_joint(f),
                                       self.pyramid)
@@ -308,8 +328,26 @@ class ConvexMethod(Method):
             self.notes.append(f"largest admissible multiplier {lam:.6g}, but only with the "
                               "live load propping the structure up")
             return Limit("unstable")
+        eq = prob.rows["equilibrium"]
+        y_eq, kind = res.y[eq], "blend"
+        if mechanism_kind == "vertex":
+            with self.timings.stage("mechanism"):
+                # a vertex is worth at most the limit problem's own time again
+                vd = vertex_dual(prob, res, eq, self.system.dofs,
+                                 time_limit=max(1.0, res.solve_time))
+            if vd is None:
+                self.notes.append("mechanism: the blend of the optimal face (no vertex "
+                                  "could be found)")
+            else:
+                y_eq, kind = vd[0][eq], vd[1]
+                work_at = float(prob.b @ vd[0])
+                if work_at > lam * (1 + 1e-6) + 1e-9:
+                    self.notes.append(f"mechanism: the one drawn (an extreme point next "
+                                      f"to the optimal face) balances at lambda = "
+                                      f"{work_at:.6g}, {work_at / lam - 1:.1e} (relative) "
+                                      "above lambda*")
         with self.timings.stage("state"):
-            mech = mechanism(self.system, self.scaling.row, res.y[prob.rows["equilibrium"]])
+            mech = mechanism(self.system, self.scaling.row, y_eq, kind)
         sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
         return Limit("collapse", lam, lam, lam, governing=sliding, mechanism=mech,
                      at=Verdict(ADMISSIBLE, 0.0, (), (res, prob)))

@@ -18,7 +18,7 @@ from ..problems.formulation import Scaling, flexibility
 from ..results import ForceState
 from ..scene.model import Scene
 from ..solvers.distortion import MAX_ITER, TOL, DistortionSolver, Run
-from .base import ADMISSIBLE, Method, Timings, Verdict
+from .base import ADMISSIBLE, Method, Timings, Verdict, ranked_breaches
 
 
 def distortion_solver(scene: Scene, system: EquilibriumSystem) -> DistortionSolver:
@@ -101,6 +101,12 @@ class DistortionMethod(Method):
         with self.timings.stage("state"):
             return force_state(self.system, verdict.data.x * self.solver_.scaling.force,
                                "impressed distortions")
+
+    def breaches(self, f: float, verdict: Verdict) -> tuple[tuple[int, float], ...]:
+        if verdict.data is None:
+            return ()
+        x = verdict.data.x * self.solver_.scaling.force
+        return ranked_breaches(self.system, x, self.f_joint(f))
 
     def at_limit(self, f: float, load_factor: float, verdict: Verdict | None,
                  state: bool) -> Verdict | None:

@@ -144,6 +144,9 @@ class Scene:
     unit_weight: float | None = None
     friction: Friction | None = None
     live_body_force: tuple[float, ...] | None = None
+    #: lambda at which check and friction evaluate dead + lambda x live when the caller
+    #: gives none (None: 1)
+    load_factor: float | None = None
     # where the scene came from, for messages (a file name); not part of the scene
     source: str | None = field(default=None, compare=False)
 
@@ -155,6 +158,10 @@ class Scene:
     @property
     def effective_unit_weight(self) -> float:
         return 0.0 if self.unit_weight is None else float(self.unit_weight)
+
+    @property
+    def effective_load_factor(self) -> float:
+        return 1.0 if self.load_factor is None else float(self.load_factor)
 
     @property
     def effective_friction(self) -> Friction:

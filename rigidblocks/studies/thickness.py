@@ -100,14 +100,20 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         r = check(scene, friction=friction, load_factor=0.0, method=method, state=False)
         return {"admissible": True, "inadmissible": False}.get(r.status), r.status
 
-    if admissible(hi)[0] is not True:
+    try:
+        at_hi = admissible(hi)[0]
+    except InputError as err:
+        raise InputError(f"min_thickness: {name} cannot be built at the upper bound "
+                         f"{param}={hi:g} ({err}); give a smaller upper bound (hi, --hi)"
+                         ) from None
+    if at_hi is not True:
         raise InputError(f"min_thickness: {name} is not admissible at the upper bound "
-                         f"{param}={hi:g}; raise hi")
+                         f"{param}={hi:g}; raise the upper bound (hi, --hi)")
     at_lo, status = admissible(lo)
     if at_lo is not False:
         what = "already admissible" if at_lo else f"{status}, not certified inadmissible,"
         raise InputError(f"min_thickness: {name} is {what} at the lower bound "
-                         f"{param}={lo:g}; lower lo")
+                         f"{param}={lo:g}; lower the lower bound (lo, --lo)")
     br = bisect(admissible, lo, hi, rtol)
     if br.undecided_at is not None:
         note = (f"the check could not decide at {param}={br.undecided_at:.6g}: the minimum "
