@@ -1,6 +1,6 @@
 """Timing of the foundation stages on running-bond walls of growing size.
 
-Stages: building the scene (:func:`rigidblocks.examples.walls.running_bond_wall`),
+Stages: building the scene (:func:`rigidblocks.generators.walls.running_bond_wall`),
 writing and reading the scene file, validation (polygons and the overlap check),
 contact detection and assembly of the equilibrium matrix. Run as
 
@@ -23,7 +23,7 @@ from pathlib import Path
 
 from rigidblocks.contacts.detect2d import detect_contacts_2d
 from rigidblocks.equilibrium import assemble
-from rigidblocks.examples.walls import joint_count, running_bond_wall
+from rigidblocks.generators.walls import joint_count, running_bond_wall
 from rigidblocks.io.scene_file import read_scene, write_scene
 from rigidblocks.scene.validate import DEFAULT_TOL, validate_scene
 

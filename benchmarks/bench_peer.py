@@ -66,8 +66,8 @@ from common import markdown_table, out_dir, write_results  # noqa: E402
 
 from rigidblocks import check  # noqa: E402
 from rigidblocks.errors import InputError  # noqa: E402
-from rigidblocks.examples import build  # noqa: E402
-from rigidblocks.examples.walls import running_bond_wall  # noqa: E402
+from rigidblocks.generators import build  # noqa: E402
+from rigidblocks.generators.walls import running_bond_wall  # noqa: E402
 from rigidblocks.scene.extrude import extrude  # noqa: E402
 from rigidblocks.scene.geometry import scene_size  # noqa: E402
 from rigidblocks.scene.model import Scene, make_block  # noqa: E402

@@ -1,6 +1,6 @@
 """Throughput of parametric studies: cases per second, one process against local processes.
 
-The sweep: small semicircular arches (:func:`rigidblocks.examples.arches.arch`, radial
+The sweep: small semicircular arches (:func:`rigidblocks.generators.arches.arch`, radial
 joints on fixed abutments, two straight segments per voussoir face) under self-weight
 (load factor 0), a grid of 10 voussoir counts (4 to 13) by ``cases / 10`` ring
 thicknesses t/R from 0.12 to 0.30; each analysis (``check``: one relaxation LP;

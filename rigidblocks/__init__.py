@@ -1,5 +1,8 @@
 """rigidblocks: limit analysis of rigid-block masonry with unilateral frictional joints."""
 
+import sys as _sys
+
+from . import studies as study
 from .contacts import Contacts, detect_contacts
 from .equilibrium import EquilibriumSystem, assemble
 from .errors import InputError, RigidBlocksError, SolverFailure
@@ -8,6 +11,9 @@ from .problems import check, max_load_multiplier, min_friction
 from .scene import INFINITE, Block, JointOverride, Load, Scene, make_block
 from .solvers.distortion import load_path
 from .studies import min_thickness
+
+#: ``from rigidblocks import study`` and ``import rigidblocks.study``: the studies package
+_sys.modules[f"{__name__}.study"] = study
 
 __version__ = "0.1.0"
 

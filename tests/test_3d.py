@@ -16,7 +16,7 @@ from conftest import EXAMPLES, make_scene, rect
 
 import rigidblocks as rb
 from rigidblocks.errors import InputError
-from rigidblocks.examples.solids import box
+from rigidblocks.generators.solids import box
 from rigidblocks.io.scene_file import scene_from_dict
 from rigidblocks.scene.extrude import extrude
 
@@ -212,7 +212,7 @@ def test_min_friction_where_the_relaxation_below_f_star_is_degenerate():
     so f* >= 1, and a state with |T| = N on every bed joint reaches it (f* = 1, as in
     2D). Just below f* the relaxation is too degenerate for Clarabel (AlmostSolved); the
     analysis probes further below and reports f* = 1 with its bracket, not a failure."""
-    from rigidblocks.examples.walls import running_bond_wall
+    from rigidblocks.generators.walls import running_bond_wall
     from rigidblocks.scene.extrude import extrude
 
     r = rb.min_friction(extrude(running_bond_wall(10, 10)), rtol=1e-6)

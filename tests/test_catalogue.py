@@ -447,7 +447,7 @@ def test_large_wall_verdicts_hold_across_the_admissible_interval():
     say admissible, however large the scene. On a 990-block wall the relaxation's
     round-off (~1e-9 of a block weight) once exceeded a threshold fixed in block-weight
     units and called lambda*/2 inadmissible."""
-    from rigidblocks.examples.walls import running_bond_wall
+    from rigidblocks.generators.walls import running_bond_wall
 
     wall = running_bond_wall(30, 33)
     lam = max_load_multiplier(wall, state=False).load_multiplier
@@ -461,7 +461,7 @@ def test_min_friction_of_thick_arches_in_few_solves(voussoirs, thickness):
     """R(f) of these arches is slightly concave below f*, so plain Newton overshoots and
     a bracket shrinks by halves (about 30 solves); the curvature-corrected step needs
     fewer than 10. The answer is certified by admissibility on either side of it."""
-    from rigidblocks.examples import build
+    from rigidblocks.generators import build
 
     arch = build("arch", voussoirs=voussoirs, thickness=thickness)
     r = min_friction(arch, load_factor=0.0, state=False)
@@ -475,7 +475,7 @@ def test_min_friction_of_thick_arches_in_few_solves(voussoirs, thickness):
 def test_large_wall_collapse_multiplier_agrees_with_the_simplex():
     """lambda* of a 32-course wall of 992 blocks by the default path agrees with HiGHS's
     simplex vertex to 1e-5 (at Clarabel's default tolerances it was 7e-5 off). ~30 s."""
-    from rigidblocks.examples import build
+    from rigidblocks.generators import build
 
     wall = build("wall", courses=32, blocks_per_course=31)
     ours = max_load_multiplier(wall, state=False).load_multiplier

@@ -293,7 +293,7 @@ def test_running_bond_wall():
     """The generated 106-block running-bond wall: f* = 1 by Clarabel (test_catalogue's
     tolerance); the distortion method gives the same verdicts away from it and f* within
     1e-4 (measured 1.2e-4 bracket, upper end 1.0000)."""
-    from rigidblocks.examples import build
+    from rigidblocks.generators import build
 
     scene = build("wall")
     for f, ok in ((0.9, False), (1.5, True)):

@@ -10,7 +10,7 @@ from conftest import EXAMPLES
 from rigidblocks import check, min_friction, read_scene
 from rigidblocks.cli.main import main
 from rigidblocks.errors import InputError
-from rigidblocks.examples import GENERATORS, available, build
+from rigidblocks.generators import GENERATORS, available, build
 from rigidblocks.io.scene_file import dumps_scene
 
 FAST = {"wall": {"courses": 3, "blocks_per_course": 3}}

@@ -23,7 +23,7 @@ import rigidblocks as rb
 from rigidblocks import study
 from rigidblocks.cli.main import main
 from rigidblocks.errors import InputError
-from rigidblocks.examples import build
+from rigidblocks.generators import build
 
 ANSWERS = ["status", "error", "check_status", "admissible", "violation",
            "min_friction_status", "friction_factor", "friction_angle_deg"]

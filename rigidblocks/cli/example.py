@@ -72,7 +72,7 @@ def convert(gen: str, key: str, value: str, default: Any) -> Any:
 
 
 def listing() -> str:
-    from ..examples import available
+    from ..generators import available
 
     lines = []
     for name, gen in available().items():
@@ -84,7 +84,7 @@ def listing() -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..examples import get
+    from ..generators import get
     from ..io.scene_file import dumps_scene, write_scene
 
     if args.list:

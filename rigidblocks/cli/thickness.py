@@ -24,7 +24,7 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..examples import get
+    from ..generators import get
     from ..studies import min_thickness
     from .example import parse_params
 

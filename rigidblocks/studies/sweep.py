@@ -1,6 +1,6 @@
 """Parametric studies: many independent analyses of a family of structures.
 
-A sweep is a source of scenes -- a generator of :mod:`rigidblocks.examples` called
+A sweep is a source of scenes -- a generator of :mod:`rigidblocks.generators` called
 with each case's parameters, or one scene whose ``friction``, ``depth`` or
 ``unit_weight`` a case overrides -- plus the cases (a grid, a list, or random samples
 with a seed) and the analyses to run on each: ``check``, ``min_friction``,
@@ -151,7 +151,7 @@ def _param_specs(generator: str | None) -> dict[str, Any]:
     """Parameter name -> default (the type a value must have)."""
     if generator is None:
         return {"friction": 0.0, "depth": 1.0, "unit_weight": 1.0, "load_factor": 1.0}
-    from ..examples import get
+    from ..generators import get
 
     gen = get(generator)
     params = {p.name: p.default for p in gen.params}
@@ -366,7 +366,7 @@ def make_sweep(source: str | Scene, *, grid: Mapping[str, Sequence[Any]] | None 
         scene = read_scene(source)
         src_label = str(source)
     elif isinstance(source, str):
-        from ..examples import get
+        from ..generators import get
 
         get(source)  # unknown generator -> InputError naming the choices
         generator = source
@@ -439,7 +439,7 @@ class _Job:
 
 def _scene_of(job: _Job, params: Mapping[str, Any]) -> Scene:
     if job.generator is not None:
-        from ..examples import build
+        from ..generators import build
 
         return build(job.generator, **params)
     assert job.scene is not None
