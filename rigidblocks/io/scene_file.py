@@ -22,7 +22,7 @@ FORMAT = "rigidblocks-scene"
 VERSION = 1
 
 TOP_KEYS = {"format", "version", "name", "dimension", "units", "depth", "unit_weight",
-            "friction", "blocks", "loads", "live_body_force", "joints"}
+            "friction", "blocks", "loads", "live_body_force", "joints", "notes"}
 TOP_REQUIRED = ("format", "version", "dimension", "blocks")
 BLOCK_KEYS = {"id", "vertices", "faces", "support", "unit_weight"}
 LOAD_KEYS = {"block", "force", "point", "moment", "live"}
@@ -152,9 +152,10 @@ def _parse(doc: Any, source: str | None) -> Scene:
     blocks = tuple(_parse_block(b, i, dim) for i, b in enumerate(top["blocks"]))
     loads = tuple(_parse_load(ld, i, dim) for i, ld in enumerate(_list(top, "loads")))
     joints = tuple(_parse_joint(j, i) for i, j in enumerate(_list(top, "joints")))
+    notes = tuple(_string(n, f'"notes"[{k}]') for k, n in enumerate(_list(top, "notes")))
     return Scene(dimension=dim, blocks=blocks, loads=loads, joints=joints, name=name,
                  units=units, depth=depth, unit_weight=unit_weight, friction=friction,
-                 live_body_force=lbf, source=source)
+                 live_body_force=lbf, notes=notes, source=source)
 
 
 def _list(top: dict, key: str) -> list:
@@ -300,6 +301,8 @@ def scene_to_dict(scene: Scene) -> dict:
                                      "cohesion": j.cohesion,
                                      "tensile_strength": j.tensile_strength})
                          for j in scene.joints]
+    if scene.notes:
+        doc["notes"] = list(scene.notes)
     return doc
 
 

@@ -101,7 +101,10 @@ class Scene:
     """A rigid-block structure with its supports, loads and joint laws.
 
     Optional scene-level values are kept as given (None when absent from the file);
-    the ``effective_*`` properties give the values that apply.
+    the ``effective_*`` properties give the values that apply. ``notes`` are what a
+    reader of any analysis of this scene must know about the scene itself (for
+    example that a drawing was imported without a unit weight, so the blocks weigh
+    nothing); analyses pass them on to their results' notes.
     """
 
     dimension: int
@@ -114,6 +117,7 @@ class Scene:
     unit_weight: float | None = None
     friction: Friction | None = None
     live_body_force: tuple[float, ...] | None = None
+    notes: tuple[str, ...] = ()
     # where the scene came from, for messages (a file name); not part of the scene
     source: str | None = field(default=None, compare=False)
 
@@ -165,7 +169,7 @@ class Scene:
         if not isinstance(other, Scene):
             return NotImplemented
         names = ("dimension", "blocks", "loads", "joints", "name", "units", "depth",
-                 "unit_weight", "friction", "live_body_force")
+                 "unit_weight", "friction", "live_body_force", "notes")
         return all(getattr(self, n) == getattr(other, n) for n in names)
 
     __hash__ = None  # type: ignore[assignment]
