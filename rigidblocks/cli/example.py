@@ -7,6 +7,7 @@ import sys
 from typing import Any
 
 from ..errors import InputError
+from ..io.paths import output_path
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
@@ -100,6 +101,8 @@ def run(args: argparse.Namespace) -> int:
             raise InputError("example: -o needs a file name")
         args.output = tokens[k + 1]
         del tokens[k:k + 2]
+    if args.output:
+        output_path(args.output)  # before any work
     scene = gen(**parse_params(gen, tokens))
     if args.output:
         write_scene(scene, args.output)

@@ -160,13 +160,34 @@ def _processes(job: _Job, batches: Iterator[Batch], workers: int) -> Iterator[li
         ex.shutdown(wait=not pending, cancel_futures=True)
 
 
-def _dask(job: _Job, batches: Iterator[Batch], scheduler: str | None,
-          client: Any) -> Iterator[list[dict]]:
-    from dask.distributed import Client, as_completed
+#: seconds to wait for a Dask scheduler to answer
+CONNECT_TIMEOUT = 5.0
 
-    own = client is None
-    if own:
-        client = Client(scheduler)
+
+def connect(scheduler: str, timeout: float = CONNECT_TIMEOUT) -> Any:
+    """A ``dask.distributed.Client`` of the scheduler at ``scheduler``; InputError naming
+    the address when nothing answers there within ``timeout`` seconds."""
+    from ..extras import require
+
+    require("study", "a study on a Dask cluster", ("distributed",))
+    from dask.distributed import Client
+
+    try:
+        return Client(scheduler, timeout=timeout)
+    except OSError:
+        raise InputError(f"cannot reach the Dask scheduler at {scheduler}: no answer "
+                         f"within {timeout:g} s", "--scheduler") from None
+    except (ValueError, TypeError) as err:
+        msg = str(err).splitlines()[0] if str(err) else type(err).__name__
+        raise InputError(f"not a Dask scheduler address: {scheduler!r} ({msg})",
+                         "--scheduler") from None
+
+
+def _dask(job: _Job, batches: Iterator[Batch], client: Any,
+          own: bool = False) -> Iterator[list[dict]]:
+    """Batches run on a Dask ``client`` (closed at the end when ``own``)."""
+    from dask.distributed import as_completed
+
     futures: list = []
     try:
         n = max(1, sum(client.nthreads().values()))
@@ -187,4 +208,4 @@ def _dask(job: _Job, batches: Iterator[Batch], scheduler: str | None,
             client.close()
 
 
-__all__ = ["ANALYSES", "ANSWERS", "Analysis", "answer", "run_batch", "run_case"]
+__all__ = ["ANALYSES", "ANSWERS", "Analysis", "answer", "connect", "run_batch", "run_case"]

@@ -12,6 +12,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from ..errors import InputError
+from ..io.paths import output_path
 
 
 class _Store:
@@ -25,6 +26,7 @@ class _Store:
                 raise InputError(f"output must end in .parquet or .csv, got {ext or 'none'!r}",
                                  str(self.path))
             self.ext = ext
+            output_path(self.path, option="output")  # its folder exists: none is created
             self.parts = self.path.with_name(self.path.name + ".parts")
         self.memory: list[dict] = []
 

@@ -72,6 +72,7 @@ from .execute import (
     _in_process,
     _Job,
     _processes,
+    connect,
     run_batch,
     run_case,
 )
@@ -327,6 +328,9 @@ def run(source: str | Scene | Sweep, *, output: str | os.PathLike | None = None,
         :class:`StudyResult`; ``frame`` holds every case of the sweep that has run, now
         or before, in case order.
     """
+    from ..extras import require
+
+    require("study", "a parametric study")
     sw = source if isinstance(source, Sweep) else make_sweep(source, **sweep)
     if isinstance(source, Sweep) and sweep:
         raise InputError(f"unexpected arguments with a Sweep: {', '.join(sorted(sweep))}")
@@ -359,9 +363,11 @@ def run(source: str | Scene | Sweep, *, output: str | os.PathLike | None = None,
         raise InputError(f"batch_size must be an integer >= 1, got {batch_size!r}")
     batches = iter([todo[k:k + batch_size] for k in range(0, len(todo), batch_size)])
     if executor == "dask":
-        stream = _dask(job, batches, scheduler, client)
-        if client is None:
+        own = client is None
+        if own:
+            client = connect(scheduler)  # type: ignore[arg-type]
             executor = f"dask {scheduler}"
+        stream = _dask(job, batches, client, own)
     elif n_workers == 1:
         stream = _in_process(job, batches)
     else:
