@@ -48,6 +48,19 @@ def test_block_smaller_than_the_contact_tolerance_is_named(tmp_path, capsys):
         one_line_error(capsys, "block 'tiny'", "contact tolerance")
 
 
+def test_block_smaller_than_the_contact_tolerance_is_named_in_3d(tmp_path, capsys):
+    from rigidblocks.generators.solids import box
+
+    bv, bf = box(-500, -500, -100, 1000, 1000, 100)
+    tv, tf = box(0, 0, 0, 1e-5, 1e-5, 1e-5)
+    path = write(tmp_path, "tiny3d.json", {**scene_doc([
+        {"id": "base", "vertices": bv, "faces": bf, "support": True},
+        {"id": "tiny", "vertices": tv, "faces": tf},
+    ], unit_weight=20.0, live_body_force=[1, 0, 0]), "dimension": 3})
+    assert main(["load", path]) == 2
+    one_line_error(capsys, "block 'tiny'", "contact tolerance")
+
+
 def test_joint_overridden_twice_is_named(tmp_path, capsys):
     path = write(tmp_path, "twice.json", scene_doc([
         {"id": "base", "vertices": rect(-1, -1, 3, 1), "support": True},
@@ -104,6 +117,15 @@ def test_unwritable_output_is_refused_before_any_work(argv, tmp_path, capsys, mo
 def test_output_that_is_a_folder_is_refused(tmp_path, capsys):
     assert main(["example", "arch", "-o", str(tmp_path)]) == 2
     one_line_error(capsys, "is a folder")
+
+
+def test_write_scene_to_a_missing_folder_is_an_input_error(tmp_path):
+    from rigidblocks.errors import InputError
+    from rigidblocks.generators import build
+    from rigidblocks.io import write_scene
+
+    with pytest.raises(InputError, match="cannot write"):
+        write_scene(build("arch"), tmp_path / "no" / "x.json")
 
 
 def test_sweep_output_folder_is_not_created(tmp_path, capsys):
