@@ -170,3 +170,9 @@ def test_solver_not_installed_says_how_to_install_it(capsys):
         pytest.skip("ECOS is installed here")
     assert main(["check", str(EXAMPLES / "arch.json"), "--solver", "ecos"]) == 2
     one_line_error(capsys, "'ecos'", "pip install ecos")
+
+
+def test_dxf_without_the_cad_extra_names_it(tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "ezdxf", None)
+    assert main(["import-dxf", str(tmp_path / "a.dxf"), "-o", str(tmp_path / "a.json")]) == 2
+    one_line_error(capsys, "ezdxf", "pip install 'rigidblocks[cad]'")

@@ -4,6 +4,8 @@
 parameters with defaults and help, so that the command line can list them
 (``rigidblocks example --list``) and build any of them
 (``rigidblocks example NAME --PARAM VALUE ... -o scene.json``).
+:mod:`rigidblocks.generators.catalogue` holds the standard problems with known answers
+(closed forms and published values, with their sources) that every method is tested on.
 
 >>> from rigidblocks.generators import build
 >>> scene = build("flat_arch", voussoirs=5, joints="vertical")

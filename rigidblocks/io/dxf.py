@@ -75,13 +75,10 @@ NO_UNIT_WEIGHT_NOTE = ("imported from a drawing without a unit weight: the block
                        "import-dxf --unit-weight)")
 
 
-def _ezdxf():
-    try:
-        import ezdxf
-    except ImportError:  # pragma: no cover - depends on the environment
-        raise InputError("reading or writing DXF needs the ezdxf package: "
-                         "pip install 'rigidblocks[cad]'") from None
-    return ezdxf
+def _ezdxf() -> Any:
+    from ..extras import require
+
+    return require("cad", "reading or writing DXF")[0]
 
 
 # -- reading ------------------------------------------------------------------------
