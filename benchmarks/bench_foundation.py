@@ -1,6 +1,6 @@
 """Timing of the foundation stages on running-bond walls of growing size.
 
-Stages: building the scene (:func:`rigidblocks.examples.walls.running_bond_wall`),
+Stages: building the scene (:func:`rigidblocks.generators.walls.running_bond_wall`),
 writing and reading the scene file, validation (polygons and the overlap check),
 contact detection and assembly of the equilibrium matrix. Run as
 
@@ -17,13 +17,16 @@ import argparse
 import math
 import sys
 import tempfile
-import time
 from collections.abc import Sequence
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from common import text_table, timed  # noqa: E402
+
 from rigidblocks.contacts.detect2d import detect_contacts_2d
 from rigidblocks.equilibrium import assemble
-from rigidblocks.examples.walls import joint_count, running_bond_wall
+from rigidblocks.generators.walls import joint_count, running_bond_wall
 from rigidblocks.io.scene_file import read_scene, write_scene
 from rigidblocks.scene.validate import DEFAULT_TOL, validate_scene
 
@@ -40,28 +43,19 @@ def wall_shape(n_blocks: int) -> tuple[int, int]:
 def bench_one(n_blocks: int, workdir: Path) -> dict:
     """Time every stage for one wall; returns counts and seconds per stage."""
     courses, per_course = wall_shape(n_blocks)
-    t = {}
-    t0 = time.perf_counter()
-    scene = running_bond_wall(courses, per_course)
-    t["build"] = time.perf_counter() - t0
-
+    t: dict[str, float] = {}
+    with timed(t, "build"):
+        scene = running_bond_wall(courses, per_course)
     path = workdir / f"wall_{n_blocks}.json"
-    t0 = time.perf_counter()
-    write_scene(scene, path)
-    scene = read_scene(path, validate=False)
-    t["file"] = time.perf_counter() - t0
-
-    t0 = time.perf_counter()
-    validate_scene(scene)
-    t["validate"] = time.perf_counter() - t0
-
-    t0 = time.perf_counter()
-    contacts = detect_contacts_2d(scene, DEFAULT_TOL)
-    t["detect"] = time.perf_counter() - t0
-
-    t0 = time.perf_counter()
-    system = assemble(scene, contacts)
-    t["assemble"] = time.perf_counter() - t0
+    with timed(t, "file"):
+        write_scene(scene, path)
+        scene = read_scene(path, validate=False)
+    with timed(t, "validate"):
+        validate_scene(scene)
+    with timed(t, "detect"):
+        contacts = detect_contacts_2d(scene, DEFAULT_TOL)
+    with timed(t, "assemble"):
+        system = assemble(scene, contacts)
 
     if contacts.n_joints != joint_count(courses, per_course):
         raise RuntimeError(f"wall {courses} x {per_course}: {contacts.n_joints} joints, "
@@ -74,15 +68,10 @@ def bench_one(n_blocks: int, workdir: Path) -> dict:
 
 def format_table(rows: Sequence[dict]) -> str:
     """The results as a fixed-width text table (seconds per stage)."""
-    head = f"{'blocks':>8} {'joints':>8} {'points':>8} " + " ".join(
-        f"{s:>9}" for s in STAGES) + f" {'total':>8}"
-    lines = [head, "-" * len(head)]
-    for r in rows:
-        sec = r["seconds"]
-        lines.append(f"{r['blocks']:>8} {r['joints']:>8} {r['points']:>8} "
-                     + " ".join(f"{sec[s]:>9.3f}" for s in STAGES)
-                     + f" {sum(sec.values()):>8.3f}")
-    return "\n".join(lines)
+    return text_table(["blocks", "joints", "points", *STAGES, "total"],
+                      [[r["blocks"], r["joints"], r["points"],
+                        *(float(r["seconds"][s]) for s in STAGES),
+                        float(sum(r["seconds"].values()))] for r in rows])
 
 
 def main(sizes: Sequence[int] = DEFAULT_SIZES, out=None) -> list[dict]:

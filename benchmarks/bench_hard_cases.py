@@ -27,8 +27,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from common import markdown_table, write_results  # noqa: E402
 
 from rigidblocks.analyses import check, max_load_multiplier, min_friction  # noqa: E402
-from rigidblocks.examples import build  # noqa: E402
-from rigidblocks.examples.arches import make_scene  # noqa: E402
+from rigidblocks.generators import build  # noqa: E402
+from rigidblocks.generators.arches import make_scene  # noqa: E402
 from rigidblocks.scene.model import Scene  # noqa: E402
 
 NAME = "bench_hard_cases"

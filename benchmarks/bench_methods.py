@@ -56,7 +56,7 @@ def scenes(tiny: bool) -> list[tuple[str, Scene]]:
         if scene.dimension == 2:
             out.append((path.stem, scene))
     if not tiny:
-        from rigidblocks.examples import build
+        from rigidblocks.generators import build
 
         out.append(("wall (generated, 106 blocks)", build("wall")))
     return out

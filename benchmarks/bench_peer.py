@@ -62,12 +62,18 @@ from typing import Any
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from common import markdown_table, out_dir, write_results  # noqa: E402
+from common import (  # noqa: E402
+    markdown_table,
+    out_dir,
+    read_results,
+    rewrite_results,
+    write_results,
+)
 
 from rigidblocks import check  # noqa: E402
 from rigidblocks.errors import InputError  # noqa: E402
-from rigidblocks.examples import build  # noqa: E402
-from rigidblocks.examples.walls import running_bond_wall  # noqa: E402
+from rigidblocks.generators import build  # noqa: E402
+from rigidblocks.generators.walls import running_bond_wall  # noqa: E402
 from rigidblocks.scene.extrude import extrude  # noqa: E402
 from rigidblocks.scene.geometry import scene_size  # noqa: E402
 from rigidblocks.scene.model import Scene, make_block  # noqa: E402
@@ -551,7 +557,7 @@ def ours_only(out: str | Path | None, python: str | None, log=sys.stdout) -> dic
     previous our-side results are kept and marked so. Force comparisons need the peer's
     per-joint forces, which the JSON does not keep: they stay as measured before."""
     d = out_dir(out)
-    data = json.loads((d / f"{NAME}.json").read_text())
+    data = read_results(d, NAME)
     previous = data.get("ours_date", data["date"])
     data.setdefault("peer_date", data["date"])
     data.setdefault("peer_argv", data.get("argv"))
@@ -585,10 +591,9 @@ def ours_only(out: str | Path | None, python: str | None, log=sys.stdout) -> dic
     data["ours_kept"] = kept
     data["targets"], data["hard_cases"] = targets(data["rows"]), hard_cases(data["rows"])
     data["date"] = time.strftime("%Y-%m-%d")
-    (d / f"{NAME}.json").write_text(json.dumps(data, indent=1) + "\n")
     pyth = data["peer_python"] if data["peer_available"] else None
-    (d / f"{NAME}.md").write_text(markdown(data["rows"], data["targets"],
-                                           data["hard_cases"], pyth, data).rstrip() + "\n")
+    rewrite_results(d, NAME, data, markdown(data["rows"], data["targets"],
+                                            data["hard_cases"], pyth, data))
     chart(data["rows"], d / f"{NAME}.png")
     return data
 
@@ -596,13 +601,12 @@ def ours_only(out: str | Path | None, python: str | None, log=sys.stdout) -> dic
 def redraw(out: str | Path | None) -> dict:
     """Rewrite bench_peer.md, the PNG and the targets from an existing bench_peer.json."""
     d = out_dir(out)
-    data = json.loads((d / f"{NAME}.json").read_text())
+    data = read_results(d, NAME)
     rows = data["rows"]
     data["targets"], data["hard_cases"] = targets(rows), hard_cases(rows)
-    (d / f"{NAME}.json").write_text(json.dumps(data, indent=1) + "\n")
     python = data["peer_python"] if data["peer_available"] else None
-    (d / f"{NAME}.md").write_text(markdown(rows, data["targets"], data["hard_cases"],
-                                           python, data).rstrip() + "\n")
+    rewrite_results(d, NAME, data, markdown(rows, data["targets"], data["hard_cases"],
+                                            python, data))
     chart(rows, d / f"{NAME}.png")
     return data
 

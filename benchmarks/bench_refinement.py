@@ -40,7 +40,7 @@ from common import markdown_table, out_dir, write_results  # noqa: E402
 
 from rigidblocks.analyses import max_load_multiplier, min_friction  # noqa: E402
 from rigidblocks.contacts import detect_contacts  # noqa: E402
-from rigidblocks.examples import build  # noqa: E402
+from rigidblocks.generators import build  # noqa: E402
 from rigidblocks.io.scene_file import read_scene  # noqa: E402
 from rigidblocks.scene.extrude import extrude  # noqa: E402
 from rigidblocks.scene.model import Scene, make_block  # noqa: E402

@@ -1,6 +1,6 @@
 """Scaling, overhead against the bare solver, and the speed targets.
 
-Scenes: 2D running-bond walls (:func:`rigidblocks.examples.walls.running_bond_wall`,
+Scenes: 2D running-bond walls (:func:`rigidblocks.generators.walls.running_bond_wall`,
 shape from :func:`bench_foundation.wall_shape`) of about 100 to 50,000 blocks, and the
 same walls extruded to 3D prisms (:func:`rigidblocks.scene.extrude`), whose f* and
 lambda* equal the 2D ones. Run as
@@ -94,7 +94,7 @@ TARGETS = {"max_load_ratio": 1.5, "min_friction_ratio": 5.0, "non_solver_exponen
 # -- scenes ------------------------------------------------------------------------------
 def make_scene(dim: int, n_blocks: int):
     """The running-bond wall of about ``n_blocks`` blocks (3D: extruded to prisms)."""
-    from rigidblocks.examples.walls import running_bond_wall
+    from rigidblocks.generators.walls import running_bond_wall
 
     scene = running_bond_wall(*wall_shape(n_blocks))
     if dim == 3:

@@ -1,6 +1,6 @@
 """Throughput of parametric studies: cases per second, one process against local processes.
 
-The sweep: small semicircular arches (:func:`rigidblocks.examples.arches.arch`, radial
+The sweep: small semicircular arches (:func:`rigidblocks.generators.arches.arch`, radial
 joints on fixed abutments, two straight segments per voussoir face) under self-weight
 (load factor 0), a grid of 10 voussoir counts (4 to 13) by ``cases / 10`` ring
 thicknesses t/R from 0.12 to 0.30; each analysis (``check``: one relaxation LP;
@@ -16,7 +16,6 @@ including starting the processes and writing the Parquet output.
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import sys
 import tempfile
@@ -29,7 +28,7 @@ from rigidblocks.studies.sweep import run
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from common import markdown_table, write_results  # noqa: E402
+from common import load_average, markdown_table, write_results  # noqa: E402
 
 NAME = "bench_study"
 
@@ -75,10 +74,10 @@ def main(argv: Sequence[str] | None = None) -> dict:
         p.error("--cases and --workers must be >= 1")
     if args.tiny:
         args.cases, args.analyses = 20, ["check"]
-    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan
+    load = load_average()
     with tempfile.TemporaryDirectory() as tmp:
         rows = bench(args.cases, args.workers, args.analyses, Path(tmp))
-    load_end = os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan
+    load_end = load_average()
     header = ["analysis", "workers", "cases", "seconds", "cases/s", "speed-up", "failed",
               "mean case s", "mean solver s"]
     table = markdown_table(header, [[r["analysis"], r["workers"], r["cases"], r["seconds"],

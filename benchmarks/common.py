@@ -64,6 +64,27 @@ def write_results(out: str | Path | None, name: str, data: dict[str, Any],
     return d
 
 
+def read_results(out: str | Path | None, name: str) -> dict[str, Any]:
+    """The ``NAME.json`` of an earlier run (to redraw or extend it)."""
+    return json.loads((out_dir(out) / f"{name}.json").read_text())
+
+
+def rewrite_results(out: str | Path | None, name: str, data: dict[str, Any],
+                    markdown: str) -> Path:
+    """Write ``NAME.json`` and ``NAME.md`` of results measured earlier (``data`` keeps
+    its own machine, date and argv); return the folder."""
+    d = out_dir(out)
+    (d / f"{name}.json").write_text(json.dumps(data, indent=1, default=_jsonable) + "\n")
+    (d / f"{name}.md").write_text(markdown.rstrip() + "\n")
+    return d
+
+
+def load_average() -> float:
+    """The 1-minute load average (NaN where the platform has none): how busy the shared
+    machine was while the figures were taken."""
+    return os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+
+
 def _jsonable(x: Any) -> Any:
     try:
         return x.item()  # numpy scalars
@@ -90,3 +111,13 @@ def markdown_table(header: list[str], rows: list[list[Any]]) -> str:
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(cell(v) for v in r) + " |" for r in rows]
     return "\n".join(lines)
+
+
+def text_table(header: list[str], rows: list[list[Any]], width: int = 9,
+               digits: int = 3) -> str:
+    """A fixed-width text table for the terminal: right-aligned columns, floats with
+    ``digits`` decimals, a rule under the header."""
+    def cell(v: Any) -> str:
+        return f"{v:>{width}.{digits}f}" if isinstance(v, float) else f"{v!s:>{width}}"
+    head = " ".join(f"{h:>{width}}" for h in header)
+    return "\n".join([head, "-" * len(head), *(" ".join(cell(v) for v in r) for r in rows)])

@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from rigidblocks import min_friction
-from rigidblocks.examples import available, build
+from rigidblocks.generators import available, build
 from rigidblocks.io import write_scene
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -252,7 +252,7 @@ def page() -> str:
     w("## Reference mechanical model (seed Fig. 4a)")
     w("")
     w("P = 100 N down on the top block, H = 50 N pulling each central block outwards. By "
-      "hand (see `rigidblocks/examples/seed.py`): f* = H / (P + W_top + W_central), so "
+      "hand (see `rigidblocks/generators/seed.py`): f* = H / (P + W_top + W_central), so "
       "0.5 without self-weight and 0.25 when W_top + W_central = 100 N. The seed does "
       "not publish its block sizes; the generator's defaults (central blocks "
       "0.10 x 0.10 m, top block 0.20 x 0.05 m, depth 0.25 m, 20 kN/m^3) weigh "

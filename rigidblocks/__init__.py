@@ -1,5 +1,8 @@
 """rigidblocks: limit analysis of rigid-block masonry with unilateral frictional joints."""
 
+import sys as _sys
+
+from . import studies as study
 from .analyses import check, load_path, max_load_multiplier, min_friction
 from .contacts import Contacts, detect_contacts
 from .equilibrium import EquilibriumSystem, assemble
@@ -7,6 +10,9 @@ from .errors import InputError, RigidBlocksError, SolverFailure
 from .io import read_scene, write_scene
 from .scene import INFINITE, Block, JointOverride, Load, Scene, make_block
 from .studies import min_thickness
+
+#: ``from rigidblocks import study`` and ``import rigidblocks.study``: the studies package
+_sys.modules[f"{__name__}.study"] = study
 
 __version__ = "0.1.0"
 

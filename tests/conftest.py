@@ -27,10 +27,9 @@ def make_scene(blocks, **top):
 def block_on_base():
     """A b x h block on a wide support, unit weight 1, live horizontal body force."""
 
+    from rigidblocks.generators.catalogue import block_on_base as build_block
+
     def build(b=1.0, h=2.0, friction=0.5, **extra):
-        return make_scene([
-            {"id": "base", "vertices": rect(-2, -1, 4 + b, 1), "support": True},
-            {"id": "B", "vertices": rect(0, 0, b, h)},
-        ], unit_weight=1.0, friction=friction, live_body_force=[1, 0], **extra)
+        return build_block(b, h, friction, **extra)
 
     return build

@@ -1,9 +1,10 @@
 """3D scenes: convex polyhedra, contact polygons and Coulomb cones (SOCP).
 
-References: docs/validation.md (closed forms); the equivalence of an extruded 2D scene
-with the plane problem follows from symmetry about the mid-plane (every 3D admissible
-state averaged with its mirror image is a plane state, and a plane state spread evenly
-over the depth is admissible in 3D).
+References: docs/validation.md (closed forms; the inclined plane and the box tipping
+about an edge are cases of rigidblocks.generators.catalogue, run by test_catalogue.py);
+the equivalence of an extruded 2D scene with the plane problem follows from symmetry
+about the mid-plane (every 3D admissible state averaged with its mirror image is a
+plane state, and a plane state spread evenly over the depth is admissible in 3D).
 """
 
 from __future__ import annotations
@@ -16,7 +17,8 @@ from conftest import EXAMPLES, make_scene, rect
 
 import rigidblocks as rb
 from rigidblocks.errors import InputError
-from rigidblocks.examples.solids import box
+from rigidblocks.generators.catalogue import box_on_slab
+from rigidblocks.generators.solids import box
 from rigidblocks.io.scene_file import scene_from_dict
 from rigidblocks.scene.extrude import extrude
 
@@ -27,20 +29,6 @@ def scene3d(blocks, **top):
     return scene_from_dict(doc)
 
 
-def box_on_slab(a=1.0, b=2.0, h=2.0, tilt=0.0, azimuth=0.0, **top):
-    """A box a x b x h on a slab, the whole rotated by ``tilt`` so that the slab's top
-    slopes down towards ``azimuth`` (radians from +x)."""
-    bv, bf = box(-a / 2, -b / 2, 0, a, b, h)
-    sv, sf = box(-3, -3, -1, 6, 6, 1)
-    axis = np.array([-math.sin(azimuth), math.cos(azimuth), 0.0])  # horizontal axis
-    # rotation taking +z towards the downhill direction (cos az, sin az) by `tilt`
-    K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
-    R = np.eye(3) + math.sin(tilt) * K + (1 - math.cos(tilt)) * K @ K
-    rot = lambda pts: (np.asarray(pts) @ R.T).tolist()  # noqa: E731
-    return scene3d([{"id": "slab", "vertices": rot(sv), "faces": sf, "support": True},
-                    {"id": "box", "vertices": rot(bv), "faces": bf}], unit_weight=1.0, **top)
-
-
 def test_contact_polygon_of_box_on_slab():
     s = box_on_slab()
     c = rb.detect_contacts(s)
@@ -48,17 +36,6 @@ def test_contact_polygon_of_box_on_slab():
     assert c.areas[0] == pytest.approx(2.0)
     assert np.diff(c.joint_start)[0] == 4
     np.testing.assert_allclose(c.normals[0], [0, 0, 1], atol=1e-12)
-
-
-@pytest.mark.parametrize("azimuth", [0.0, 0.4, math.pi / 4, 2.0])
-def test_inclined_plane_cone_is_isotropic(azimuth):
-    """validation.md: a block on a plane sloping at theta needs f* = tan(theta) with the
-    Coulomb cone, whatever the downhill azimuth (the block is squat enough not to tip)."""
-    theta = math.radians(20)
-    res = rb.min_friction(box_on_slab(a=2, b=2, h=0.5, tilt=theta, azimuth=azimuth),
-                          state=False)
-    assert res.status == "stable"
-    assert res.friction_factor == pytest.approx(math.tan(theta), rel=1e-6)
 
 
 def test_pyramid_depends_on_direction_and_converges_to_cone():
@@ -80,21 +57,6 @@ def test_pyramid_depends_on_direction_and_converges_to_cone():
         errs.append(f.friction_factor - exact)
     assert all(e >= -1e-7 for e in errs)
     assert errs[-1] < errs[0] and errs[-1] <= exact * (1 / math.cos(math.pi / 64) - 1) + 1e-7
-
-
-def test_box_tipping_about_an_edge_under_diagonal_load():
-    """Box a x b x h, horizontal body force lambda W at azimuth alpha, infinite friction.
-    The resultant of W and lambda W at the centroid (height h/2) meets the base at
-    lambda h/2 (cos alpha, sin alpha) from its centre; it must stay inside the a x b base:
-    lambda* = min(a / (h cos alpha), b / (h sin alpha)). With a=1, b=2, h=2, alpha=30 deg:
-    lambda* = 1/(2 cos 30) = 0.57735, tipping about the edge x = a/2."""
-    alpha = math.radians(30)
-    s = box_on_slab(a=1, b=2, h=2, friction="infinite",
-                    live_body_force=[math.cos(alpha), math.sin(alpha), 0])
-    res = rb.max_load_multiplier(s)
-    assert res.status == "collapse"
-    assert res.load_multiplier == pytest.approx(1 / (2 * math.cos(alpha)), rel=1e-6)
-    assert res.mechanism.modes == ("hinge",)
 
 
 def test_extruded_2d_scene_gives_same_answers():
@@ -212,7 +174,7 @@ def test_min_friction_where_the_relaxation_below_f_star_is_degenerate():
     so f* >= 1, and a state with |T| = N on every bed joint reaches it (f* = 1, as in
     2D). Just below f* the relaxation is too degenerate for Clarabel (AlmostSolved); the
     analysis probes further below and reports f* = 1 with its bracket, not a failure."""
-    from rigidblocks.examples.walls import running_bond_wall
+    from rigidblocks.generators.walls import running_bond_wall
     from rigidblocks.scene.extrude import extrude
 
     r = rb.min_friction(extrude(running_bond_wall(10, 10)), rtol=1e-6)

@@ -1,6 +1,6 @@
 """The foundation benchmark runs, on tiny sizes, and reports consistent counts.
 
-Expected counts are the running-bond closed forms of rigidblocks.examples.walls:
+Expected counts are the running-bond closed forms of rigidblocks.generators.walls:
 blocks = 1 + N C + floor(C / 2), joints = N (3C - 1) - ceil(C / 2), two contact points
 per joint, 3 equilibrium rows per free block.
 """
@@ -126,7 +126,7 @@ def load_script(name):
 def test_bench_scaling_tiny(tmp_path):
     """Tiny walls through every stage; our lambda* equals the bare Clarabel solve's.
 
-    Counts: running-bond closed forms (rigidblocks.examples.walls): blocks
+    Counts: running-bond closed forms (rigidblocks.generators.walls): blocks
     1 + N C + floor(C/2), J = N (3C - 1) - ceil(C/2) joints, two points per 2D joint and
     four per extruded 3D joint; the plain 2D problem has (N, T) per point plus lambda,
     and 3 equilibrium rows per free block + 3 inequality rows per point. The 3-course

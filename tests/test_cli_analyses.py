@@ -14,6 +14,8 @@ import pytest
 from conftest import EXAMPLES, rect
 
 from rigidblocks.cli.main import main
+from rigidblocks.generators import catalogue as cat
+from rigidblocks.io import write_scene
 
 
 def write(tmp_path, name, blocks, **top):
@@ -26,23 +28,18 @@ def write(tmp_path, name, blocks, **top):
 
 @pytest.fixture
 def block_file(tmp_path):
-    """1 x 2 block, unit weight 1, f = 0.3, live horizontal body force."""
-    return write(tmp_path, "block.json", [
-        {"id": "base", "vertices": rect(-2, -1, 5, 1), "support": True},
-        {"id": "B", "vertices": rect(0, 0, 1, 2)},
-    ], unit_weight=1.0, friction=0.3, live_body_force=[1, 0])
+    """1 x 2 block, unit weight 1, f = 0.3, live horizontal body force (catalogue)."""
+    path = tmp_path / "block.json"
+    write_scene(cat.block_on_base(1.0, 2.0, 0.3), path)
+    return str(path)
 
 
 @pytest.fixture
 def seed_file(tmp_path):
-    """The seed's reference model (see test_catalogue.seed_model), no self-weight."""
-    return write(tmp_path, "seed.json", [
-        {"id": "S", "vertices": rect(-1, -1, 4, 1), "support": True},
-        {"id": "C1", "vertices": rect(0, 0, 1, 1)},
-        {"id": "C2", "vertices": rect(1, 0, 1, 1)},
-        {"id": "T", "vertices": rect(0, 1, 2, 0.5)},
-    ], loads=[{"block": "T", "force": [0, -100]}, {"block": "C1", "force": [-50, 0]},
-              {"block": "C2", "force": [50, 0]}])
+    """The seed's reference model (catalogue.seed_model), no self-weight."""
+    path = tmp_path / "seed.json"
+    write_scene(cat.seed_model(), path)
+    return str(path)
 
 
 def run_json(capsys, argv):

@@ -15,7 +15,7 @@ from conftest import make_scene, rect
 from rigidblocks.contacts import detect_contacts
 from rigidblocks.contacts.detect2d import detect_contacts_2d
 from rigidblocks.errors import InputError
-from rigidblocks.examples.walls import block_id, joint_count, running_bond_wall
+from rigidblocks.generators.walls import block_id, joint_count, running_bond_wall
 from rigidblocks.scene.geometry import scene_size
 from rigidblocks.scene.model import Block
 
@@ -211,7 +211,7 @@ def test_redundant_vertices_are_ignored():
                                                   (10, 10), (11, 6)])
 def test_running_bond_joint_count(courses, per_course):
     """J = N (3C - 1) - ceil(C/2): N bed joints on the foundation, 2N between every two
-    courses, N - 1 head joints in even and N in odd courses (rigidblocks.examples.walls).
+    courses, N - 1 head joints in even and N in odd courses (rigidblocks.generators.walls).
     Hand check: C = N = 1 gives 1; C = 2, N = 1 gives 1 + 2 + 0 + 1 = 4."""
     scene = running_bond_wall(courses, per_course)
     c = detect_contacts(scene)

@@ -87,15 +87,6 @@ def test_reference_model_min_friction():
     assert gov == {frozenset(p) for p in (("base", "L"), ("base", "R"), ("L", "T"), ("R", "T"))}
 
 
-@pytest.mark.parametrize("b,h,f", [(1.0, 2.0, 0.3), (1.0, 2.0, 1.0), (1.0, 2.0, 0.0)])
-def test_block_on_base_max_load(block_on_base, b, h, f):
-    """Rigid block b x h on a base under a horizontal body force lambda W: it slides at
-    lambda = f and overturns about its toe at lambda = b / h (moments about the toe)."""
-    res = rb.max_load_multiplier(block_on_base(b=b, h=h, friction=f), method="distortion")
-    assert res.status == "collapse"
-    assert res.load_multiplier == pytest.approx(min(f, b / h), rel=1e-5)
-
-
 @pytest.mark.parametrize("case", [
     ("bob", 0.5, 0.3), ("bob", 0.5, 0.6), ("bob", "infinite", 0.45), ("bob", "infinite", 0.55),
     ("ref", 0.45, 1.0), ("ref", 0.55, 1.0), ("lintel", 0.6, 1.0), ("lintel", 0.2, 1.0),
@@ -218,26 +209,14 @@ def test_path_cli(tmp_path, capsys):
 
 # -- cross-checks against the convex path ------------------------------------------------
 def _catalogue():
-    """The 2D scenes of the convex path's catalogue (tests/test_catalogue.py)."""
-    import test_catalogue as tc
+    """The 2D scenes of the catalogue (rigidblocks.generators.catalogue) that stand at
+    1.1 f*: its f* cases, a sliding and a tipping block on a support, the harmonic
+    stack."""
+    from rigidblocks.generators.catalogue import CASES
 
-    return {
-        "block_on_base_slides": tc.block_on_base(1.0, 2.0, 0.3),
-        "block_on_base_tips": tc.block_on_base(1.5, 1.0, 1.2),
-        "inclined_20deg": tc.inclined(1.0, 2.0, math.radians(20.0)),
-        "inclined_30deg_tips": tc.inclined(0.5, 1.0, math.radians(30.0)),
-        "two_block_stack": tc.stack([(2.0, 0.5), (2.0, 0.5)], 0.3),
-        "three_block_stack": tc.stack([(2.0, 0.5), (1.0, 0.5), (1.0, 1.0)], 0.2),
-        "side_by_side_pull": tc.side_by_side(0.4, -1, 0.0),
-        "side_by_side_push": tc.side_by_side(0.4, +1, 0.0),
-        "seed_model": tc.seed_model(),
-        "seed_model_weight_50": tc.seed_model(50.0),
-        "leaning_pair": tc.leaning_pair(),
-        "harmonic_4": tc.harmonic(4),
-        "harmonic_4_shifted": tc.harmonic(4, extra={2: 1e-3}),
-        "floating": tc.floating(),
-        "on_a_point": tc.on_a_point(),
-    }
+    names = [c.name for c in CASES.values() if c.dimension == 2 and c.status == "stable"]
+    names += ["block_on_base_b1_h2_f0.3", "block_on_base_b1.5_h1_f1.2", "harmonic_4"]
+    return {n: CASES[n].scene() for n in names}
 
 
 CATALOGUE = sorted(_catalogue())
@@ -282,15 +261,6 @@ def _cross_check(scene, full: bool):
         assert abs(d.friction_factor - fs) <= 1e-4 * max(fs, 1e-12) + 1e-9, d.notes
 
 
-@pytest.mark.parametrize("name", CATALOGUE)
-def test_catalogue_agrees_with_clarabel(name):
-    """Every catalogue case (closed forms in tests/test_catalogue.py): the distortion
-    method's verdict at 10% below and above Clarabel's f* is Clarabel's, and its f* by
-    bisection over its own verdicts agrees to 1e-4 relative (measured: 1.3e-5 at worst,
-    the leaning pair; 1e-7 or better elsewhere). Unstable scenes are unstable for both."""
-    _cross_check(_catalogue()[name], full=True)
-
-
 @pytest.mark.parametrize("name", EXAMPLE_FILES)
 def test_examples_verdicts_agree_with_clarabel(name):
     """Every bundled 2D example: same verdict as Clarabel at 0.9 f* and 1.1 f*, and f*
@@ -325,7 +295,7 @@ def test_running_bond_wall():
     """The generated 106-block running-bond wall: f* = 1 by Clarabel (test_catalogue's
     tolerance); the distortion method gives the same verdicts away from it and f* within
     1e-4 (measured 1.2e-4 bracket, upper end 1.0000)."""
-    from rigidblocks.examples import build
+    from rigidblocks.generators import build
 
     scene = build("wall")
     for f, ok in ((0.9, False), (1.5, True)):
@@ -352,8 +322,7 @@ def _qp_state(ds, fj, lam, solver):
     return res.z[prob.cols["x"]]
 
 
-@pytest.mark.parametrize("name", [n for n in CATALOGUE if n not in (
-    "floating", "on_a_point", "inclined_30deg_tips", "harmonic_4_shifted")])
+@pytest.mark.parametrize("name", CATALOGUE)
 def test_catalogue_forces_match_energy_qp(name):
     """At 1.1 f* (admissible, f > 0) the iteration's final link forces are the QP's,
     min ||X - X0||_C^2 s.t. equilibrium and joint laws (build_energy_qp), solved by

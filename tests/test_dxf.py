@@ -9,6 +9,7 @@ drawings and their published collapse tilt angles are described in
 
 from __future__ import annotations
 
+import json
 import math
 
 import ezdxf
@@ -163,3 +164,114 @@ def test_lact3_import_and_collapse_multiplier(name, n_blocks, phi, theta):
     res = rb.max_load_multiplier(sc)
     assert res.status == "collapse"
     assert res.load_multiplier == pytest.approx(math.tan(math.radians(theta)), rel=2e-3)
+
+
+# -- round trip of our own drawings --------------------------------------------------------
+def test_export_import_round_trip_restores_scene_and_lambda(tmp_path, capsys):
+    """Issue 15 item 4: `export-dxf arch.json --analysis check -o a.dxf && import-dxf
+    a.dxf -o b.json` restores the scene (ids, supports, unit weight, friction, loads,
+    units) and lambda*; the analysis layers (thrust line, arrows, text) are not read as
+    blocks."""
+    from conftest import EXAMPLES
+
+    for name, extra in (("arch.json", []), ("arch.json", ["--load-factor", "0"]),
+                        ("reference.json", []), ("flat_arch_radial.json", [])):
+        src = EXAMPLES / name
+        a, b = tmp_path / "a.dxf", tmp_path / "b.json"
+        assert main(["export-dxf", str(src), "--analysis", "check", "-o", str(a),
+                     *extra]) == 0
+        assert main(["import-dxf", str(a), "-o", str(b)]) == 0
+        out = capsys.readouterr()
+        assert "restored" in out.out and "warning" not in out.err
+        sc0, sc1 = read_scene(src), read_scene(b)
+        assert sc1 == sc0, name
+        assert b.read_text() == src.read_text()
+        if sc0.has_live_load:
+            assert (rb.max_load_multiplier(sc1).load_multiplier
+                    == rb.max_load_multiplier(sc0).load_multiplier)
+        if extra:  # the arch stands at load factor 0: its arrows were drawn, and skipped
+            layers = {e.dxf.layer for e in ezdxf.readfile(a).modelspace()}
+            assert {"RB_FORCES", "RB_THRUST_LINE"} <= layers
+
+
+def test_round_trip_keeps_loads_joint_overrides_and_block_weights(tmp_path):
+    from conftest import make_scene, rect
+
+    sc = make_scene([
+        {"id": "ground", "vertices": rect(-1, -1, 4, 1), "support": True},
+        {"id": "P", "vertices": rect(0, 0, 1, 2), "unit_weight": 30.0},
+        {"id": "Q", "vertices": rect(0, 2, 1, 1)},
+    ], name="two", units={"length": "m", "force": "kN"}, depth=0.5, unit_weight=20.0,
+        friction=0.7, joints=[{"blocks": ["P", "Q"], "friction": 0.3, "cohesion": 1.5}],
+        loads=[{"block": "Q", "force": [2.0, -1.0], "point": [0.5, 3.0], "live": True},
+               {"block": "P", "force": [0.0, -4.0], "moment": 0.25}])
+    rb.io.dxf.write_dxf(sc, tmp_path / "s.dxf", rb.max_load_multiplier(sc))
+    back, rep = rb.read_dxf(tmp_path / "s.dxf", report=True)
+    assert rep.restored and back == sc
+    # values given on import replace the stored ones
+    heavier = rb.read_dxf(tmp_path / "s.dxf", unit_weight=25.0, friction=0.8)
+    assert heavier.unit_weight == 25.0 and heavier.friction == 0.8
+    assert heavier.loads == sc.loads and heavier.joints == sc.joints
+
+
+def test_drawing_edited_in_cad_is_repaired_and_keeps_its_metadata(tmp_path):
+    """A block moved by 1e-12 in CAD and a new block without an id: the repair path
+    runs, stored ids and loads still apply, the new block gets a fresh id."""
+    from conftest import make_scene, rect
+
+    sc = make_scene([
+        {"id": "ground", "vertices": rect(-1, -1, 4, 1), "support": True},
+        {"id": "P", "vertices": rect(0, 0, 1, 2)},
+    ], unit_weight=20.0, friction=0.6, live_body_force=[1, 0])
+    path = tmp_path / "s.dxf"
+    rb.io.dxf.write_dxf(sc, path)
+    doc = ezdxf.readfile(path)
+    doc.modelspace().add_lwpolyline([(2, 0), (2.5, 0), (2.5, 1 + E), (2, 1)], close=True)
+    doc.saveas(path)
+    back, rep = rb.read_dxf(path, report=True)
+    assert [b.id for b in back.blocks] == ["ground", "P", "b1"]
+    assert back.unit_weight == 20.0 and back.live_body_force == (1.0, 0.0)
+    assert back.blocks[2].points[2, 1] == pytest.approx(1.0, abs=1e-11)
+
+
+def test_analysis_layers_are_skipped_and_other_layers_can_be_chosen(tmp_path):
+    """Another program's drawing with force arrows drawn as LINEs on an analysis layer,
+    and blocks on two layers: the default skips only our analysis layers; --layers
+    names the layers to read."""
+    doc = ezdxf.new()
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(-1, -1), (3, -1), (3, 0), (-1, 0)], close=True,
+                       dxfattribs={"layer": "GROUND"})
+    msp.add_lwpolyline([(0, 0), (1, 0), (1, 2), (0, 2)], close=True,
+                       dxfattribs={"layer": "STONES"})
+    for lay in ("RB_FORCES", "ARROWS"):
+        msp.add_line((0.5, 1), (0.9, 1.3), dxfattribs={"layer": lay})
+    doc.saveas(tmp_path / "o.dxf")
+    with pytest.raises(InputError, match="LINE entities that do not form a closed chain"):
+        rb.read_dxf(tmp_path / "o.dxf")  # ARROWS is not ours: read, and it fails
+    sc = rb.read_dxf(tmp_path / "o.dxf", layers=["GROUND", "STONES"], unit_weight=1.0)
+    assert len(sc.blocks) == 2 and sc.unit_weight == 1.0
+    out = tmp_path / "o.json"
+    assert main(["import-dxf", str(tmp_path / "o.dxf"), "-o", str(out), "--layers",
+                 "GROUND,STONES", "--unit-weight", "1"]) == 0
+    assert len(read_scene(out).blocks) == 2
+
+
+def test_import_without_unit_weight_warns_and_every_analysis_says_so(tmp_path, capsys):
+    """A drawing imported without a unit weight has weightless blocks: import-dxf warns,
+    and an analysis of the scene says in its notes that the blocks weigh nothing (a
+    weightless check is trivially admissible and must not read as a verdict on the
+    structure's own weight)."""
+    path = quirky_drawing(tmp_path / "q.dxf")
+    out = tmp_path / "q.json"
+    assert main(["import-dxf", str(path), "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert "warning" in err and "without a unit weight" in err
+    sc = read_scene(out)
+    assert sc.unit_weight is None
+    r = rb.check(sc, load_factor=0)
+    assert any("weigh nothing" in n for n in r.notes)
+    assert main(["check", str(out), "--json"]) == 0
+    assert any("weigh nothing" in n for n in json.loads(capsys.readouterr().out)["notes"])
+    sc2 = rb.read_dxf(path, unit_weight=20.0)
+    assert not any("weigh nothing" in n for n in rb.check(sc2, load_factor=0).notes)

@@ -10,7 +10,7 @@ from conftest import EXAMPLES
 from rigidblocks import check, min_friction, read_scene
 from rigidblocks.cli.main import main
 from rigidblocks.errors import InputError
-from rigidblocks.examples import GENERATORS, available, build
+from rigidblocks.generators import GENERATORS, available, build
 from rigidblocks.io.scene_file import dumps_scene
 
 FAST = {"wall": {"courses": 3, "blocks_per_course": 3}}
@@ -180,3 +180,26 @@ def test_corbel_arch_inclined_joints_need_less_friction():
 def test_admissible_with_infinite_friction():
     for name in ("arch", "stocky_arch", "flat_arch", "corbel_arch", "arpino_gate"):
         assert check(build(name), friction="infinite", load_factor=0, state=False).admissible
+
+
+def test_old_package_name_is_a_deprecated_alias():
+    """rigidblocks.examples (the generators' former name) still imports, with its
+    submodules and names, as the very objects of rigidblocks.generators."""
+    import importlib
+    import sys
+    import warnings
+
+    import rigidblocks.generators as gen
+    import rigidblocks.generators.walls as walls
+
+    for name in [m for m in sys.modules if m.startswith("rigidblocks.examples")]:
+        del sys.modules[name]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        old = importlib.import_module("rigidblocks.examples")
+    assert any(issubclass(w.category, DeprecationWarning) for w in caught)
+    assert old.build is gen.build and old.GENERATORS is gen.GENERATORS
+    assert importlib.import_module("rigidblocks.examples.walls") is walls
+    from rigidblocks.examples.walls import running_bond_wall
+
+    assert running_bond_wall is walls.running_bond_wall

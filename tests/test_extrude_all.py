@@ -25,7 +25,7 @@ import shapely
 from conftest import EXAMPLES
 
 import rigidblocks as rb
-from rigidblocks.examples import available, build
+from rigidblocks.generators import available, build
 from rigidblocks.io.scene_file import read_scene
 from rigidblocks.scene.extrude import extrude
 from rigidblocks.scene.geometry import ccw, scene_size

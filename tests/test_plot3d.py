@@ -18,7 +18,7 @@ import pytest  # noqa: E402
 
 import rigidblocks as rb  # noqa: E402
 from rigidblocks.cli.main import main  # noqa: E402
-from rigidblocks.examples.solids import box_stack, corbel_dome  # noqa: E402
+from rigidblocks.generators.solids import box_stack, corbel_dome  # noqa: E402
 from rigidblocks.io import write_scene  # noqa: E402
 from rigidblocks.plotting.plot3d import displaced_vertices  # noqa: E402
 

@@ -1,4 +1,4 @@
-"""3D generators (rigidblocks.examples.solids): geometry, joint counts, closed forms.
+"""3D generators (rigidblocks.generators.solids): geometry, joint counts, closed forms.
 
 Closed forms are derived in the generators' docstrings and restated in each test; the
 lower-bound (static) and upper-bound (kinematic) theorems of limit analysis make them
@@ -15,8 +15,8 @@ import pytest
 import rigidblocks as rb
 from rigidblocks.cli.main import main
 from rigidblocks.errors import InputError
-from rigidblocks.examples import build
-from rigidblocks.examples.solids import (
+from rigidblocks.generators import build
+from rigidblocks.generators.solids import (
     barrel_vault,
     box_stack,
     corbel_dome,

@@ -23,7 +23,7 @@ import rigidblocks as rb
 from rigidblocks import study
 from rigidblocks.cli.main import main
 from rigidblocks.errors import InputError
-from rigidblocks.examples import build
+from rigidblocks.generators import build
 
 ANSWERS = ["status", "error", "check_status", "admissible", "violation",
            "min_friction_status", "friction_factor", "friction_angle_deg"]
@@ -351,3 +351,35 @@ def test_bench_study_tiny(tmp_path):
     doc = json.loads((tmp_path / "bench_study.json").read_text())
     assert doc["benchmark"] == "bench_study" and doc["rows"][0]["cases"] == 20
     assert "| check | 1 | 20 |" in (tmp_path / "bench_study.md").read_text()
+
+
+def test_study_is_the_studies_package():
+    """``from rigidblocks import study`` and ``import rigidblocks.study`` give the one
+    home of the study API, rigidblocks.studies, with the names sweep.py exports."""
+    import importlib
+
+    import rigidblocks
+    import rigidblocks.studies as studies
+    from rigidblocks import study
+    from rigidblocks.studies import sweep
+
+    assert study is studies is importlib.import_module("rigidblocks.study")
+    assert rigidblocks.study.run is sweep.run and study.read_spec is studies.spec.read_spec
+    for name in ("ANALYSES", "ANSWERS", "RANDOM_KEYS", "RESERVED", "SCENE_PARAMS",
+                 "Analysis", "StudyResult", "Sweep", "check_value", "expand_cases",
+                 "make_sweep", "plot", "run", "run_batch", "run_case"):
+        assert hasattr(sweep, name), name
+
+
+def test_one_function_maps_an_analysis_name_to_its_answer():
+    """studies.execute.answer is the one dispatch on the analysis name: a name it does
+    not know is an error, never a silent default."""
+    from rigidblocks.errors import InputError
+    from rigidblocks.studies.execute import Analysis, _Job, answer
+
+    job = _Job("flat_arch", None, (), "clarabel")
+    scene = build("flat_arch", voussoirs=3)
+    row, _ = answer(Analysis("min_friction"), job, {}, 0.0, lambda: scene)
+    assert row["min_friction_status"] == "stable" and row["friction_factor"] > 0
+    with pytest.raises(InputError, match="unknown analysis 'nope'"):
+        answer(Analysis("nope"), job, {}, 0.0, lambda: scene)

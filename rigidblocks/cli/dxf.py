@@ -3,15 +3,17 @@
 from __future__ import annotations
 
 import argparse
+import sys
 
 from ..errors import InputError
 from ..io import read_scene, write_scene
+from .options import finite_float
 
 
 def _pair(text: str) -> tuple[float, float]:
     try:
-        vals = tuple(float(v) for v in text.replace(",", " ").split())
-    except ValueError:
+        vals = tuple(finite_float(v) for v in text.replace(",", " ").split())
+    except argparse.ArgumentTypeError:
         raise argparse.ArgumentTypeError(f"not two numbers: '{text}'") from None
     if len(vals) != 2:
         raise argparse.ArgumentTypeError(f"not two numbers: '{text}'")
@@ -24,20 +26,24 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
 
         p.add_argument("dxf", help="DXF drawing: one block per closed polyline")
         p.add_argument("-o", "--output", required=True, help="scene file to write (JSON)")
-        p.add_argument("--supports", default="lowest",
-                       help="'lowest' (default), 'largest', 'layer:NAME' or 'ids:b1,b2'")
-        p.add_argument("--unit-weight", type=float, default=None, help="unit weight")
-        p.add_argument("--depth", type=float, default=None, help="out-of-plane depth")
+        p.add_argument("--supports", default=None,
+                       help="'lowest', 'largest', 'layer:NAME' or 'ids:b1,b2' (default: the "
+                       "supports stored by export-dxf, else 'lowest')")
+        p.add_argument("--layers", default=None, metavar="L1,L2",
+                       help="read only these layers (default: every layer but the analysis "
+                       "layers export-dxf writes)")
+        p.add_argument("--unit-weight", type=finite_float, default=None, help="unit weight")
+        p.add_argument("--depth", type=finite_float, default=None, help="out-of-plane depth")
         p.add_argument("--friction", default=None, help='friction f or "infinite"')
         p.add_argument("--length-unit", default=None, help="e.g. mm")
         p.add_argument("--force-unit", default=None, help="e.g. kN")
         p.add_argument("--live-body-force", type=_pair, default=None, metavar="'FX FY'",
                        help="live body force vector, e.g. '1 0'")
         p.add_argument("--name", default=None, help="scene name")
-        p.add_argument("--snap-tol", type=float, default=DEFAULT_SNAP_TOL,
+        p.add_argument("--snap-tol", type=finite_float, default=DEFAULT_SNAP_TOL,
                        help="snapping tolerance relative to the drawing size "
                        f"(default {DEFAULT_SNAP_TOL:g})")
-        p.add_argument("--near-miss", type=float, default=DEFAULT_NEAR_MISS,
+        p.add_argument("--near-miss", type=finite_float, default=DEFAULT_NEAR_MISS,
                        help="reject corners closer than this many tolerances but not "
                        f"within one (default {DEFAULT_NEAR_MISS:g}; 0 disables)")
     else:
@@ -46,7 +52,16 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
         p.add_argument("--analysis", choices=("check", "friction", "load"), default=None,
                        help="add the thrust line and force arrows of this analysis")
         p.add_argument("--friction", default=None, help='friction f or "infinite"')
-        p.add_argument("--load-factor", type=float, default=1.0, help="lambda (default 1)")
+        p.add_argument("--load-factor", type=finite_float, default=1.0, help="lambda (default 1)")
+
+
+def _layers(text: str | None) -> list[str] | None:
+    if text is None:
+        return None
+    names = [t.strip() for t in text.split(",") if t.strip()]
+    if not names:
+        raise InputError("--layers: give layer names, e.g. --layers WALLS,PIERS")
+    return names
 
 
 def _friction(text: str | None):
@@ -72,9 +87,14 @@ def run(args: argparse.Namespace) -> int:
                               depth=args.depth, friction=_friction(args.friction),
                               units=units, live_body_force=args.live_body_force,
                               name=args.name, snap_tol=args.snap_tol,
-                              near_miss=args.near_miss, report=True)
+                              near_miss=args.near_miss, report=True,
+                              layers=_layers(args.layers))
         write_scene(scene, args.output)
         print(rep.summary())
+        if scene.unit_weight is None:
+            from ..io.dxf import NO_UNIT_WEIGHT_NOTE
+
+            print(f"rigidblocks: warning: {NO_UNIT_WEIGHT_NOTE}", file=sys.stderr)
         print(f"wrote {args.output}")
         return 0
     from .plot import analyse

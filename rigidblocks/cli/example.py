@@ -7,6 +7,7 @@ import sys
 from typing import Any
 
 from ..errors import InputError
+from ..io.paths import output_path
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
@@ -79,7 +80,7 @@ def convert(gen: str, key: str, value: str, default: Any) -> Any:
 
 
 def listing() -> str:
-    from ..examples import available
+    from ..generators import available
 
     lines = []
     for name, gen in available().items():
@@ -91,7 +92,7 @@ def listing() -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..examples import get
+    from ..generators import get
     from ..io.scene_file import dumps_scene, write_scene
 
     if args.list:
@@ -107,6 +108,8 @@ def run(args: argparse.Namespace) -> int:
             raise InputError("example: -o needs a file name")
         args.output = tokens[k + 1]
         del tokens[k:k + 2]
+    if args.output:
+        output_path(args.output)  # before any work
     scene = gen(**parse_params(gen, tokens))
     if args.output:
         write_scene(scene, args.output)

@@ -15,6 +15,8 @@ from collections.abc import Sequence
 
 from ..analyses import ANALYSES
 from ..errors import InputError, SolverFailure
+from ..io.paths import output_path
+from .options import use_finite_floats
 
 #: command name -> (module, one-line help)
 COMMANDS: dict[str, tuple[str, str]] = {
@@ -45,6 +47,7 @@ def build_parser() -> argparse.ArgumentParser:
         mod = importlib.import_module(f"{__package__}.{module}")
         p = sub.add_parser(name, help=help_, description=help_)
         mod.add_args(p, name)
+        use_finite_floats(p)
         p.set_defaults(_run=mod.run)
     return parser
 
@@ -57,6 +60,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         if not getattr(args, "_run", None):
             parser.print_help()
             return 2
+        if getattr(args, "output", None):  # every command's -o, before any work
+            output_path(args.output)
         return int(args._run(args) or 0)
     except InputError as err:
         print(f"rigidblocks: error: {err}", file=sys.stderr)

@@ -8,12 +8,13 @@ import json
 from ..analyses import load_path
 from ..io import read_scene
 from .analyses import _jsonable
+from .options import finite_float
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("scene", help="scene file (JSON, see docs/scene-format.md)")
     p.add_argument("--steps", type=int, default=40, help="number of load steps (default 40)")
-    p.add_argument("--max-load", type=float, default=2.0,
+    p.add_argument("--max-load", type=finite_float, default=2.0,
                    help="largest live-load multiplier of the path (default 2)")
     p.add_argument("--friction", help='friction coefficient f, or "infinite" '
                    "(default: the scene's)")

@@ -18,6 +18,9 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..extras import require
+
+    require("study", "sweep")
     from ..studies.spec import read_spec
     from ..studies.sweep import run as run_sweep
 

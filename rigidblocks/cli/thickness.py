@@ -6,15 +6,16 @@ import argparse
 import json
 
 from ..errors import InputError
+from .options import finite_float
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("generator", help="generator name (see `rigidblocks example --list`)")
     p.add_argument("--param", default="thickness", help="parameter to bisect "
                    "(default: thickness)")
-    p.add_argument("--lo", type=float, default=0.01, help="inadmissible lower bound")
-    p.add_argument("--hi", type=float, default=1.0, help="admissible upper bound")
-    p.add_argument("--rtol", type=float, default=1e-4, help="relative bracket width")
+    p.add_argument("--lo", type=finite_float, default=0.01, help="inadmissible lower bound")
+    p.add_argument("--hi", type=finite_float, default=1.0, help="admissible upper bound")
+    p.add_argument("--rtol", type=finite_float, default=1e-4, help="relative bracket width")
     p.add_argument("--friction", default="infinite",
                    help='friction coefficient f, or "infinite" (default)')
     p.add_argument("--method", default="clarabel", help='"clarabel" or "distortion"')
@@ -24,7 +25,7 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..examples import get
+    from ..generators import get
     from ..studies import min_thickness
     from .example import parse_params
 
@@ -53,8 +54,8 @@ def run(args: argparse.Namespace) -> int:
     return 3 if res.status == "undecided" else 0
 
 
-_OWN = {"--param": str, "--lo": float, "--hi": float, "--rtol": float, "--friction": str,
-        "--method": str}
+_OWN = {"--param": str, "--lo": finite_float, "--hi": finite_float, "--rtol": finite_float,
+        "--friction": str, "--method": str}
 
 
 def _own_options(args: argparse.Namespace, tokens: list[str]) -> list[str]:
@@ -71,8 +72,8 @@ def _own_options(args: argparse.Namespace, tokens: list[str]) -> list[str]:
                 raise InputError(f"thickness: {tok} needs a value")
             try:
                 setattr(args, tok[2:], _OWN[tok](tokens[i + 1]))
-            except ValueError:
-                raise InputError(f"thickness: {tok} must be a number, got "
+            except (ValueError, argparse.ArgumentTypeError):
+                raise InputError(f"thickness: {tok} must be a finite number, got "
                                  f"{tokens[i + 1]!r}") from None
             i += 2
         else:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import InputError
 from ..scene.geometry import flat_polygons, polygon_areas_centroids, scene_size, simplify_polygon
 from ..scene.model import Scene
 from .model import Contacts
@@ -21,6 +22,10 @@ def oriented_polygons(scene: Scene, tol: float) -> tuple[np.ndarray, np.ndarray]
     """Counter-clockwise polygons without repeated or straight-angle vertices.
 
     Returns flat vertices and offsets as :func:`rigidblocks.scene.geometry.flat_polygons`.
+
+    Raises:
+        InputError: naming a block that is smaller than ``tol`` (absolute), so that
+            fewer than three distinct corners are left of it.
     """
     verts, starts = flat_polygons(scene)
     area, _ = polygon_areas_centroids(verts, starts)
@@ -51,6 +56,12 @@ def oriented_polygons(scene: Scene, tol: float) -> tuple[np.ndarray, np.ndarray]
     for b in np.unique(owner[suspect]).tolist():
         pieces.append(verts[done:starts[b]])
         simple = simplify_polygon(verts[starts[b]:starts[b + 1]], tol)
+        if len(simple) < 3:
+            size = float(np.ptp(verts[starts[b]:starts[b + 1]], axis=0).max())
+            raise InputError(f"the block ({size:.3g} across) is smaller than the contact "
+                             f"tolerance {tol:.3g} (relative tolerance x scene size): "
+                             "enlarge or remove it, or analyse it in a scene of its own "
+                             "size", f"block '{scene.blocks[b].id}'")
         pieces.append(simple)
         counts[b] = len(simple)
         done = starts[b + 1]

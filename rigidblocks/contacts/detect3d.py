@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import InputError
 from ..scene.geometry import scene_size
 from ..scene.model import Scene
 from ..scene.polyhedra import block_planes, candidate_pairs, outward_faces
@@ -32,6 +33,13 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
 
     L = scene_size(scene)
     eps = tol * L
+    for b in scene.blocks:
+        size = float(np.ptp(b.points, axis=0).max())
+        if size <= eps:
+            raise InputError(f"the block ({size:.3g} across) is smaller than the contact "
+                             f"tolerance {eps:.3g} (relative tolerance x scene size): "
+                             "enlarge or remove it, or analyse it in a scene of its own "
+                             "size", f"block '{b.id}'")
     planes = [block_planes(b) for b in scene.blocks]
     faces = [outward_faces(b) for b in scene.blocks]
     pairs, normals, tangents, polys, areas = [], [], [], [], []

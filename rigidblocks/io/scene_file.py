@@ -350,6 +350,14 @@ def _compact(value: Any) -> str:
 
 
 def write_scene(scene: Scene, path: str | os.PathLike) -> None:
-    """Write a scene file in the canonical layout (see :func:`dumps_scene`)."""
-    Path(path).write_text(dumps_scene(scene), encoding="utf-8")
+    """Write a scene file in the canonical layout (see :func:`dumps_scene`).
+
+    Raises:
+        InputError: the file cannot be written (its folder is missing, say).
+    """
+    text = dumps_scene(scene)
+    try:
+        Path(path).write_text(text, encoding="utf-8")
+    except OSError as err:
+        raise InputError(f"cannot write: {err.strerror or err}", str(path)) from None
 

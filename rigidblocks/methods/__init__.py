@@ -102,6 +102,10 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
     else:
         m = ConvexMethod(scene, system, timings, solver=solver or "clarabel",
                          settings=settings, pyramid=pyramid)
+    if not np.any(system.dead) and not any(b.unit_weight for b in scene.blocks) and \
+            not scene.effective_unit_weight:
+        m.notes.append("the blocks weigh nothing (no unit_weight): self-weight is not part "
+                       "of this analysis, only the loads act")
     loose = unsupported_blocks(scene, contacts)
     if loose:
         one = len(loose) == 1

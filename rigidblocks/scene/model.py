@@ -202,7 +202,7 @@ class Scene:
         if not isinstance(other, Scene):
             return NotImplemented
         names = ("dimension", "blocks", "loads", "joints", "name", "units", "depth",
-                 "unit_weight", "friction", "live_body_force")
+                 "unit_weight", "friction", "live_body_force", "load_factor")
         return all(getattr(self, n) == getattr(other, n) for n in names)
 
     __hash__ = None  # type: ignore[assignment]

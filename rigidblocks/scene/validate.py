@@ -3,7 +3,7 @@
 Checks that a scene file's structure alone cannot catch: duplicate ids, loads on
 supports or unknown blocks, supports and free blocks present, simple polygons of
 non-zero area, no two blocks whose interiors overlap, and joint overrides only between
-blocks in contact. Every failure is an :class:`~rigidblocks.errors.InputError` naming
+blocks in contact, one per joint. Every failure is an :class:`~rigidblocks.errors.InputError` naming
 the block(s) at fault.
 """
 
@@ -59,10 +59,15 @@ def _check_ids_and_loads(scene: Scene) -> None:
         if scene.block(ld.block).support:
             raise InputError(f"block '{ld.block}' is a support: loads go on free blocks only",
                              f"load #{i}")
+    pairs: set[frozenset[str]] = set()
     for j in scene.joints:
+        where = f"joint '{j.blocks[0]}'-'{j.blocks[1]}'"
         for bid in j.blocks:
             if bid not in scene.index:
-                raise InputError(f"unknown block '{bid}'", f"joint '{j.blocks[0]}'-'{j.blocks[1]}'")
+                raise InputError(f"unknown block '{bid}'", where)
+        if frozenset(j.blocks) in pairs:
+            raise InputError("overridden twice: give one override per joint", where)
+        pairs.add(frozenset(j.blocks))
 
 
 def _check_polygons(scene: Scene) -> None:

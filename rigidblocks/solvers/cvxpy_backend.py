@@ -25,7 +25,10 @@ def solve_cvxpy(problem: ConicProblem, solver: str, **options) -> SolverResult:
 
     name = solver.upper()
     if name not in cp.installed_solvers():
-        raise InputError(f"solver {solver!r} is not installed for cvxpy "
+        from ..extras import solver_install_hint
+
+        raise InputError(f"solver {solver!r} is not installed for cvxpy: "
+                         f"{solver_install_hint(solver)} "
                          f"(installed: {', '.join(cp.installed_solvers())})")
     n = problem.n
     z = cp.Variable(n)

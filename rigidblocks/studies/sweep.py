@@ -1,6 +1,6 @@
 """Parametric studies: many independent analyses of a family of structures.
 
-A sweep is a source of scenes -- a generator of :mod:`rigidblocks.examples` called
+A sweep is a source of scenes -- a generator of :mod:`rigidblocks.generators` called
 with each case's parameters, or one scene whose ``friction``, ``depth`` or
 ``unit_weight`` a case overrides -- plus the cases (a grid, a list, or random samples
 with a seed) and the analyses to run on each: ``check``, ``min_friction``,
@@ -22,6 +22,12 @@ Executors: one process (``workers=1``), local processes
 cluster (``scheduler="tcp://..."`` or ``client=``). Cases go to the workers in
 batches, so that the overhead of a task is shared by many small solves.
 
+This module defines the sweep and runs it; its parts live beside it:
+:mod:`~rigidblocks.studies.cases` (case expansion and value checks),
+:mod:`~rigidblocks.studies.execute` (one case, batches, executors),
+:mod:`~rigidblocks.studies.storage` (chunks, merge, resume) and
+:mod:`~rigidblocks.studies.chart` (charts). Their public names are importable from here.
+
 Example:
     >>> from rigidblocks import study
     >>> res = study.run("flat_arch", grid={"voussoirs": [3, 5]},
@@ -31,60 +37,53 @@ Example:
     ['ok', 'ok']
 """
 
+
 from __future__ import annotations
 
 import hashlib
-import itertools
 import json
 import math
 import os
-import shutil
 import time
-import uuid
-from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
-from ..scene.model import INFINITE, Scene
+from ..methods import METHODS
+from ..scene.model import Scene
+from .cases import (
+    RANDOM_KEYS,
+    RESERVED,
+    SCENE_PARAMS,
+    _is_number,
+    _known,
+    _param_specs,
+    _plain,
+    check_value,
+    expand_cases,
+)
+from .chart import plot
+from .execute import (
+    ANALYSES,
+    ANSWERS,
+    Analysis,
+    _dask,
+    _in_process,
+    _Job,
+    _processes,
+    connect,
+    run_batch,
+    run_case,
+)
+from .storage import _Store
 
-#: analysis name -> options it accepts (given in the analysis entry, not per case)
-ANALYSES: dict[str, tuple[str, ...]] = {
-    "check": (),
-    "min_friction": (),
-    "max_load_multiplier": (),
-    "min_thickness": ("param", "lo", "hi", "rtol", "friction"),
-}
-#: answer columns of each analysis (besides ``<analysis>_status``)
-ANSWERS: dict[str, tuple[str, ...]] = {
-    "check": ("admissible", "violation"),
-    "min_friction": ("friction_factor", "friction_angle_deg"),
-    "max_load_multiplier": ("load_multiplier",),
-    "min_thickness": ("min_thickness", "min_thickness_lower"),
-}
-#: parameters a scene source accepts (scene fields), besides ``load_factor``
-SCENE_PARAMS = ("friction", "depth", "unit_weight")
-RESERVED = ("load_factor",)
 #: columns of every row besides the parameters and the answers
 BASE_COLUMNS = ("case", "case_id", "status", "error", "time", "solve_time")
-METHODS = ("clarabel", "distortion")
 
 
 # -- the sweep -------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Analysis:
-    """One analysis to run on every case, with its options (``min_thickness``: param,
-    lo, hi, rtol, friction; see :func:`rigidblocks.min_thickness`)."""
-
-    name: str
-    options: tuple[tuple[str, Any], ...] = ()
-
-    def to_json(self) -> Any:
-        return {"analysis": self.name, **dict(self.options)} if self.options else self.name
-
-
 @dataclass(frozen=True)
 class Sweep:
     """A parametric study: the scene source, the cases and the analyses.
@@ -135,172 +134,6 @@ class Sweep:
             text = json.dumps({**head, "params": c}, sort_keys=True, default=str)
             out.append(hashlib.sha256(text.encode()).hexdigest()[:16])
         return out
-
-
-def _plain(v: Any) -> Any:
-    """Python scalars from numpy ones (np.float64 -> float)."""
-    item = getattr(v, "item", None)
-    return item() if callable(item) and not isinstance(v, str | bytes) else v
-
-
-def _is_number(v: Any) -> bool:
-    return isinstance(v, int | float) and not isinstance(v, bool)
-
-
-def _param_specs(generator: str | None) -> dict[str, Any]:
-    """Parameter name -> default (the type a value must have)."""
-    if generator is None:
-        return {"friction": 0.0, "depth": 1.0, "unit_weight": 1.0, "load_factor": 1.0}
-    from ..examples import get
-
-    gen = get(generator)
-    params = {p.name: p.default for p in gen.params}
-    clash = set(params) & set(RESERVED)
-    if clash:  # pragma: no cover - no registered generator has one
-        raise InputError(f"generator {generator!r} has a parameter named {sorted(clash)[0]!r}, "
-                         "which sweeps reserve")
-    return {**params, "load_factor": 1.0}
-
-
-def check_value(name: str, value: Any, default: Any, where: str) -> Any:
-    """``value`` checked against the type of ``default`` (an int is a number; friction
-    may also be "infinite"); returns it as a plain Python value."""
-    v = _plain(value)
-    if name == "friction" and (v == INFINITE or (_is_number(v) and math.isinf(v) and v > 0)):
-        return INFINITE
-    if isinstance(default, bool):
-        ok = isinstance(v, bool)
-        kind = "true or false"
-    elif isinstance(default, int):
-        ok = isinstance(v, int) and not isinstance(v, bool)
-        kind = "an integer"
-    elif isinstance(default, float):
-        ok = _is_number(v) and math.isfinite(v)
-        kind = 'a number or "infinite"' if name == "friction" else "a finite number"
-        v = float(v) if ok else v
-    elif isinstance(default, str):
-        ok = isinstance(v, str)
-        kind = "a string"
-    else:
-        ok = isinstance(v, str) or _is_number(v) or v is None
-        kind = "a string or a number"
-    if not ok:
-        raise InputError(f"expected {kind}, got {json.dumps(v, default=str)}", where)
-    if name in ("friction", "unit_weight", "load_factor") and _is_number(v) and v < 0:
-        raise InputError(f"must be >= 0, got {v}", where)
-    return v
-
-
-def expand_cases(grid: Mapping[str, Sequence[Any]] | None = None,
-                 cases: Sequence[Mapping[str, Any]] | None = None,
-                 random: Mapping[str, Any] | None = None,
-                 parameters: Mapping[str, Any] | None = None) -> list[dict[str, Any]]:
-    """The cases of a sweep, each the fixed ``parameters`` updated with its own values.
-
-    Exactly one of:
-
-    * ``grid``: name -> list of values; the cartesian product, the last name varying
-      fastest;
-    * ``cases``: a list of parameter dictionaries;
-    * ``random``: ``{"samples": n, "seed": s, "uniform": {name: [lo, hi]},
-      "integers": {name: [lo, hi]} (inclusive), "choice": {name: [values]}}``, drawn
-      with :func:`numpy.random.default_rng` (seed) in that order of kinds, then of names.
-
-    A case repeating an earlier one (same parameters) is dropped.
-    """
-    given = [k for k, v in (("grid", grid), ("cases", cases), ("random", random))
-             if v is not None]
-    if len(given) != 1:
-        raise InputError("give exactly one of grid, cases, random"
-                         + (f" (got {', '.join(given)})" if given else ""))
-    fixed = dict(parameters or {})
-    out: list[dict[str, Any]] = []
-    if grid is not None:
-        if not isinstance(grid, Mapping) or not grid:
-            raise InputError("expected a non-empty object of parameter -> list of values",
-                             "grid")
-        names = list(grid)
-        for n in names:
-            vals = grid[n]
-            if isinstance(vals, str) or not isinstance(vals, Iterable):
-                raise InputError(f"expected a list of values, got {vals!r}", f"grid.{n}")
-        lists = [[_plain(v) for v in grid[n]] for n in names]
-        for n, vals in zip(names, lists, strict=True):
-            if not vals:
-                raise InputError("expected at least one value", f"grid.{n}")
-        out = [{**fixed, **dict(zip(names, combo, strict=True))}
-               for combo in itertools.product(*lists)]
-    elif cases is not None:
-        if isinstance(cases, Mapping | str) or not isinstance(cases, Iterable):
-            raise InputError("expected a list of objects", "cases")
-        for i, c in enumerate(cases):
-            if not isinstance(c, Mapping):
-                raise InputError(f"expected an object, got {c!r}", f"cases[{i}]")
-            out.append({**fixed, **{k: _plain(v) for k, v in c.items()}})
-        if not out:
-            raise InputError("expected at least one case", "cases")
-    else:
-        out = _random_cases(random, fixed)  # type: ignore[arg-type]
-    seen: set[str] = set()
-    unique = []
-    for c in out:
-        key = json.dumps(c, sort_keys=True, default=str)
-        if key not in seen:
-            seen.add(key)
-            unique.append(c)
-    return unique
-
-
-RANDOM_KEYS = ("samples", "seed", "uniform", "integers", "choice")
-
-
-def _random_cases(spec: Mapping[str, Any], fixed: dict[str, Any]) -> list[dict[str, Any]]:
-    import numpy as np
-
-    if not isinstance(spec, Mapping):
-        raise InputError("expected an object", "random")
-    for k in spec:
-        if k not in RANDOM_KEYS:
-            raise InputError(f'unknown key "{k}" (allowed: {", ".join(RANDOM_KEYS)})',
-                             "random")
-    for k in ("samples", "seed"):
-        v = _plain(spec.get(k))
-        if not isinstance(v, int) or isinstance(v, bool) or v < (1 if k == "samples" else 0):
-            raise InputError(f"expected an integer >= {1 if k == 'samples' else 0}, got "
-                             f"{json.dumps(v, default=str)}", f"random.{k}")
-    n = int(spec["samples"])
-    rng = np.random.default_rng(int(spec["seed"]))
-    cols: dict[str, list[Any]] = {}
-    for kind in ("uniform", "integers", "choice"):
-        block = spec.get(kind, {})
-        if not isinstance(block, Mapping):
-            raise InputError("expected an object of parameter -> values", f"random.{kind}")
-        for name, rng_spec in block.items():
-            where = f"random.{kind}.{name}"
-            if name in cols:
-                raise InputError("parameter drawn twice", where)
-            if kind == "choice":
-                if isinstance(rng_spec, str) or not isinstance(rng_spec, Sequence) \
-                        or not rng_spec:
-                    raise InputError("expected a non-empty list of values", where)
-                idx = rng.integers(0, len(rng_spec), n)
-                cols[name] = [_plain(rng_spec[i]) for i in idx]
-                continue
-            if (isinstance(rng_spec, str) or not isinstance(rng_spec, Sequence)
-                    or len(rng_spec) != 2 or not all(_is_number(_plain(x)) for x in rng_spec)):
-                raise InputError(f"expected [low, high], got {rng_spec!r}", where)
-            lo, hi = (_plain(x) for x in rng_spec)
-            if not lo <= hi:
-                raise InputError(f"expected low <= high, got [{lo}, {hi}]", where)
-            if kind == "uniform":
-                cols[name] = [float(x) for x in rng.uniform(lo, hi, n)]
-            else:
-                if not (isinstance(lo, int) and isinstance(hi, int)):
-                    raise InputError(f"expected integer bounds, got [{lo}, {hi}]", where)
-                cols[name] = [int(x) for x in rng.integers(lo, hi + 1, n)]
-    if not cols:
-        raise InputError("nothing to draw: give uniform, integers or choice", "random")
-    return [{**fixed, **{k: v[i] for k, v in cols.items()}} for i in range(n)]
 
 
 def _analysis(entry: Any, where: str) -> Analysis:
@@ -366,7 +199,7 @@ def make_sweep(source: str | Scene, *, grid: Mapping[str, Sequence[Any]] | None 
         scene = read_scene(source)
         src_label = str(source)
     elif isinstance(source, str):
-        from ..examples import get
+        from ..generators import get
 
         get(source)  # unknown generator -> InputError naming the choices
         generator = source
@@ -421,242 +254,6 @@ def make_sweep(source: str | Scene, *, grid: Mapping[str, Sequence[Any]] | None 
     return Sweep(generator, scene, tuple(checked), ans, method, name, src_label)
 
 
-def _known(k: str, specs: Mapping[str, Any], generator: str | None, where: str) -> None:
-    if k not in specs:
-        what = f"generator {generator!r}" if generator else "a scene source"
-        raise InputError(f"unknown parameter {k!r} for {what} (parameters: "
-                         f"{', '.join(sorted(specs))})", where)
-
-
-# -- one case ----------------------------------------------------------------------------
-@dataclass(frozen=True)
-class _Job:
-    generator: str | None
-    scene: Scene | None
-    analyses: tuple[Analysis, ...]
-    method: str
-
-
-def _scene_of(job: _Job, params: Mapping[str, Any]) -> Scene:
-    if job.generator is not None:
-        from ..examples import build
-
-        return build(job.generator, **params)
-    assert job.scene is not None
-    changes = {k: v for k, v in params.items() if k in SCENE_PARAMS}
-    if not changes:
-        return job.scene
-    scene = job.scene.with_changes(**changes)
-    if "depth" in changes or "unit_weight" in changes:
-        from ..scene.validate import validate_scene
-
-        validate_scene(scene)
-    return scene
-
-
-def run_case(job: _Job, params: Mapping[str, Any]) -> dict[str, Any]:
-    """The answers of one case (never raises: an error is recorded in the row)."""
-    from ..analyses import check, max_load_multiplier, min_friction
-
-    row: dict[str, Any] = {"status": "ok", "error": None, "solve_time": 0.0}
-    for a in job.analyses:
-        row[f"{a.name}_status"] = None
-        row.update(dict.fromkeys(ANSWERS[a.name]))
-    t0 = time.perf_counter()
-    lf = float(params.get("load_factor", 1.0))
-    gen_params = {k: v for k, v in params.items() if k not in RESERVED}
-    try:
-        scene = None
-        for a in job.analyses:
-            opts = dict(a.options)
-            if a.name == "min_thickness":
-                from .thickness import min_thickness
-
-                th = min_thickness(job.generator, method=job.method,  # type: ignore[arg-type]
-                                   **opts, **gen_params)
-                row.update(min_thickness_status="ok", min_thickness=th.thickness,
-                           min_thickness_lower=th.lower)
-                continue
-            if scene is None:
-                scene = _scene_of(job, gen_params)
-            if a.name == "check":
-                r = check(scene, load_factor=lf, method=job.method, state=False)
-                row.update(check_status=r.status, admissible=bool(r.admissible),
-                           violation=float(r.violation))
-            elif a.name == "min_friction":
-                r = min_friction(scene, load_factor=lf, method=job.method, state=False)
-                row.update(min_friction_status=r.status, friction_factor=r.friction_factor,
-                           friction_angle_deg=r.friction_angle_deg)
-            else:
-                r = max_load_multiplier(scene, method=job.method, state=False)
-                row.update(max_load_multiplier_status=r.status,
-                           load_multiplier=r.load_multiplier)
-            row["solve_time"] += float(r.solve_time)
-    except Exception as err:  # noqa: BLE001 - every failure is recorded, the study goes on
-        row["status"] = "failed"
-        row["error"] = f"{type(err).__name__}: {err}"
-    row["time"] = time.perf_counter() - t0
-    return row
-
-
-def run_batch(job: _Job, batch: Sequence[tuple[int, str, dict[str, Any]]]) -> list[dict]:
-    """Rows of a batch of cases ``(index, case_id, params)`` (a task of an executor)."""
-    return [{"case": i, "case_id": cid, **params, **run_case(job, params)}
-            for i, cid, params in batch]
-
-
-# -- executors ---------------------------------------------------------------------------
-Batch = list[tuple[int, str, dict[str, Any]]]
-
-
-def _in_process(job: _Job, batches: Iterator[Batch]) -> Iterator[list[dict]]:
-    for b in batches:
-        yield run_batch(job, b)
-
-
-def _processes(job: _Job, batches: Iterator[Batch], workers: int) -> Iterator[list[dict]]:
-    ex = ProcessPoolExecutor(max_workers=workers)
-    pending: set = set()
-    try:
-        for b in itertools.islice(batches, 3 * workers):
-            pending.add(ex.submit(run_batch, job, b))
-        while pending:
-            done, pending = wait(pending, return_when=FIRST_COMPLETED)
-            for fut in done:
-                for b in itertools.islice(batches, 1):
-                    pending.add(ex.submit(run_batch, job, b))
-                yield fut.result()
-    finally:
-        ex.shutdown(wait=not pending, cancel_futures=True)
-
-
-def _dask(job: _Job, batches: Iterator[Batch], scheduler: str | None,
-          client: Any) -> Iterator[list[dict]]:
-    from dask.distributed import Client, as_completed
-
-    own = client is None
-    if own:
-        client = Client(scheduler)
-    futures: list = []
-    try:
-        n = max(1, sum(client.nthreads().values()))
-        futures = [client.submit(run_batch, job, b, pure=False)
-                   for b in itertools.islice(batches, 3 * n)]
-        ac = as_completed(futures)
-        for fut in ac:
-            for b in itertools.islice(batches, 1):
-                new = client.submit(run_batch, job, b, pure=False)
-                futures.append(new)
-                ac.add(new)
-            yield fut.result()
-    finally:
-        for f in futures:
-            if not f.done():
-                f.cancel()
-        if own:
-            client.close()
-
-
-# -- storage -------------------------------------------------------------------------------
-class _Store:
-    """Rows on disk: chunk files in ``OUTPUT.parts/``, merged into OUTPUT at the end."""
-
-    def __init__(self, path: str | os.PathLike | None):
-        self.path = Path(path) if path is not None else None
-        if self.path is not None:
-            ext = self.path.suffix.lower()
-            if ext not in (".parquet", ".csv"):
-                raise InputError(f"output must end in .parquet or .csv, got {ext or 'none'!r}",
-                                 str(self.path))
-            self.ext = ext
-            self.parts = self.path.with_name(self.path.name + ".parts")
-        self.memory: list[dict] = []
-
-    def _read(self, p: Path):
-        import pandas as pd
-
-        if self.ext == ".parquet":
-            return pd.read_parquet(p)
-        return pd.read_csv(p, dtype={"case_id": str, "error": str, "status": str})
-
-    def existing(self):
-        """Rows already on disk (output file and chunks), one per case id."""
-        import pandas as pd
-
-        if self.path is None:
-            return pd.DataFrame()
-        frames = []
-        if self.path.exists():
-            frames.append(self._read(self.path))
-        if self.parts.is_dir():
-            frames += [self._read(p) for p in sorted(self.parts.glob(f"*{self.ext}"))]
-        frames = [f for f in frames if len(f)]
-        if not frames:
-            return pd.DataFrame()
-        df = pd.concat(frames, ignore_index=True)
-        if "case_id" not in df:
-            raise InputError("the existing output has no case_id column: not a study's "
-                             "results", str(self.path))
-        return df.drop_duplicates("case_id", keep="first")
-
-    def write(self, rows: list[dict], columns: list[str]) -> None:
-        if not rows:
-            return
-        if self.path is None:
-            self.memory += rows
-            return
-        self.parts.mkdir(parents=True, exist_ok=True)
-        name = f"part-{time.time_ns():020d}-{uuid.uuid4().hex[:8]}{self.ext}"
-        tmp = self.parts / (name + ".tmp")
-        _to_file(_frame(rows, columns), tmp, self.ext)
-        os.replace(tmp, self.parts / name)
-
-    def merge(self, columns: list[str], ids: Sequence[str]):
-        """The sweep's rows in case order; written to OUTPUT (chunks removed)."""
-        import pandas as pd
-
-        if self.path is None:
-            df = _frame(self.memory, columns)
-        else:
-            df = self.existing()
-            if len(df):
-                df = df[df["case_id"].isin(set(ids))]
-            df = df.reindex(columns=columns) if len(df) else _frame([], columns)
-        order = {cid: i for i, cid in enumerate(ids)}
-        df = df.assign(case=[order[c] for c in df["case_id"]]) if len(df) else df
-        df = df.sort_values("case", kind="stable").reset_index(drop=True)
-        df = _tidy(df)
-        if self.path is not None:
-            tmp = self.path.with_name(self.path.name + ".tmp")
-            _to_file(df, tmp, self.ext)
-            os.replace(tmp, self.path)
-            shutil.rmtree(self.parts, ignore_errors=True)
-        return pd.DataFrame(df)
-
-
-def _frame(rows: list[dict], columns: list[str]):
-    import pandas as pd
-
-    return _tidy(pd.DataFrame(rows, columns=columns))
-
-
-def _tidy(df):
-    """Columns of one type: numbers mixed with strings ("infinite") become strings."""
-    for c in df.columns:
-        if df[c].dtype == object:
-            kinds = {type(v) for v in df[c] if v is not None and v == v}
-            if str in kinds and len(kinds) > 1:
-                df[c] = [None if (v is None or v != v) else str(v) for v in df[c]]
-    return df
-
-
-def _to_file(df, path: Path, ext: str) -> None:
-    if ext == ".parquet":
-        df.to_parquet(path, index=False)
-    else:
-        df.to_csv(path, index=False)
-
-
 # -- running -----------------------------------------------------------------------------
 @dataclass
 class StudyResult:
@@ -705,38 +302,6 @@ class StudyResult:
                 f"({self.rate:.1f} cases/s, {self.executor}){where}")
 
 
-def plot(frame: Any, x: str, y: str, hue: str | None = None, ax: Any = None,
-         **kwargs: Any) -> Any:
-    """Line chart of column ``y`` against ``x`` of a study's frame, one line per value
-    of ``hue``; failed cases and missing answers are left out. Returns the Axes.
-
-    Example: ``plot(df, x="centre_depth", y="friction_angle_deg", hue="voussoirs")``.
-    """
-    import matplotlib.pyplot as plt
-
-    for c in (x, y, hue):
-        if c is not None and c not in frame.columns:
-            raise InputError(f"no column {c!r} (columns: {', '.join(map(str, frame.columns))})")
-    if ax is None:
-        _, ax = plt.subplots()
-    df = frame
-    if "status" in df.columns:
-        df = df[df["status"] == "ok"]
-    df = df[df[y].notna()]
-    groups = [(None, df)] if hue is None else list(df.groupby(hue, sort=True))
-    style = {"marker": "o", "markersize": 3, **kwargs}
-    for key, g in groups:
-        g = g.sort_values(x)
-        ax.plot(g[x], g[y].astype(float), label=None if hue is None else f"{hue} = {key}",
-                **style)
-    ax.set_xlabel(x)
-    ax.set_ylabel(y)
-    if hue is not None and groups:
-        ax.legend()
-    ax.grid(True, alpha=0.3)
-    return ax
-
-
 def run(source: str | Scene | Sweep, *, output: str | os.PathLike | None = None,
         workers: int | None = None, scheduler: str | None = None, client: Any = None,
         batch_size: int | None = None, progress: bool = True,
@@ -763,6 +328,9 @@ def run(source: str | Scene | Sweep, *, output: str | os.PathLike | None = None,
         :class:`StudyResult`; ``frame`` holds every case of the sweep that has run, now
         or before, in case order.
     """
+    from ..extras import require
+
+    require("study", "a parametric study")
     sw = source if isinstance(source, Sweep) else make_sweep(source, **sweep)
     if isinstance(source, Sweep) and sweep:
         raise InputError(f"unexpected arguments with a Sweep: {', '.join(sorted(sweep))}")
@@ -795,9 +363,11 @@ def run(source: str | Scene | Sweep, *, output: str | os.PathLike | None = None,
         raise InputError(f"batch_size must be an integer >= 1, got {batch_size!r}")
     batches = iter([todo[k:k + batch_size] for k in range(0, len(todo), batch_size)])
     if executor == "dask":
-        stream = _dask(job, batches, scheduler, client)
-        if client is None:
+        own = client is None
+        if own:
+            client = connect(scheduler)  # type: ignore[arg-type]
             executor = f"dask {scheduler}"
+        stream = _dask(job, batches, client, own)
     elif n_workers == 1:
         stream = _in_process(job, batches)
     else:
@@ -835,5 +405,6 @@ def run(source: str | Scene | Sweep, *, output: str | os.PathLike | None = None,
                        executor)
 
 
-__all__ = ["ANALYSES", "ANSWERS", "Analysis", "StudyResult", "Sweep", "check_value",
-           "expand_cases", "make_sweep", "plot", "run", "run_batch", "run_case"]
+__all__ = ["ANALYSES", "ANSWERS", "RANDOM_KEYS", "RESERVED", "SCENE_PARAMS", "Analysis",
+           "StudyResult", "Sweep", "check_value", "expand_cases", "make_sweep", "plot", "run",
+           "run_batch", "run_case"]

@@ -65,7 +65,7 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
     under its dead load (load factor 0), by bisection to a relative bracket ``rtol``.
 
     Args:
-        generator: a registered generator name (:mod:`rigidblocks.examples`) or a
+        generator: a registered generator name (:mod:`rigidblocks.generators`) or a
             function returning a scene.
         param: the thickness parameter (``thickness`` is t / R for :func:`arch`).
         lo, hi: the initial bracket; ``hi`` must be admissible and ``lo`` not.
@@ -78,7 +78,7 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         True
     """
     if isinstance(generator, str):
-        from ..examples import get
+        from ..generators import get
 
         gen: Callable[..., Scene] = get(generator)
         name = generator

@@ -81,7 +81,7 @@ def wall3d(courses: int = 6, blocks_per_course: int = 4, block_length: float = 0
 
     The wall lies in the plane x-z: courses of height h = ``block_height`` stacked along
     z, blocks of length L = ``block_length`` along x, the thickness t along y
-    (0 <= y <= t). The bond is that of :func:`rigidblocks.examples.walls.
+    (0 <= y <= t). The bond is that of :func:`rigidblocks.generators.walls.
     running_bond_wall`: even courses hold N = ``blocks_per_course`` full blocks, odd
     courses are offset by L/2 with a half block at each end. The foundation (id
     ``"foundation"``, a support) is the box 0 <= x <= N L, 0 <= y <= t, -h <= z <= 0.

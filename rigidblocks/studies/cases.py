@@ -1,0 +1,193 @@
+"""Case expansion of a sweep: the cases (a grid, a list or random samples) and the
+check of each parameter value against its generator's defaults."""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any
+
+from ..errors import InputError
+from ..scene.model import INFINITE
+
+#: parameters a scene source accepts (scene fields), besides ``load_factor``
+SCENE_PARAMS = ("friction", "depth", "unit_weight")
+RESERVED = ("load_factor",)
+
+
+def _plain(v: Any) -> Any:
+    """Python scalars from numpy ones (np.float64 -> float)."""
+    item = getattr(v, "item", None)
+    return item() if callable(item) and not isinstance(v, str | bytes) else v
+
+
+def _is_number(v: Any) -> bool:
+    return isinstance(v, int | float) and not isinstance(v, bool)
+
+
+def _param_specs(generator: str | None) -> dict[str, Any]:
+    """Parameter name -> default (the type a value must have)."""
+    if generator is None:
+        return {"friction": 0.0, "depth": 1.0, "unit_weight": 1.0, "load_factor": 1.0}
+    from ..generators import get
+
+    gen = get(generator)
+    params = {p.name: p.default for p in gen.params}
+    clash = set(params) & set(RESERVED)
+    if clash:  # pragma: no cover - no registered generator has one
+        raise InputError(f"generator {generator!r} has a parameter named {sorted(clash)[0]!r}, "
+                         "which sweeps reserve")
+    return {**params, "load_factor": 1.0}
+
+
+def check_value(name: str, value: Any, default: Any, where: str) -> Any:
+    """``value`` checked against the type of ``default`` (an int is a number; friction
+    may also be "infinite"); returns it as a plain Python value."""
+    v = _plain(value)
+    if name == "friction" and (v == INFINITE or (_is_number(v) and math.isinf(v) and v > 0)):
+        return INFINITE
+    if isinstance(default, bool):
+        ok = isinstance(v, bool)
+        kind = "true or false"
+    elif isinstance(default, int):
+        ok = isinstance(v, int) and not isinstance(v, bool)
+        kind = "an integer"
+    elif isinstance(default, float):
+        ok = _is_number(v) and math.isfinite(v)
+        kind = 'a number or "infinite"' if name == "friction" else "a finite number"
+        v = float(v) if ok else v
+    elif isinstance(default, str):
+        ok = isinstance(v, str)
+        kind = "a string"
+    else:
+        ok = isinstance(v, str) or _is_number(v) or v is None
+        kind = "a string or a number"
+    if not ok:
+        raise InputError(f"expected {kind}, got {json.dumps(v, default=str)}", where)
+    if name in ("friction", "unit_weight", "load_factor") and _is_number(v) and v < 0:
+        raise InputError(f"must be >= 0, got {v}", where)
+    return v
+
+
+def expand_cases(grid: Mapping[str, Sequence[Any]] | None = None,
+                 cases: Sequence[Mapping[str, Any]] | None = None,
+                 random: Mapping[str, Any] | None = None,
+                 parameters: Mapping[str, Any] | None = None) -> list[dict[str, Any]]:
+    """The cases of a sweep, each the fixed ``parameters`` updated with its own values.
+
+    Exactly one of:
+
+    * ``grid``: name -> list of values; the cartesian product, the last name varying
+      fastest;
+    * ``cases``: a list of parameter dictionaries;
+    * ``random``: ``{"samples": n, "seed": s, "uniform": {name: [lo, hi]},
+      "integers": {name: [lo, hi]} (inclusive), "choice": {name: [values]}}``, drawn
+      with :func:`numpy.random.default_rng` (seed) in that order of kinds, then of names.
+
+    A case repeating an earlier one (same parameters) is dropped.
+    """
+    given = [k for k, v in (("grid", grid), ("cases", cases), ("random", random))
+             if v is not None]
+    if len(given) != 1:
+        raise InputError("give exactly one of grid, cases, random"
+                         + (f" (got {', '.join(given)})" if given else ""))
+    fixed = dict(parameters or {})
+    out: list[dict[str, Any]] = []
+    if grid is not None:
+        if not isinstance(grid, Mapping) or not grid:
+            raise InputError("expected a non-empty object of parameter -> list of values",
+                             "grid")
+        names = list(grid)
+        for n in names:
+            vals = grid[n]
+            if isinstance(vals, str) or not isinstance(vals, Iterable):
+                raise InputError(f"expected a list of values, got {vals!r}", f"grid.{n}")
+        lists = [[_plain(v) for v in grid[n]] for n in names]
+        for n, vals in zip(names, lists, strict=True):
+            if not vals:
+                raise InputError("expected at least one value", f"grid.{n}")
+        out = [{**fixed, **dict(zip(names, combo, strict=True))}
+               for combo in itertools.product(*lists)]
+    elif cases is not None:
+        if isinstance(cases, Mapping | str) or not isinstance(cases, Iterable):
+            raise InputError("expected a list of objects", "cases")
+        for i, c in enumerate(cases):
+            if not isinstance(c, Mapping):
+                raise InputError(f"expected an object, got {c!r}", f"cases[{i}]")
+            out.append({**fixed, **{k: _plain(v) for k, v in c.items()}})
+        if not out:
+            raise InputError("expected at least one case", "cases")
+    else:
+        out = _random_cases(random, fixed)  # type: ignore[arg-type]
+    seen: set[str] = set()
+    unique = []
+    for c in out:
+        key = json.dumps(c, sort_keys=True, default=str)
+        if key not in seen:
+            seen.add(key)
+            unique.append(c)
+    return unique
+
+
+RANDOM_KEYS = ("samples", "seed", "uniform", "integers", "choice")
+
+
+def _random_cases(spec: Mapping[str, Any], fixed: dict[str, Any]) -> list[dict[str, Any]]:
+    import numpy as np
+
+    if not isinstance(spec, Mapping):
+        raise InputError("expected an object", "random")
+    for k in spec:
+        if k not in RANDOM_KEYS:
+            raise InputError(f'unknown key "{k}" (allowed: {", ".join(RANDOM_KEYS)})',
+                             "random")
+    for k in ("samples", "seed"):
+        v = _plain(spec.get(k))
+        if not isinstance(v, int) or isinstance(v, bool) or v < (1 if k == "samples" else 0):
+            raise InputError(f"expected an integer >= {1 if k == 'samples' else 0}, got "
+                             f"{json.dumps(v, default=str)}", f"random.{k}")
+    n = int(spec["samples"])
+    rng = np.random.default_rng(int(spec["seed"]))
+    cols: dict[str, list[Any]] = {}
+    for kind in ("uniform", "integers", "choice"):
+        block = spec.get(kind, {})
+        if not isinstance(block, Mapping):
+            raise InputError("expected an object of parameter -> values", f"random.{kind}")
+        for name, rng_spec in block.items():
+            where = f"random.{kind}.{name}"
+            if name in cols:
+                raise InputError("parameter drawn twice", where)
+            if kind == "choice":
+                if isinstance(rng_spec, str) or not isinstance(rng_spec, Sequence) \
+                        or not rng_spec:
+                    raise InputError("expected a non-empty list of values", where)
+                idx = rng.integers(0, len(rng_spec), n)
+                cols[name] = [_plain(rng_spec[i]) for i in idx]
+                continue
+            if (isinstance(rng_spec, str) or not isinstance(rng_spec, Sequence)
+                    or len(rng_spec) != 2 or not all(_is_number(_plain(x)) for x in rng_spec)):
+                raise InputError(f"expected [low, high], got {rng_spec!r}", where)
+            lo, hi = (_plain(x) for x in rng_spec)
+            if not lo <= hi:
+                raise InputError(f"expected low <= high, got [{lo}, {hi}]", where)
+            if kind == "uniform":
+                cols[name] = [float(x) for x in rng.uniform(lo, hi, n)]
+            else:
+                if not (isinstance(lo, int) and isinstance(hi, int)):
+                    raise InputError(f"expected integer bounds, got [{lo}, {hi}]", where)
+                cols[name] = [int(x) for x in rng.integers(lo, hi + 1, n)]
+    if not cols:
+        raise InputError("nothing to draw: give uniform, integers or choice", "random")
+    return [{**fixed, **{k: v[i] for k, v in cols.items()}} for i in range(n)]
+
+
+def _known(k: str, specs: Mapping[str, Any], generator: str | None, where: str) -> None:
+    if k not in specs:
+        what = f"generator {generator!r}" if generator else "a scene source"
+        raise InputError(f"unknown parameter {k!r} for {what} (parameters: "
+                         f"{', '.join(sorted(specs))})", where)
+
+
+__all__ = ["RANDOM_KEYS", "RESERVED", "SCENE_PARAMS", "check_value", "expand_cases"]

@@ -1,0 +1,207 @@
+"""Execution of a sweep: one case (its analyses), a batch of cases, and the executors
+that run batches in this process, on local processes or on a Dask cluster."""
+
+from __future__ import annotations
+
+import itertools
+import time
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from dataclasses import dataclass
+from typing import Any
+
+from ..errors import InputError
+from ..scene.model import Scene
+from .cases import RESERVED, SCENE_PARAMS
+
+#: analysis name -> options it accepts (given in the analysis entry, not per case)
+ANALYSES: dict[str, tuple[str, ...]] = {
+    "check": (),
+    "min_friction": (),
+    "max_load_multiplier": (),
+    "min_thickness": ("param", "lo", "hi", "rtol", "friction"),
+}
+#: answer columns of each analysis (besides ``<analysis>_status``)
+ANSWERS: dict[str, tuple[str, ...]] = {
+    "check": ("admissible", "violation"),
+    "min_friction": ("friction_factor", "friction_angle_deg"),
+    "max_load_multiplier": ("load_multiplier",),
+    "min_thickness": ("min_thickness", "min_thickness_lower"),
+}
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """One analysis to run on every case, with its options (``min_thickness``: param,
+    lo, hi, rtol, friction; see :func:`rigidblocks.min_thickness`)."""
+
+    name: str
+    options: tuple[tuple[str, Any], ...] = ()
+
+    def to_json(self) -> Any:
+        return {"analysis": self.name, **dict(self.options)} if self.options else self.name
+
+
+# -- one case ----------------------------------------------------------------------------
+@dataclass(frozen=True)
+class _Job:
+    generator: str | None
+    scene: Scene | None
+    analyses: tuple[Analysis, ...]
+    method: str
+
+
+def _scene_of(job: _Job, params: Mapping[str, Any]) -> Scene:
+    if job.generator is not None:
+        from ..generators import build
+
+        return build(job.generator, **params)
+    assert job.scene is not None
+    changes = {k: v for k, v in params.items() if k in SCENE_PARAMS}
+    if not changes:
+        return job.scene
+    scene = job.scene.with_changes(**changes)
+    if "depth" in changes or "unit_weight" in changes:
+        from ..scene.validate import validate_scene
+
+        validate_scene(scene)
+    return scene
+
+
+def answer(analysis: Analysis, job: _Job, params: Mapping[str, Any],
+           load_factor: float | None, scene: Callable[[], Scene],
+           ) -> tuple[dict[str, Any], float]:
+    """The row entries of one analysis of a case and its solve time: the one place where
+    a sweep maps an analysis name to the function that answers it.
+
+    ``params`` are the generator's (or scene's) parameters, ``scene`` builds the case's
+    scene (once, on first call); ``load_factor`` None is the scene's. An undecided
+    check leaves ``admissible`` empty (None), as its status says.
+    """
+    name, method = analysis.name, job.method
+    if name == "min_thickness":
+        from .thickness import min_thickness
+
+        th = min_thickness(job.generator, method=method,  # type: ignore[arg-type]
+                           **dict(analysis.options), **params)
+        return {"min_thickness_status": th.status, "min_thickness": th.thickness,
+                "min_thickness_lower": th.lower}, 0.0
+    if name not in ANALYSES:
+        raise InputError(f"unknown analysis {name!r} (choose from {', '.join(ANALYSES)})")
+    from ..analyses import analysis as registered
+
+    r = registered(name).run(scene(), load_factor=load_factor, method=method, state=False)
+    row = {f"{name}_status": r.status}
+    row.update({k: getattr(r, k) for k in ANSWERS[name]})
+    return row, float(r.solve_time)
+
+
+def run_case(job: _Job, params: Mapping[str, Any]) -> dict[str, Any]:
+    """The answers of one case (never raises: an error is recorded in the row)."""
+    row: dict[str, Any] = {"status": "ok", "error": None, "solve_time": 0.0}
+    for a in job.analyses:
+        row[f"{a.name}_status"] = None
+        row.update(dict.fromkeys(ANSWERS[a.name]))
+    t0 = time.perf_counter()
+    lf = params.get("load_factor")
+    lf = None if lf is None else float(lf)
+    gen_params = {k: v for k, v in params.items() if k not in RESERVED}
+    built: list[Scene] = []
+
+    def scene() -> Scene:
+        if not built:
+            built.append(_scene_of(job, gen_params))
+        return built[0]
+
+    try:
+        for a in job.analyses:
+            entries, solve_time = answer(a, job, gen_params, lf, scene)
+            row.update(entries)
+            row["solve_time"] += solve_time
+    except Exception as err:  # noqa: BLE001 - every failure is recorded, the study goes on
+        row["status"] = "failed"
+        row["error"] = f"{type(err).__name__}: {err}"
+    row["time"] = time.perf_counter() - t0
+    return row
+
+
+def run_batch(job: _Job, batch: Sequence[tuple[int, str, dict[str, Any]]]) -> list[dict]:
+    """Rows of a batch of cases ``(index, case_id, params)`` (a task of an executor)."""
+    return [{"case": i, "case_id": cid, **params, **run_case(job, params)}
+            for i, cid, params in batch]
+
+
+# -- executors ---------------------------------------------------------------------------
+Batch = list[tuple[int, str, dict[str, Any]]]
+
+
+def _in_process(job: _Job, batches: Iterator[Batch]) -> Iterator[list[dict]]:
+    for b in batches:
+        yield run_batch(job, b)
+
+
+def _processes(job: _Job, batches: Iterator[Batch], workers: int) -> Iterator[list[dict]]:
+    ex = ProcessPoolExecutor(max_workers=workers)
+    pending: set = set()
+    try:
+        for b in itertools.islice(batches, 3 * workers):
+            pending.add(ex.submit(run_batch, job, b))
+        while pending:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for fut in done:
+                for b in itertools.islice(batches, 1):
+                    pending.add(ex.submit(run_batch, job, b))
+                yield fut.result()
+    finally:
+        ex.shutdown(wait=not pending, cancel_futures=True)
+
+
+#: seconds to wait for a Dask scheduler to answer
+CONNECT_TIMEOUT = 5.0
+
+
+def connect(scheduler: str, timeout: float = CONNECT_TIMEOUT) -> Any:
+    """A ``dask.distributed.Client`` of the scheduler at ``scheduler``; InputError naming
+    the address when nothing answers there within ``timeout`` seconds."""
+    from ..extras import require
+
+    require("study", "a study on a Dask cluster", ("distributed",))
+    from dask.distributed import Client
+
+    try:
+        return Client(scheduler, timeout=timeout)
+    except OSError:
+        raise InputError(f"cannot reach the Dask scheduler at {scheduler}: no answer "
+                         f"within {timeout:g} s", "--scheduler") from None
+    except (ValueError, TypeError) as err:
+        msg = str(err).splitlines()[0] if str(err) else type(err).__name__
+        raise InputError(f"not a Dask scheduler address: {scheduler!r} ({msg})",
+                         "--scheduler") from None
+
+
+def _dask(job: _Job, batches: Iterator[Batch], client: Any,
+          own: bool = False) -> Iterator[list[dict]]:
+    """Batches run on a Dask ``client`` (closed at the end when ``own``)."""
+    from dask.distributed import as_completed
+
+    futures: list = []
+    try:
+        n = max(1, sum(client.nthreads().values()))
+        futures = [client.submit(run_batch, job, b, pure=False)
+                   for b in itertools.islice(batches, 3 * n)]
+        ac = as_completed(futures)
+        for fut in ac:
+            for b in itertools.islice(batches, 1):
+                new = client.submit(run_batch, job, b, pure=False)
+                futures.append(new)
+                ac.add(new)
+            yield fut.result()
+    finally:
+        for f in futures:
+            if not f.done():
+                f.cancel()
+        if own:
+            client.close()
+
+
+__all__ = ["ANALYSES", "ANSWERS", "Analysis", "answer", "connect", "run_batch", "run_case"]

@@ -1,0 +1,178 @@
+"""Input failure paths at the command line: a one-line message and exit 2, never a
+traceback, and nothing written or created (issue 14 item 3, issue 17 items 2 and 7)."""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+
+import pytest
+from conftest import EXAMPLES, rect
+
+from rigidblocks.cli.main import build_parser, main
+from rigidblocks.cli.options import finite_float
+
+SWEEP = EXAMPLES / "sweeps" / "flat_arch.json"
+
+
+def write(tmp_path, name, doc):
+    p = tmp_path / name
+    p.write_text(json.dumps(doc))
+    return str(p)
+
+
+def scene_doc(blocks, **top):
+    return {"format": "rigidblocks-scene", "version": 1, "dimension": 2, "blocks": blocks,
+            **top}
+
+
+def one_line_error(capsys, *words):
+    err = capsys.readouterr().err
+    assert err.startswith("rigidblocks: error: ") and err.count("\n") == 1, err
+    assert "Traceback" not in err
+    for w in words:
+        assert w in err, err
+    return err
+
+
+def test_block_smaller_than_the_contact_tolerance_is_named(tmp_path, capsys):
+    """A 1e-5 x 1e-5 block on a 1000 m base: the contact tolerance is 1e-7 x the scene's
+    size (about 1.4e-4 here), so the block shrinks to a point (issue 17 item 2)."""
+    path = write(tmp_path, "tiny.json", scene_doc([
+        {"id": "base", "vertices": rect(-500, -100, 1000, 100), "support": True},
+        {"id": "tiny", "vertices": rect(0, 0, 1e-5, 1e-5)},
+    ], unit_weight=20.0, friction=0.5, live_body_force=[1, 0]))
+    for cmd in ("check", "friction", "load"):
+        assert main([cmd, path]) == 2
+        one_line_error(capsys, "block 'tiny'", "contact tolerance")
+
+
+def test_block_smaller_than_the_contact_tolerance_is_named_in_3d(tmp_path, capsys):
+    from rigidblocks.generators.solids import box
+
+    bv, bf = box(-500, -500, -100, 1000, 1000, 100)
+    tv, tf = box(0, 0, 0, 1e-5, 1e-5, 1e-5)
+    path = write(tmp_path, "tiny3d.json", {**scene_doc([
+        {"id": "base", "vertices": bv, "faces": bf, "support": True},
+        {"id": "tiny", "vertices": tv, "faces": tf},
+    ], unit_weight=20.0, live_body_force=[1, 0, 0]), "dimension": 3})
+    assert main(["load", path]) == 2
+    one_line_error(capsys, "block 'tiny'", "contact tolerance")
+
+
+def test_joint_overridden_twice_is_named(tmp_path, capsys):
+    path = write(tmp_path, "twice.json", scene_doc([
+        {"id": "base", "vertices": rect(-1, -1, 3, 1), "support": True},
+        {"id": "B", "vertices": rect(0, 0, 1, 1)},
+    ], unit_weight=1.0, joints=[{"blocks": ["base", "B"], "friction": 0.3},
+                                {"blocks": ["B", "base"], "friction": 0.5}]))
+    assert main(["check", path]) == 2
+    one_line_error(capsys, "joint 'B'-'base'", "overridden twice")
+
+
+@pytest.mark.parametrize("value", ["inf", "-inf", "nan", "NaN", "1e999"])
+def test_non_finite_numbers_are_usage_errors(value, capsys):
+    arch = str(EXAMPLES / "arch.json")
+    for argv in (["check", arch, f"--load-factor={value}"],
+                 ["friction", arch, f"--load-factor={value}"],
+                 ["check", arch, f"--contact-tol={value}"],
+                 ["export-dxf", arch, "-o", "a.dxf", f"--load-factor={value}"],
+                 ["thickness", "arch", "--lo", value]):
+        assert main(argv) == 2, argv
+        one_line_error(capsys, value)
+
+
+def test_every_float_option_of_every_command_is_finite():
+    parser = build_parser()
+    sub = next(a for a in parser._actions if a.dest == "command")
+    floats = [(name, a.dest) for name, p in sub.choices.items() for a in p._actions
+              if a.type is float]
+    assert floats == []
+    n = sum(a.type is finite_float for p in sub.choices.values() for a in p._actions)
+    assert n >= 8
+
+
+@pytest.mark.parametrize("argv", [
+    ["example", "arch", "-o", "/nonexistent/x.json"],
+    ["example", "-o", "/nonexistent/x.json", "arch"],
+    ["import-dxf", "DXF", "-o", "/nonexistent/x.json"],
+    ["export-dxf", str(EXAMPLES / "arch.json"), "-o", "/nonexistent/a.dxf"],
+    ["plot", str(EXAMPLES / "arch.json"), "-o", "/nonexistent/a.png"],
+    ["sweep", str(SWEEP), "-o", "/nonexistent/x.parquet"],
+], ids=["example", "example-o-first", "import-dxf", "export-dxf", "plot", "sweep"])
+def test_unwritable_output_is_refused_before_any_work(argv, tmp_path, capsys, monkeypatch):
+    from pathlib import Path
+
+    if "DXF" in argv:
+        argv[argv.index("DXF")] = str(tmp_path / "missing.dxf")  # not even read
+    calls = []
+    monkeypatch.setattr("rigidblocks.generators.Generator.__call__",
+                        lambda *a, **k: calls.append(a))
+    assert main(argv) == 2
+    one_line_error(capsys, "/nonexistent", "no such folder")
+    assert not calls and not Path("/nonexistent").exists()
+
+
+def test_output_that_is_a_folder_is_refused(tmp_path, capsys):
+    assert main(["example", "arch", "-o", str(tmp_path)]) == 2
+    one_line_error(capsys, "is a folder")
+
+
+def test_write_scene_to_a_missing_folder_is_an_input_error(tmp_path):
+    from rigidblocks.errors import InputError
+    from rigidblocks.generators import build
+    from rigidblocks.io import write_scene
+
+    with pytest.raises(InputError, match="cannot write"):
+        write_scene(build("arch"), tmp_path / "no" / "x.json")
+
+
+def test_sweep_output_folder_is_not_created(tmp_path, capsys):
+    out = tmp_path / "no" / "such" / "x.parquet"
+    assert main(["sweep", str(SWEEP), "-o", str(out), "--workers", "1",
+                 "--no-progress"]) == 2
+    one_line_error(capsys, "no such folder")
+    assert not (tmp_path / "no").exists()
+    from rigidblocks import study
+    from rigidblocks.errors import InputError
+
+    with pytest.raises(InputError, match="no such folder"):
+        study.run("flat_arch", grid={"voussoirs": [3]}, output=out, workers=1,
+                  progress=False)
+    assert not (tmp_path / "no").exists()
+
+
+def test_unreachable_scheduler_fails_within_seconds_naming_it(tmp_path, capsys):
+    t0 = time.perf_counter()
+    assert main(["sweep", str(SWEEP), "-o", str(tmp_path / "x.parquet"), "--scheduler",
+                 "tcp://127.0.0.1:9999", "--no-progress"]) == 2
+    assert time.perf_counter() - t0 < 15
+    one_line_error(capsys, "tcp://127.0.0.1:9999", "Dask scheduler")
+    assert not list(tmp_path.iterdir())
+
+
+def test_sweep_without_the_study_extra_names_it(tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "pandas", None)  # import pandas -> ImportError
+    assert main(["sweep", str(SWEEP), "-o", str(tmp_path / "x.parquet")]) == 2
+    one_line_error(capsys, "pandas", "pip install 'rigidblocks[study]'")
+    from rigidblocks import study
+    from rigidblocks.errors import InputError
+
+    with pytest.raises(InputError, match=r"rigidblocks\[study\]"):
+        study.run("flat_arch", grid={"voussoirs": [3]}, workers=1, progress=False)
+
+
+def test_solver_not_installed_says_how_to_install_it(capsys):
+    import cvxpy as cp
+
+    if "ECOS" in cp.installed_solvers():
+        pytest.skip("ECOS is installed here")
+    assert main(["check", str(EXAMPLES / "arch.json"), "--solver", "ecos"]) == 2
+    one_line_error(capsys, "'ecos'", "pip install ecos")
+
+
+def test_dxf_without_the_cad_extra_names_it(tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "ezdxf", None)
+    assert main(["import-dxf", str(tmp_path / "a.dxf"), "-o", str(tmp_path / "a.json")]) == 2
+    one_line_error(capsys, "ezdxf", "pip install 'rigidblocks[cad]'")
