@@ -1,10 +1,23 @@
-"""Contact detection between convex polyhedral blocks (3D).
+"""Contact detection between polyhedral blocks (3D), convex or not.
 
 Two blocks touch where a face of one and a face of the other are coplanar with
-opposite outward normals and their polygons overlap with positive area. The contact
-polygon is the intersection of the two faces (shapely, in the plane's 2D frame); its
-vertices are the contact points. Candidate block pairs come from a spatial index on
-bounding boxes.
+opposite outward normals and their polygons overlap with positive area. Candidate
+block pairs come from a spatial index on bounding boxes. Planes are compared in
+coordinates relative to the blocks' own origins (:func:`~rigidblocks.scene.polyhedra.
+block_origin`), so the test does not lose precision far from the scene's origin.
+
+Between two convex blocks the contact is the intersection of two convex faces (shapely,
+in the plane's 2D frame), a convex polygon whose vertices are the contact points.
+
+Where a block is not convex, the contact region in one plane is the intersection of
+the union of one block's faces in that plane with the union of the other's: it may be
+non-convex, have holes or be in several pieces (shapely handles all three), and it is
+one joint. Its contact points are the vertices of the region's convex hull: a
+no-tension joint's resultant can lie anywhere in the hull (a positive combination of
+forces at points of the region), and the hull's vertices are points of the region, so
+forces at the hull's vertices reach every resultant the region can carry, with the
+same Coulomb cone at each point as on a convex joint. The joint's area is the region's
+own area.
 """
 
 from __future__ import annotations
@@ -13,7 +26,7 @@ import numpy as np
 
 from ..scene.geometry import scene_size
 from ..scene.model import Scene
-from ..scene.polyhedra import block_planes, candidate_pairs, outward_faces
+from ..scene.polyhedra import block_planes, candidate_pairs, shape
 from .detect2d import joint_laws
 from .model import Contacts
 
@@ -27,41 +40,100 @@ def plane_frame(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return t1, np.array([y * t1[2] - z * t1[1], z * t1[0] - x * t1[2], x * t1[1] - y * t1[0]])
 
 
+def _polygonal(geom):
+    """The polygons of a shapely geometry (lines and points of a touching set dropped)."""
+    import shapely
+
+    parts = shapely.get_parts(geom)
+    polys = [p for p in parts if p.geom_type == "Polygon" and not p.is_empty]
+    return shapely.MultiPolygon(polys) if polys else None
+
+
 def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
+    """Find every joint of a 3D scene.
+
+    Args:
+        scene: a validated 3D scene.
+        tol: relative tolerance; coincidence is judged at ``tol x scene size``.
+    """
     import shapely
 
     L = scene_size(scene)
     eps = tol * L
     planes = [block_planes(b) for b in scene.blocks]
-    faces = [outward_faces(b) for b in scene.blocks]
+    shapes = [shape(b) for b in scene.blocks]
     pairs, normals, tangents, polys, areas = [], [], [], [], []
+
+    def add(i: int, j: int, n: np.ndarray, t1: np.ndarray, t2: np.ndarray, o: np.ndarray,
+            ring: np.ndarray, area: float) -> None:
+        pairs.append((i, j))
+        normals.append(n)
+        tangents.append(np.stack([t1, t2]))
+        polys.append(o + ring[:, :1] * t1 + ring[:, 1:2] * t2)
+        areas.append(area)
+
     for i, j in candidate_pairs(scene, eps):
+        si, sj = shapes[i], shapes[j]
         ni, di = planes[i]
         nj, dj = planes[j]
+        # face fj's plane, n_j . (x - o_i) = dj + n_j . (o_j - o_i), in i's coordinates
+        dj_i = dj + nj @ (sj.origin - si.origin)
         dots = ni @ nj.T
-        for fi, fj in zip(*np.nonzero(dots < -1.0 + 1e-9), strict=True):
-            if abs(di[fi] + dj[fj]) > eps:
-                continue
-            n = ni[fi]
+        fi_all, fj_all = np.nonzero(dots < -1.0 + 1e-9)
+        keep = np.abs(di[fi_all] + dj_i[fj_all]) <= eps
+        fi_all, fj_all = fi_all[keep], fj_all[keep]
+        if not len(fi_all):
+            continue
+        if si.convex and sj.convex:
+            for fi, fj in zip(fi_all, fj_all, strict=True):
+                n = ni[fi]
+                t1, t2 = plane_frame(n)
+                pa = scene.blocks[i].points[si.faces[fi]]
+                pb = scene.blocks[j].points[sj.faces[fj]]
+                o = pa[0]
+                A = shapely.Polygon(np.stack([(pa - o) @ t1, (pa - o) @ t2], axis=1))
+                B = shapely.Polygon(np.stack([(pb - o) @ t1, (pb - o) @ t2], axis=1))
+                inter = shapely.intersection(A, B)
+                if inter.is_empty or inter.geom_type != "Polygon" or inter.area <= eps * eps:
+                    continue
+                inter = shapely.simplify(inter, eps * 0.5)
+                ring = np.asarray(inter.exterior.coords)[:-1]
+                if len(ring) < 3:
+                    continue
+                add(i, j, n, t1, t2, o, ring, inter.area)
+            continue
+        # a non-convex block: one joint per plane, the faces of each side in it united
+        groups: list[list[int]] = []
+        for k, fi in enumerate(fi_all):
+            for g in groups:
+                f0 = fi_all[g[0]]
+                if ni[f0] @ ni[fi] > 1.0 - 1e-9 and abs(di[f0] - di[fi]) <= eps:
+                    g.append(k)
+                    break
+            else:
+                groups.append([k])
+        for g in groups:
+            f0 = fi_all[g[0]]
+            n = ni[f0]
             t1, t2 = plane_frame(n)
-            pa = scene.blocks[i].points[faces[i][fi]]
-            pb = scene.blocks[j].points[faces[j][fj]]
-            o = pa[0]
-            A = shapely.Polygon(np.stack([(pa - o) @ t1, (pa - o) @ t2], axis=1))
-            B = shapely.Polygon(np.stack([(pb - o) @ t1, (pb - o) @ t2], axis=1))
-            inter = shapely.intersection(A, B)
-            if inter.is_empty or inter.geom_type != "Polygon" or inter.area <= eps * eps:
+            o = scene.blocks[i].points[si.faces[f0][0]]
+            frame = np.stack([t1, t2], axis=1)
+            A = shapely.union_all([
+                shapely.Polygon((scene.blocks[i].points[si.faces[f]] - o) @ frame)
+                for f in sorted(set(fi_all[g].tolist()))])
+            B = shapely.union_all([
+                shapely.Polygon((scene.blocks[j].points[sj.faces[f]] - o) @ frame)
+                for f in sorted(set(fj_all[g].tolist()))])
+            region = _polygonal(shapely.intersection(A, B))
+            if region is None or region.area <= eps * eps:
                 continue
-            inter = shapely.simplify(inter, eps * 0.5)
-            ring = np.asarray(inter.exterior.coords)[:-1]
+            hull = shapely.simplify(region.convex_hull, eps * 0.5)
+            if hull.geom_type != "Polygon":
+                continue
+            ring = np.asarray(hull.exterior.coords)[:-1]
             if len(ring) < 3:
                 continue
-            pts = o + ring[:, :1] * t1 + ring[:, 1:2] * t2
-            pairs.append((i, j))
-            normals.append(n)
-            tangents.append(np.stack([t1, t2]))
-            polys.append(pts)
-            areas.append(inter.area)
+            add(i, j, n, t1, t2, o, ring, region.area)
     m = len(pairs)
     counts = np.array([len(p) for p in polys], dtype=int)
     pairs_a = np.array(pairs, dtype=int).reshape(m, 2)
