@@ -42,6 +42,7 @@ def _size(block: Block) -> float:
 _SHAPE_CACHE = "_rigidblocks_shape"
 _PIECES_CACHE = "_rigidblocks_pieces"
 _PLANES_CACHE = "_rigidblocks_planes"
+_FAN_CACHE = "_rigidblocks_fan"
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -230,7 +231,9 @@ def winding_number(block: Block, q: np.ndarray) -> np.ndarray:
     Strackee, IEEE Trans. Biomed. Eng. 30 (1983) 125-126), over 4 pi.
     """
     s = shape(block)
-    t = _fan(s.faces)
+    t = block.__dict__.get(_FAN_CACHE)
+    if t is None:
+        t = block.__dict__[_FAN_CACHE] = _fan(s.faces)
     q = np.atleast_2d(np.asarray(q, dtype=float)) - s.origin
     a = s.local[t[:, 0]][None, :, :] - q[:, None, :]
     b = s.local[t[:, 1]][None, :, :] - q[:, None, :]
@@ -291,7 +294,10 @@ def _validate_block(b: Block) -> None:
         if not s.oriented:
             raise InputError("the faces do not form one closed, orientable surface (a "
                              "block is a single closed surface without inner voids)", where)
-        _check_self_intersection(b, s, nhat, offset, table, tol)
+        key = _shape_key(b, "simple")
+        if key not in _SAME_SHAPE:
+            _check_self_intersection(b, s, nhat, offset, table, tol)
+            _remember(key, True)
     vol, _ = polyhedron_volume_centroid(b)
     if vol <= 1e-12 * size**3:
         raise InputError("polyhedron has zero volume", where)
@@ -299,9 +305,29 @@ def _validate_block(b: Block) -> None:
 
 def _face_frame(n: np.ndarray) -> np.ndarray:
     """(3, 2) two unit tangents of a plane of unit normal n (columns)."""
-    t1 = np.array([0.0, n[2], -n[1]]) if abs(n[0]) < 0.9 else np.array([-n[2], 0.0, n[0]])
-    t1 /= np.linalg.norm(t1)
-    return np.stack([t1, np.cross(n, t1)], axis=1)
+    x, y, z = float(n[0]), float(n[1]), float(n[2])
+    a, b, c = (0.0, z, -y) if abs(x) < 0.9 else (-z, 0.0, x)
+    r = (a * a + b * b + c * c) ** 0.5
+    a, b, c = a / r, b / r, c / r
+    return np.array([[a, y * c - z * b], [b, z * a - x * c], [c, x * b - y * a]])
+
+
+#: checks and decompositions of non-convex blocks, shared by the blocks that are the
+#: same polyhedron up to a translation (masonry repeats its units)
+_SAME_SHAPE: dict[tuple, object] = {}
+
+
+def _shape_key(block: Block, what: str) -> tuple:
+    s = shape(block)
+    size = max(_size(block), 1e-300)
+    return (what, np.round(s.local / size, 12).tobytes(), round(size, 12),
+            tuple(block.faces or ()))
+
+
+def _remember(key: tuple, value: object) -> None:
+    if len(_SAME_SHAPE) > 20000:
+        _SAME_SHAPE.clear()
+    _SAME_SHAPE[key] = value
 
 
 def _check_self_intersection(b: Block, s: Shape, nhat: np.ndarray, offset: np.ndarray,
@@ -397,22 +423,32 @@ def candidate_pairs(scene: Scene, pad: float) -> np.ndarray:
     return np.stack([i[keep], j[keep]], axis=1)
 
 
-@dataclass(frozen=True, eq=False)
 class Piece:
     """A convex piece of a block, in the block's local coordinates: its points (whose
-    convex hull it is), its facets' unit normals and its edge directions."""
+    convex hull it is), its facets' unit normals and (on first use) its edge
+    directions."""
 
-    points: np.ndarray
-    normals: np.ndarray
-    edges: np.ndarray
+    def __init__(self, points: np.ndarray, normals: np.ndarray, edges=None):
+        self.points = points
+        self.normals = normals
+        self._edges = edges
+
+    @property
+    def edges(self) -> np.ndarray:
+        if callable(self._edges):
+            self._edges = self._edges()
+        return self._edges
 
 
 def _unique_dirs(d: np.ndarray) -> np.ndarray:
+    """Unit directions up to sign, duplicates (to 1e-9) dropped."""
     d = d / np.linalg.norm(d, axis=1)[:, None]
     lead = d[np.arange(len(d)), np.argmax(np.abs(d), axis=1)]
     d = d * np.sign(lead)[:, None]
-    _, idx = np.unique(np.round(d, 9), axis=0, return_index=True)
-    return d[np.sort(idx)]
+    seen: dict[tuple, int] = {}
+    for k, row in enumerate(np.round(d, 9).tolist()):
+        seen.setdefault(tuple(row), k)
+    return d[sorted(seen.values())]
 
 
 def _hull(points: np.ndarray):
@@ -435,9 +471,12 @@ def _piece(hull) -> Piece:
     """The convex hull as a :class:`Piece`."""
     pts = hull.points
     e = _hull_edges(hull)
-    d = pts[e[:, 1]] - pts[e[:, 0]]
-    d = d[np.linalg.norm(d, axis=1) > 0]
-    return Piece(pts[hull.vertices], _unique_dirs(hull.equations[:, :3]), _unique_dirs(d))
+
+    def edges() -> np.ndarray:
+        d = pts[e[:, 1]] - pts[e[:, 0]]
+        return _unique_dirs(d[np.linalg.norm(d, axis=1) > 0])
+
+    return Piece(pts[hull.vertices], _unique_dirs(hull.equations[:, :3]), edges)
 
 
 def convex_pieces(block: Block) -> list[Piece]:
@@ -458,9 +497,14 @@ def convex_pieces(block: Block) -> list[Piece]:
     tol = POLY_TOL * max(size, 1e-300)
     if s.convex:
         out = [Piece(s.local, block_planes(block)[0],
-                     np.array(_edge_dirs(block)).reshape(-1, 3))]
+                     lambda: np.array(_edge_dirs(block)).reshape(-1, 3))]
         block.__dict__[_PIECES_CACHE] = out
         return out
+    key = _shape_key(block, "pieces")
+    shared = _SAME_SHAPE.get(key)
+    if shared is not None:
+        block.__dict__[_PIECES_CACHE] = shared
+        return shared  # type: ignore[return-value]
     n, d = block_planes(block)
     reflex = np.flatnonzero(_outside(s.local, s.faces, s.normals, tol) > tol)
     planes: list[tuple[np.ndarray, float]] = []
@@ -488,15 +532,15 @@ def convex_pieces(block: Block) -> list[Piece]:
             nxt.append(np.vstack([cell[dist <= tol], x]))
             nxt.append(np.vstack([cell[dist >= -tol], x]))
         cells = nxt
-    out = []
+    built = []
     for cell in cells:
         hull = _hull(cell)
-        if hull is None or hull.volume <= 1e-12 * size**3:
-            continue
-        pc = _piece(hull)
-        centre = pc.points.mean(axis=0) + s.origin
-        if winding_number(block, centre[None, :])[0] > 0.5:
-            out.append(pc)
+        if hull is not None and hull.volume > 1e-12 * size**3:
+            built.append(_piece(hull))
+    centres = np.array([pc.points.mean(axis=0) for pc in built]).reshape(-1, 3)
+    inside = winding_number(block, centres + s.origin) > 0.5
+    out = [pc for pc, ok in zip(built, inside, strict=True) if ok]
+    _remember(key, out)
     block.__dict__[_PIECES_CACHE] = out
     return out
 
