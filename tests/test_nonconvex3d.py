@@ -219,3 +219,18 @@ def test_convex_blocks_keep_their_fast_path():
                  solid("b", box(0, 0, 0, 1, 1, 1))])
     assert is_convex(s.block("b"))
     assert len(convex_pieces(s.block("b"))) == 1
+
+
+@pytest.mark.parametrize("shift", [1e6, 1e7])
+def test_two_piece_contact_far_from_origin(shift):
+    """The U on its bar moved by 1e6 or 1e7 m along x, y and z: the same joint (area 1,
+    four hull corners) and lambda* = 2/7 (translation invariance, validation.md)."""
+    s = u_on_bar(live_body_force=[0.0, 1.0, 0.0])
+    moved = scene3d([solid(b.id, ([[c + shift for c in p] for p in b.vertices],
+                                  [list(f) for f in b.faces]), b.support)
+                     for b in s.blocks], live_body_force=[0.0, 1.0, 0.0])
+    con = rb.detect_contacts(moved)
+    assert con.n_joints == 1 and np.diff(con.joint_start)[0] == 4
+    assert con.areas[0] == pytest.approx(1.0, rel=1e-6)
+    res = rb.max_load_multiplier(moved)
+    assert res.load_multiplier == pytest.approx(2 / 7, rel=1e-6)
