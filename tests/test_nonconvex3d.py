@@ -234,3 +234,25 @@ def test_two_piece_contact_far_from_origin(shift):
     assert con.areas[0] == pytest.approx(1.0, rel=1e-6)
     res = rb.max_load_multiplier(moved)
     assert res.load_multiplier == pytest.approx(2 / 7, rel=1e-6)
+
+
+def dented_box(depth):
+    """A 2 x 2 x 1 box whose top is four triangles dipping to an apex ``depth`` below
+    it, at the centre: every face planar, every edge in two faces."""
+    v = [[0, 0, 0], [2, 0, 0], [2, 2, 0], [0, 2, 0], [0, 0, 1], [2, 0, 1], [2, 2, 1],
+         [0, 2, 1], [1, 1, 1 - depth]]
+    f = [[0, 1, 2, 3], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7], [4, 5, 8],
+         [5, 6, 8], [6, 7, 8], [7, 4, 8]]
+    return solid("D", (v, f))
+
+
+def test_surface_through_itself_is_rejected():
+    """The dent 0.5 deep is a valid non-convex block (volume 4 - 4 x 0.5 / 3 = 10/3);
+    1 deep, its apex touches the bottom face; 1.5 deep, its edges pass through it."""
+    ok = bad([dented_box(0.5)])
+    assert polyhedron_volume_centroid(ok.block("D"))[0] == pytest.approx(10 / 3, rel=1e-12)
+    with pytest.raises(InputError, match=r"block 'D'.*intersects itself: vertex 8 touches"):
+        bad([dented_box(1.0)])
+    with pytest.raises(InputError, match=r"block 'D'.*intersects itself: edge \(\d, 8\) "
+                                         r"crosses face 0"):
+        bad([dented_box(1.5)])
