@@ -49,6 +49,67 @@ def _polygonal(geom):
     return shapely.MultiPolygon(polys) if polys else None
 
 
+def _regions(scene: Scene, shapes: list, pending: list[tuple], eps: float, add) -> None:
+    """The joints of planes shared by a non-convex block and another, all at once.
+
+    ``pending`` holds (key, i, j, normal, first vertex of i's face, i's faces in the
+    plane, j's faces in it). Each side's faces are united (shapely), the two unions
+    intersected, and the region's convex hull gives the contact points.
+    """
+    import shapely
+
+    rings_a, rings_b, frames = [], [], []
+    for _, i, j, n, v0, fa, fb in pending:
+        t1, t2 = plane_frame(n)
+        o = scene.blocks[i].points[v0]
+        frame = np.stack([t1, t2], axis=1)
+        frames.append((t1, t2, o))
+        rings_a.append([(scene.blocks[i].points[shapes[i].faces[f]] - o) @ frame for f in fa])
+        rings_b.append([(scene.blocks[j].points[shapes[j].faces[f]] - o) @ frame for f in fb])
+
+    def united(rings: list[list[np.ndarray]]) -> np.ndarray:
+        flat = [r for rs in rings for r in rs]
+        owner = np.repeat(np.arange(len(rings)), [len(rs) for rs in rings])
+        counts = np.array([len(r) for r in flat])
+        lr = shapely.linearrings(np.concatenate(flat), indices=np.repeat(
+            np.arange(len(flat)), counts))
+        faces = shapely.polygons(lr)
+        out = np.empty(len(rings), dtype=object)
+        first = np.concatenate([[0], np.cumsum([len(rs) for rs in rings])[:-1]])
+        out[:] = faces[first]
+        for g in np.flatnonzero(np.bincount(owner, minlength=len(rings)) > 1):
+            out[g] = shapely.union_all(faces[owner == g])
+        return out
+
+    A, B = united(rings_a), united(rings_b)
+    lo_a, lo_b = shapely.bounds(A), shapely.bounds(B)
+    w = np.minimum(lo_a[:, 2], lo_b[:, 2]) - np.maximum(lo_a[:, 0], lo_b[:, 0])
+    h = np.minimum(lo_a[:, 3], lo_b[:, 3]) - np.maximum(lo_a[:, 1], lo_b[:, 1])
+    live = np.flatnonzero((w > 0) & (h > 0) & (w * h > eps * eps))
+    if not len(live):
+        return
+    region = shapely.intersection(A[live], B[live])
+    mixed = np.flatnonzero(shapely.get_type_id(region) == 7)  # polygons with lines
+    for k in mixed:
+        parts = _polygonal(region[k])
+        region[k] = shapely.Polygon() if parts is None else parts
+    area = shapely.area(region)
+    ok = area > eps * eps
+    live, region, area = live[ok], region[ok], area[ok]
+    hull = shapely.simplify(shapely.convex_hull(region), eps * 0.5)
+    poly = shapely.get_type_id(hull) == 3
+    live, hull, area = live[poly], hull[poly], area[poly]
+    coords, idx = shapely.get_coordinates(shapely.get_exterior_ring(hull), return_index=True)
+    starts = np.concatenate([[0], np.cumsum(np.bincount(idx, minlength=len(hull)))])
+    for k, g in enumerate(live):
+        ring = coords[starts[k]:starts[k + 1] - 1]
+        if len(ring) < 3:
+            continue
+        key, i, j, n = pending[g][:4]
+        t1, t2, o = frames[g]
+        add(key, i, j, n, t1, t2, o, ring, float(area[k]))
+
+
 def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
     """Find every joint of a 3D scene.
 
@@ -62,17 +123,19 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
     eps = tol * L
     planes = [block_planes(b) for b in scene.blocks]
     shapes = [shape(b) for b in scene.blocks]
-    pairs, normals, tangents, polys, areas = [], [], [], [], []
+    pairs, normals, tangents, polys, areas, order = [], [], [], [], [], []
+    pending: list[tuple] = []  # planes of pairs with a non-convex block, done together
 
-    def add(i: int, j: int, n: np.ndarray, t1: np.ndarray, t2: np.ndarray, o: np.ndarray,
-            ring: np.ndarray, area: float) -> None:
+    def add(key: tuple[int, int], i: int, j: int, n: np.ndarray, t1: np.ndarray,
+            t2: np.ndarray, o: np.ndarray, ring: np.ndarray, area: float) -> None:
+        order.append(key)
         pairs.append((i, j))
         normals.append(n)
         tangents.append(np.stack([t1, t2]))
         polys.append(o + ring[:, :1] * t1 + ring[:, 1:2] * t2)
         areas.append(area)
 
-    for i, j in candidate_pairs(scene, eps):
+    for pk, (i, j) in enumerate(candidate_pairs(scene, eps)):
         si, sj = shapes[i], shapes[j]
         ni, di = planes[i]
         nj, dj = planes[j]
@@ -85,7 +148,7 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
         if not len(fi_all):
             continue
         if si.convex and sj.convex:
-            for fi, fj in zip(fi_all, fj_all, strict=True):
+            for fk, (fi, fj) in enumerate(zip(fi_all, fj_all, strict=True)):
                 n = ni[fi]
                 t1, t2 = plane_frame(n)
                 pa = scene.blocks[i].points[si.faces[fi]]
@@ -100,7 +163,7 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
                 ring = np.asarray(inter.exterior.coords)[:-1]
                 if len(ring) < 3:
                     continue
-                add(i, j, n, t1, t2, o, ring, inter.area)
+                add((pk, fk), i, j, n, t1, t2, o, ring, inter.area)
             continue
         # a non-convex block: one joint per plane, the faces of each side in it united
         groups: list[list[int]] = []
@@ -112,29 +175,17 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
                     break
             else:
                 groups.append([k])
-        for g in groups:
+        for gk, g in enumerate(groups):
             f0 = fi_all[g[0]]
-            n = ni[f0]
-            t1, t2 = plane_frame(n)
-            o = scene.blocks[i].points[si.faces[f0][0]]
-            frame = np.stack([t1, t2], axis=1)
-            A = shapely.union_all([
-                shapely.Polygon((scene.blocks[i].points[si.faces[f]] - o) @ frame)
-                for f in sorted(set(fi_all[g].tolist()))])
-            B = shapely.union_all([
-                shapely.Polygon((scene.blocks[j].points[sj.faces[f]] - o) @ frame)
-                for f in sorted(set(fj_all[g].tolist()))])
-            region = _polygonal(shapely.intersection(A, B))
-            if region is None or region.area <= eps * eps:
-                continue
-            hull = shapely.simplify(region.convex_hull, eps * 0.5)
-            if hull.geom_type != "Polygon":
-                continue
-            ring = np.asarray(hull.exterior.coords)[:-1]
-            if len(ring) < 3:
-                continue
-            add(i, j, n, t1, t2, o, ring, region.area)
+            pending.append(((pk, gk), i, j, ni[f0], si.faces[f0][0],
+                            sorted(set(fi_all[g].tolist())), sorted(set(fj_all[g].tolist()))))
+    if pending:
+        _regions(scene, shapes, pending, eps, add)
     m = len(pairs)
+    if pending:  # joints in the order of the candidate pairs, as for convex blocks
+        perm = sorted(range(m), key=order.__getitem__)
+        pairs, normals, tangents, polys, areas = (
+            [x[k] for k in perm] for x in (pairs, normals, tangents, polys, areas))
     counts = np.array([len(p) for p in polys], dtype=int)
     pairs_a = np.array(pairs, dtype=int).reshape(m, 2)
     override_f, coh, ts = joint_laws(scene, pairs_a)

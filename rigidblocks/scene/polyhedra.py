@@ -43,6 +43,7 @@ _SHAPE_CACHE = "_rigidblocks_shape"
 _PIECES_CACHE = "_rigidblocks_pieces"
 _PLANES_CACHE = "_rigidblocks_planes"
 _FAN_CACHE = "_rigidblocks_fan"
+_BOXES_CACHE = "_rigidblocks_boxes"
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -124,7 +125,10 @@ def shape(block: Block) -> Shape:
     if not (_outside(local, oriented, normals, tol) > tol).any():
         out = Shape(origin, local, oriented, normals, True)
     else:
-        signs, ok = _propagate(faces)
+        topo = ("signs", tuple(block.faces or ()))
+        if topo not in _SAME_SHAPE:
+            _remember(topo, _propagate(faces))
+        signs, ok = _SAME_SHAPE[topo]  # type: ignore[misc]
         oriented = [f if s > 0 else f[::-1] for f, s in zip(faces, signs, strict=True)]
         normals, _ = _newell(local, faces)
         normals *= signs[:, None]
@@ -185,8 +189,16 @@ def _propagate(faces: list[np.ndarray]) -> tuple[np.ndarray, bool]:
 
 def _fan(faces: list[np.ndarray]) -> np.ndarray:
     """(t, 3) fan triangles of the faces (signed: exact for non-convex planar faces)."""
-    tri = [np.stack([np.full(len(f) - 2, f[0]), f[1:-1], f[2:]], axis=1) for f in faces]
-    return np.concatenate(tri) if tri else np.zeros((0, 3), dtype=int)
+    if not faces:
+        return np.zeros((0, 3), dtype=int)
+    cnt = np.array([len(f) for f in faces])
+    flat = np.concatenate(faces)
+    starts = np.concatenate([[0], np.cumsum(cnt)[:-1]])
+    ntri = cnt - 2
+    owner = np.repeat(np.arange(len(faces)), ntri)
+    k = np.arange(int(ntri.sum())) - np.repeat(np.cumsum(ntri) - ntri, ntri) + 1
+    s0 = starts[owner]
+    return np.stack([flat[s0], flat[s0 + k], flat[s0 + k + 1]], axis=1)
 
 
 def _signed_volume(local: np.ndarray, faces: list[np.ndarray]) -> float:
@@ -432,6 +444,8 @@ class Piece:
         self.points = points
         self.normals = normals
         self._edges = edges
+        self.lo = points.min(axis=0)
+        self.hi = points.max(axis=0)
 
     @property
     def edges(self) -> np.ndarray:
@@ -595,21 +609,32 @@ def check_overlaps_3d(scene: Scene) -> None:
                                   sb.local + shift, block_planes(B)[0], edge_axes(j), tol)
         else:
             hit = False
-            pieces_b = [(p, p.points + shift) for p in convex_pieces(B)]
-            for p in convex_pieces(A):
-                lo, hi = p.points.min(axis=0), p.points.max(axis=0)
-                for q, qp in pieces_b:
-                    if ((qp.min(axis=0) >= hi - tol) | (qp.max(axis=0) <= lo + tol)).any():
-                        continue
-                    if _convex_overlap(p.points, p.normals, p.edges, qp, q.normals,
-                                       q.edges, tol):
-                        hit = True
-                        break
-                if hit:
+            pa, pb = convex_pieces(A), convex_pieces(B)
+            lo_a, hi_a = _boxes(A, pa)
+            lo_b, hi_b = _boxes(B, pb)
+            lo_b, hi_b = lo_b + shift, hi_b + shift
+            # piece pairs whose bounding boxes overlap by more than the tolerance
+            near = ((lo_b[None, :, :] < hi_a[:, None, :] - tol)
+                    & (hi_b[None, :, :] > lo_a[:, None, :] + tol)).all(axis=2)
+            for a, b in zip(*np.nonzero(near), strict=True):
+                p, q = pa[a], pb[b]
+                if _convex_overlap(p.points, p.normals, lambda p=p: p.edges,
+                                   q.points + shift, q.normals, lambda q=q: q.edges, tol):
+                    hit = True
                     break
         if hit:
             raise InputError(f"blocks '{A.id}' and '{B.id}' overlap; blocks may touch but "
                              "not overlap", f"block '{A.id}'")
+
+
+def _boxes(block: Block, pieces: list[Piece]) -> tuple[np.ndarray, np.ndarray]:
+    """(lo, hi) of the pieces' bounding boxes, (k, 3) each (cached on the block)."""
+    cached = block.__dict__.get(_BOXES_CACHE)
+    if cached is None:
+        cached = (np.array([p.lo for p in pieces]).reshape(-1, 3),
+                  np.array([p.hi for p in pieces]).reshape(-1, 3))
+        block.__dict__[_BOXES_CACHE] = cached
+    return cached
 
 
 def _edge_dirs(block: Block) -> list[np.ndarray]:
