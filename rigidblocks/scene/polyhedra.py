@@ -23,6 +23,7 @@ modeller's decision, so the error says which face and by how much.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -440,7 +441,8 @@ class Piece:
     convex hull it is), its facets' unit normals and (on first use) its edge
     directions."""
 
-    def __init__(self, points: np.ndarray, normals: np.ndarray, edges=None):
+    def __init__(self, points: np.ndarray, normals: np.ndarray,
+                 edges: np.ndarray | Callable[[], np.ndarray]):
         self.points = points
         self.normals = normals
         self._edges = edges
