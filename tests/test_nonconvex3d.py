@@ -256,3 +256,20 @@ def test_surface_through_itself_is_rejected():
     with pytest.raises(InputError, match=r"block 'D'.*intersects itself: edge \(\d, 8\) "
                                          r"crosses face 0"):
         bad([dented_box(1.5)])
+
+
+def test_hooked_l_blocks_overlap_only_when_they_do():
+    """Two L prisms, the second the first turned by 180 degrees about (3/2, 3/2): the
+    first fills [0, 2]^2 less [1, 2]^2, the second [1, 3]^2 less [1, 2]^2, so their
+    convex hulls overlap (in [1, 2]^2) but they do not. Moved by (-0.1, -0.1), the
+    second's foot [1.9, 2.9] x [0.9, 1.9] enters the first's foot [0, 2] x [0, 1] over
+    0.1 x 0.1: an overlap that names both blocks."""
+    turned = [(3 - x, 3 - y) for x, y in L_PLAN]
+    s = scene3d([solid("slab", box(-1, -1, -1, 5, 5, 1), True),
+                 solid("L1", vprism(L_PLAN, 0, 1)), solid("L2", vprism(turned, 0, 1))])
+    assert {frozenset(p) for p in rb.detect_contacts(s).block_pairs_ids()} == {
+        frozenset({"slab", "L1"}), frozenset({"slab", "L2"})}
+    moved = [(x - 0.1, y - 0.1) for x, y in turned]
+    with pytest.raises(InputError, match=r"blocks 'L1' and 'L2' overlap"):
+        scene3d([solid("slab", box(-1, -1, -1, 5, 5, 1), True),
+                 solid("L1", vprism(L_PLAN, 0, 1)), solid("L2", vprism(moved, 0, 1))])

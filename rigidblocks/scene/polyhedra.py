@@ -19,6 +19,14 @@ angle of about deviation / size, and the neighbouring block's face, planar or fo
 another way, would then match none of the triangles within the contact tolerance: the
 joint would be lost or cut into slivers without a word. Flattening a CAD face is the
 modeller's decision, so the error says which face and by how much.
+
+Overlaps between non-convex blocks are decided on an exact convex decomposition
+(:func:`convex_pieces`: the hull cut by the planes of the reflex faces) with the same
+separating-axis test as convex blocks. Horizontal sections compared with shapely would
+only sample the overlap at chosen levels and can miss a thin one between them; a
+tetrahedralisation that uses only the block's own vertices does not always exist
+(Schoenhardt's prism) and scipy's Delaunay ignores the faces. The cells are exact, need
+no further library, and units repeated up to a translation share them.
 """
 
 from __future__ import annotations
