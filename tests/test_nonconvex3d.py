@@ -273,3 +273,29 @@ def test_hooked_l_blocks_overlap_only_when_they_do():
     with pytest.raises(InputError, match=r"blocks 'L1' and 'L2' overlap"):
         scene3d([solid("slab", box(-1, -1, -1, 5, 5, 1), True),
                  solid("L1", vprism(L_PLAN, 0, 1)), solid("L2", vprism(moved, 0, 1))])
+
+
+def test_cli_reports_a_warped_face_in_one_line(tmp_path, capsys):
+    """Bad input on the command line: exit 2 and one line naming the file, the block,
+    the face and the deviation; the valid L scene runs (exit 0)."""
+    import json
+
+    from rigidblocks.cli.main import main
+
+    v, f = vprism(L_PLAN, 0, 2)
+    doc = {"format": "rigidblocks-scene", "version": 1, "dimension": 3, "unit_weight": 1.0,
+           "live_body_force": [1.0, 0.0, 0.0],
+           "blocks": [solid("slab", box(-1, -1, -1, 4, 4, 1), True), solid("L", (v, f))]}
+    good = tmp_path / "l.json"
+    good.write_text(json.dumps(doc))
+    assert main(["load", str(good), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["status"] == "collapse"
+    v = [list(p) for p in v]
+    v[9][2] += 1e-3
+    doc["blocks"][1] = solid("L", (v, f))
+    bad_file = tmp_path / "warped.json"
+    bad_file.write_text(json.dumps(doc))
+    assert main(["load", str(bad_file)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1
+    assert "warped.json" in err and "block 'L'" in err and "face 1 is not planar" in err
