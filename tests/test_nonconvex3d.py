@@ -299,3 +299,36 @@ def test_cli_reports_a_warped_face_in_one_line(tmp_path, capsys):
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1
     assert "warped.json" in err and "block 'L'" in err and "face 1 is not planar" in err
+
+
+def well_block():
+    """A 3 x 3 x 1 support with a 1 x 1 square hole through it (a closed surface of
+    genus 1: its top and bottom are four trapezoids each around the hole)."""
+    outer = [(0, 0), (3, 0), (3, 3), (0, 3)]
+    inner = [(1, 1), (2, 1), (2, 2), (1, 2)]
+    v = ([[x, y, -1.0] for x, y in outer] + [[x, y, 0.0] for x, y in outer]
+         + [[x, y, -1.0] for x, y in inner] + [[x, y, 0.0] for x, y in inner])
+    f = []
+    for k in range(4):
+        m = (k + 1) % 4
+        f += [[k, m, 4 + m, 4 + k], [8 + k, 8 + m, 12 + m, 12 + k],
+              [4 + k, 4 + m, 12 + m, 12 + k], [k, m, 8 + m, 8 + k]]
+    return solid("well", (v, f), True)
+
+
+def test_contact_with_a_hole():
+    """A box 2 x 2 x 2 centred over the well's hole touches it on [0.5, 2.5]^2 less the
+    hole [1, 2]^2: one joint of area 4 - 1 = 3 whose hull is the box's whole base (four
+    corners). The well's volume is 9 - 1 = 8. Pushed along +x with infinite friction,
+    the box tips about the hull edge x = 2.5: lambda* = (b/2) / (h/2) = 1, as on a full
+    bed (the hull is the same)."""
+    s = scene3d([well_block(), solid("box", box(0.5, 0.5, 0, 2, 2, 2))],
+                live_body_force=[1.0, 0.0, 0.0])
+    assert polyhedron_volume_centroid(s.block("well"))[0] == pytest.approx(8.0, rel=1e-12)
+    assert len(convex_pieces(s.block("well"))) == 8
+    con = rb.detect_contacts(s)
+    assert con.n_joints == 1
+    assert con.areas[0] == pytest.approx(3.0, rel=1e-12)
+    pts = {tuple(np.round(p[:2], 9)) for p in con.points}
+    assert pts == {(0.5, 0.5), (2.5, 0.5), (2.5, 2.5), (0.5, 2.5)}
+    assert rb.max_load_multiplier(s).load_multiplier == pytest.approx(1.0, rel=1e-6)
