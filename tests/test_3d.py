@@ -96,13 +96,21 @@ def test_3d_validation_errors():
         scene3d([ok, {"id": "b", "vertices": sunk[0], "faces": sunk[1]}])
 
 
-def test_nonconvex_block_cannot_be_extruded():
+def test_nonconvex_block_extruded_gives_the_plane_answer():
+    """An L-shaped block (2 x 1 foot, 1 x 1 upright, centroid (5/6, 5/6)) on a base,
+    pushed along +x: it tips about its toe x = 2 at lambda* = (2 - 5/6) / (5/6) = 7/5
+    with infinite friction (plane closed form). Its extrusion is a non-convex prism
+    with non-convex caps, and gives the same lambda* (symmetry about the mid-plane, as
+    for convex blocks)."""
     s2 = make_scene([
         {"id": "base", "vertices": rect(-2, -1, 6, 1), "support": True},
         {"id": "L", "vertices": [[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]]},
-    ], unit_weight=1.0)
-    with pytest.raises(InputError, match="block 'L'.*convex"):
-        extrude(s2)
+    ], unit_weight=1.0, live_body_force=[1, 0])
+    s3 = extrude(s2)
+    lam2 = rb.max_load_multiplier(s2).load_multiplier
+    lam3 = rb.max_load_multiplier(s3).load_multiplier
+    assert lam2 == pytest.approx(7 / 5, rel=1e-6)
+    assert lam3 == pytest.approx(7 / 5, rel=1e-6)
 
 
 def test_limit_state_of_a_dome_sliding_all_round_has_a_force_state():

@@ -1,5 +1,5 @@
 """3D contact detection: one planar contact polygon per pair of touching convex blocks,
-the contact tolerance, and non-convex blocks rejected by the validator.
+the contact tolerance, and a non-convex support against its convex pieces.
 
 Closed forms:
 - Two convex bodies with disjoint interiors are separated by a plane H (separating
@@ -118,27 +118,32 @@ def test_contact_tol_must_be_positive():
         check(scene, contact_tol=0.0)
 
 
-def test_non_convex_support_is_rejected_by_name():
-    """A U-shaped support (a shelf's frame) is not convex: faces oriented by the mean
-    vertex point the wrong way on its inner faces, so the validator must reject it and
-    name the block; cut into three convex boxes, the block standing in the slot touches
-    the bottom box over its whole base (area 1 x 1)."""
+def test_non_convex_support_touches_like_its_convex_pieces():
+    """A U-shaped support (a shelf's frame, a non-convex block) and the same frame cut
+    into three convex boxes: the block standing in the slot touches the slot's floor
+    and both its walls over 1 x 1 each, either way (the faces of the U, oriented by
+    walking its surface, are the boxes' faces in the same planes)."""
     u = [(0, 0), (3, 0), (3, 2), (2, 2), (2, 1), (1, 1), (1, 2), (0, 2)]
     v = [(x, 0.0, z) for x, z in u] + [(x, 1.0, z) for x, z in u]
     n = len(u)
     faces = [tuple(range(n)), tuple(range(2 * n - 1, n - 1, -1))]
     faces += [(k, n + k, n + (k + 1) % n, (k + 1) % n) for k in range(n)]
-    with pytest.raises(InputError, match=r"block 'shelf'.*not convex"):
-        scene3d(("shelf", (v, faces), True), ("item", box(1, 2, 0, 1, 1, 2), False))
+    whole = scene3d(("shelf", (v, faces), True), ("item", box(1, 2, 0, 1, 1, 2), False))
     cut = scene3d(("bottom", box(0, 3, 0, 1, 0, 1), True),
                   ("left", box(0, 1, 0, 1, 1, 2), True),
                   ("right", box(2, 3, 0, 1, 1, 2), True),
                   ("item", box(1, 2, 0, 1, 1, 2), False))
-    con = detect_contacts(cut)
-    ids = cut.index
-    item = ids["item"]
-    with_item = {frozenset(cut.blocks[k].id for k in p): a
-                 for p, a in zip(con.pairs, con.areas, strict=True) if item in p}
-    assert with_item == pytest.approx({frozenset({"item", "bottom"}): 1.0,
-                                       frozenset({"item", "left"}): 1.0,
-                                       frozenset({"item", "right"}): 1.0})
+    for scene, expected in ((cut, {frozenset({"item", "bottom"}): 1.0,
+                                   frozenset({"item", "left"}): 1.0,
+                                   frozenset({"item", "right"}): 1.0}),
+                            (whole, {(0.0, 0.0, 1.0): 1.0, (1.0, 0.0, 0.0): 1.0,
+                                     (-1.0, 0.0, 0.0): 1.0})):
+        con = detect_contacts(scene)
+        item = scene.index["item"]
+        if scene is cut:
+            got = {frozenset(scene.blocks[k].id for k in p): a
+                   for p, a in zip(con.pairs, con.areas, strict=True) if item in p}
+        else:  # one block pair, three planes: keyed by the normal from shelf to item
+            got = {tuple(np.round(nv + 0.0, 9)): a
+                   for nv, a in zip(con.normals, con.areas, strict=True)}
+        assert got == pytest.approx(expected)

@@ -1,10 +1,23 @@
-"""Contact detection between convex polyhedral blocks (3D).
+"""Contact detection between polyhedral blocks (3D), convex or not.
 
 Two blocks touch where a face of one and a face of the other are coplanar with
-opposite outward normals and their polygons overlap with positive area. The contact
-polygon is the intersection of the two faces (shapely, in the plane's 2D frame); its
-vertices are the contact points. Candidate block pairs come from a spatial index on
-bounding boxes.
+opposite outward normals and their polygons overlap with positive area. Candidate
+block pairs come from a spatial index on bounding boxes. Planes are compared in
+coordinates relative to the blocks' own origins (:func:`~rigidblocks.scene.polyhedra.
+block_origin`), so the test does not lose precision far from the scene's origin.
+
+Between two convex blocks the contact is the intersection of two convex faces (shapely,
+in the plane's 2D frame), a convex polygon whose vertices are the contact points.
+
+Where a block is not convex, the contact region in one plane is the intersection of
+the union of one block's faces in that plane with the union of the other's: it may be
+non-convex, have holes or be in several pieces (shapely handles all three), and it is
+one joint. Its contact points are the vertices of the region's convex hull: a
+no-tension joint's resultant can lie anywhere in the hull (a positive combination of
+forces at points of the region), and the hull's vertices are points of the region, so
+forces at the hull's vertices reach every resultant the region can carry, with the
+same Coulomb cone at each point as on a convex joint. The joint's area is the region's
+own area.
 """
 
 from __future__ import annotations
@@ -14,7 +27,7 @@ import numpy as np
 from ..errors import InputError
 from ..scene.geometry import scene_size
 from ..scene.model import Scene
-from ..scene.polyhedra import block_planes, candidate_pairs, outward_faces
+from ..scene.polyhedra import block_planes, candidate_pairs, shape
 from .detect2d import joint_laws
 from .model import Contacts
 
@@ -28,7 +41,83 @@ def plane_frame(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return t1, np.array([y * t1[2] - z * t1[1], z * t1[0] - x * t1[2], x * t1[1] - y * t1[0]])
 
 
+def _polygonal(geom):
+    """The polygons of a shapely geometry (lines and points of a touching set dropped)."""
+    import shapely
+
+    parts = shapely.get_parts(geom)
+    polys = [p for p in parts if p.geom_type == "Polygon" and not p.is_empty]
+    return shapely.MultiPolygon(polys) if polys else None
+
+
+def _regions(scene: Scene, shapes: list, pending: list[tuple], eps: float, add) -> None:
+    """The joints of planes shared by a non-convex block and another, all at once.
+
+    ``pending`` holds (key, i, j, normal, first vertex of i's face, i's faces in the
+    plane, j's faces in it). Each side's faces are united (shapely), the two unions
+    intersected, and the region's convex hull gives the contact points.
+    """
+    import shapely
+
+    rings_a, rings_b, frames = [], [], []
+    for _, i, j, n, v0, fa, fb in pending:
+        t1, t2 = plane_frame(n)
+        o = scene.blocks[i].points[v0]
+        frame = np.stack([t1, t2], axis=1)
+        frames.append((t1, t2, o))
+        rings_a.append([(scene.blocks[i].points[shapes[i].faces[f]] - o) @ frame for f in fa])
+        rings_b.append([(scene.blocks[j].points[shapes[j].faces[f]] - o) @ frame for f in fb])
+
+    def united(rings: list[list[np.ndarray]]) -> np.ndarray:
+        flat = [r for rs in rings for r in rs]
+        owner = np.repeat(np.arange(len(rings)), [len(rs) for rs in rings])
+        counts = np.array([len(r) for r in flat])
+        lr = shapely.linearrings(np.concatenate(flat), indices=np.repeat(
+            np.arange(len(flat)), counts))
+        faces = shapely.polygons(lr)
+        out = np.empty(len(rings), dtype=object)
+        first = np.concatenate([[0], np.cumsum([len(rs) for rs in rings])[:-1]])
+        out[:] = faces[first]
+        for g in np.flatnonzero(np.bincount(owner, minlength=len(rings)) > 1):
+            out[g] = shapely.union_all(faces[owner == g])
+        return out
+
+    A, B = united(rings_a), united(rings_b)
+    lo_a, lo_b = shapely.bounds(A), shapely.bounds(B)
+    w = np.minimum(lo_a[:, 2], lo_b[:, 2]) - np.maximum(lo_a[:, 0], lo_b[:, 0])
+    h = np.minimum(lo_a[:, 3], lo_b[:, 3]) - np.maximum(lo_a[:, 1], lo_b[:, 1])
+    live = np.flatnonzero((w > 0) & (h > 0) & (w * h > eps * eps))
+    if not len(live):
+        return
+    region = shapely.intersection(A[live], B[live])
+    mixed = np.flatnonzero(shapely.get_type_id(region) == 7)  # polygons with lines
+    for k in mixed:
+        parts = _polygonal(region[k])
+        region[k] = shapely.Polygon() if parts is None else parts
+    area = shapely.area(region)
+    ok = area > eps * eps
+    live, region, area = live[ok], region[ok], area[ok]
+    hull = shapely.simplify(shapely.convex_hull(region), eps * 0.5)
+    poly = shapely.get_type_id(hull) == 3
+    live, hull, area = live[poly], hull[poly], area[poly]
+    coords, idx = shapely.get_coordinates(shapely.get_exterior_ring(hull), return_index=True)
+    starts = np.concatenate([[0], np.cumsum(np.bincount(idx, minlength=len(hull)))])
+    for k, g in enumerate(live):
+        ring = coords[starts[k]:starts[k + 1] - 1]
+        if len(ring) < 3:
+            continue
+        key, i, j, n = pending[g][:4]
+        t1, t2, o = frames[g]
+        add(key, i, j, n, t1, t2, o, ring, float(area[k]))
+
+
 def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
+    """Find every joint of a 3D scene.
+
+    Args:
+        scene: a validated 3D scene.
+        tol: relative tolerance; coincidence is judged at ``tol x scene size``.
+    """
     import shapely
 
     L = scene_size(scene)
@@ -41,36 +130,70 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
                              "enlarge or remove it, or analyse it in a scene of its own "
                              "size", f"block '{b.id}'")
     planes = [block_planes(b) for b in scene.blocks]
-    faces = [outward_faces(b) for b in scene.blocks]
-    pairs, normals, tangents, polys, areas = [], [], [], [], []
-    for i, j in candidate_pairs(scene, eps):
+    shapes = [shape(b) for b in scene.blocks]
+    pairs, normals, tangents, polys, areas, order = [], [], [], [], [], []
+    pending: list[tuple] = []  # planes of pairs with a non-convex block, done together
+
+    def add(key: tuple[int, int], i: int, j: int, n: np.ndarray, t1: np.ndarray,
+            t2: np.ndarray, o: np.ndarray, ring: np.ndarray, area: float) -> None:
+        order.append(key)
+        pairs.append((i, j))
+        normals.append(n)
+        tangents.append(np.stack([t1, t2]))
+        polys.append(o + ring[:, :1] * t1 + ring[:, 1:2] * t2)
+        areas.append(area)
+
+    for pk, (i, j) in enumerate(candidate_pairs(scene, eps)):
+        si, sj = shapes[i], shapes[j]
         ni, di = planes[i]
         nj, dj = planes[j]
+        # face fj's plane, n_j . (x - o_i) = dj + n_j . (o_j - o_i), in i's coordinates
+        dj_i = dj + nj @ (sj.origin - si.origin)
         dots = ni @ nj.T
-        for fi, fj in zip(*np.nonzero(dots < -1.0 + 1e-9), strict=True):
-            if abs(di[fi] + dj[fj]) > eps:
-                continue
-            n = ni[fi]
-            t1, t2 = plane_frame(n)
-            pa = scene.blocks[i].points[faces[i][fi]]
-            pb = scene.blocks[j].points[faces[j][fj]]
-            o = pa[0]
-            A = shapely.Polygon(np.stack([(pa - o) @ t1, (pa - o) @ t2], axis=1))
-            B = shapely.Polygon(np.stack([(pb - o) @ t1, (pb - o) @ t2], axis=1))
-            inter = shapely.intersection(A, B)
-            if inter.is_empty or inter.geom_type != "Polygon" or inter.area <= eps * eps:
-                continue
-            inter = shapely.simplify(inter, eps * 0.5)
-            ring = np.asarray(inter.exterior.coords)[:-1]
-            if len(ring) < 3:
-                continue
-            pts = o + ring[:, :1] * t1 + ring[:, 1:2] * t2
-            pairs.append((i, j))
-            normals.append(n)
-            tangents.append(np.stack([t1, t2]))
-            polys.append(pts)
-            areas.append(inter.area)
+        fi_all, fj_all = np.nonzero(dots < -1.0 + 1e-9)
+        keep = np.abs(di[fi_all] + dj_i[fj_all]) <= eps
+        fi_all, fj_all = fi_all[keep], fj_all[keep]
+        if not len(fi_all):
+            continue
+        if si.convex and sj.convex:
+            for fk, (fi, fj) in enumerate(zip(fi_all, fj_all, strict=True)):
+                n = ni[fi]
+                t1, t2 = plane_frame(n)
+                pa = scene.blocks[i].points[si.faces[fi]]
+                pb = scene.blocks[j].points[sj.faces[fj]]
+                o = pa[0]
+                A = shapely.Polygon(np.stack([(pa - o) @ t1, (pa - o) @ t2], axis=1))
+                B = shapely.Polygon(np.stack([(pb - o) @ t1, (pb - o) @ t2], axis=1))
+                inter = shapely.intersection(A, B)
+                if inter.is_empty or inter.geom_type != "Polygon" or inter.area <= eps * eps:
+                    continue
+                inter = shapely.simplify(inter, eps * 0.5)
+                ring = np.asarray(inter.exterior.coords)[:-1]
+                if len(ring) < 3:
+                    continue
+                add((pk, fk), i, j, n, t1, t2, o, ring, inter.area)
+            continue
+        # a non-convex block: one joint per plane, the faces of each side in it united
+        groups: list[list[int]] = []
+        for k, fi in enumerate(fi_all):
+            for g in groups:
+                f0 = fi_all[g[0]]
+                if ni[f0] @ ni[fi] > 1.0 - 1e-9 and abs(di[f0] - di[fi]) <= eps:
+                    g.append(k)
+                    break
+            else:
+                groups.append([k])
+        for gk, g in enumerate(groups):
+            f0 = fi_all[g[0]]
+            pending.append(((pk, gk), i, j, ni[f0], si.faces[f0][0],
+                            sorted(set(fi_all[g].tolist())), sorted(set(fj_all[g].tolist()))))
+    if pending:
+        _regions(scene, shapes, pending, eps, add)
     m = len(pairs)
+    if pending:  # joints in the order of the candidate pairs, as for convex blocks
+        perm = sorted(range(m), key=order.__getitem__)
+        pairs, normals, tangents, polys, areas = (
+            [x[k] for k in perm] for x in (pairs, normals, tangents, polys, areas))
     counts = np.array([len(p) for p in polys], dtype=int)
     pairs_a = np.array(pairs, dtype=int).reshape(m, 2)
     override_f, coh, ts = joint_laws(scene, pairs_a)

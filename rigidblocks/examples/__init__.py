@@ -17,7 +17,7 @@ from ..generators import __all__  # noqa: F401
 warnings.warn("rigidblocks.examples is renamed rigidblocks.generators; import that instead",
               DeprecationWarning, stacklevel=2)
 
-for _name in ("arches", "catalogue", "seed", "solids", "walls"):
+for _name in ("arches", "catalogue", "keyed", "seed", "solids", "walls"):
     try:
         _module = importlib.import_module(f"{_generators.__name__}.{_name}")
     except ImportError:  # pragma: no cover - a module missing from a partial install

@@ -160,6 +160,16 @@ GENERATORS: dict[str, Generator] = {g.name: g for g in (
                ("half_angle", "half opening angle (deg; 90 is semicircular)"),
                ("abutment_width", "abutment width beyond the extrados (m)"),
                ("abutment_height", "abutment height (m)"), *_ARCH_HELP[-3:-1])),
+    Generator("keyed_wall", "keyed:keyed_wall",
+              "3D running-bond wall of tongue-and-groove (non-convex) units, keyed beds",
+              (("courses", "number of courses"), ("blocks_per_course", "full units per "
+               "course"), ("block_length", "unit length along x (m)"),
+               ("block_height", "course height (m)"), ("thickness", "wall thickness (m)"),
+               ("key_width", "tongue width (m)"), ("key_height", "tongue height (m); 0: "
+               "plain boxes"), ("base_friction", "friction on the foundation (default: "
+               "friction)"), ("load_direction", "in_plane | out_of_plane"),
+               ("horizontal_load", "live body force magnitude times the weight"),
+               *_ARCH_HELP[-3:-1])),
 )}
 
 

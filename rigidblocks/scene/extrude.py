@@ -2,17 +2,9 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 from ..errors import InputError
 from .geometry import ccw, signed_area
 from .model import Block, Load, Scene
-
-
-def _convex(poly: np.ndarray) -> bool:
-    e = np.roll(poly, -1, axis=0) - poly
-    cross = e[:, 0] * np.roll(e[:, 1], -1) - e[:, 1] * np.roll(e[:, 0], -1)
-    return bool(np.all(cross >= -1e-12 * np.abs(cross).max()))
 
 
 def extrude(scene: Scene, depth: float | None = None) -> Scene:
@@ -23,7 +15,7 @@ def extrude(scene: Scene, depth: float | None = None) -> Scene:
     become (fx, 0, fy), points (x, y) become (x, depth / 2, y), and a couple m (about
     the 2D out-of-plane axis, counter-clockwise positive) becomes (0, -m, 0). Weights,
     friction and joint laws are unchanged, so f* and lambda* are the same.
-    3D blocks must be convex: a non-convex 2D block is an error.
+    A non-convex polygon becomes a non-convex prism (its two caps non-convex faces).
     """
     if scene.dimension != 2:
         raise InputError("extrude takes a 2D scene")
@@ -33,9 +25,8 @@ def extrude(scene: Scene, depth: float | None = None) -> Scene:
     blocks = []
     for b in scene.blocks:
         poly = ccw(b.points)
-        if not _convex(poly) or signed_area(poly) <= 0:
-            raise InputError("3D blocks must be convex: split this block first",
-                             f"block '{b.id}'")
+        if signed_area(poly) <= 0:
+            raise InputError("polygon has zero area", f"block '{b.id}'")
         n = len(poly)
         verts = [(float(x), 0.0, float(y)) for x, y in poly] + \
                 [(float(x), t, float(y)) for x, y in poly]

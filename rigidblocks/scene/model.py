@@ -3,7 +3,7 @@
 Types are frozen dataclasses that keep the values exactly as they were given (so that a
 scene file round-trips); derived geometry (oriented polygons, areas, centroids) lives in
 :mod:`rigidblocks.scene.geometry`. The same types describe 2D blocks (polygons) and 3D
-blocks (convex polyhedra given by vertices and faces).
+blocks (closed polyhedra, convex or not, given by vertices and faces).
 """
 
 from __future__ import annotations
@@ -62,7 +62,7 @@ class Block:
     Attributes:
         id: unique name within the scene.
         vertices: 2D polygon corners (either orientation, convex or not) or 3D
-            polyhedron corners, as given.
+            polyhedron corners (convex or not), as given.
         faces: 3D only: faces as tuples of vertex indices.
         support: a support block is fixed and has no equilibrium equations.
         unit_weight: overrides the scene's unit weight when not None.
