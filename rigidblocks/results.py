@@ -53,6 +53,15 @@ class ForceState:
         return self.thrust_points[self.thrust_order]
 
 
+def joint_force_vectors(contacts: Contacts, state: ForceState) -> np.ndarray:
+    """(m, 2) resultant force on the second block of each 2D joint: N n + T s, with n the
+    joint's unit normal (from its first block into its second), s = (-n_y, n_x) its
+    tangent, and N, T the joint resultants of ``state``."""
+    n = contacts.normals
+    s = contacts.tangents[:, 0, :]
+    return state.joint_normal[:, None] * n + state.joint_shear[:, None] * s
+
+
 @dataclass(frozen=True, eq=False)
 class Mechanism:
     """A collapse mechanism: virtual velocities of the free blocks and joint modes.

@@ -7,7 +7,7 @@ import json
 
 from ..analyses import load_path
 from ..io import read_scene
-from .analyses import _jsonable
+from .analyses import EXIT, _jsonable
 from .options import finite_float
 
 
@@ -30,7 +30,7 @@ def run(args: argparse.Namespace) -> int:
                     sliding=args.sliding)
     if args.json:
         print(json.dumps(_jsonable(res.to_dict())))
-        return 0
+        return EXIT.get(res.status, 0)
     lines = [f"scene      {scene.name or scene.source}",
              f"sliding    {res.sliding}   friction {res.friction}",
              f"status     {res.status.upper()}"
@@ -43,4 +43,4 @@ def run(args: argparse.Namespace) -> int:
                  f"{res.solve_time:.3g} s")
     lines.extend(f"note       {n}" for n in res.notes)
     print("\n".join(lines))
-    return 0
+    return EXIT.get(res.status, 0)

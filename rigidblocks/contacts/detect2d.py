@@ -157,12 +157,20 @@ def joint_laws(scene: Scene, pairs: np.ndarray) -> tuple[np.ndarray, np.ndarray,
     table = {}
     for j in scene.joints:
         table[frozenset((idx[j.blocks[0]], idx[j.blocks[1]]))] = j
+    found = set()
     for k, (a, b) in enumerate(pairs):
-        j = table.get(frozenset((int(a), int(b))))
+        key = frozenset((int(a), int(b)))
+        j = table.get(key)
         if j is None:
             continue
+        found.add(key)
         if j.friction is not None:
             fr[k] = friction_value(j.friction)
         coh[k] = j.cohesion or 0.0
         ts[k] = j.tensile_strength or 0.0
+    for key, j in table.items():
+        if key not in found:
+            raise InputError(f"blocks '{j.blocks[0]}' and '{j.blocks[1]}' are not in "
+                             "contact, so their joint cannot be overridden",
+                             f"joint '{j.blocks[0]}'-'{j.blocks[1]}'")
     return fr, coh, ts

@@ -48,8 +48,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..joint_forces import joint_force_vectors
-from ..results import headline
+from ..results import headline, joint_force_vectors
 from ..scene.geometry import signed_area
 from ..scene.model import Scene, Units, make_block
 from .dxf_repair import DxfReport, Outline, line_loops, repair

@@ -112,9 +112,12 @@ def scene_from_dict(doc: Any, source: str | None = None, *, validate: bool = Tru
     try:
         scene = _parse(doc, source)
         if validate:
+            from ..contacts import detect_contacts
             from ..scene.validate import validate_scene
 
             validate_scene(scene)
+            if scene.joints:  # overrides must name touching blocks
+                detect_contacts(scene)
     except InputError as err:
         raise (err.located(source) if source else err) from None
     return scene

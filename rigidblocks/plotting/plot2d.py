@@ -150,7 +150,7 @@ def _nice(x: float) -> float:
 
 def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: int,
                  force_scale: float | None, colorbar: bool, LineCollection: Any) -> None:
-    from ..joint_forces import joint_force_vectors
+    from ..results import joint_force_vectors
 
     c = result.contacts
     st = result.state

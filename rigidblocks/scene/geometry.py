@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .model import Block, Scene
+from .model import Block, Scene, scene_size  # noqa: F401 - scene_size is used from here too
 
 
 def signed_area(poly: np.ndarray) -> float:
@@ -74,12 +74,6 @@ def block_measure(block: Block, dimension: int) -> tuple[float, np.ndarray]:
     from .polyhedra import polyhedron_volume_centroid  # 3D only
 
     return polyhedron_volume_centroid(block)
-
-
-def scene_size(scene: Scene) -> float:
-    """A characteristic length of the scene: the diagonal of its bounding box."""
-    allpts = np.concatenate([b.points for b in scene.blocks], axis=0)
-    return float(np.linalg.norm(allpts.max(axis=0) - allpts.min(axis=0)))
 
 
 def flat_polygons(scene: Scene) -> tuple[np.ndarray, np.ndarray]:

@@ -215,3 +215,9 @@ def make_block(block_id: str, vertices: Sequence[Sequence[float]], *, support: b
     verts = tuple(tuple(float(c) for c in v) for v in np.asarray(vertices, dtype=float))
     fcs = None if faces is None else tuple(tuple(int(i) for i in f) for f in faces)
     return Block(block_id, verts, fcs, support, unit_weight)
+
+
+def scene_size(scene: Scene) -> float:
+    """A characteristic length of the scene: the diagonal of its bounding box."""
+    allpts = np.concatenate([b.points for b in scene.blocks], axis=0)
+    return float(np.linalg.norm(allpts.max(axis=0) - allpts.min(axis=0)))

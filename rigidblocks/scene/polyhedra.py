@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from .model import Block, Scene
+from .model import Block, Scene, scene_size
 
 #: relative tolerance for planarity and convexity (times the block's size)
 POLY_TOL = 1e-7
@@ -598,8 +598,6 @@ def check_overlaps_3d(scene: Scene) -> None:
     non-convex block: the same test on every pair of their convex pieces
     (:func:`convex_pieces`). Coordinates are taken relative to the first block's origin.
     """
-    from .geometry import scene_size
-
     tol = POLY_TOL * scene_size(scene)
     edges: dict[int, np.ndarray] = {}
 

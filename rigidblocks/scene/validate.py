@@ -22,7 +22,10 @@ OVERLAP_AREA_TOL = 1e-6
 
 
 def validate_scene(scene: Scene, tol: float = DEFAULT_TOL) -> None:
-    """Raise :class:`InputError` if the scene is not a valid structure."""
+    """Raise :class:`InputError` if the scene is not a valid structure (ids, loads,
+    supports, simple polygons or closed polyhedra, no overlaps). That joint overrides
+    name touching blocks is checked where the joints are found
+    (:func:`rigidblocks.contacts.detect_contacts`)."""
     _check_ids_and_loads(scene)
     if scene.dimension == 2:
         _check_polygons(scene)
@@ -31,16 +34,6 @@ def validate_scene(scene: Scene, tol: float = DEFAULT_TOL) -> None:
         from .polyhedra import validate_polyhedra
 
         validate_polyhedra(scene)
-    if scene.joints:
-        from ..contacts import detect_contacts
-
-        contacts = detect_contacts(scene, tol=tol)
-        touching = {frozenset(p) for p in contacts.block_pairs_ids()}
-        for j in scene.joints:
-            if frozenset(j.blocks) not in touching:
-                raise InputError(f"blocks '{j.blocks[0]}' and '{j.blocks[1]}' are not in "
-                                 "contact, so their joint cannot be overridden",
-                                 f"joint '{j.blocks[0]}'-'{j.blocks[1]}'")
 
 
 def _check_ids_and_loads(scene: Scene) -> None:

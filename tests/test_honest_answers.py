@@ -1,0 +1,227 @@
+"""What the engineer reads: undecided answers never read as verdicts, the reasons are
+given, a mechanism that can be drawn, and a first run that answers the usual question.
+
+Closed forms (docs/validation.md): a b x h block on a base under a horizontal body
+force lambda x weight has lambda* = min(f, b/h); the seed's reference model at f = 0.6
+carries N = P/2 = 50 and |T| = H/2 = 25 on each bed joint of its central blocks in
+the state of least complementary energy, so its friction demand is 25/50 = 0.5.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+
+import pytest
+from conftest import EXAMPLES, make_scene, rect
+
+import rigidblocks as rb
+from rigidblocks.cli.main import main
+from rigidblocks.generators import build
+from rigidblocks.scene.extrude import extrude
+
+
+def run(capsys, argv):
+    code = main(argv)
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def run_json(capsys, argv):
+    code, out, err = run(capsys, argv)
+    return code, json.loads(out), err
+
+
+def write(tmp_path, scene, name="s.json"):
+    p = tmp_path / name
+    rb.write_scene(scene, p)
+    return str(p)
+
+
+# -- undecided and failure ---------------------------------------------------------------
+@pytest.fixture
+def short_budget(monkeypatch):
+    """An iteration budget too small for the distortion method to decide anything away
+    from the elastic state (the reference model needs 15 iterations to prove
+    admissibility and about 100 to prove inadmissibility)."""
+    monkeypatch.setattr("rigidblocks.methods.distortion.MAX_ITER", 10)
+
+
+def test_undecided_load_is_not_a_verdict_and_exits_3(capsys, short_budget):
+    path = str(EXAMPLES / "reference.json")
+    code, out, _ = run(capsys, ["load", path, "--method", "distortion"])
+    assert code == 3
+    assert "UNDECIDED" in out and "UNSTABLE" not in out and "lambda*" not in out
+    assert "hinges" not in out  # no empty mechanism lists that read as "no hinges"
+    assert "note" in out  # the reason
+    code, d, _ = run_json(capsys, ["load", path, "--method", "distortion", "--json"])
+    assert code == 3
+    assert d["status"] == "undecided" and d["load_multiplier"] is None
+    assert d["notes"] and "bracket" in d
+
+
+def test_undecided_check_has_no_admissible_verdict(capsys, short_budget):
+    scene = rb.read_scene(EXAMPLES / "reference.json")
+    r = rb.check(scene, friction=0.6, method="distortion")
+    assert r.status == "undecided" and r.admissible is None and not r.decided
+    code, d, _ = run_json(capsys, ["check", str(EXAMPLES / "reference.json"), "--method",
+                                   "distortion", "--friction", "0.6", "--json"])
+    assert code == 3 and d["admissible"] is None and d["friction_demand"] is None
+    code, out, _ = run(capsys, ["check", str(EXAMPLES / "reference.json"), "--method",
+                                "distortion", "--friction", "0.6"])
+    assert code == 3 and "ADMISSIBLE" not in out and "UNDECIDED" in out
+
+
+def test_undecided_min_friction_gives_its_bracket(short_budget):
+    """The reference model (f* = 0.5) at a budget that decides f = infinite but not the
+    trials near f*: either undecided with the bracket the search reached, or decided."""
+    scene = rb.read_scene(EXAMPLES / "reference.json")
+    r = rb.min_friction(scene, method="distortion")
+    if r.status == "undecided":
+        assert r.friction_factor is None
+        if r.bracket is not None:
+            assert r.bracket[0] <= 0.5 <= r.bracket[1] + 1e-9
+            assert r.to_dict()["bracket"] == list(r.bracket)
+
+
+# -- the reasons --------------------------------------------------------------------------
+def lifted_beam():
+    """A beam drawn 1 mm above its two posts: nothing touches it."""
+    return make_scene([
+        {"id": "ground", "vertices": rect(-1, -0.5, 6, 0.5), "support": True},
+        {"id": "postL", "vertices": rect(0, 0, 0.4, 2)},
+        {"id": "postR", "vertices": rect(3, 0, 0.4, 2)},
+        {"id": "beam", "vertices": rect(-0.2, 2.001, 3.8, 0.4)},
+    ], unit_weight=20.0, friction=0.6)
+
+
+def test_a_block_without_joints_is_named(tmp_path, capsys):
+    path = write(tmp_path, lifted_beam())
+    code, out, _ = run(capsys, ["check", path])
+    assert code == 0 and "NOT ADMISSIBLE" in out and "'beam'" in out
+    code, out, _ = run(capsys, ["friction", path])
+    assert code == 0 and "UNSTABLE" in out and "'beam'" in out
+    assert "hinging" not in out
+
+
+def test_failing_check_names_the_breached_joints(capsys):
+    """examples/arch.json at load factor 1 (a 1 g horizontal body force on a ring of
+    t/R = 0.15): no thrust line fits, and the report names the joints breached in the
+    least-violation state, with the amounts."""
+    code, d, _ = run_json(capsys, ["check", str(EXAMPLES / "arch.json"), "--load-factor", "1",
+                                   "--json"])
+    assert code == 0 and d["status"] == "inadmissible" and d["admissible"] is False
+    assert d["breaches"] and all(b["breach"] > 0 for b in d["breaches"])
+    assert d["breaches"][0]["breach"] == pytest.approx(d["violation"], rel=1e-6)
+    code, out, _ = run(capsys, ["check", str(EXAMPLES / "arch.json"), "--load-factor", "1"])
+    assert "breached" in out
+
+
+def test_check_reports_the_friction_demand_of_its_state(capsys):
+    code, d, _ = run_json(capsys, ["check", str(EXAMPLES / "reference.json"), "--friction",
+                                   "0.6", "--json"])
+    assert code == 0 and d["admissible"] is True
+    assert d["friction_demand"] == pytest.approx(0.5, rel=1e-6)
+    assert d["notes"] == [] and d["bracket"] is None
+
+
+def test_joint_table_on_request(tmp_path, capsys):
+    path = str(EXAMPLES / "reference.json")
+    code, d, _ = run_json(capsys, ["check", path, "--friction", "0.6", "--joints", "--json"])
+    rows = {tuple(r["joint"]): r for r in d["joints"]}
+    assert len(rows) == 5
+    # each bed joint of the central blocks: N = 50, |T| = 25 (module docstring)
+    bed = rows[("support", "left")]
+    assert bed["N"] == pytest.approx(50, rel=1e-6) and abs(bed["T"]) == pytest.approx(25)
+    assert bed["demand"] == pytest.approx(0.5, rel=1e-6)
+    csv_path = tmp_path / "joints.csv"
+    assert main(["friction", path, "--joints", str(csv_path)]) == 0
+    with open(csv_path) as fh:
+        table = list(csv.DictReader(fh))
+    assert len(table) == 5 and {"N", "T", "eccentricity", "demand", "state"} <= set(table[0])
+    # at f* = 0.5 the four bed joints are at their friction limit
+    assert sum(r["state"] == "friction limit" for r in table) == 4
+    assert main(["friction", path, "--joints", str(tmp_path / "no" / "x.csv")]) == 2
+
+
+def test_tilt_angle_beside_lambda(capsys):
+    """The wall example's live load is a horizontal body force of 1 g: lambda* = f = 0.6
+    (base sliding) is a tilt of atan(0.6) = 30.96 deg."""
+    code, d, _ = run_json(capsys, ["load", str(EXAMPLES / "wall.json"), "--json"])
+    assert d["load_multiplier"] == pytest.approx(0.6, rel=1e-6)
+    assert d["tilt_angle_deg"] == pytest.approx(math.degrees(math.atan(0.6)), rel=1e-6)
+    code, out, _ = run(capsys, ["load", str(EXAMPLES / "wall.json")])
+    assert "tilt angle" in out
+    # point loads: no tilt
+    code, d, _ = run_json(capsys, ["load", str(EXAMPLES / "reference.json"), "--json"])
+    assert d["tilt_angle_deg"] is None
+
+
+# -- mechanisms ----------------------------------------------------------------------------
+def _sliding_pairs(d):
+    return {tuple(sorted(p)) for p in d["mechanism"]["sliding"]}
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_base_sliding_is_drawn_as_base_sliding(dim):
+    """A 3 x 3 running-bond wall, f = 0.6 < t/h: at lambda* = f every bed joint could
+    slide at once with everything above it (the optimal face holds all of them); the
+    vertex mechanism is one of them, the wall sliding on its foundation, and the
+    interior-point blend lists many more joints."""
+    wall = build("wall", courses=3, blocks_per_course=3)
+    scene = wall if dim == 2 else extrude(wall)
+    r = rb.max_load_multiplier(scene, state=False)
+    assert r.load_multiplier == pytest.approx(0.6, rel=1e-6)
+    d = r.to_dict()
+    assert d["mechanism"]["kind"] in ("vertex", "extreme")
+    assert _sliding_pairs(d) == {("c0b0", "foundation"), ("c0b1", "foundation"),
+                                 ("c0b2", "foundation")}
+    assert d["mechanism"]["hinges"] == [] and d["mechanism"]["open"] == []
+    blend = rb.max_load_multiplier(scene, state=False, mechanism="blend").to_dict()
+    assert blend["mechanism"]["kind"] == "blend"
+    assert len(blend["mechanism"]["sliding"]) > 3
+
+
+def test_arch_collapses_with_four_hinges(capsys):
+    """A semicircular ring under a horizontal body force fails by a four-hinge
+    mechanism (Heyman, The Stone Skeleton, 1995); the vertex lists exactly four, ranked
+    by their relative rotation rate."""
+    code, d, _ = run_json(capsys, ["load", str(EXAMPLES / "arch.json"), "--json"])
+    m = d["mechanism"]
+    assert m["kind"] == "vertex" and len(m["hinges"]) == 4
+    assert m["sliding"] == [] and m["open"] == []
+    rates = [j["rate"] for j in m["ranked"]]
+    assert len(rates) == 4 and rates == sorted(rates, reverse=True)
+
+
+# -- first run -------------------------------------------------------------------------------
+def test_generated_structures_answer_for_their_own_weight(tmp_path, capsys):
+    """Generators that attach a seismic body force write load_factor 0: check and
+    friction answer for the structure's own weight, load for the body force."""
+    code, out, _ = run(capsys, ["check", str(EXAMPLES / "arpino_gate.json")])
+    assert code == 0 and "ADMISSIBLE" in out and "NOT" not in out and "load factor 0" in out
+    code, d, _ = run_json(capsys, ["friction", str(EXAMPLES / "arpino_gate.json"), "--json"])
+    assert d["status"] == "stable" and 0 < d["friction_factor"] < 0.6
+    p = tmp_path / "a.json"
+    assert main(["example", "arch", "-o", str(p)]) == 0
+    capsys.readouterr()
+    assert rb.read_scene(p).load_factor == 0
+    code, d, _ = run_json(capsys, ["check", str(p), "--json"])
+    assert d["admissible"] is True and d["load_factor"] == 0
+
+
+def test_every_generator_builds_with_its_defaults():
+    from rigidblocks.generators import available
+
+    for name in available():
+        build(name)
+    assert len(build("arch", shape="pointed").blocks) == 16 + 2  # even default
+
+
+def test_thickness_says_what_it_minimised_and_what_to_change(capsys):
+    code, out, _ = run(capsys, ["thickness", "arch", "--voussoirs", "10", "--rtol", "1e-2"])
+    assert code == 0 and "t/R" in out
+    code, _, err = run(capsys, ["thickness", "arch", "--shape", "pointed", "--voussoirs",
+                                "10"])
+    assert code == 2 and "--hi" in err and "Traceback" not in err
