@@ -14,7 +14,7 @@ import math
 from typing import Any
 
 from ..errors import InputError
-from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, open_method
+from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_method
 from ..methods.convex import FRICTION_RTOL
 from ..results import CheckResult, FrictionResult, LoadResult
 from ..scene.model import Scene, friction_label, friction_value
@@ -68,7 +68,8 @@ def tilt_angle_deg(scene: Scene, load_multiplier: float | None) -> float | None:
 def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
           method: str = "clarabel", *, solver: str | None = None, state: bool = True,
           settings: dict | None = None, pyramid: int | None = None,
-          contact_tol: float | None = None) -> CheckResult:
+          contact_tol: float | None = None, progress: Progress | None = None,
+          ) -> CheckResult:
     """Is there an admissible equilibrium state under dead + load_factor x live?
 
     Admissible: equilibrium of every free block with compression-only contacts (or
@@ -95,6 +96,8 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
             are taken as touching: raise it for geometry with gaps or overlaps from
             rounding (e.g. 1e-5 for coordinates exported to micrometres on a 5 m
             model). Convex path only.
+        progress: a :class:`~rigidblocks.methods.Progress` the analysis keeps up to
+            date (stage, solves, iterations), for a progress line.
 
     Returns:
         :class:`~rigidblocks.results.CheckResult` with status "admissible",
@@ -109,7 +112,7 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
     f = friction_value(scene.effective_friction if friction is None else friction)
     lf = _load_factor(scene, load_factor)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
-                    contact_tol=contact_tol)
+                    contact_tol=contact_tol, progress=progress)
     v = m.admissible(f, lf, for_state=state)
     m.explain(v)
     ok = v.status == ADMISSIBLE
@@ -124,7 +127,8 @@ def min_friction(scene: Scene, load_factor: float | None = None,
                  method: str = "clarabel", *,
                  solver: str | None = None, state: bool = True, rtol: float = FRICTION_RTOL,
                  settings: dict | None = None, pyramid: int | None = None,
-                 contact_tol: float | None = None) -> FrictionResult:
+                 contact_tol: float | None = None, progress: Progress | None = None,
+                 ) -> FrictionResult:
     """The smallest uniform friction coefficient f* that admits equilibrium.
 
     Joints with their own friction override keep it. Status "stable" with f*;
@@ -139,7 +143,7 @@ def min_friction(scene: Scene, load_factor: float | None = None,
     """
     lf = _load_factor(scene, load_factor)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
-                    contact_tol=contact_tol)
+                    contact_tol=contact_tol, progress=progress)
     if m.contacts.n_joints and not m.uniform.any():
         raise InputError("every joint has its own friction override: there is no uniform "
                          "friction to minimise", scene.source)
@@ -164,7 +168,8 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
                         solver: str | None = None, state: bool = True,
                         settings: dict | None = None, pyramid: int | None = None,
                         contact_tol: float | None = None, rtol: float = LOAD_RTOL,
-                        mechanism: str = "vertex") -> LoadResult:
+                        mechanism: str = "vertex", progress: Progress | None = None,
+                        ) -> LoadResult:
     """The largest multiplier lambda* of the live loads (associative friction).
 
     Status "collapse" with lambda* and (convex path) the collapse mechanism; "unbounded"
@@ -188,7 +193,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
                          "live_body_force): there is nothing to multiply", scene.source)
     f = friction_value(scene.effective_friction if friction is None else friction)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
-                    contact_tol=contact_tol)
+                    contact_tol=contact_tol, progress=progress)
     lim: Limit = m.load_limit(f, rtol, mechanism) or load_by_bisection(m, f, rtol)
     if lim.status != "collapse":
         return LoadResult(**_fields(m, "max_load_multiplier", lim.status, f, None),

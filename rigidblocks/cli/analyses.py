@@ -5,13 +5,15 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 from typing import Any
 
 from ..analyses import analysis
 from ..errors import InputError
 from ..io import read_scene
-from ..methods import METHODS
+from ..methods import METHODS, Progress
 from ..results import headline
+from .progress import run_interruptible
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
@@ -56,10 +58,12 @@ def run(args: argparse.Namespace) -> int:
     # check reports the friction demand of its force state; the others compute a state
     # only for the joint table
     state = args.command == "check" or args.joints is not None
-    res = analysis(args.command).run(
+    progress = Progress()
+    res = run_interruptible(lambda: analysis(args.command).run(
         scene, friction=getattr(args, "friction", None),
         load_factor=getattr(args, "load_factor", None), method=args.method,
-        solver=args.solver, state=state, contact_tol=args.contact_tol, **options)
+        solver=args.solver, state=state, contact_tol=args.contact_tol, progress=progress,
+        **options), progress, show=not args.json and sys.stderr.isatty())
     if csv_path is not None:
         _write_csv(res, csv_path)
     if args.json:

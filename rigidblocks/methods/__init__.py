@@ -17,7 +17,17 @@ from ..equilibrium import assemble
 from ..errors import InputError
 from ..scene.model import Scene
 from ..solvers import SOLVERS
-from .base import ADMISSIBLE, FAILURE, INADMISSIBLE, UNDECIDED, Limit, Method, Timings, Verdict
+from .base import (
+    ADMISSIBLE,
+    FAILURE,
+    INADMISSIBLE,
+    UNDECIDED,
+    Limit,
+    Method,
+    Progress,
+    Timings,
+    Verdict,
+)
 from .convex import ConvexMethod
 from .distortion import DistortionMethod
 
@@ -64,12 +74,14 @@ def _names(ids: list[str], most: int = 5) -> str:
 
 def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = None,
                 settings: dict | None = None, pyramid: int | None = None,
-                contact_tol: float | None = None) -> Method:
+                contact_tol: float | None = None, progress: Progress | None = None,
+                ) -> Method:
     """The named method on ``scene``: contacts detected, equilibrium assembled.
 
     Options that the method does not take are refused with an :class:`InputError`:
     ``solver``, ``pyramid`` and ``contact_tol`` are options of the convex path; the
     distortion method takes the settings ``tol``, ``max_iter`` and ``anderson``.
+    ``progress`` (a :class:`~.base.Progress`) is kept up to date while it works.
     """
     name, solver = method_name(method, solver)
     if name == "distortion":
@@ -98,10 +110,11 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
     with timings.stage("assembly"):
         system = assemble(scene, contacts)
     if name == "distortion":
-        m: Method = DistortionMethod(scene, system, timings, settings=settings)
+        m: Method = DistortionMethod(scene, system, timings, settings=settings,
+                                     progress=progress)
     else:
         m = ConvexMethod(scene, system, timings, solver=solver or "clarabel",
-                         settings=settings, pyramid=pyramid)
+                         settings=settings, pyramid=pyramid, progress=progress)
     if not np.any(system.dead) and not any(b.unit_weight for b in scene.blocks) and \
             not scene.effective_unit_weight:
         m.notes.append("the blocks weigh nothing (no unit_weight): self-weight is not part "
@@ -117,5 +130,5 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
 
 
 __all__ = ["ADMISSIBLE", "FAILURE", "INADMISSIBLE", "METHODS", "UNDECIDED", "ConvexMethod",
-           "DistortionMethod", "Limit", "Method", "Timings", "Verdict", "method_name",
+           "DistortionMethod", "Limit", "Method", "Progress", "Timings", "Verdict", "method_name",
            "open_method"]

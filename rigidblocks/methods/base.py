@@ -97,6 +97,22 @@ class Timings:
             self.add(name, time.perf_counter() - w, time.process_time() - c)
 
 
+class Progress:
+    """What a running analysis is doing, for a progress line: the current stage, the
+    solves (or iteration runs) done, their interior-point (or ADMM) iterations, and the
+    time since the start. Methods update it; a reader in another thread shows it."""
+
+    def __init__(self) -> None:
+        self.started = time.perf_counter()
+        self.stage = "contacts"
+        self.solves = 0
+        self.iterations = 0
+
+    def text(self) -> str:
+        return (f"{self.stage}, solve {self.solves + 1}, {self.iterations} iterations so "
+                f"far, {time.perf_counter() - self.started:.0f} s")
+
+
 class Method:
     """One solution method opened on one scene (see the module docstring).
 
@@ -110,10 +126,12 @@ class Method:
     #: keys of ``settings`` the method accepts (None: any, checked by the back end)
     setting_keys: tuple[str, ...] | None = ()
 
-    def __init__(self, scene: Scene, system: EquilibriumSystem, timings: Timings):
+    def __init__(self, scene: Scene, system: EquilibriumSystem, timings: Timings,
+                 progress: Progress | None = None):
         self.scene = scene
         self.system = system
         self.timings = timings
+        self.progress = progress if progress is not None else Progress()
         self.notes: list[str] = []
         self.solver = self.name
 
@@ -201,5 +219,5 @@ def ranked_breaches(system: EquilibriumSystem, x: np.ndarray, f_joint: np.ndarra
     return tuple((int(j), float(b[j])) for j in k)
 
 
-__all__ = ["ADMISSIBLE", "FAILURE", "INADMISSIBLE", "Limit", "Method", "Timings",
+__all__ = ["ADMISSIBLE", "FAILURE", "INADMISSIBLE", "Limit", "Method", "Progress", "Timings",
            "UNDECIDED", "Verdict", "ranked_breaches"]

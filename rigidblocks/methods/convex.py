@@ -29,6 +29,7 @@ from .base import (
     INADMISSIBLE,
     Limit,
     Method,
+    Progress,
     Timings,
     Verdict,
     ranked_breaches,
@@ -77,9 +78,10 @@ class ConvexMethod(Method):
 
     def __init__(self, scene: Scene, system: EquilibriumSystem, timings: Timings, *,
                  solver: str = "clarabel", settings: dict | None = None,
-                 pyramid: int | None = None):
-        super().__init__(scene, system, timings)
-        self.runner = Runner(solver, settings or {}, scene.source or "")
+                 pyramid: int | None = None, progress: Progress | None = None):
+        super().__init__(scene, system, timings, progress)
+        self.runner = Runner(solver, settings or {}, scene.source or "",
+                             progress=self.progress)
         self.solver = self.runner.solver
         with timings.stage("build"):
             self.scaling = Scaling.of(system)
@@ -331,6 +333,7 @@ class ConvexMethod(Method):
         eq = prob.rows["equilibrium"]
         y_eq, kind = res.y[eq], "blend"
         if mechanism_kind == "vertex":
+            self.progress.stage = "vertex mechanism"
             with self.timings.stage("mechanism"):
                 # a vertex is worth at most the limit problem's own time again
                 vd = vertex_dual(prob, res, eq, self.system.dofs,

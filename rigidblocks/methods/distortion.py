@@ -18,7 +18,7 @@ from ..problems.formulation import Scaling, flexibility
 from ..results import ForceState
 from ..scene.model import Scene
 from ..solvers.distortion import MAX_ITER, TOL, DistortionSolver, Run
-from .base import ADMISSIBLE, Method, Timings, Verdict, ranked_breaches
+from .base import ADMISSIBLE, Method, Progress, Timings, Verdict, ranked_breaches
 
 
 def distortion_solver(scene: Scene, system: EquilibriumSystem) -> DistortionSolver:
@@ -45,8 +45,8 @@ class DistortionMethod(Method):
     setting_keys = ("tol", "max_iter", "anderson")
 
     def __init__(self, scene: Scene, system: EquilibriumSystem, timings: Timings, *,
-                 settings: dict | None = None):
-        super().__init__(scene, system, timings)
+                 settings: dict | None = None, progress: Progress | None = None):
+        super().__init__(scene, system, timings, progress)
         s = dict(settings or {})
         self.tol = float(s.get("tol", TOL))
         self.max_iter = int(s.get("max_iter", MAX_ITER))
@@ -75,11 +75,14 @@ class DistortionMethod(Method):
         kw.setdefault("max_iter", self.max_iter)
         if self.anderson is not None:
             kw.setdefault("anderson", self.anderson)
+        self.progress.stage = f"iteration run at lambda = {load_factor:.6g}"
         with self.timings.stage("solve"):
             r = self.solver_.run(laws, load_factor, **kw)
         self.runs += 1
         self._iterations += r.iterations
         self._time += r.time
+        self.progress.solves = self.runs
+        self.progress.iterations = self._iterations
         return r
 
     def describe(self, r: Run) -> tuple[str, ...]:

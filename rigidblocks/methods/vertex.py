@@ -29,6 +29,9 @@ ACTIVE_TOL = 1e-7
 #: ... or its dual above this fraction of the largest (near-degenerate rows, where an
 #: interior-point solution leaves both small, must stay in)
 DUAL_TOL = 1e-9
+#: slack of the LP's bound b^T y <= b^T y_ip (relative): the interior-point duals are
+#: optimal to about the solver's tolerance
+BOUND_TOL = 1e-7
 #: a dual whose objective (the multiplier of its mechanism) exceeds the optimum by more
 #: than this (relative) is refused; within it, the gap goes into the result's notes
 OPTIMAL_GAP = 1e-4
@@ -98,7 +101,7 @@ def vertex_dual(prob: ConicProblem, res: SolverResult, eq_rows: slice, dofs: int
 
         bounds = [(None, None)] * n_eq_k + [(0, None)] * (len(idx) - n_eq_k)
         out = linprog(w, A_ub=b[idx][None, :],
-                      b_ub=[bound + ACTIVE_TOL * max(1.0, abs(bound))],
+                      b_ub=[bound + BOUND_TOL * max(1.0, abs(bound))],
                       A_eq=At, b_eq=rhs, bounds=bounds, method="highs-ds",
                       options={"time_limit": time_limit})
         if out.status != 0:

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import Any
 
 from ..errors import InputError, SolverFailure
 from .base import INFEASIBLE, OPTIMAL, UNBOUNDED, ConicProblem, SolverResult
@@ -73,6 +74,9 @@ class Runner:
     solve_time: float = 0.0
     iterations: int = 0
     wall_time: float = 0.0
+    #: an object with ``stage``, ``solves`` and ``iterations`` kept up to date (a
+    #: progress line reads it), or None
+    progress: Any = None
 
     def __post_init__(self) -> None:
         self.solver = check_solver(self.solver)
@@ -90,11 +94,16 @@ class Runner:
         self.n_solves += 1
         self.solve_time += res.solve_time
         self.iterations += res.iterations
+        if self.progress is not None:
+            self.progress.solves = self.n_solves
+            self.progress.iterations = self.iterations
         return res
 
     def run(self, problem: ConicProblem, what: str, tight: bool = False) -> SolverResult:
         """Solve ``problem`` (named ``what`` in errors): optimal, infeasible or unbounded;
         anything else raises :class:`SolverFailure` with the back end's status."""
+        if self.progress is not None:
+            self.progress.stage = f"{what} problem"
         settings = self.settings
         solver = self.solver
         if problem.P is not None and solver in LP_ONLY:

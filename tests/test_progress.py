@@ -1,0 +1,67 @@
+"""Long analyses on the command line: a progress line on a terminal (quiet otherwise),
+and Ctrl-C that ends the run within a second or two with exit 130 and no traceback."""
+
+from __future__ import annotations
+
+import signal
+import subprocess
+import sys
+import time
+
+import rigidblocks as rb
+from rigidblocks.cli import progress as cli_progress
+from rigidblocks.generators import build
+from rigidblocks.methods import Progress
+
+
+def test_progress_line_after_the_delay(monkeypatch, capsys):
+    monkeypatch.setattr(cli_progress, "DELAY", 0.2)
+    monkeypatch.setattr(cli_progress, "EVERY", 0.05)
+    p = Progress()
+    p.stage = "maximum load problem"
+
+    def work():
+        time.sleep(0.6)
+        return 42
+
+    assert cli_progress.run_interruptible(work, p, show=True) == 42
+    err = capsys.readouterr().err
+    assert "maximum load problem, solve 1" in err
+    assert err.endswith("\r")  # the line is wiped before the report
+
+
+def test_quiet_when_not_shown_and_errors_pass_through(capsys):
+    def fail():
+        raise rb.InputError("bad")
+
+    try:
+        cli_progress.run_interruptible(fail, Progress(), show=False)
+    except rb.InputError as err:
+        assert str(err) == "bad"
+    else:  # pragma: no cover
+        raise AssertionError("the worker's error must reach the caller")
+    assert capsys.readouterr().err == ""
+
+
+def test_analyses_keep_the_progress_up_to_date():
+    p = Progress()
+    scene = build("wall", courses=4, blocks_per_course=4)
+    r = rb.min_friction(scene, load_factor=0.2, progress=p)
+    assert p.solves == r.n_solves and p.iterations == r.iterations > 0
+
+
+def test_ctrl_c_ends_a_long_solve_at_once(tmp_path):
+    """A 4,000-block wall's maximum-load solve takes several seconds; SIGINT two seconds
+    in ends the process within 2 s with status 130 and a one-line message."""
+    path = tmp_path / "wall.json"
+    rb.write_scene(build("wall", courses=40, blocks_per_course=100), path)
+    proc = subprocess.Popen([sys.executable, "-m", "rigidblocks.cli.main", "load", str(path)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(2.5)
+    assert proc.poll() is None, "the analysis ended before it could be interrupted"
+    t0 = time.perf_counter()
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=30)
+    assert time.perf_counter() - t0 < 2.0
+    assert proc.returncode == 130
+    assert "interrupted" in err and "Traceback" not in err
