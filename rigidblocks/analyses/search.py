@@ -122,15 +122,7 @@ def friction_by_bisection(m: Method, load_factor: float, rtol: float) -> Limit:
                 return Limit("undecided")
             m.notes.append(f"no finite friction up to {FRICTION_CEILING:g} is admissible")
             return Limit("unstable")
-    br = bisect(decide, lo, hi, rtol)
-    best = br.good_data or best
-    if br.undecided_at is not None:
-        m.notes.append(f"the iteration could not decide at f = {br.undecided_at:.9g}: f* is "
-                       f"bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
-        if br.too_wide():
-            m.notes.append(f"bracket wider than {BRACKET_RTOL:g} relative: undecided")
-            return Limit("undecided", None, br.lower, br.upper)
-    return Limit("stable", br.good, br.lower, br.upper, at=best)
+    return _limit(m, bisect(decide, lo, hi, rtol), "f", "stable", best)
 
 
 def load_by_bisection(m: Method, f: float, rtol: float) -> Limit:
@@ -167,14 +159,20 @@ def load_by_bisection(m: Method, f: float, rtol: float) -> Limit:
         hi *= 2
         if hi > UNBOUNDED_AT:
             return Limit("unbounded")
-    br = bisect(decide, hi, lo, rtol)
+    return _limit(m, bisect(decide, hi, lo, rtol), "lambda", "collapse", best)
+
+
+def _limit(m: Method, br: Bracket, name: str, status: str, best: Verdict | None) -> Limit:
+    """The limit a bisection found: its certified end (``good``), or "undecided" when an
+    undecided trial stopped it with a bracket wider than ``BRACKET_RTOL``; the bracket
+    goes into the notes either way."""
     if br.undecided_at is not None:
-        m.notes.append(f"the iteration could not decide at lambda = {br.undecided_at:.9g}: "
-                       f"lambda* is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
+        m.notes.append(f"the iteration could not decide at {name} = {br.undecided_at:.9g}: "
+                       f"{name}* is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
         if br.too_wide():
             m.notes.append(f"bracket wider than {BRACKET_RTOL:g} relative: undecided")
             return Limit("undecided", None, br.lower, br.upper)
-    return Limit("collapse", br.good, br.lower, br.upper, at=br.good_data or best)
+    return Limit(status, br.good, br.lower, br.upper, at=br.good_data or best)
 
 
 __all__ = ["BRACKET_ATOL", "BRACKET_RTOL", "Bracket", "bisect", "friction_by_bisection",
