@@ -7,6 +7,7 @@ import sys
 
 from ..errors import InputError
 from ..io import read_scene, write_scene
+from ..scene.model import friction_label
 from .options import finite_float
 
 
@@ -65,15 +66,12 @@ def _layers(text: str | None) -> list[str] | None:
 
 
 def _friction(text: str | None):
-    if text is None or text == "infinite":
-        return text
+    if text is None:
+        return None
     try:
-        f = float(text)
-    except ValueError:
-        raise InputError(f"--friction: not a number or \"infinite\": '{text}'") from None
-    if f < 0:
-        raise InputError("--friction must be >= 0")
-    return f
+        return friction_label(text)
+    except InputError as err:
+        raise err.located("--friction") from None
 
 
 def run(args: argparse.Namespace) -> int:

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..io.scene_file import scene_from_dict
-from ..scene.model import Scene
+from ..scene.model import Scene, friction_label
 
 Point = tuple[float, float]
 JOINTS = ("radial", "vertical")
@@ -57,12 +57,12 @@ def choice(name: str, value: Any, options: Sequence[str], gen: str) -> str:
 
 
 def friction_param(value: Any, gen: str) -> float | str:
-    if isinstance(value, str) and value.strip().lower() in ("infinite", "inf"):
-        return "infinite"
-    v = _num("friction", value, gen)
-    if not v >= 0:
-        raise InputError(f'{gen}: friction must be >= 0 or "infinite", got {v:g}')
-    return v
+    """A generator's friction parameter as the scene stores it (a number or
+    "infinite"), or an error naming the generator."""
+    try:
+        return friction_label(value)  # type: ignore[return-value]
+    except InputError as err:
+        raise InputError(f"{gen}: {err}") from None
 
 
 def _num(name: str, value: Any, gen: str) -> float:
