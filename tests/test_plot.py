@@ -74,7 +74,8 @@ def test_scene_only_counts_patches_and_limits():
     ax = rb.plot(sc, ids=True)
     assert n_paths(ax, "rb-blocks") == 5
     assert n_paths(ax, "rb-supports") == 1
-    assert len(ax.texts) == 6
+    # the block ids; the loads' arrows and values carry their own gid
+    assert len([t for t in ax.texts if t.get_gid() != "rb-loads"]) == 6
     assert arrows(ax) == 0
     assert_contains_blocks(ax, [b.points for b in sc.blocks])
     assert ax.get_aspect() == 1.0
