@@ -19,6 +19,14 @@ def plot(scene: Scene, result: object = None, ax: object = None, **kwargs: objec
     return _plot(scene, result, ax, **kwargs)
 
 
+def report(scene: object, result: object = None, **kwargs: object) -> str:
+    """A self-contained HTML report (a ``str`` that shows itself in a notebook); see
+    :func:`rigidblocks.reporting.report`."""
+    from .reporting import report as _report
+
+    return _report(scene, result, **kwargs)  # type: ignore[arg-type]
+
+
 def read_dxf(path: object, **kwargs: object) -> object:
     """Read a DXF drawing as a scene; see :func:`rigidblocks.io.dxf.read_dxf` (needs ezdxf)."""
     from .io.dxf import read_dxf as _read_dxf
@@ -29,6 +37,6 @@ def read_dxf(path: object, **kwargs: object) -> object:
 __all__ = [
     "INFINITE", "Block", "Contacts", "EquilibriumSystem", "InputError", "JointOverride",
     "Load", "RigidBlocksError", "Scene", "SolverFailure", "assemble", "detect_contacts",
-    "check", "make_block", "max_load_multiplier", "min_friction", "plot", "read_dxf",
+    "check", "make_block", "max_load_multiplier", "min_friction", "plot", "read_dxf", "report",
     "read_scene", "write_scene", "load_path", "min_thickness",
 ]

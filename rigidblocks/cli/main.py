@@ -24,6 +24,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "thickness": ("thickness", "minimum thickness of a generator's family (bisection)"),
     "path": ("path", "load path of the distortion solver: cracks, plastic joints, collapse"),
     "plot": ("plot", "draw a scene and an analysis result (png, svg, pdf)"),
+    "report": ("report", "one self-contained HTML report: answer, pictures, 3D view, joints"),
     "import-dxf": ("dxf", "read a DXF drawing (closed polylines) into a scene file"),
     "export-dxf": ("dxf", "write a scene, its thrust line and forces to DXF"),
     "sweep": ("sweep", "parametric study from a spec file: many cases, in parallel, resumable"),
