@@ -26,6 +26,10 @@ POINT_ARROW_FRACTION = 0.12
 #: joints whose opening or slip is below this fraction of the mechanism's largest are
 #: not marked (an interior-point mechanism spreads small motions over many joints)
 MARK_FRACTION = 0.05
+#: a contact force below this fraction of the state's largest counts as none (an open
+#: joint, or a joint's end that carries nothing): interior-point force states leave
+#: round-off of about 1e-5 of the largest force where the exact state has zero
+ZERO_FORCE = 1e-4
 LAMBDA = "\N{GREEK SMALL LETTER LAMDA}"
 TIMES = "\N{MULTIPLICATION SIGN}"
 
@@ -175,5 +179,5 @@ def line_handle(colour: str, label: str, **kw: Any) -> Any:
     return Line2D([], [], color=colour, label=label, **kw)
 
 
-__all__ = ["LoadMark", "arrow_handle", "joint_motion", "line_handle", "load_marks",
+__all__ = ["ZERO_FORCE", "LoadMark", "arrow_handle", "joint_motion", "line_handle", "load_marks",
            "marked_joints", "new_axes", "place_legend"]

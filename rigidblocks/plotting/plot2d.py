@@ -49,6 +49,7 @@ from .marks import (
     MOVING_COLOUR,
     OPEN_COLOUR,
     SLIDE_COLOUR,
+    ZERO_FORCE,
     arrow_handle,
     line_handle,
     load_marks,
@@ -280,7 +281,7 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
     Nj = np.abs(st.joint_normal)
     nmax = Nj.max(initial=0.0)
     pn = np.asarray(st.normal, dtype=float)
-    ptol = 1e-6 * max(float(np.abs(pn).max(initial=0.0)), 1e-300)
+    ptol = ZERO_FORCE * max(float(np.abs(pn).max(initial=0.0)), 1e-300)
     is_open = np.asarray(st.joint_normal) <= 2 * ptol
     widths = (0.5 + 3.5 * Nj / nmax) if (heat and nmax > 0) else (2.5 if m < 200 else 1.5)
     from matplotlib import colormaps

@@ -38,9 +38,10 @@ class Report(str):
     frame_height = "760px"
 
     def _repr_html_(self) -> str:
-        return (f'<iframe srcdoc="{_html.escape(str(self), quote=True)}" '
+        return ('<div class="rb-report-frame">'
+                f'<iframe srcdoc="{_html.escape(str(self), quote=True)}" '
                 f'style="width:100%;height:{self.frame_height};border:1px solid #ddd" '
-                'title="rigidblocks report"></iframe>')
+                'title="rigidblocks report"></iframe></div>')
 
     def to_ipython(self) -> Any:
         """The report as an ``IPython.display.HTML`` object (needs IPython)."""

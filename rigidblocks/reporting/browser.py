@@ -48,6 +48,9 @@ def _run(exe: str, args: list[str], url: str, timeout: float) -> tuple[str, str,
         cmd = [exe, "--headless", "--hide-scrollbars", "--no-first-run",
                "--no-default-browser-check", "--disable-extensions",
                "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+               # offline: any request for an address would go to a closed local port
+               # and fail (the page's error hook reports resources that fail to load)
+               "--proxy-server=127.0.0.1:9", "--proxy-bypass-list=<-loopback>",
                f"--user-data-dir={profile}", *args, url]
         if hasattr(os, "geteuid") and os.geteuid() == 0:
             cmd.insert(1, "--no-sandbox")

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ..plotting.marks import ZERO_FORCE
 from ..scene.geometry import block_weights
 from ..scene.model import Scene
 
@@ -28,8 +29,6 @@ QUESTIONS = {
     "min_friction": "What friction does it need?",
     "max_load_multiplier": "How much live load does it take, and how does it fail?",
 }
-#: a point's normal force below this fraction of the largest counts as zero
-ZERO_FORCE = 1e-6
 #: a joint whose demand is within this fraction of the friction counts as at the limit
 AT_LIMIT = 1e-4
 
@@ -279,7 +278,7 @@ def joint_states(result: Any) -> list[str]:
     dem = np.asarray(st.demand, dtype=float)
     out = []
     for k in range(c.n_joints):
-        if jn[k] <= tol * max(1, np.diff(c.joint_start)[k]):
+        if jn[k] <= tol * np.diff(c.joint_start)[k]:
             out.append("open")
             continue
         tags = []

@@ -31,8 +31,13 @@ function rbErr(msg) {
   if (box) { box.hidden = false; box.textContent += String(msg) + "\\n"; }
 }
 window.addEventListener("error", function (e) {
-  rbErr("error: " + e.message + " (" + (e.filename || "inline") + ":" + (e.lineno || 0) + ")");
-});
+  var t = e.target;
+  if (t && t !== window && (t.src || t.href)) {  // a resource that failed to load
+    rbErr("resource failed to load: " + (t.src || t.href));
+  } else {
+    rbErr("error: " + e.message + " (" + (e.filename || "inline") + ":" + (e.lineno || 0) + ")");
+  }
+}, true);
 window.addEventListener("unhandledrejection", function (e) {
   rbErr("unhandled rejection: " + (e.reason && e.reason.stack || e.reason));
 });"""
@@ -110,7 +115,11 @@ def svg_picture(scene: Scene, result: Any = None, **kwargs: Any) -> str:
     svg = text[start:]
     head_end = svg.index(">")
     head = svg[:head_end]
-    head = re.sub(r'\s(width|height)="[^"]*"', "", head)
+    # no size (the page sizes it), no namespace attributes (inline SVG in HTML needs
+    # none) and no RDF metadata: the report names no address at all
+    head = re.sub(r'\s(width|height|xmlns(:\w+)?)="[^"]*"', "", head)
+    svg = re.sub(r"<metadata>.*?</metadata>", "", svg, flags=re.S)
+    head_end = svg.index(">")
     return head + ' role="img" aria-label="picture of the structure and the result"' + \
         svg[head_end:]
 

@@ -447,6 +447,19 @@
     gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
     const info = renderer.info.render;
     const stats = document.documentElement.dataset;
+    // the share of the canvas not painted in the background colour (a blank view: 0)
+    const W = gl.drawingBufferWidth, H = gl.drawingBufferHeight;
+    const all = new Uint8Array(4 * W * H);
+    gl.readPixels(0, 0, W, H, gl.RGBA, gl.UNSIGNED_BYTE, all);
+    const hex = scene.background.getHex();  // sRGB, as painted
+    const br = (hex >> 16) & 255, bgg = (hex >> 8) & 255, bb = hex & 255;
+    let painted = 0;
+    for (let k = 0; k < all.length; k += 4) {
+      if (Math.abs(all[k] - br) + Math.abs(all[k + 1] - bgg) + Math.abs(all[k + 2] - bb) > 12) {
+        painted++;
+      }
+    }
+    stats.viewerPainted = (painted / (W * H)).toFixed(4);
     stats.viewerReady = "1";
     stats.viewerBuildMs = (performance.now() - t0).toFixed(1);
     stats.viewerFirstFrameMs = performance.now().toFixed(1);
