@@ -56,6 +56,9 @@ from .plot2d import (
     _title,
 )
 
+#: a hinge's contact point is closed when its opening is below this fraction of the
+#: joint's largest opening (above the joint's smallest)
+HINGE_CLOSED = 1e-3
 #: direction the light comes from (towards the viewer, above)
 LIGHT = np.array([-0.4, -0.6, 0.7]) / np.linalg.norm([-0.4, -0.6, 0.7])
 
@@ -298,7 +301,6 @@ def mechanism_joints(scene: Scene, result: Any
     c = result.contacts
     marks = marked_joints(result)
     op = np.asarray(result.mechanism.opening, dtype=float)
-    tol = 1e-6 * max(float(np.abs(op).max(initial=0.0)), 1e-300)
     out: dict[str, tuple[list[np.ndarray], list[int]]] = {}
     for name in ("hinge", "slide", "open"):
         segs: list[np.ndarray] = []
@@ -308,7 +310,10 @@ def mechanism_joints(scene: Scene, result: Any
             p = c.points[a:b]
             owner = int(c.pairs[k, 0])
             if name == "hinge":
-                closed = p[op[a:b] <= tol]
+                # closed: the points whose opening is round-off next to the joint's
+                # largest (the interior-point mechanism leaves ~1e-7 of it)
+                o = op[a:b]
+                closed = p[o <= o.min() + HINGE_CLOSED * (o.max() - o.min())]
                 if not len(closed):
                     closed = p[[int(np.argmin(op[a:b]))]]
                 d = np.linalg.norm(closed[:, None] - closed[None], axis=2)

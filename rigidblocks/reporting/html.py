@@ -140,7 +140,8 @@ def _view3d_html(mechanism: bool) -> str:
         '<div><span class="sw" style="background:#d9c7a7"></span>block</div>'
         '<div><span class="sw" style="background:#8a8a8a"></span>support</div>'
         '<div><span class="sw" style="background:#e39a5b"></span>moving block (mechanism)</div>'
-        '<div><span class="ln" style="border-color:#d62728"></span>hinge line</div>'
+        '<div><span class="ln" style="border-color:#d62728"></span>hinge line (dots at its '
+        'ends)</div>'
         '<div><span class="ln" style="border-color:#1f77b4"></span>sliding joint / joint '
         'resultant</div>'
         '<div><span class="ln" style="border-color:#ff8c00"></span>opening joint</div>'
@@ -187,7 +188,8 @@ def render(scene: Scene, result: Any = None, *, title: str | None = None) -> str
         f"<script>{ERROR_HOOK}</script>", f"<style>{asset('assets/report.css')}</style>",
         "</head><body><main>", '<pre id="rb-errors" hidden></pre>',
         f'<header><h1>{_e(heading)}</h1><div class="sub">rigidblocks {__version__} report, '
-        f"{now}" + (f", scene file {_e(scene.source)}" if scene.source else "") +
+        f"{now}" + (f", scene file {_e(scene.source)}"
+                     if scene.source and scene.source != scene.name else "") +
         "</div></header>",
         "<noscript><p>The 3D view and the joint table need JavaScript; the rest of this "
         "report reads without it.</p></noscript>",

@@ -150,8 +150,11 @@
       jStart = decode(J.start, Uint32Array);
       const cg = new THREE.BufferGeometry();
       cg.setAttribute("position", new THREE.BufferAttribute(decode(J.centres, Float32Array), 3));
+      // drawn through the blocks (joints are mostly inside), faint: where to hover
       jointDots = new THREE.Points(cg, new THREE.PointsMaterial({ color: 0x1b4f72,
-        size: J.n > 3000 ? 2 : 4, sizeAttenuation: false }));
+        size: J.n > 3000 ? 2 : 4, sizeAttenuation: false, depthTest: false,
+        transparent: true, opacity: 0.45 }));
+      jointDots.renderOrder = 4;
       jointDots.frustumCulled = false;
       layers.joints.add(jointDots);
       if (J.forces) {
@@ -200,6 +203,11 @@
       const colour = L.live ? 0xc2185b : 0x333333;
       const arrow = new THREE.ArrowHelper(b.clone().sub(a).normalize(), a, len, colour,
         0.18 * len, 0.08 * len);
+      // on top of the blocks: the resultants act at the centre of gravity, inside them
+      arrow.traverse(function (o) {
+        if (o.material) { o.material.depthTest = false; o.material.transparent = true; }
+        o.renderOrder = 6;
+      });
       layers.loads.add(arrow);
       const el = document.createElement("div");
       el.className = "rb-label " + (L.live ? "live" : "dead");
@@ -234,7 +242,17 @@
         depthTest: false, transparent: true, opacity: 0.95 }));
       segLines.renderOrder = 5;
       segLines.frustumCulled = false;
-      layers.mechanism.add(segLines, ghost);
+      // hinge lines also as large dots at their ends (lines are one pixel wide)
+      const hingeIdx = [];
+      for (let s = 0; s < kinds.length; s++) if (kinds[s] === 0) hingeIdx.push(2 * s, 2 * s + 1);
+      const hg = new THREE.BufferGeometry();
+      hg.setAttribute("position", g.getAttribute("position"));
+      hg.setIndex(hingeIdx);
+      const hingeDots = new THREE.Points(hg, new THREE.PointsMaterial({ color: 0xd62728,
+        size: 7, sizeAttenuation: false, depthTest: false }));
+      hingeDots.renderOrder = 6;
+      hingeDots.frustumCulled = false;
+      layers.mechanism.add(segLines, hingeDots, ghost);
     }
     let amplitude = M ? 1 : 0;
     function displace(t) {
