@@ -137,6 +137,10 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     ap.add_argument("--tiny", action="store_true", help="small scenes only")
     ap.add_argument("--out", default=None, help="results folder (default benchmarks/results)")
     ap.add_argument("--no-plotly", action="store_true", help="three.js only")
+    ap.add_argument("--saved", default=None,
+                    help="a pickle of (scene, max_load_multiplier result) for the large "
+                    "wall, to measure the pages without solving it again (the solve "
+                    "takes minutes and is not what this benchmark measures)")
     args = ap.parse_args(argv)
 
     import rigidblocks as rb
@@ -154,9 +158,19 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         empty = Path(tmp) / "empty.html"
         empty.write_text("<!DOCTYPE html><html><body></body></html>")
         baseline = page_state(empty).seconds
+        saved = None
+        if args.saved:
+            import pickle
+
+            with open(args.saved, "rb") as fh:
+                saved = pickle.load(fh)
         for name, scene in scenes(args.tiny):
             t = time.perf_counter()
-            res = rb.max_load_multiplier(scene)
+            if saved is not None and name.startswith("wall3d") and \
+                    len(saved[0].blocks) == len(scene.blocks):
+                scene, res = saved
+            else:
+                res = rb.max_load_multiplier(scene)
             solve_s = time.perf_counter() - t
             row: dict[str, Any] = {"scene": name, "blocks": len(scene.blocks),
                                    "joints": res.contacts.n_joints, "status": res.status,
