@@ -35,7 +35,7 @@ class Report(str):
     """The HTML document (a ``str``) that shows itself in a notebook."""
 
     #: height of the frame a notebook shows it in (CSS)
-    frame_height = "760px"
+    frame_height = "900px"
 
     def _repr_html_(self) -> str:
         return ('<div class="rb-report-frame">'

@@ -406,6 +406,7 @@
       if (layers[name]) layers[name].visible = box.checked;
       box.addEventListener("change", function () {
         layers[name].visible = box.checked;
+        if (name === "forces") look();
         if (name === "mechanism") {
           displace(box.checked ? amplitude : 0);
           if (slider) slider.disabled = !box.checked;
@@ -456,6 +457,15 @@
       root.scrollIntoView({ block: "nearest" });
     };
 
+    // with the forces on, the blocks turn see-through: most joints are inside
+    function look() {
+      const see = layers.forces.visible && !!(J && J.forces);
+      blockMat.transparent = see;
+      blockMat.opacity = see ? 0.35 : 1;
+      blockMat.depthWrite = !see;
+      blockMat.needsUpdate = true;
+    }
+    look();
     if (M && layers.mechanism.visible) displace(amplitude);
     if (typeof ResizeObserver !== "undefined") new ResizeObserver(resize).observe(canvas);
     resize();
