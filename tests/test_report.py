@@ -202,3 +202,18 @@ def test_browser_check_sees_javascript_errors(tmp_path):
                     encoding="utf-8")
     st = page_state(html)
     assert any("undefinedFunction" in e for e in st.errors)
+
+
+def test_undecided_result_reads_as_no_verdict_everywhere(block_on_base):
+    """A status the analyses may add (undecided, failure): the badge, the headline and
+    the picture all say that nothing was decided."""
+    import dataclasses
+
+    sc = block_on_base(b=1.0, h=2.0, friction=0.5)
+    res = dataclasses.replace(rb.check(sc, load_factor=0.3), status="undecided", state=None,
+                              notes=("the bracket did not close",))
+    page = rb.report(sc, res)
+    assert 'data-verdict="no"' in page and ">no verdict<" in page
+    assert "NO VERDICT" in page  # the picture's title and message
+    assert "ADMISSIBLE" not in page.replace("NOT ADMISSIBLE", "")
+    assert "the bracket did not close" in page
