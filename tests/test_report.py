@@ -186,6 +186,10 @@ def test_3d_report_in_chromium(tmp_path):
     st = page_state(html)
     assert st.errors == ()
     assert st.data.get("viewer-ready") == "1"
+    # every control once (layers, slider, play, reset, a table row, a joint's forces)
+    ctl = page_state(html, fragment="rb-selftest")
+    assert ctl.errors == () and ctl.data.get("selftest") == "done"
+    assert ctl.data["selftest-tip"].startswith("joint ") and "state:" in ctl.data["selftest-tip"]
     assert float(st.data["viewer-painted"]) > 0.02  # the view drew the blocks
     assert int(st.data["viewer-draw-calls"]) <= 16
     png = tmp_path / "stack.png"

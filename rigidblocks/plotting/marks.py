@@ -5,6 +5,7 @@ off the axes.
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 from typing import Any
 
@@ -34,6 +35,22 @@ LAMBDA = "\N{GREEK SMALL LETTER LAMDA}"
 TIMES = "\N{MULTIPLICATION SIGN}"
 
 
+_WEIGHTS: dict[int, tuple[Any, tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
+
+
+def scene_weights(scene: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`rigidblocks.scene.geometry.block_weights`, remembered for the last scene
+    asked about (a report asks for them several times; a 3D block's volume and
+    centroid take a fraction of a millisecond each, seconds for thousands)."""
+    hit = _WEIGHTS.get(id(scene))
+    if hit is not None and hit[0]() is scene:
+        return hit[1]
+    value = block_weights(scene)
+    _WEIGHTS.clear()
+    _WEIGHTS[id(scene)] = (weakref.ref(scene), value)
+    return value
+
+
 @dataclass(frozen=True)
 class LoadMark:
     """One load arrow: it starts at ``tail`` and points along ``direction`` (unit) for
@@ -58,7 +75,7 @@ def load_marks(scene: Scene) -> list[LoadMark]:
     d = scene.dimension
     fu = f" {scene.force_unit}" if scene.force_unit else ""
     size = scene_size(scene)
-    w, centroids, _ = block_weights(scene)
+    w, centroids, _ = scene_weights(scene)
     free = ~scene.support_mask
     out: list[LoadMark] = []
     W = float(w[free].sum())
@@ -179,5 +196,5 @@ def line_handle(colour: str, label: str, **kw: Any) -> Any:
     return Line2D([], [], color=colour, label=label, **kw)
 
 
-__all__ = ["ZERO_FORCE", "LoadMark", "arrow_handle", "joint_motion", "line_handle", "load_marks",
-           "marked_joints", "new_axes", "place_legend"]
+__all__ = ["ZERO_FORCE", "LoadMark", "arrow_handle", "joint_motion", "line_handle",
+           "load_marks", "marked_joints", "new_axes", "place_legend", "scene_weights"]

@@ -56,6 +56,7 @@ from .marks import (
     marked_joints,
     new_axes,
     place_legend,
+    scene_weights,
 )
 
 #: above this many joints no force arrows are drawn (the joints become a heat map)
@@ -104,7 +105,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     if ax is None:
         ax = new_axes(2, len(scene.blocks))
     size = scene_size(scene)
-    _, centroids, _ = block_weights(scene)
+    _, centroids, _ = scene_weights(scene)
     polys = [b.points for b in scene.blocks]
     sup = scene.support_mask
     mech = getattr(result, "mechanism", None)

@@ -15,8 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..plotting.marks import ZERO_FORCE
-from ..scene.geometry import block_weights
+from ..plotting.marks import ZERO_FORCE, scene_weights
 from ..scene.model import Scene
 
 #: statuses that answer the question, and how the answer reads (tone of the badge)
@@ -87,7 +86,7 @@ def live_load_text(scene: Scene) -> str:
     parts = []
     lbf = scene.live_body_force
     if lbf is not None and any(v != 0 for v in lbf):
-        w, _, _ = block_weights(scene)
+        w, _, _ = scene_weights(scene)
         total = float(w[~scene.support_mask].sum())
         mag = float(np.linalg.norm(lbf))
         parts.append(f"a body force of each free block's weight times {_vec(lbf)} "
@@ -104,7 +103,7 @@ def summary(scene: Scene, result: Any = None) -> Summary:
     fu = scene.force_unit or "(no unit given)"
     n = len(scene.blocks)
     ns = int(scene.support_mask.sum())
-    w, _, _ = block_weights(scene)
+    w, _, _ = scene_weights(scene)
     pts = np.concatenate([b.points for b in scene.blocks])
     ext = pts.max(axis=0) - pts.min(axis=0)
     rows = [("dimension", f"{scene.dimension}D"),

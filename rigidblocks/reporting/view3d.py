@@ -19,10 +19,10 @@ from typing import Any
 
 import numpy as np
 
-from ..plotting.marks import load_marks, marked_joints
+from ..plotting.marks import load_marks, marked_joints, scene_weights
 from ..plotting.plot2d import DISPLACEMENT_FRACTION, MIN_ARROW_FRACTION
 from ..plotting.plot3d import joint_force_vectors_3d, mechanism_joints
-from ..scene.geometry import block_weights, scene_size
+from ..scene.geometry import scene_size
 from ..scene.model import Scene
 from ..scene.polyhedra import outward_faces
 
@@ -69,7 +69,7 @@ def view_data(scene: Scene, result: Any = None) -> dict[str, Any]:
     """Everything the 3D viewer needs, JSON-ready (arrays as base64 strings)."""
     g = geometry(scene)
     size = scene_size(scene)
-    _, centroids, _ = block_weights(scene)
+    _, centroids, _ = scene_weights(scene)
     sup = scene.support_mask
     pts = g["positions"]
     out: dict[str, Any] = {

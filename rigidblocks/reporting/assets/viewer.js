@@ -76,8 +76,10 @@
     const canvas = root.querySelector("canvas");
     const tip = root.querySelector(".rb-tip");
     const labelsBox = root.querySelector(".rb-labels");
-    const renderer = new THREE.WebGLRenderer({ canvas: canvas, antialias: true,
-      preserveDrawingBuffer: true });
+    // multisampling triples the cost of a frame without a GPU (software WebGL): large
+    // scenes go without it, their edges drawn anyway
+    const renderer = new THREE.WebGLRenderer({ canvas: canvas,
+      antialias: D.n_triangles < 20000, preserveDrawingBuffer: true });
     renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
     const scene = new THREE.Scene();
     scene.background = new THREE.Color(0xf6f5f0);
@@ -494,6 +496,30 @@
     stats.viewerTriangles = String(info.triangles);
     stats.viewerDrawCalls = String(info.calls);
     if (location.hash.indexOf("rb-bench") >= 0) bench(gl, px);
+    if (location.hash.indexOf("rb-selftest") >= 0) selftest();
+
+    // every control once, as a user would (#rb-selftest in the address): errors go to
+    // the page's error hook, the hover's text to data-selftest-tip
+    function selftest() {
+      for (const box of root.querySelectorAll("input[data-layer]")) {
+        if (box.disabled) continue;
+        box.checked = !box.checked; box.dispatchEvent(new Event("change"));
+        box.checked = !box.checked; box.dispatchEvent(new Event("change"));
+      }
+      if (slider && !slider.disabled) {
+        slider.value = "500"; slider.dispatchEvent(new Event("input"));
+      }
+      if (play && !play.disabled) { play.click(); play.click(); }
+      if (reset) reset.click();
+      if (J) window.rbHighlightJoint(0);
+      const row = document.querySelector("#rb-table tbody tr");
+      if (row) row.click();
+      const th = document.querySelector("#rb-table th");
+      if (th) th.click();
+      render();
+      stats.selftestTip = tip.hidden ? "" : tip.textContent;
+      stats.selftest = "done";
+    }
 
     // timing of interaction, for the benchmark (#rb-bench in the address)
     function bench(gl, px) {
