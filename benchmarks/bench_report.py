@@ -23,6 +23,7 @@ for the comparison, plotly).
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import tempfile
 import time
@@ -192,29 +193,32 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
                 row["plotly"] = measure(ppath)
             rows.append(row)
             print(name, {k: v for k, v in row.items()}, flush=True)
-    md = markdown(rows, baseline, with_plotly)
+    load = os.getloadavg() if hasattr(os, "getloadavg") else None
+    md = markdown(rows, baseline, with_plotly, load)
     write_results(args.out, "bench_report", {"rows": rows, "chromium_baseline_s": baseline,
-                                             "plotly_frames": PLOTLY_FRAMES}, md)
+                                             "plotly_frames": PLOTLY_FRAMES,
+                                             "load_average": load}, md)
     return {"rows": rows, "baseline": baseline}
 
 
-def markdown(rows: list[dict[str, Any]], baseline: float, with_plotly: bool) -> str:
+def markdown(rows: list[dict[str, Any]], baseline: float, with_plotly: bool,
+             load: Sequence[float] | None = None) -> str:
     def mb(b: int) -> str:
         return f"{b / 1e6:.2f} MB"
 
-    head = ["scene", "blocks", "joints", "three.js HTML", "first frame ms", "turn ms/frame",
-            "slider ms/frame", "hover ms", "triangles", "draw calls"]
+    head = ["scene", "blocks", "joints", "three.js HTML", "first frame ms", "Chromium s",
+            "turn ms/frame", "slider ms/frame", "hover ms", "triangles", "draw calls"]
     if with_plotly:
-        head += ["plotly HTML", "plotly first frame ms"]
+        head += ["plotly HTML", "plotly first frame ms", "plotly Chromium s"]
     body = []
     for r in rows:
         t = r["three"]
         line = [r["scene"], r["blocks"], r["joints"], mb(r["three_bytes"]),
-                t["first_frame_ms"], t["rotate_ms"], t["slider_ms"], t["hover_ms"],
-                t["triangles"], t["draw_calls"]]
+                t["first_frame_ms"], t["chromium_s"], t["rotate_ms"], t["slider_ms"],
+                t["hover_ms"], t["triangles"], t["draw_calls"]]
         if with_plotly:
             p = r.get("plotly", {})
-            line += [mb(r["plotly_bytes"]), p.get("first_frame_ms")]
+            line += [mb(r["plotly_bytes"]), p.get("first_frame_ms"), p.get("chromium_s")]
         body.append(line)
     return ("## The 3D report view: three.js or plotly\n\n"
             "`python benchmarks/bench_report.py`: each scene after `max_load_multiplier`, "
@@ -223,7 +227,13 @@ def markdown(rows: list[dict[str, Any]], baseline: float, with_plotly: bool) -> 
             "Chromium with software WebGL (SwiftShader, no GPU; Chromium's start-up on an "
             f"empty page is {baseline:.2f} s). First frame: `performance.now()` when the "
             "view is drawn, from navigation. Turn and slider: a frame while turning the "
-            "view and while the mechanism slider moves, the GPU waited for.\n\n"
+            "view and while the mechanism slider moves (every vertex moved on the CPU), "
+            "each waited for until drawn; hover: one ray cast over the joints' dots. "
+            "Chromium s: the whole headless run, start-up included. Scenes of more than "
+            "20,000 triangles are drawn without multisampling."
+            + (f" Load average during the run: {load[0]:.1f} on "
+               f"{os.cpu_count()} cores (a shared machine: the times are upper bounds)."
+               if load else "") + "\n\n"
             + markdown_table(head, body) + "\n")
 
 
