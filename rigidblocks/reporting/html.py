@@ -155,7 +155,7 @@ def _view3d_html(mechanism: bool) -> str:
                            # with a mechanism the forces are one layer too many at first
                            ("forces", "forces", not mechanism),
                            ("mechanism", "mechanism", True), ("loads", "loads", True),
-                           ("joints", "joint dots (hover)", True)))
+                           ("joints", "joint dots", True)))
     return (
         '<div class="rb-view" id="rb-view"><canvas aria-label="interactive 3D view">'
         "</canvas>" + legend + '<div class="rb-labels"></div><div class="rb-tip" hidden>'
@@ -164,7 +164,7 @@ def _view3d_html(mechanism: bool) -> str:
         'value="1000"></label><button class="rb-play" type="button">play</button>'
         '<button class="rb-reset" type="button">reset view</button></div></div>'
         '<p class="rb-help">Drag to turn, wheel to zoom, right-drag or shift-drag to pan; '
-        "hover a joint's dot for its forces, click a row of the table to find its joint. "
+        "hover a joint (its dot) for its forces, click a row of the table to find it. "
         "The mechanism's displacements are to an arbitrary scale (the slider).</p>"
         '<p id="rb-view-msg" hidden>The 3D view could not start (it needs WebGL); the '
         "tables below are complete.</p>")

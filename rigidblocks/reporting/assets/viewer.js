@@ -129,7 +129,7 @@
     edgeGeo.setAttribute("position", posAttr);
     edgeGeo.setIndex(new THREE.BufferAttribute(decode(D.edges, Uint32Array), 1));
     const edges = new THREE.LineSegments(edgeGeo, new THREE.LineBasicMaterial({
-      color: 0x222222, transparent: true, opacity: n > 2000 ? 0.35 : 0.7 }));
+      color: 0x222222, transparent: true, opacity: n > 2000 ? 0.15 : 0.7 }));
     edges.frustumCulled = false;
     // the original position, shown as faint edges while the mechanism is displaced
     const ghostGeo = new THREE.BufferGeometry();
@@ -376,7 +376,7 @@
       request();
     }
     function hover(e) {
-      if (!jointDots || !layers.joints.visible) return;
+      if (!jointDots) return;  // the dots need not be shown to be found
       const r = canvas.getBoundingClientRect();
       hoverPending = { x: e.clientX - r.left, y: e.clientY - r.top };
       requestAnimationFrame(function () {
@@ -399,6 +399,8 @@
     // -- controls panel -------------------------------------------------------------------
     for (const box of root.querySelectorAll("input[data-layer]")) {
       const name = box.getAttribute("data-layer");
+      // thousands of joint dots veil the blocks: shown on request only
+      if (name === "joints" && J && J.n > 3000) box.checked = false;
       if (!layers[name] || (name === "mechanism" && !M) || (name === "forces" &&
           !(J && J.forces)) || (name === "joints" && !J)) {
         box.disabled = true;
