@@ -63,6 +63,9 @@ from .marks import (
 MAX_ARROWS = 400
 #: arrows shorter than this fraction of the largest one are left out
 MIN_ARROW_FRACTION = 0.05
+#: above this many marked joints of a kind, a mechanism picture draws small marks (hinges)
+#: or the joints themselves (sliding) instead of large markers that would bury it
+MANY_MARKS = 40
 #: the largest mechanism displacement, as a fraction of the scene's size
 DISPLACEMENT_FRACTION = 0.1
 
@@ -425,11 +428,17 @@ def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, s
         pick = np.where(op[c.joint_start[hinge]] <= op[c.joint_start[hinge + 1] - 1],
                         c.joint_start[hinge], c.joint_start[hinge + 1] - 1)
         hp = c.points[pick]
-        sc = ax.scatter(hp[:, 0], hp[:, 1], s=40, c=HINGE_COLOUR, marker="o", zorder=5,
-                        label="hinge")
+        sc = ax.scatter(hp[:, 0], hp[:, 1], s=40 if len(hinge) <= MANY_MARKS else 8,
+                        c=HINGE_COLOUR, marker="o", zorder=5, label="hinge")
         sc.set_gid("rb-hinges")
     slide = marks["slide"]
-    if len(slide):
+    if len(slide) > MANY_MARKS:  # many: the sliding joints themselves, drawn in blue
+        lc = LineCollection(np.stack([first[slide], last[slide]], axis=1),
+                            colors=SLIDE_COLOUR, linewidths=1.5, zorder=4,
+                            label="sliding joint")
+        lc.set_gid("rb-sliding")
+        ax.add_collection(lc)
+    elif len(slide):
         mid = 0.5 * (first[slide] + last[slide])
         sc = ax.scatter(mid[:, 0], mid[:, 1], s=60, c=SLIDE_COLOUR, marker="D", zorder=5,
                         label="sliding joint")
