@@ -166,10 +166,11 @@ def _title(scene: Scene, result: Any) -> str:
         txt = f"{a}: NO VERDICT (status \u201c{status}\u201d)"
     elif a == "min_friction":
         if result.friction_factor is None:
-            txt = "unstable: no friction suffices"
+            txt = "unstable: no friction suffices" + _at_lambda(result)
         else:
             txt = (f"minimum friction f* = {result.friction_factor:.4g} "
-                   f"(friction angle {result.friction_angle_deg:.2f}\N{DEGREE SIGN})")
+                   f"(friction angle {result.friction_angle_deg:.2f}\N{DEGREE SIGN})"
+                   + _at_lambda(result))
     elif a == "max_load_multiplier":
         if result.load_multiplier is None:
             txt = f"load multiplier: {result.status}"
@@ -183,6 +184,11 @@ def _title(scene: Scene, result: Any) -> str:
     else:
         txt = f"{a}: {result.status}"
     return f"{name}\n{txt}" if name else txt
+
+
+def _at_lambda(result: Any) -> str:
+    lam = getattr(result, "load_factor", None)
+    return "" if lam is None else f" at \N{GREEK SMALL LETTER LAMDA} = {float(lam):g}"
 
 
 def _fmt_f(f: Any) -> str:
