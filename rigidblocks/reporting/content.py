@@ -116,7 +116,9 @@ def summary(scene: Scene, result: Any = None) -> Summary:
               + (f" {scene.length_unit}" if scene.length_unit else ""))]
     if scene.dimension == 2:
         rows.append(("depth (out of plane)", fmt(scene.effective_depth)))
-    rows.append(("unit weight", fmt(scene.effective_unit_weight)
+    uw_unit = (f" {scene.force_unit}/{scene.length_unit}\N{SUPERSCRIPT THREE}"
+               if scene.force_unit and scene.length_unit else "")
+    rows.append(("unit weight", fmt(scene.effective_unit_weight) + uw_unit
                  + ("" if scene.unit_weight is not None else " (not given: 0)")))
     total = float(w[~scene.support_mask].sum())
     rows.append(("weight of the free blocks", f"{fmt(total)} {scene.force_unit}".strip()))
@@ -292,7 +294,8 @@ def joint_states(result: Any) -> list[str]:
 def joint_table(result: Any) -> dict[str, Any]:
     """Per-joint rows (joint, N, T, e, |T|/N, state, governing) as columns of lists,
     ready for JSON. 3D: T is the shear's magnitude and e the distance of the centre of
-    pressure from the contact polygon's centroid."""
+    pressure from the contact polygon's centroid. A joint whose forces are both below
+    ZERO_FORCE of the largest (solver round-off) shows N = T = 0 and no demand."""
     c = getattr(result, "contacts", None)
     st = getattr(result, "state", None)
     if c is None or not c.n_joints:
@@ -306,8 +309,14 @@ def joint_table(result: Any) -> dict[str, Any]:
                            "has_forces": st is not None}
     if st is None:
         return out
-    N = np.asarray(st.joint_normal, dtype=float)
-    T = np.asarray(st.joint_shear, dtype=float)
+    N = np.asarray(st.joint_normal, dtype=float).copy()
+    T = np.asarray(st.joint_shear, dtype=float).copy()
+    # round-off of the interior-point state (below ZERO_FORCE of the largest joint
+    # force) is shown as no force, with no friction demand
+    top = max(float(np.abs(N).max(initial=0.0)), float(np.abs(T).max(initial=0.0)))
+    tiny = (np.abs(N) <= ZERO_FORCE * top) & (np.abs(T) <= ZERO_FORCE * top)
+    N[tiny] = 0.0
+    T[tiny] = 0.0
     if c.dimension == 2:
         e = np.asarray(st.eccentricity, dtype=float)
     else:
@@ -316,7 +325,8 @@ def joint_table(result: Any) -> dict[str, Any]:
                         for k in range(3)], axis=1) / counts[:, None]
         tp = np.asarray(st.thrust_points, dtype=float)
         e = np.where(N > 0, np.linalg.norm(tp - cen, axis=1), np.nan)
-    dem = np.asarray(st.demand, dtype=float)
+    dem = np.where(tiny, np.nan, np.asarray(st.demand, dtype=float))
+    e = np.where(tiny, np.nan, e)
 
     def col(a: np.ndarray) -> list[float | str | None]:
         return [None if math.isnan(x) else ("inf" if math.isinf(x) else float(f"{x:.6g}"))
