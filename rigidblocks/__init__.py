@@ -3,6 +3,7 @@
 import sys as _sys
 
 from . import studies as study
+from ._version import __version__
 from .analyses import check, load_path, max_load_multiplier, min_friction
 from .contacts import Contacts, detect_contacts
 from .equilibrium import EquilibriumSystem, assemble
@@ -14,14 +15,20 @@ from .studies import min_thickness
 #: ``from rigidblocks import study`` and ``import rigidblocks.study``: the studies package
 _sys.modules[f"{__name__}.study"] = study
 
-__version__ = "0.1.0"
-
 
 def plot(scene: Scene, result: object = None, ax: object = None, **kwargs: object) -> object:
     """Draw a 2D or 3D scene and a result; see :func:`rigidblocks.plotting.plot`."""
     from .plotting import plot as _plot
 
     return _plot(scene, result, ax, **kwargs)
+
+
+def report(scene: object, result: object = None, **kwargs: object) -> str:
+    """A self-contained HTML report (a ``str`` that shows itself in a notebook); see
+    :func:`rigidblocks.reporting.report`."""
+    from .reporting import report as _report
+
+    return _report(scene, result, **kwargs)  # type: ignore[arg-type]
 
 
 def read_dxf(path: object, **kwargs: object) -> object:
@@ -32,8 +39,9 @@ def read_dxf(path: object, **kwargs: object) -> object:
 
 
 __all__ = [
-    "INFINITE", "Block", "Contacts", "EquilibriumSystem", "InputError", "JointOverride",
+    "__version__", "INFINITE", "Block", "Contacts", "EquilibriumSystem", "InputError",
+    "JointOverride",
     "Load", "RigidBlocksError", "Scene", "SolverFailure", "assemble", "detect_contacts",
-    "check", "make_block", "max_load_multiplier", "min_friction", "plot", "read_dxf",
+    "check", "make_block", "max_load_multiplier", "min_friction", "plot", "read_dxf", "report",
     "read_scene", "write_scene", "load_path", "min_thickness",
 ]

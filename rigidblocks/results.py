@@ -195,28 +195,36 @@ class Result:
 
 def headline(result: Any, symbols: bool = False) -> str:
     """The answer of a result in one line: what the CLI prints as its verdict, what a
-    picture's title and a drawing's note say. ``symbols``: write lambda, phi and the
-    degree sign as symbols (pictures) rather than ASCII (text, DXF)."""
+    picture's title, a report's answer and a drawing's note say. A status that is not a
+    verdict (undecided, failure) reads "NO VERDICT". ``symbols``: write lambda, infinity
+    and the degree sign as symbols (pictures, reports) rather than ASCII (text, DXF)."""
     if result is None:
         return ""
     lam, deg, inf = ("\N{GREEK SMALL LETTER LAMDA}", "\N{DEGREE SIGN}", "\N{INFINITY}") \
         if symbols else ("lambda", " deg", "infinite")
     status = getattr(result, "status", "")
     a = getattr(result, "analysis", "")
-    if a == "min_friction" and result.friction_factor is not None:
+    lf = getattr(result, "load_factor", None)
+    at = "" if lf is None else f" at {lam} = {float(lf):g}"
+    if status in Result.UNDECIDED:
+        return f"{a.replace('_', ' ')}: NO VERDICT ({status})"
+    if a == "min_friction":
+        if result.friction_factor is None:
+            return f"unstable: no friction suffices{at}"
         return (f"minimum friction f* = {result.friction_factor:.4g} "
-                f"(friction angle {result.friction_angle_deg:.2f}{deg})")
-    if a == "max_load_multiplier" and result.load_multiplier is not None:
-        return (f"collapse load multiplier {lam}* = {result.load_multiplier:.4g}, "
-                f"f = {_friction_text(result.friction, deg, inf)}")
-    if a == "check" and status in ("admissible", "inadmissible"):
-        verdict = "admissible" if status == "admissible" else "not admissible"
-        return (f"{verdict} at f = {_friction_text(result.friction, deg, inf)}, "
-                f"{lam} = {result.load_factor:g}")
-    words = {"unstable": "unstable: no friction suffices" if a == "min_friction" else
-             "unstable: the dead load alone has no admissible state",
-             "unbounded": "unbounded: no multiplier of the live load makes it collapse"}
-    return words.get(status, f"{a.replace('_', ' ')}: {status}")
+                f"(friction angle {result.friction_angle_deg:.2f}{deg}){at}")
+    if a == "max_load_multiplier":
+        if result.load_multiplier is not None:
+            return (f"collapse load multiplier {lam}* = {result.load_multiplier:.4g}, "
+                    f"f = {_friction_text(result.friction, deg, inf)}")
+        return {"unstable": "unstable: the dead load alone has no admissible state",
+                "unbounded": "unbounded: no multiplier of the live load makes it collapse",
+                }.get(status, f"maximum load multiplier: {status}")
+    if a == "check":
+        verdict = {"admissible": "admissible", "inadmissible": "NOT ADMISSIBLE"}.get(
+            status, status)
+        return f"{verdict} at f = {_friction_text(result.friction, deg, inf)}, {lam} = {lf:g}"
+    return f"{a.replace('_', ' ')}: {status}"
 
 
 def _friction_text(f: Any, deg: str, inf: str) -> str:

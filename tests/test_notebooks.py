@@ -110,6 +110,10 @@ def test_quick_start(tmp_path):
     m = re.search(r"3D: lambda\* = ([0-9.]+) .*f\* = ([0-9.]+)", text)
     assert m and abs(float(m[1]) - 1.2) < 1e-3 and abs(float(m[2]) - 0.5) < 1e-3
     assert images_of(nb) >= 6
+    # the report shows itself: the interactive page in a frame
+    html = [o["data"]["text/html"] for c in nb.cells for o in c.get("outputs", [])
+            if "text/html" in o.get("data", {})]
+    assert any("rb-report-frame" in "".join(h) and "rb-view" in "".join(h) for h in html)
 
 
 def test_seed_examples(tmp_path):

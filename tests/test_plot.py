@@ -74,7 +74,8 @@ def test_scene_only_counts_patches_and_limits():
     ax = rb.plot(sc, ids=True)
     assert n_paths(ax, "rb-blocks") == 5
     assert n_paths(ax, "rb-supports") == 1
-    assert len(ax.texts) == 6
+    # the block ids; the loads' arrows and values carry their own gid
+    assert len([t for t in ax.texts if t.get_gid() != "rb-loads"]) == 6
     assert arrows(ax) == 0
     assert_contains_blocks(ax, [b.points for b in sc.blocks])
     assert ax.get_aspect() == 1.0
@@ -204,3 +205,60 @@ def test_render_every_example(path, tmp_path):
     out = tmp_path / "x.png"
     ax.figure.savefig(out)
     assert out.stat().st_size > 0
+
+
+def test_legend_and_labels_keep_off_the_axes(tmp_path):
+    """``plot flat_arch_vertical.json --analysis friction --load-factor 0``: the legend
+    (one entry per mark, the force arrows included) sits below the figure and overlaps
+    neither the axes nor the x label."""
+    sc = read_scene(EXAMPLES / "flat_arch_vertical.json")
+    res = rb.min_friction(sc, load_factor=0.0)
+    ax = rb.plot(sc, res)
+    fig = ax.figure
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    (leg,) = [a for a in fig.legends if a.get_gid() == "rb-legend"]
+    lb = leg.get_window_extent(r)
+    assert not lb.overlaps(ax.get_window_extent(r))
+    assert not lb.overlaps(ax.xaxis.label.get_window_extent(r))
+    labels = [t.get_text() for t in leg.get_texts()]
+    for want in ("thrust line", "governing joint", "joint force resultant", "dead load",
+                 "live load"):
+        assert any(want in t for t in labels), (want, labels)
+
+
+def test_loads_drawn_with_values():
+    sc = stack(3)
+    ax = rb.plot(sc)
+    texts = [t.get_text() for t in ax.texts if t.get_gid() == "rb-loads"]
+    # 3 blocks of 1 x 0.5 at unit weight 1: W = 1.5 kN, live body force W x (1, 0)
+    assert any("self-weight 1.5 kN" in t for t in texts)
+    assert any(t.strip().startswith("live: \N{GREEK SMALL LETTER LAMDA} \N{MULTIPLICATION SIGN}"
+                                    " 1.5 kN") for t in texts)
+    sc2 = make_scene([{"id": "base", "vertices": rect(-1, -1, 3, 1), "support": True},
+                      {"id": "B", "vertices": rect(0, 0, 1, 1)}],
+                     loads=[{"block": "B", "force": [0, -10], "point": [0.5, 1.0]},
+                            {"block": "B", "force": [2, 0], "point": [0, 0.5], "live": True}],
+                     units={"length": "m", "force": "kN"})
+    texts = [t.get_text().strip() for t in rb.plot(sc2).texts if t.get_gid() == "rb-loads"]
+    assert "10 kN" in texts and "\N{GREEK SMALL LETTER LAMDA} \N{MULTIPLICATION SIGN} 2 kN" in texts
+
+
+def test_inadmissible_check_says_so(block_on_base):
+    sc = block_on_base(b=1.0, h=2.0, friction=0.1)
+    res = rb.check(sc, load_factor=0.3)
+    assert res.status == "inadmissible"
+    ax = rb.plot(sc, res)
+    assert "NOT ADMISSIBLE" in ax.get_title()
+    (msg,) = [t for t in ax.texts if t.get_gid() == "rb-verdict"]
+    assert "NOT ADMISSIBLE" in msg.get_text()
+
+
+def test_svg_keeps_text_as_text(tmp_path):
+    path = tmp_path / "s.json"
+    write_scene(stack(3), path)
+    out = tmp_path / "s.svg"
+    assert main(["plot", str(path), "--analysis", "load", "-o", str(out)]) == 0
+    svg = out.read_text()
+    assert "<text" in svg and "collapse load multiplier" in svg
+    assert 'id="DejaVuSans' not in svg  # no glyphs stored as paths

@@ -78,10 +78,12 @@ def test_mechanism_displaced_blocks_and_hinge_line():
     ax = rb.plot(s, res)
     assert n_polys(ax, "rb-displaced") == 6
     (h,) = by_gid(ax, "rb-hinges")
-    pts = np.asarray(h._offsets3d).T
-    # the hinge points lie on the toe edge x = 0.5, z = 0
-    assert len(pts) == 2
-    np.testing.assert_allclose(pts[:, [0, 2]], [[0.5, 0.0], [0.5, 0.0]], atol=1e-9)
+    (seg,) = np.asarray(h._segments3d)
+    # one hinge line, along the toe edge x = 0.5, z = 0, the bed's full length
+    np.testing.assert_allclose(seg[:, [0, 2]], [[0.5, 0.0], [0.5, 0.0]], atol=1e-9)
+    assert abs(seg[1, 1] - seg[0, 1]) == pytest.approx(1.0)
+    # only the joint that moves is marked, and nothing slides
+    assert not by_gid(ax, "rb-sliding") and not by_gid(ax, "rb-open")
 
 
 def test_displaced_vertices_rotate_about_the_hinge():

@@ -25,6 +25,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "thickness": ("thickness", "minimum thickness of a generator's family (bisection)"),
     "path": ("path", "load path of the distortion solver: cracks, plastic joints, collapse"),
     "plot": ("plot", "draw a scene and an analysis result (png, svg, pdf)"),
+    "report": ("report", "one self-contained HTML report: answer, pictures, 3D view, joints"),
     "import-dxf": ("dxf", "read a DXF drawing (closed polylines) into a scene file"),
     "export-dxf": ("dxf", "write a scene, its thrust line and forces to DXF"),
     "sweep": ("sweep", "parametric study from a spec file: many cases, in parallel, resumable"),
@@ -39,7 +40,7 @@ class _Parser(argparse.ArgumentParser):
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="rigidblocks", description="Limit analysis of rigid-block "
                      "masonry with unilateral frictional joints.")
-    from .. import __version__
+    from .._version import __version__
 
     parser.add_argument("--version", action="version", version=f"rigidblocks {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)

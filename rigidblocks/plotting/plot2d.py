@@ -14,13 +14,23 @@
   :func:`displaced_polygons`), s chosen so that the largest displacement is about
   10 % of the scene's size; hinges and sliding joints are marked.
 
+Loads are drawn with their values: the self-weight and the live body force as
+resultants at the free blocks' centre of gravity (the live one says what lambda
+multiplies), point loads as arrows ending at their points (live ones "lambda x F").
+Joints that carry no force (open) are dashed, those whose resultant sits on an edge
+(hinging) get a dot there; every mark has a legend entry, and the legend goes below
+the figure (constrained layout), never over the axes. An inadmissible ``check`` has no
+force state: its picture says so in the title and on the axes.
+
 Large scenes stay readable: above ``max_arrows`` joints no arrows are drawn and the
 joints are drawn as a heat map instead (colour: friction demand, line width:
 normal force); arrows shorter than a twentieth of the largest are left out.
 
 Every artist carries a ``gid`` (``"rb-blocks"``, ``"rb-supports"``, ``"rb-joints"``,
 ``"rb-forces"``, ``"rb-thrust"``, ``"rb-governing"``, ``"rb-displaced"``,
-``"rb-hinges"``, ``"rb-sliding"``, ``"rb-force-key"``) so that programs can find it.
+``"rb-hinges"``, ``"rb-sliding"``, ``"rb-open"``, ``"rb-force-key"``, ``"rb-loads"``,
+``"rb-open-joints"``, ``"rb-hinging"``, ``"rb-legend"``, ``"rb-verdict"``) so that
+programs can find it.
 """
 
 from __future__ import annotations
@@ -33,22 +43,43 @@ import numpy as np
 from ..results import headline
 from ..scene.geometry import block_weights, scene_size
 from ..scene.model import Scene
+from .marks import (
+    DEAD_COLOUR,
+    HINGE_COLOUR,
+    LIVE_COLOUR,
+    MOVING_COLOUR,
+    OPEN_COLOUR,
+    SLIDE_COLOUR,
+    ZERO_FORCE,
+    arrow_handle,
+    line_handle,
+    load_marks,
+    marked_joints,
+    new_axes,
+    place_legend,
+    scene_weights,
+)
 
 #: above this many joints no force arrows are drawn (the joints become a heat map)
 MAX_ARROWS = 400
 #: arrows shorter than this fraction of the largest one are left out
 MIN_ARROW_FRACTION = 0.05
+#: above this many marked joints of a kind, a mechanism picture draws small marks (hinges)
+#: or the joints themselves (sliding) instead of large markers that would bury it
+MANY_MARKS = 40
 #: the largest mechanism displacement, as a fraction of the scene's size
 DISPLACEMENT_FRACTION = 0.1
 
 FREE_COLOUR = "#d9c7a7"
 SUPPORT_COLOUR = "#7f7f7f"
+#: statuses that are verdicts; any other (undecided, failure, ...) is titled as none
+VERDICTS = ("admissible", "inadmissible", "stable", "unstable", "collapse", "unbounded")
 
 
 def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
          max_arrows: int = MAX_ARROWS, force_scale: float | None = None,
          displacement_scale: float | None = None, title: str | None = None,
-         colorbar: bool = True) -> Any:
+         colorbar: bool = True, loads: bool = True) -> Any:
     """Draw a 2D scene, and a result of an analysis on it.
 
     Args:
@@ -64,6 +95,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
             the largest displacement is 10 % of the scene's size).
         title: overrides the title made from the result.
         colorbar: add a colour bar for the friction demand.
+        loads: draw the self-weight, the live load's direction and the point loads.
 
     Returns:
         The matplotlib Axes.
@@ -75,12 +107,9 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
 
         raise InputError("plot draws 2D scenes only", scene.source)
     if ax is None:
-        import matplotlib.pyplot as plt
-
-        n = len(scene.blocks)
-        _, ax = plt.subplots(figsize=(10, 7) if n > 200 else (8, 6))
+        ax = new_axes(2, len(scene.blocks))
     size = scene_size(scene)
-    _, centroids, _ = block_weights(scene)
+    _, centroids, _ = scene_weights(scene)
     polys = [b.points for b in scene.blocks]
     sup = scene.support_mask
     mech = getattr(result, "mechanism", None)
@@ -93,7 +122,8 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
                             alpha=0.35 if faded and gid == "rb-blocks" else 1.0,
                             hatch="///" if gid == "rb-supports" else None, zorder=1)
         pc.set_gid(gid)
-        pc.set_label("support" if gid == "rb-supports" else "block")
+        pc.set_label("support" if gid == "rb-supports" else
+                     "block (original position)" if faded else "block")
         ax.add_collection(pc)
     if ids:
         fs = 8 if len(polys) < 60 else 5
@@ -102,14 +132,20 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     allpts = np.concatenate(polys)
     lo, hi = allpts.min(axis=0), allpts.max(axis=0)
 
-    headline = _title(scene, result)
+    title_text = _title(scene, result)
     state = getattr(result, "state", None)
+    extra: list[Any] = []
+    if loads:
+        lo, hi = _draw_loads(ax, scene, lo, hi, extra)
     if mech is not None:
         lo, hi = _draw_mechanism(ax, scene, result, centroids, size, displacement_scale,
-                                 lo, hi)
+                                 lo, hi, extra)
     elif state is not None and result.contacts.n_joints:
-        _draw_forces(ax, scene, result, size, max_arrows, force_scale, colorbar,
-                     LineCollection)
+        lo, hi = _draw_forces(ax, scene, result, size, max_arrows, force_scale, colorbar,
+                              LineCollection, lo, hi, extra)
+    elif result is not None and getattr(result, "status", None) is not None:
+        _no_state(ax, result, scene.force_unit)
+    place_legend(ax, extra)
     pad = 0.05 * (hi - lo).max()
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
     ax.set_ylim(lo[1] - pad, hi[1] + pad)
@@ -117,7 +153,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     unit = scene.length_unit
     ax.set_xlabel(f"x [{unit}]" if unit else "x")
     ax.set_ylabel(f"y [{unit}]" if unit else "y")
-    ax.set_title(title if title is not None else headline)
+    ax.set_title(title if title is not None else title_text)
     return ax
 
 
@@ -148,8 +184,60 @@ def _nice(x: float) -> float:
     return 10**e  # pragma: no cover
 
 
+def _draw_loads(ax: Any, scene: Scene, lo: np.ndarray, hi: np.ndarray,
+                extra: list[Any]) -> tuple[np.ndarray, np.ndarray]:
+    """Load arrows with their values (see :func:`rigidblocks.plotting.marks.load_marks`)."""
+    marks = load_marks(scene)
+    kinds = set()
+    for m in marks:
+        colour = LIVE_COLOUR if m.live else DEAD_COLOUR
+        ann = ax.annotate("", xy=m.tip, xytext=m.tail, zorder=7,
+                          arrowprops={"arrowstyle": "-|>", "color": colour, "lw": 2.0,
+                                      "shrinkA": 0, "shrinkB": 0, "mutation_scale": 16})
+        ann.set_gid("rb-loads")
+        at = m.tip if m.kind != "point load" else m.tail
+        t = ax.text(at[0], at[1], " " + m.label, color=colour, fontsize=8, zorder=7,
+                    ha="left" if m.direction[0] >= 0 else "right",
+                    va="top" if m.direction[1] < 0 else "bottom",
+                    bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
+                          "alpha": 0.7})
+        t.set_gid("rb-loads")
+        kinds.add(m.live)
+        lo = np.minimum(lo, np.minimum(m.tail, m.tip))
+        hi = np.maximum(hi, np.maximum(m.tail, m.tip))
+    if False in kinds:
+        extra.append(arrow_handle(DEAD_COLOUR, "dead load (value shown)"))
+    if True in kinds:
+        extra.append(arrow_handle(LIVE_COLOUR, "live load, multiplied by "
+                                  "\N{GREEK SMALL LETTER LAMDA}"))
+    return lo, hi
+
+
+def _no_state(ax: Any, result: Any, unit: str = "") -> None:
+    """A result without a force state: say why on the axes, not just in the title."""
+    status = getattr(result, "status", "")
+    if status == "inadmissible":
+        v = getattr(result, "violation", None)
+        msg = "NOT ADMISSIBLE: no equilibrium state within the joint laws exists"
+        if v is not None and math.isfinite(float(v)):
+            msg += f"\n(smallest breach of the joint laws {float(v):.3g} {unit})".replace(" )", ")")
+        colour = "tab:red"
+    elif status in VERDICTS:
+        msg = f"{status.upper()}: no force state to draw"
+        colour = "tab:red" if status == "unstable" else "k"
+    else:
+        msg = f"NO VERDICT (status \u201c{status}\u201d): nothing is decided"
+        colour = "0.3"
+    t = ax.text(0.5, 0.97, msg, transform=ax.transAxes, ha="center", va="top", fontsize=10,
+                color=colour, zorder=8,
+                bbox={"boxstyle": "round", "fc": "white", "ec": colour, "alpha": 0.9})
+    t.set_gid("rb-verdict")
+
+
 def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: int,
-                 force_scale: float | None, colorbar: bool, LineCollection: Any) -> None:
+                 force_scale: float | None, colorbar: bool, LineCollection: Any,
+                 lo: np.ndarray, hi: np.ndarray, extra: list[Any]
+                 ) -> tuple[np.ndarray, np.ndarray]:
     from ..results import joint_force_vectors
 
     c = result.contacts
@@ -164,15 +252,41 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
         val = st.demand
         label = "friction demand |T| / N"
     val = np.where(np.isfinite(val), val, 1e3)
+    not_admissible = getattr(result, "status", "") == "inadmissible"
     heat = m > max_arrows
     Nj = np.abs(st.joint_normal)
     nmax = Nj.max(initial=0.0)
+    pn = np.asarray(st.normal, dtype=float)
+    ptol = ZERO_FORCE * max(float(np.abs(pn).max(initial=0.0)), 1e-300)
+    is_open = np.asarray(st.joint_normal) <= 2 * ptol
     widths = (0.5 + 3.5 * Nj / nmax) if (heat and nmax > 0) else (2.5 if m < 200 else 1.5)
-    lc = LineCollection(seg, cmap="RdYlGn_r", linewidths=widths, zorder=3)
-    lc.set_array(val)
+    from matplotlib import colormaps
+
+    lc = LineCollection(seg, cmap=colormaps["RdYlGn_r"].with_extremes(bad=(0, 0, 0, 0)),
+                        linewidths=widths, zorder=3,
+                        label="joint (colour: friction demand)")
+    lc.set_array(np.where(is_open, np.nan, val))
     lc.set_clim(0.0, 1.0)
     lc.set_gid("rb-joints")
     ax.add_collection(lc)
+    if is_open.any():
+        oc = LineCollection(seg[is_open], colors="0.35", linewidths=1.5, linestyles="--",
+                            zorder=3, label="open joint (no force)")
+        oc.set_gid("rb-open-joints")
+        ax.add_collection(oc)
+    # a contact point that carries nothing while its joint does: the resultant is on the
+    # joint's other end (a hinge forming)
+    pj = c.point_joint
+    carried = ~is_open[pj] & (pn <= ptol)
+    if carried.any():
+        other = np.flatnonzero(carried)
+        # the loaded end of the same joint
+        ends = np.where(other == c.joint_start[pj[other]], c.joint_start[pj[other] + 1] - 1,
+                        c.joint_start[pj[other]])
+        hp = c.points[ends]
+        sc = ax.scatter(hp[:, 0], hp[:, 1], s=22, c=HINGE_COLOUR, marker="o", zorder=6,
+                        label="resultant at the joint's edge (hinging)")
+        sc.set_gid("rb-hinging")
     if colorbar:
         ax.figure.colorbar(lc, ax=ax, label=label, shrink=0.8, extend="max")
     # thrust line
@@ -181,13 +295,14 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
     chain = len(order) == m and m > 1 and all(
         set(c.pairs[order[k]]) & set(c.pairs[order[k + 1]]) for k in range(m - 1))
     line = st.thrust_line
+    suffix = " (least-violation state, NOT admissible)" if not_admissible else ""
     if chain:
         (tl,) = ax.plot(line[:, 0], line[:, 1], "-", color="tab:red", lw=1.5, zorder=4,
-                        label="thrust line")
+                        label="thrust line" + suffix)
     else:
         ms = 3 if m < 500 else 1
         (tl,) = ax.plot(pts[:, 0], pts[:, 1], "o", color="tab:red", ms=ms, zorder=4,
-                        label="resultant on joint")
+                        label="resultant on joint" + suffix)
     tl.set_gid("rb-thrust")
     # governing joints
     gov = np.asarray(result.governing, dtype=int)
@@ -196,7 +311,7 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
         sc = ax.scatter(mid[:, 0], mid[:, 1], s=90, facecolors="none", edgecolors="k",
                         linewidths=1.8, zorder=5, label="governing joint")
         sc.set_gid("rb-governing")
-    # force arrows, scaled to a reference arrow in the legend
+    # force arrows, scaled to a reference arrow drawn below the structure
     if not heat:
         vec = joint_force_vectors(c, st)
         mag = np.linalg.norm(vec, axis=1)
@@ -210,10 +325,15 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
             q.set_gid("rb-forces")
             ref = _nice(top)
             unit = scene.force_unit or "force units"
-            key = ax.quiverkey(q, 0.8, -0.16, ref, f"{ref:g} {unit}", labelpos="E",
-                               coordinates="axes")
+            y = lo[1] - 0.08 * size
+            key = ax.quiverkey(q, lo[0], y, ref, f"{ref:g} {unit}", labelpos="E",
+                               coordinates="data", fontproperties={"size": 8})
             key.set_gid("rb-force-key")
-    ax.legend(loc="upper left", bbox_to_anchor=(0.0, -0.12), ncol=3, fontsize=8)
+            lo = np.minimum(lo, [lo[0], y - 0.03 * size])
+            hi = np.maximum(hi, [lo[0] + ref * scale + 0.15 * size, y])
+            extra.append(arrow_handle("tab:blue", f"joint force resultant (key arrow "
+                                      f"{ref:g} {unit}, below)"))
+    return lo, hi
 
 
 def displaced_polygons(scene: Scene, velocities: np.ndarray, s: float,
@@ -243,53 +363,78 @@ def displaced_polygons(scene: Scene, velocities: np.ndarray, s: float,
 
 def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, size: float,
                     displacement_scale: float | None, lo: np.ndarray,
-                    hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    from matplotlib.collections import PolyCollection
+                    hi: np.ndarray, extra: list[Any]) -> tuple[np.ndarray, np.ndarray]:
+    from matplotlib.collections import LineCollection, PolyCollection
 
     mech = result.mechanism
     vel = np.asarray(mech.velocities, dtype=float)
     # largest displacement of any vertex per unit s (small-rotation estimate)
-    reach = 0.0
-    for b, c, (u, v, w) in zip(scene.blocks, centroids, vel, strict=True):
+    reach = np.zeros(len(scene.blocks))
+    for i, (b, c, (u, v, w)) in enumerate(zip(scene.blocks, centroids, vel, strict=True)):
         r = np.linalg.norm(b.points - c, axis=1).max()
-        reach = max(reach, math.hypot(u, v) + abs(w) * r)
+        reach[i] = math.hypot(u, v) + abs(w) * r
+    top = float(reach.max(initial=0.0))
     s = displacement_scale if displacement_scale is not None else (
-        DISPLACEMENT_FRACTION * size / reach if reach > 0 else 0.0)
+        DISPLACEMENT_FRACTION * size / top if top > 0 else 0.0)
     moved = displaced_polygons(scene, vel, s, centroids)
     free = ~scene.support_mask
+    moving = free & (reach > 0.01 * top) if top > 0 else np.zeros_like(free)
     pc = PolyCollection([moved[i] for i in np.flatnonzero(free)], closed=True,
-                        facecolors=FREE_COLOUR, edgecolors="k",
+                        facecolors=[MOVING_COLOUR if moving[i] else FREE_COLOUR
+                                    for i in np.flatnonzero(free)], edgecolors="k",
                         linewidths=0.8 if len(moved) < 500 else 0.2, zorder=2)
     pc.set_gid("rb-displaced")
     pc.set_label("collapse mechanism (displaced)")
     ax.add_collection(pc)
+    if moving.any():
+        from matplotlib.patches import Patch
+
+        extra.append(Patch(facecolor=MOVING_COLOUR, edgecolor="k", label="moving block"))
     c = result.contacts
     first = c.points[c.joint_start[:-1]]
     last = c.points[c.joint_start[1:] - 1]
-    hinge = mech.joints_with("hinge")
+    marks = marked_joints(result)
+    hinge = marks["hinge"]
     if len(hinge):
         op = np.asarray(mech.opening)
         pick = np.where(op[c.joint_start[hinge]] <= op[c.joint_start[hinge + 1] - 1],
                         c.joint_start[hinge], c.joint_start[hinge + 1] - 1)
         hp = c.points[pick]
-        sc = ax.scatter(hp[:, 0], hp[:, 1], s=40, c="tab:red", marker="o", zorder=5,
-                        label="hinge")
+        sc = ax.scatter(hp[:, 0], hp[:, 1], s=40 if len(hinge) <= MANY_MARKS else 8,
+                        c=HINGE_COLOUR, marker="o", zorder=5, label="hinge")
         sc.set_gid("rb-hinges")
-    slide = np.array([k for k, md in enumerate(mech.modes) if md.startswith("slide")],
-                     dtype=int)
-    if len(slide):
+    slide = marks["slide"]
+    if len(slide) > MANY_MARKS:  # many: the sliding joints themselves, drawn in blue
+        lc = LineCollection(np.stack([first[slide], last[slide]], axis=1),
+                            colors=SLIDE_COLOUR, linewidths=1.5, zorder=4,
+                            label="sliding joint")
+        lc.set_gid("rb-sliding")
+        ax.add_collection(lc)
+    elif len(slide):
         mid = 0.5 * (first[slide] + last[slide])
-        sc = ax.scatter(mid[:, 0], mid[:, 1], s=60, c="tab:blue", marker="D", zorder=5,
+        sc = ax.scatter(mid[:, 0], mid[:, 1], s=60, c=SLIDE_COLOUR, marker="D", zorder=5,
                         label="sliding joint")
         sc.set_gid("rb-sliding")
-    ax.legend(loc="upper left", bbox_to_anchor=(0.0, -0.12), ncol=3, fontsize=8)
+    opn = marks["open"]
+    if len(opn):
+        lc = LineCollection(np.stack([first[opn], last[opn]], axis=1), colors=OPEN_COLOUR,
+                            linewidths=3.0, zorder=4, label="opening joint")
+        lc.set_gid("rb-open")
+        ax.add_collection(lc)
+    if len(marks["left_out"]):
+        extra.append(line_handle("none", f"{len(marks['left_out'])} joint(s) moving "
+                                 "< 5 % of the largest: not marked"))
     allm = np.concatenate(moved)
     return np.minimum(lo, allm.min(axis=0)), np.maximum(hi, allm.max(axis=0))
 
 
-def save_figure(ax: Any, path: str) -> None:
-    """Save the Axes' figure (format from the file extension: png, svg, pdf)."""
-    ax.figure.savefig(path, dpi=150, bbox_inches="tight")
+def save_figure(ax: Any, path: Any) -> None:
+    """Save the Axes' figure (format from the file extension: png, svg, pdf); SVG text
+    stays text (``svg.fonttype = 'none'``), so it can be searched and edited."""
+    import matplotlib
+
+    with matplotlib.rc_context({"svg.fonttype": "none"}):
+        ax.figure.savefig(path, dpi=150, bbox_inches="tight")
 
 
 __all__ = ["MAX_ARROWS", "available_friction", "displaced_polygons", "plot", "save_figure"]

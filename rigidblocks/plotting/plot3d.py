@@ -19,7 +19,8 @@ light direction) and, given a result:
 
 Above ``max_arrows`` joints no arrows are drawn. Every artist carries a ``gid``
 (``"rb-blocks"``, ``"rb-supports"``, ``"rb-forces"``, ``"rb-governing"``,
-``"rb-displaced"``, ``"rb-hinges"``, ``"rb-sliding"``) as in the plane pictures.
+``"rb-displaced"``, ``"rb-hinges"``, ``"rb-sliding"``, ``"rb-open"``, ``"rb-loads"``,
+``"rb-legend"``) as in the plane pictures.
 """
 
 from __future__ import annotations
@@ -32,6 +33,20 @@ import numpy as np
 from ..scene.geometry import scene_size
 from ..scene.model import Scene
 from ..scene.polyhedra import outward_faces, polyhedron_volume_centroid
+from .marks import (
+    DEAD_COLOUR,
+    HINGE_COLOUR,
+    LIVE_COLOUR,
+    MOVING_COLOUR,
+    OPEN_COLOUR,
+    SLIDE_COLOUR,
+    arrow_handle,
+    line_handle,
+    load_marks,
+    marked_joints,
+    new_axes,
+    place_legend,
+)
 from .plot2d import (
     DISPLACEMENT_FRACTION,
     FREE_COLOUR,
@@ -41,6 +56,9 @@ from .plot2d import (
     _title,
 )
 
+#: a hinge's contact point is closed when its opening is below this fraction of the
+#: joint's largest opening (above the joint's smallest)
+HINGE_CLOSED = 1e-3
 #: direction the light comes from (towards the viewer, above)
 LIGHT = np.array([-0.4, -0.6, 0.7]) / np.linalg.norm([-0.4, -0.6, 0.7])
 
@@ -107,7 +125,7 @@ def displaced_vertices(scene: Scene, velocities: np.ndarray, s: float,
 def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
          max_arrows: int = MAX_ARROWS, force_scale: float | None = None,
          displacement_scale: float | None = None, title: str | None = None,
-         colorbar: bool = True) -> Any:
+         colorbar: bool = True, loads: bool = True) -> Any:
     """Draw a 3D scene, and a result of an analysis on it.
 
     Args:
@@ -124,6 +142,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
             the largest displacement is 10 % of the scene's size).
         title: overrides the title made from the result.
         colorbar: accepted for the plane pictures' signature; 3D pictures have none.
+        loads: draw the self-weight, the live load's direction and the point loads.
 
     Returns:
         The matplotlib 3D Axes.
@@ -135,10 +154,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
 
         raise InputError("plot3d draws 3D scenes only", scene.source)
     if ax is None:
-        import matplotlib.pyplot as plt
-
-        fig = plt.figure(figsize=(9, 7))
-        ax = fig.add_subplot(projection="3d")
+        ax = new_axes(3, len(scene.blocks))
     # collections are drawn in a fixed order (supports, blocks, displaced blocks,
     # markers): mplot3d sorts polygons by depth within a collection only, and a support
     # slab's large faces would otherwise hide what stands on it
@@ -159,7 +175,8 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
         pc = Poly3DCollection(faces, facecolors=fc, edgecolors=(0, 0, 0, 0.6),
                               linewidths=lw, zorder=1 if gid == "rb-supports" else 2)
         pc.set_gid(gid)
-        pc.set_label("support" if gid == "rb-supports" else "block")
+        pc.set_label("support" if gid == "rb-supports" else
+                     "block (original position)" if mech is not None else "block")
         ax.add_collection3d(pc)
     if ids:
         fs = 7 if len(scene.blocks) < 60 else 4
@@ -167,13 +184,21 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
             ax.text(c[0], c[1], c[2], b.id, fontsize=fs, ha="center", va="center")
     allpts = np.concatenate([b.points for b in scene.blocks])
     lo, hi = allpts.min(axis=0), allpts.max(axis=0)
+    extra: list[Any] = []
+    if loads:
+        lo, hi = _draw_loads(ax, scene, lo, hi, extra)
     if mech is not None:
         moved = _draw_mechanism(ax, scene, result, centroids, size, displacement_scale,
-                                Poly3DCollection)
+                                Poly3DCollection, extra)
         if moved is not None:
             lo, hi = np.minimum(lo, moved.min(axis=0)), np.maximum(hi, moved.max(axis=0))
     elif getattr(result, "state", None) is not None and result.contacts.n_joints:
         _draw_forces(ax, scene, result, size, max_arrows, force_scale)
+    elif result is not None and getattr(result, "status", None) is not None:
+        from .plot2d import _no_state
+
+        _no_state(ax, result, scene.force_unit)
+    place_legend(ax, extra)
     _limits(ax, lo, hi)
     unit = scene.length_unit
     for name, setter in (("x", ax.set_xlabel), ("y", ax.set_ylabel), ("z", ax.set_zlabel)):
@@ -236,50 +261,135 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
                   linewidths=1.2, arrow_length_ratio=0.2, zorder=4,
                   label=f"joint resultants (largest {top:.3g} {scene.force_unit})")
     q.set_gid("rb-forces")
-    ax.legend(loc="upper left", fontsize=8)
+
+
+def _draw_loads(ax: Any, scene: Scene, lo: np.ndarray, hi: np.ndarray,
+                extra: list[Any]) -> tuple[np.ndarray, np.ndarray]:
+    kinds = set()
+    for m in load_marks(scene):
+        colour = LIVE_COLOUR if m.live else DEAD_COLOUR
+        d = m.tip - m.tail
+        q = ax.quiver(*m.tail, *d, color=colour, linewidths=2.0, arrow_length_ratio=0.15,
+                      zorder=7)
+        q.set_gid("rb-loads")
+        at = m.tip if m.kind != "point load" else m.tail
+        t = ax.text(*at, " " + m.label, color=colour, fontsize=8, zorder=7)
+        t.set_gid("rb-loads")
+        kinds.add(m.live)
+        lo = np.minimum(lo, np.minimum(m.tail, m.tip))
+        hi = np.maximum(hi, np.maximum(m.tail, m.tip))
+    if False in kinds:
+        extra.append(arrow_handle(DEAD_COLOUR, "dead load (value shown)"))
+    if True in kinds:
+        extra.append(arrow_handle(LIVE_COLOUR, "live load, multiplied by "
+                                  "\N{GREEK SMALL LETTER LAMDA}"))
+    return lo, hi
+
+
+def mechanism_joints(scene: Scene, result: Any
+                     ) -> dict[str, tuple[list[np.ndarray], list[int]]]:
+    """The joints a 3D mechanism picture marks, as line segments ((2, 3) arrays) with the
+    block each segment moves with (the joint's first block):
+
+    * "hinge": the hinge line of each hinging joint, between the two farthest contact
+      points that stay closed (a single closed point gives a zero-length segment);
+    * "slide" and "open": the outline of each sliding or opening joint's polygon.
+
+    Joints whose motion is below 5 % of the largest are left out
+    (:func:`rigidblocks.plotting.marks.marked_joints`).
+    """
+    c = result.contacts
+    marks = marked_joints(result)
+    op = np.asarray(result.mechanism.opening, dtype=float)
+    out: dict[str, tuple[list[np.ndarray], list[int]]] = {}
+    for name in ("hinge", "slide", "open"):
+        segs: list[np.ndarray] = []
+        owners: list[int] = []
+        for k in marks[name]:
+            a, b = c.joint_start[k], c.joint_start[k + 1]
+            p = c.points[a:b]
+            owner = int(c.pairs[k, 0])
+            if name == "hinge":
+                # closed: the points whose opening is round-off next to the joint's
+                # largest (the interior-point mechanism leaves ~1e-7 of it)
+                o = op[a:b]
+                closed = p[o <= o.min() + HINGE_CLOSED * (o.max() - o.min())]
+                if not len(closed):
+                    closed = p[[int(np.argmin(op[a:b]))]]
+                d = np.linalg.norm(closed[:, None] - closed[None], axis=2)
+                i, j = np.unravel_index(int(np.argmax(d)), d.shape)
+                segs.append(np.stack([closed[i], closed[j]]))
+                owners.append(owner)
+            else:
+                for i in range(len(p)):
+                    segs.append(np.stack([p[i], p[(i + 1) % len(p)]]))
+                    owners.append(owner)
+        out[name] = (segs, owners)
+    return out
 
 
 def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, size: float,
-                    displacement_scale: float | None, Poly3DCollection: Any
-                    ) -> np.ndarray | None:
+                    displacement_scale: float | None, Poly3DCollection: Any,
+                    extra: list[Any]) -> np.ndarray | None:
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
     mech = result.mechanism
     vel = np.asarray(mech.velocities, dtype=float)
-    reach = 0.0
-    for b, c, v in zip(scene.blocks, centroids, vel, strict=True):
+    reach = np.zeros(len(scene.blocks))
+    for i, (b, c, v) in enumerate(zip(scene.blocks, centroids, vel, strict=True)):
         r = np.linalg.norm(b.points - c, axis=1).max()
-        reach = max(reach, float(np.linalg.norm(v[:3]) + np.linalg.norm(v[3:6]) * r))
+        reach[i] = float(np.linalg.norm(v[:3]) + np.linalg.norm(v[3:6]) * r)
+    top = float(reach.max(initial=0.0))
     s = displacement_scale if displacement_scale is not None else (
-        DISPLACEMENT_FRACTION * size / reach if reach > 0 else 0.0)
+        DISPLACEMENT_FRACTION * size / top if top > 0 else 0.0)
     moved = displaced_vertices(scene, vel, s, centroids)
     free = np.flatnonzero(~scene.support_mask)
-    faces = _faces(scene, free, moved)
-    pc = Poly3DCollection(faces, facecolors=_shade(faces, FREE_COLOUR),
-                          edgecolors=(0, 0, 0, 0.7), linewidths=0.4, zorder=3)
+    moving = (reach > 0.01 * top) if top > 0 else np.zeros(len(reach), dtype=bool)
+    faces, colours = [], []
+    for i in free:
+        fs = _faces(scene, np.array([i]), moved)
+        faces.extend(fs)
+        colours.extend([MOVING_COLOUR if moving[i] else FREE_COLOUR] * len(fs))
+    fc = np.concatenate([_shade([f], col) for f, col in zip(faces, colours, strict=True)]) \
+        if faces else np.zeros((0, 4))
+    pc = Poly3DCollection(faces, facecolors=fc, edgecolors=(0, 0, 0, 0.7), linewidths=0.4,
+                          zorder=3)
     pc.set_gid("rb-displaced")
     pc.set_label("collapse mechanism (displaced)")
     ax.add_collection3d(pc)
-    c = result.contacts
-    centres = _joint_centres(c) if c.n_joints else np.zeros((0, 3))
-    for mode, gid, marker, colour, label in (("hinge", "rb-hinges", "o", "tab:red", "hinge"),
-                                             ("slide", "rb-sliding", "D", "tab:blue",
-                                              "sliding joint")):
-        ks = np.array([k for k, md in enumerate(mech.modes)
-                       if (md == mode if mode == "hinge" else md.startswith(mode))],
-                      dtype=int)
-        if len(ks) and mode == "hinge":
-            # the contact points that stay closed: the hinge line (or point)
-            op = np.asarray(mech.opening, dtype=float)
-            tol = 1e-6 * max(float(np.abs(op).max(initial=0.0)), 1e-300)
-            on = np.isin(c.point_joint, ks) & (op <= tol)
-            p = c.points[on] if on.any() else centres[ks]
-        elif len(ks):
-            p = centres[ks]
-        if len(ks):
-            sc = ax.scatter(p[:, 0], p[:, 1], p[:, 2], s=30, c=colour, marker=marker,
-                            label=label, zorder=5, depthshade=False)
-            sc.set_gid(gid)
-    ax.legend(loc="upper left", fontsize=8)
+    if moving[free].any():
+        from matplotlib.patches import Patch
+
+        extra.append(Patch(facecolor=MOVING_COLOUR, edgecolor="k", label="moving block"))
+    styles = {"hinge": (HINGE_COLOUR, 3.0, "hinge line", "rb-hinges"),
+              "slide": (SLIDE_COLOUR, 1.8, "sliding joint (outline)", "rb-sliding"),
+              "open": (OPEN_COLOUR, 1.8, "opening joint (outline)", "rb-open")}
+    for name, (segs, owners) in mechanism_joints(scene, result).items():
+        if not segs:
+            continue
+        colour, lw, label, gid = styles[name]
+        # the marks move with their joint's first block
+        segs_m = [_move(scene, moved, o, sg) for sg, o in zip(segs, owners, strict=True)]
+        lc = Line3DCollection(segs_m, colors=colour, linewidths=lw, zorder=6, label=label)
+        lc.set_gid(gid)
+        ax.add_collection3d(lc)
+    left = marked_joints(result)["left_out"]
+    if len(left):
+        extra.append(line_handle("none", f"{len(left)} joint(s) moving < 5 % of the "
+                                 "largest: not marked"))
     return np.concatenate([moved[i] for i in free]) if len(free) else None
 
 
-__all__ = ["displaced_vertices", "joint_force_vectors_3d", "plot"]
+def _move(scene: Scene, moved: list[np.ndarray], owner: int, seg: np.ndarray) -> np.ndarray:
+    """Carry points of block ``owner`` with its rigid motion (least squares on its
+    vertices: exact for a rigid motion)."""
+    p0 = scene.blocks[owner].points
+    p1 = moved[owner]
+    c0, c1 = p0.mean(axis=0), p1.mean(axis=0)
+    u, _, vt = np.linalg.svd((p0 - c0).T @ (p1 - c1))
+    d = np.sign(np.linalg.det(vt.T @ u.T))
+    R = vt.T @ np.diag([1.0, 1.0, d]) @ u.T
+    return c1 + (seg - c0) @ R.T
+
+
+__all__ = ["displaced_vertices", "joint_force_vectors_3d", "mechanism_joints", "plot"]

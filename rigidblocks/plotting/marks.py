@@ -1,0 +1,200 @@
+"""What the plane and spatial pictures share: the loads as arrows with their values, the
+mechanism's joints worth marking, figures with constrained layout and legends kept
+off the axes.
+"""
+
+from __future__ import annotations
+
+import weakref
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..scene.geometry import block_weights, scene_size
+from ..scene.model import Scene
+
+DEAD_COLOUR = "#333333"
+LIVE_COLOUR = "#c2185b"
+MOVING_COLOUR = "#e39a5b"
+HINGE_COLOUR = "tab:red"
+SLIDE_COLOUR = "tab:blue"
+OPEN_COLOUR = "#ff8c00"
+#: arrows of the resultant self-weight and live body force, as a fraction of the size
+BODY_ARROW_FRACTION = 0.15
+#: the largest point load's arrow, as a fraction of the scene's size
+POINT_ARROW_FRACTION = 0.12
+#: joints whose opening or slip is below this fraction of the mechanism's largest are
+#: not marked (an interior-point mechanism spreads small motions over many joints)
+MARK_FRACTION = 0.05
+#: a contact force below this fraction of the state's largest counts as none (an open
+#: joint, or a joint's end that carries nothing): interior-point force states leave
+#: round-off of about 1e-5 of the largest force where the exact state has zero
+ZERO_FORCE = 1e-4
+LAMBDA = "\N{GREEK SMALL LETTER LAMDA}"
+TIMES = "\N{MULTIPLICATION SIGN}"
+
+
+_WEIGHTS: dict[int, tuple[Any, tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
+
+
+def scene_weights(scene: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`rigidblocks.scene.geometry.block_weights`, remembered for the last scene
+    asked about (a report asks for them several times; a 3D block's volume and
+    centroid take a fraction of a millisecond each, seconds for thousands)."""
+    hit = _WEIGHTS.get(id(scene))
+    if hit is not None and hit[0]() is scene:
+        return hit[1]
+    value = block_weights(scene)
+    _WEIGHTS.clear()
+    _WEIGHTS[id(scene)] = (weakref.ref(scene), value)
+    return value
+
+
+@dataclass(frozen=True)
+class LoadMark:
+    """One load arrow: it starts at ``tail`` and points along ``direction`` (unit) for
+    ``length``; ``live`` ones are multiplied by lambda; ``label`` gives the value."""
+
+    tail: np.ndarray
+    direction: np.ndarray
+    length: float
+    live: bool
+    label: str
+    kind: str  # "self-weight", "live body force", "point load"
+
+    @property
+    def tip(self) -> np.ndarray:
+        return self.tail + self.length * self.direction
+
+
+def load_marks(scene: Scene) -> list[LoadMark]:
+    """The self-weight and the live body force as resultants at the free blocks' centre
+    of gravity (with their totals), and every point load ending at its point of
+    application (length in proportion to its size, the value in the label)."""
+    d = scene.dimension
+    fu = f" {scene.force_unit}" if scene.force_unit else ""
+    size = scene_size(scene)
+    w, centroids, _ = scene_weights(scene)
+    free = ~scene.support_mask
+    out: list[LoadMark] = []
+    W = float(w[free].sum())
+    down = np.zeros(d)
+    down[-1] = -1.0
+    if W > 0:
+        cg = (w[free, None] * centroids[free]).sum(axis=0) / W
+        out.append(LoadMark(cg, down, BODY_ARROW_FRACTION * size, False,
+                            f"self-weight {W:.4g}{fu}", "self-weight"))
+        lbf = scene.live_body_force
+        if lbf is not None and any(v != 0 for v in lbf):
+            v = np.asarray(lbf, dtype=float)
+            mag = float(np.linalg.norm(v))
+            out.append(LoadMark(cg, v / mag, BODY_ARROW_FRACTION * size, True,
+                                f"live: {LAMBDA} {TIMES} {W * mag:.4g}{fu} "
+                                f"(weight {TIMES} {_vec(v)})", "live body force"))
+    big = max((float(np.linalg.norm(ld.force)) for ld in scene.loads), default=0.0)
+    for ld in scene.loads:
+        v = np.asarray(ld.force, dtype=float)
+        mag = float(np.linalg.norm(v))
+        if mag == 0:
+            continue
+        at = (centroids[scene.index[ld.block]] if ld.point is None
+              else np.asarray(ld.point, dtype=float))
+        L = POINT_ARROW_FRACTION * size * mag / big
+        lam = f"{LAMBDA} {TIMES} " if ld.is_live else ""
+        out.append(LoadMark(at - L * v / mag, v / mag, L, ld.is_live, f"{lam}{mag:.4g}{fu}",
+                            "point load"))
+    return out
+
+
+def _vec(v: np.ndarray) -> str:
+    return "(" + ", ".join(f"{x:.3g}" for x in v) + ")"
+
+
+def joint_motion(result: Any) -> np.ndarray:
+    """(m,) each joint's largest opening or slip in the mechanism."""
+    c = result.contacts
+    mech = result.mechanism
+    op = np.abs(np.asarray(mech.opening, dtype=float))
+    pj = c.point_joint
+    out = np.zeros(c.n_joints)
+    np.maximum.at(out, pj, op)
+    sl = np.abs(np.asarray(mech.slip, dtype=float))
+    if sl.size == c.n_joints:  # one slip per joint (2D)
+        out = np.maximum(out, sl.ravel())
+    elif sl.size and sl.size % len(op) == 0:
+        np.maximum.at(out, pj, sl.reshape(len(op), -1).max(axis=1))
+    return out
+
+
+def marked_joints(result: Any) -> dict[str, np.ndarray]:
+    """Joints to mark in a mechanism picture: "hinge" (hinge or slide+hinge), "slide"
+    (slide, slide+hinge) and "open", each left out when its motion is below
+    MARK_FRACTION of the largest; "left_out" counts the joints so dropped."""
+    mech = result.mechanism
+    motion = joint_motion(result)
+    top = float(motion.max(initial=0.0))
+    big = motion >= MARK_FRACTION * top if top > 0 else np.zeros(len(motion), bool)
+    modes = np.array(mech.modes, dtype=object)
+    moving = np.array([m != "closed" for m in mech.modes], dtype=bool)
+    out = {"hinge": np.flatnonzero(big & np.isin(modes, ["hinge", "slide+hinge"])),
+           "slide": np.flatnonzero(big & np.array([m.startswith("slide") for m in modes],
+                                                   dtype=bool)),
+           "open": np.flatnonzero(big & (modes == "open")),
+           "left_out": np.flatnonzero(moving & ~big)}
+    return out
+
+
+def new_axes(dimension: int, n_blocks: int) -> Any:
+    """A new figure with constrained layout (legends and colour bars get their own room)."""
+    import matplotlib.pyplot as plt
+
+    if dimension == 3:
+        fig = plt.figure(figsize=(9, 7.5), layout="constrained")
+        return fig.add_subplot(projection="3d")
+    # "compressed": constrained layout that also closes the gaps around equal-aspect axes
+    _, ax = plt.subplots(figsize=(10, 7.5) if n_blocks > 200 else (8, 6.5),
+                         layout="compressed")
+    return ax
+
+
+def place_legend(ax: Any, extra: list[Any] | None = None) -> Any:
+    """One legend entry per mark, below the figure when it has constrained layout (never
+    over the axes or their labels), otherwise to the right of the axes."""
+    from matplotlib.layout_engine import ConstrainedLayoutEngine
+
+    handles, labels = ax.get_legend_handles_labels()
+    for h in extra or []:
+        handles.append(h)
+        labels.append(h.get_label())
+    if not handles:
+        return None
+    fig = ax.figure
+    ncol = min(len(handles), 3)
+    if isinstance(fig.get_layout_engine(), ConstrainedLayoutEngine):
+        for old in list(fig.legends):
+            old.remove()
+        leg = fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=8)
+    else:
+        leg = ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                        borderaxespad=0.0, fontsize=8)
+    leg.set_gid("rb-legend")
+    return leg
+
+
+def arrow_handle(colour: str, label: str) -> Any:
+    """A legend proxy that looks like an arrow."""
+    from matplotlib.lines import Line2D
+
+    return Line2D([], [], color=colour, marker="$\u2192$", markersize=14, linestyle="None",
+                  label=label)
+
+
+def line_handle(colour: str, label: str, **kw: Any) -> Any:
+    from matplotlib.lines import Line2D
+
+    return Line2D([], [], color=colour, label=label, **kw)
+
+
+__all__ = ["ZERO_FORCE", "LoadMark", "arrow_handle", "joint_motion", "line_handle",
+           "load_marks", "marked_joints", "new_axes", "place_legend", "scene_weights"]

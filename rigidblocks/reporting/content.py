@@ -1,0 +1,327 @@
+"""What a report says, as plain data: the scene's summary, the question, the answer and
+the per-joint table. No HTML here (see :mod:`rigidblocks.reporting.html`), so that every
+sentence can be tested without a browser.
+
+Results are read defensively (``getattr`` with a default) so that fields added to the
+result objects later (a ``bracket``, an ``admissible`` that may be None, timings) are
+shown when present and never needed.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..plotting.marks import ZERO_FORCE, scene_weights
+from ..results import headline
+from ..scene.model import Scene
+
+#: statuses that answer the question, and how the answer reads (tone of the badge)
+VERDICT_TONES = {
+    "admissible": "ok", "stable": "ok", "unbounded": "ok",
+    "inadmissible": "bad", "unstable": "bad", "collapse": "warn",
+}
+QUESTIONS = {
+    "check": "Does it stand?",
+    "min_friction": "What friction does it need?",
+    "max_load_multiplier": "How much live load does it take, and how does it fail?",
+}
+#: a joint whose demand is within this fraction of the friction counts as at the limit
+AT_LIMIT = 1e-4
+
+
+@dataclass(frozen=True)
+class Answer:
+    """The answer to the question: ``verdict`` False means the analysis did not decide
+    (an undecided or failed solve), and nothing in the headline may read as a verdict."""
+
+    status: str
+    verdict: bool
+    tone: str
+    headline: str
+    details: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Summary:
+    """The scene at a glance: (label, value) rows."""
+
+    title: str
+    rows: tuple[tuple[str, str], ...]
+    loads: tuple[str, ...] = field(default=())
+
+
+def fmt(x: Any, digits: int = 4) -> str:
+    """A number for people: 4 significant digits, infinity as the sign, None as '-'."""
+    if x is None:
+        return "-"
+    if isinstance(x, str):
+        return "\N{INFINITY}" if x == "infinite" else x
+    x = float(x)
+    if math.isnan(x):
+        return "-"
+    if math.isinf(x):
+        return "\N{INFINITY}" if x > 0 else "-\N{INFINITY}"
+    return f"{x:.{digits}g}"
+
+
+def fmt_friction(f: Any) -> str:
+    if f is None:
+        return "-"
+    if isinstance(f, str) or math.isinf(float(f)):
+        return "\N{INFINITY} (no sliding)"
+    return f"{float(f):.4g} (friction angle {math.degrees(math.atan(float(f))):.2f}\N{DEGREE SIGN})"
+
+
+def _vec(v: Any) -> str:
+    return "(" + ", ".join(fmt(c) for c in v) + ")"
+
+
+def live_load_text(scene: Scene) -> str:
+    """What lambda multiplies, in words: the live body force and the live point loads."""
+    fu = scene.force_unit or "force units"
+    parts = []
+    lbf = scene.live_body_force
+    if lbf is not None and any(v != 0 for v in lbf):
+        w, _, _ = scene_weights(scene)
+        total = float(w[~scene.support_mask].sum())
+        mag = float(np.linalg.norm(lbf))
+        parts.append(f"a body force of each free block's weight times {_vec(lbf)} "
+                     f"(in all {fmt(total * mag)} {fu})")
+    live = [ld for ld in scene.loads if ld.is_live]
+    if live:
+        parts.append(f"{len(live)} live point load{'s' if len(live) > 1 else ''}")
+    return " and ".join(parts) if parts else "no live load"
+
+
+def summary(scene: Scene, result: Any = None) -> Summary:
+    """The scene's summary: size, units, weights, joint laws and loads."""
+    lu = scene.length_unit or "(no unit given)"
+    fu = scene.force_unit or "(no unit given)"
+    n = len(scene.blocks)
+    ns = int(scene.support_mask.sum())
+    w, _, _ = scene_weights(scene)
+    pts = np.concatenate([b.points for b in scene.blocks])
+    ext = pts.max(axis=0) - pts.min(axis=0)
+    rows = [("dimension", f"{scene.dimension}D"),
+            ("blocks", f"{n} ({n - ns} free, {ns} support{'s' if ns != 1 else ''})")]
+    contacts = getattr(result, "contacts", None)
+    if contacts is not None:
+        rows.append(("joints", str(contacts.n_joints)))
+    rows += [("units", f"length {lu}, force {fu}"),
+             ("extent", " \N{MULTIPLICATION SIGN} ".join(fmt(e) for e in ext)
+              + (f" {scene.length_unit}" if scene.length_unit else ""))]
+    if scene.dimension == 2:
+        rows.append(("depth (out of plane)", fmt(scene.effective_depth)))
+    uw_unit = (f" {scene.force_unit}/{scene.length_unit}\N{SUPERSCRIPT THREE}"
+               if scene.force_unit and scene.length_unit else "")
+    rows.append(("unit weight", fmt(scene.effective_unit_weight) + uw_unit
+                 + ("" if scene.unit_weight is not None else " (not given: 0)")))
+    total = float(w[~scene.support_mask].sum())
+    rows.append(("weight of the free blocks", f"{fmt(total)} {scene.force_unit}".strip()))
+    if total == 0:
+        rows.append(("warning", "the free blocks weigh nothing: every answer comes from "
+                     "the point loads alone"))
+    rows.append(("friction (scene)", fmt_friction(scene.effective_friction)))
+    if scene.joints:
+        rows.append(("joint overrides", str(len(scene.joints))))
+    rows.append(("live load (what \N{GREEK SMALL LETTER LAMDA} multiplies)",
+                 live_load_text(scene)))
+    loads = []
+    for ld in scene.loads:
+        at = "its centroid" if ld.point is None else _vec(ld.point)
+        kind = "live" if ld.is_live else "dead"
+        loads.append(f"{kind}: {_vec(ld.force)} {scene.force_unit} on block {ld.block} at {at}"
+                     .replace("  ", " "))
+    return Summary(scene.name or scene.source or "scene", tuple(rows), tuple(loads))
+
+
+def question(scene: Scene, result: Any) -> str:
+    """The question the analysis asked, with its parameters."""
+    a = getattr(result, "analysis", None)
+    lam = getattr(result, "load_factor", None)
+    f = getattr(result, "friction", None)
+    live = live_load_text(scene)
+    L = "\N{GREEK SMALL LETTER LAMDA}"
+    if a == "check":
+        return (f"Does it stand? Is there an equilibrium state with compression-only "
+                f"joints and shear within the Coulomb limit, under the dead load plus "
+                f"{L} = {fmt(lam)} times the live load ({live}), at friction "
+                f"f = {fmt_friction(f)}?")
+    if a == "min_friction":
+        return (f"What friction does it need? The smallest uniform friction coefficient "
+                f"f* for which an admissible equilibrium state exists, under the dead load "
+                f"plus {L} = {fmt(lam)} times the live load ({live}).")
+    if a == "max_load_multiplier":
+        return (f"How much live load does it take? The largest multiplier {L}* of the "
+                f"live load ({live}) before it collapses, at friction f = "
+                f"{fmt_friction(f)} (associative friction), and its collapse mechanism.")
+    if result is None:
+        return "No analysis: the scene only."
+    return f"{a}: see the notes."
+
+
+def answer(scene: Scene, result: Any) -> Answer:
+    """The answer: a verdict only for a status that is one (see VERDICT_TONES)."""
+    status = str(getattr(result, "status", "") or "")
+    notes = tuple(str(n) for n in (getattr(result, "notes", ()) or ()))
+    a = getattr(result, "analysis", None)
+    fu = scene.force_unit or "force units"
+    tone = VERDICT_TONES.get(status)
+    if tone is None:
+        return Answer(status or "unknown", False, "none",
+                      f"No verdict: the analysis ended with status "
+                      f"\u201c{status or 'unknown'}\u201d. This is not an answer to the "
+                      "question; the notes say why.", (), notes)
+    details: list[str] = []
+    head = headline(result, symbols=True)
+    if a == "check":
+        if status == "admissible":
+            head += ": an admissible equilibrium state exists. It stands."
+        else:
+            head += (": no equilibrium state keeps every joint in compression and within "
+                     "the Coulomb limit.")
+            v = getattr(result, "violation", None)
+            if v is not None and math.isfinite(float(v)):
+                details.append(f"smallest possible breach of the joint laws: {fmt(v)} {fu}")
+    elif a == "min_friction":
+        if status == "stable":
+            head += ": with at least this friction it stands."
+            lo, up = getattr(result, "lower", None), getattr(result, "upper", None)
+            br = getattr(result, "bracket", None)
+            if br is not None:
+                lo, up = br[0], br[1]
+            if lo is not None and up is not None:
+                details.append(f"f* lies in [{fmt(lo, 8)}, {fmt(up, 8)}]")
+        else:
+            head += "; even infinite friction admits no equilibrium."
+    elif a == "max_load_multiplier":
+        if status == "collapse":
+            lm = getattr(result, "load_multiplier", None)
+            head += f": it collapses at {fmt(lm, 6)} times the live load."
+            mech = getattr(result, "mechanism", None)
+            if mech is not None:
+                modes = list(mech.modes)
+                n_h = sum(m in ("hinge", "slide+hinge") for m in modes)
+                n_s = sum(m.startswith("slide") for m in modes)
+                n_o = sum(m == "open" for m in modes)
+                kind = ("mixed (hinging and sliding)" if n_h and n_s else "sliding" if n_s
+                        else "hinging" if n_h else "opening")
+                details.append(f"mechanism: {kind}; {n_h} hinging, {n_s} sliding, {n_o} "
+                               f"opening joint(s) of {len(modes)}")
+    solver = getattr(result, "solver", None)
+    if solver:
+        t = getattr(result, "solve_time", None)
+        details.append(f"solver {solver}, {getattr(result, 'n_solves', '?')} solve(s)"
+                       + (f", {float(t):.3g} s" if t is not None else ""))
+    timings = getattr(result, "timings", None) or getattr(result, "stage_times", None)
+    if isinstance(timings, dict) and timings:
+        details.append("stages: " + ", ".join(f"{k} {float(v):.3g} s"
+                                              for k, v in timings.items()))
+    return Answer(status, True, tone, head, tuple(details), notes)
+
+
+def governing(result: Any) -> list[str]:
+    """The governing joints as ``a-b`` names."""
+    try:
+        pairs = getattr(result, "governing_joints", None) or []
+    except (AttributeError, IndexError, TypeError):
+        pairs = []
+    return [f"{a}\N{EN DASH}{b}" for a, b in pairs]
+
+
+def _available_friction(result: Any) -> float:
+    if getattr(result, "analysis", "") == "min_friction":
+        ff = getattr(result, "friction_factor", None)
+        return float(ff) if ff is not None else math.inf
+    f = getattr(result, "friction", None)
+    if f is None or isinstance(f, str):
+        return math.inf
+    return float(f)
+
+
+def joint_states(result: Any) -> list[str]:
+    """Each joint's state: from the mechanism after a collapse (closed, hinge, open,
+    slide, slide+hinge), otherwise from the force state: open (no force), hinging (the
+    resultant on an edge: a contact point carries nothing), at the friction limit."""
+    c = result.contacts
+    mech = getattr(result, "mechanism", None)
+    if mech is not None and len(mech.modes) == c.n_joints:
+        return list(mech.modes)
+    st = getattr(result, "state", None)
+    if st is None:
+        return ["-"] * c.n_joints
+    pn = np.asarray(st.normal, dtype=float)
+    jn = np.asarray(st.joint_normal, dtype=float)
+    tol = ZERO_FORCE * max(float(np.abs(pn).max(initial=0.0)), 1e-300)
+    pj = c.point_joint
+    pmin = np.full(c.n_joints, np.inf)
+    np.minimum.at(pmin, pj, pn)
+    f = _available_friction(result)
+    dem = np.asarray(st.demand, dtype=float)
+    out = []
+    for k in range(c.n_joints):
+        if jn[k] <= tol * np.diff(c.joint_start)[k]:
+            out.append("open")
+            continue
+        tags = []
+        if pmin[k] <= tol:
+            tags.append("hinging")
+        if math.isfinite(f) and dem[k] >= f * (1 - AT_LIMIT):
+            tags.append("at friction limit")
+        out.append(", ".join(tags) if tags else "closed")
+    return out
+
+
+def joint_table(result: Any) -> dict[str, Any]:
+    """Per-joint rows (joint, N, T, e, |T|/N, state, governing) as columns of lists,
+    ready for JSON. 3D: T is the shear's magnitude and e the distance of the centre of
+    pressure from the contact polygon's centroid. A joint whose forces are both below
+    ZERO_FORCE of the largest (solver round-off) shows N = T = 0 and no demand."""
+    c = getattr(result, "contacts", None)
+    st = getattr(result, "state", None)
+    if c is None or not c.n_joints:
+        return {"n": 0}
+    ids = c.block_ids
+    names = [f"{ids[a]}\N{EN DASH}{ids[b]}" for a, b in c.pairs]
+    gov = set(int(k) for k in (getattr(result, "governing", ()) or ()))
+    out: dict[str, Any] = {"n": c.n_joints, "joint": names,
+                           "state": joint_states(result),
+                           "governing": [k in gov for k in range(c.n_joints)],
+                           "has_forces": st is not None}
+    if st is None:
+        return out
+    N = np.asarray(st.joint_normal, dtype=float).copy()
+    T = np.asarray(st.joint_shear, dtype=float).copy()
+    # round-off of the interior-point state (below ZERO_FORCE of the largest joint
+    # force) is shown as no force, with no friction demand
+    top = max(float(np.abs(N).max(initial=0.0)), float(np.abs(T).max(initial=0.0)))
+    tiny = (np.abs(N) <= ZERO_FORCE * top) & (np.abs(T) <= ZERO_FORCE * top)
+    N[tiny] = 0.0
+    T[tiny] = 0.0
+    if c.dimension == 2:
+        e = np.asarray(st.eccentricity, dtype=float)
+    else:
+        counts = np.diff(c.joint_start)
+        cen = np.stack([np.bincount(c.point_joint, c.points[:, k], minlength=c.n_joints)
+                        for k in range(3)], axis=1) / counts[:, None]
+        tp = np.asarray(st.thrust_points, dtype=float)
+        e = np.where(N > 0, np.linalg.norm(tp - cen, axis=1), np.nan)
+    dem = np.where(tiny, np.nan, np.asarray(st.demand, dtype=float))
+    e = np.where(tiny, np.nan, e)
+
+    def col(a: np.ndarray) -> list[float | str | None]:
+        return [None if math.isnan(x) else ("inf" if math.isinf(x) else float(f"{x:.6g}"))
+                for x in a.tolist()]
+
+    out.update({"N": col(N), "T": col(T), "e": col(e), "demand": col(dem),
+                "half_length": col(0.5 * np.asarray(c.lengths, dtype=float))})
+    return out
+
+
+__all__ = ["Answer", "Summary", "answer", "fmt", "governing", "joint_states", "joint_table",
+           "live_load_text", "question", "summary"]

@@ -1,0 +1,223 @@
+"""HTML reports: what they say, that they name no address, and that they work in a
+real browser (headless Chromium: a screenshot that is not blank, no JavaScript error).
+
+Reference values as in tests/test_plot.py: the block on a support under a horizontal
+body force lambda W collapses at lambda* = min(f, b/h); its minimum friction at load
+factor lambda is f* = lambda.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from types import SimpleNamespace
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import pytest  # noqa: E402
+from conftest import EXAMPLES, make_scene, rect  # noqa: E402
+
+import rigidblocks as rb  # noqa: E402
+from rigidblocks.cli.main import main  # noqa: E402
+from rigidblocks.generators.solids import box_stack  # noqa: E402
+from rigidblocks.reporting import Report, content  # noqa: E402
+from rigidblocks.reporting.browser import (  # noqa: E402
+    find_chromium,
+    page_state,
+    pixel_spread,
+    screenshot,
+)
+
+# CI (.ci/run installs chromium) must run the browser tests; elsewhere they are skipped
+# when no browser is installed
+needs_chromium = pytest.mark.skipif(find_chromium() is None and not os.environ.get("CI"),
+                                    reason="no chromium on the PATH (.ci/run installs it)")
+
+
+def addresses(page: str) -> list[str]:
+    return re.findall(r"""(?:https?|ftp|wss?)://[^\s"'<>)]*""", page)
+
+
+def assert_offline(page: str) -> None:
+    """No address but XML namespace names (identifiers, never fetched), no external
+    script, style sheet, image or font."""
+    assert all(a.startswith("http://www.w3.org/") for a in addresses(page)), \
+        set(addresses(page))
+    assert not re.search(r"<(script|img|iframe)[^>]*\ssrc=", page)
+    assert "<link" not in page and "@import" not in page
+    assert not re.search(r"url\((?!#)", page)  # only the SVG's own clip paths
+
+
+# -- what the report says ---------------------------------------------------------------
+@pytest.mark.parametrize("status", ["undecided", "failure", "inaccurate", ""])
+def test_no_verdict_never_reads_as_one(status):
+    scene = box_stack(boxes=1)
+    res = SimpleNamespace(analysis="check", status=status, notes=("the solver stalled",),
+                          friction=0.6, load_factor=1.0, admissible=None)
+    ans = content.answer(scene, res)
+    assert not ans.verdict and ans.tone == "none"
+    assert "No verdict" in ans.headline
+    for word in ("ADMISSIBLE", "stands", "stable", "collapse", "UNSTABLE"):
+        assert word not in ans.headline
+    assert ans.notes == ("the solver stalled",)
+
+
+def test_verdicts_and_parameters(block_on_base):
+    sc = block_on_base(b=1.0, h=2.0, friction=0.4)
+    load = rb.max_load_multiplier(sc)
+    ans = content.answer(sc, load)
+    assert ans.verdict and ans.tone == "warn" and "0.4" in ans.headline
+    assert any("sliding" in d for d in ans.details)
+    fr = content.answer(sc, rb.min_friction(sc, load_factor=0.3))
+    assert fr.verdict and "f* = 0.3" in fr.headline
+    bad = content.answer(sc, rb.check(sc, friction=0.1, load_factor=0.3))
+    assert bad.tone == "bad" and bad.headline.startswith("NOT ADMISSIBLE")
+    q = content.question(sc, load)
+    assert "(1, 0)" in q and "f = 0.4" in q  # what lambda multiplies, and the friction
+
+
+def test_joint_table_and_states(block_on_base):
+    """The bed joint of the tipping block (f = 0.9 > b/h): a hinge; at lambda = 0.3 in a
+    check, N = W = 2, T = 0.6, |T|/N = 0.3."""
+    sc = block_on_base(b=1.0, h=2.0, friction=0.9)
+    t = content.joint_table(rb.max_load_multiplier(sc))
+    assert t["n"] == 1 and t["state"] == ["hinge"]
+    t = content.joint_table(rb.check(sc, load_factor=0.3))
+    assert t["N"][0] == pytest.approx(2.0, rel=1e-6)
+    assert abs(t["T"][0]) == pytest.approx(0.6, rel=1e-6)
+    assert t["demand"][0] == pytest.approx(0.3, rel=1e-6)
+    assert t["state"] == ["closed"]
+
+
+def test_open_joint_in_table_and_picture():
+    """Two blocks side by side on a base under their weight: the head joint between them
+    carries nothing (open), the bed joints are closed."""
+    sc = make_scene([
+        {"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+        {"id": "a", "vertices": rect(0, 0, 1, 1)},
+        {"id": "b", "vertices": rect(1, 0, 1, 1)},
+    ], unit_weight=1.0, friction=0.5)
+    res = rb.check(sc, load_factor=0.0)
+    t = content.joint_table(res)
+    head = t["joint"].index("a\N{EN DASH}b")
+    assert t["state"][head] == "open"
+    assert t["state"].count("closed") == 2
+    ax = rb.plot(sc, res)
+    (oc,) = [a for a in ax.get_children() if a.get_gid() == "rb-open-joints"]
+    assert len(oc.get_paths()) == 1
+    matplotlib.pyplot.close("all")
+
+
+# -- the document --------------------------------------------------------------------------
+def test_2d_report_document(tmp_path, block_on_base):
+    sc = block_on_base(b=1.0, h=2.0, friction=0.5).with_changes(
+        units=rb.scene.Units("m", "kN"), name="block <on> base")
+    out = tmp_path / "r.html"
+    page = rb.report(sc, analysis="friction", load_factor=0.3, path=out)
+    assert isinstance(page, Report) and out.read_text(encoding="utf-8") == page
+    assert page.startswith("<!DOCTYPE html>")
+    assert "block &lt;on&gt; base" in page  # names are escaped
+    assert 'data-status="stable"' in page and "f* = 0.3" in page
+    assert "<svg" in page and "<text" in page  # text kept as text
+    assert "rb-table-data" in page and "three" not in page.lower().split("<svg")[0][-200:]
+    assert "window.THREE" not in page  # 2D reports carry no three.js
+    assert_offline(page)
+
+
+def test_3d_report_document():
+    page = rb.report(box_stack(boxes=2), analysis="load")
+    assert 'id="rb-view"' in page and "window.THREE = Object.freeze" in page
+    assert 'data-status="collapse"' in page
+    assert_offline(page)
+    assert len(page) < 1_000_000  # three.js (~690 kB) and a small scene
+
+
+def test_scene_only_and_option_errors(tmp_path):
+    page = rb.report(EXAMPLES / "reference.json")
+    assert "rb-answer" not in page and "<svg" in page
+    with pytest.raises(rb.InputError):
+        rb.report(box_stack(boxes=1), friction=0.5)  # options without an analysis
+    with pytest.raises(rb.InputError, match="unknown analysis"):
+        rb.report(box_stack(boxes=1), analysis="thickness")
+
+
+def test_notebook_view():
+    page = rb.report(box_stack(boxes=1))
+    frame = page._repr_html_()
+    assert "<iframe srcdoc=" in frame and "&lt;!DOCTYPE html&gt;" in frame
+    pytest.importorskip("IPython")
+    assert page.to_ipython().data == frame
+
+
+def test_cli(tmp_path, capsys):
+    out = tmp_path / "flat.html"
+    scene = str(EXAMPLES / "flat_arch_vertical.json")
+    assert main(["report", scene, "--analysis", "check", "--friction", "infinite",
+                 "--load-factor", "0", "-o", str(out)]) == 0
+    assert "wrote" in capsys.readouterr().out
+    assert 'data-status="admissible"' in out.read_text(encoding="utf-8")
+    assert main(["report", scene, "-o", str(tmp_path / "x.pdf")]) == 2
+    assert main(["report", scene, "--friction", "0.5", "-o", str(out)]) == 2
+    assert main(["report", scene, "--analysis", "load", "--load-factor", "1",
+                 "-o", str(out)]) == 2
+    assert "--load-factor" in capsys.readouterr().err
+
+
+# -- in a real browser ------------------------------------------------------------------------
+@needs_chromium
+def test_2d_report_in_chromium(tmp_path):
+    html = tmp_path / "flat.html"
+    rb.report(EXAMPLES / "flat_arch_vertical.json", analysis="friction", load_factor=0,
+              path=html)
+    st = page_state(html)
+    assert st.errors == ()
+    assert int(st.data["table-rows"]) == 12  # the table was built by its script
+    png = tmp_path / "flat.png"
+    screenshot(html, png, size=(1200, 1400))
+    assert pixel_spread(png) > 0.05
+
+
+@needs_chromium
+def test_3d_report_in_chromium(tmp_path):
+    html = tmp_path / "stack.html"
+    rb.report(EXAMPLES / "box_stack_3d.json", analysis="load", path=html)
+    st = page_state(html)
+    assert st.errors == ()
+    assert st.data.get("viewer-ready") == "1"
+    # every control once (layers, slider, play, reset, a table row, a joint's forces)
+    ctl = page_state(html, fragment="rb-selftest")
+    assert ctl.errors == () and ctl.data.get("selftest") == "done"
+    assert ctl.data["selftest-tip"].startswith("joint ") and "state:" in ctl.data["selftest-tip"]
+    assert float(st.data["viewer-painted"]) > 0.02  # the view drew the blocks
+    assert int(st.data["viewer-draw-calls"]) <= 16
+    png = tmp_path / "stack.png"
+    screenshot(html, png, size=(1200, 1100))
+    assert pixel_spread(png) > 0.05
+
+
+@needs_chromium
+def test_browser_check_sees_javascript_errors(tmp_path):
+    """The page's own hook catches errors, so a clean run above means something."""
+    page = rb.report(box_stack(boxes=1))
+    html = tmp_path / "bad.html"
+    html.write_text(page.replace("</body>", "<script>undefinedFunction();</script></body>"),
+                    encoding="utf-8")
+    st = page_state(html)
+    assert any("undefinedFunction" in e for e in st.errors)
+
+
+def test_undecided_result_reads_as_no_verdict_everywhere(block_on_base):
+    """A status the analyses may add (undecided, failure): the badge, the headline and
+    the picture all say that nothing was decided."""
+    import dataclasses
+
+    sc = block_on_base(b=1.0, h=2.0, friction=0.5)
+    res = dataclasses.replace(rb.check(sc, load_factor=0.3), status="undecided", state=None,
+                              notes=("the bracket did not close",))
+    page = rb.report(sc, res)
+    assert 'data-verdict="no"' in page and ">no verdict<" in page
+    assert "NO VERDICT" in page  # the picture's title and message
+    assert "ADMISSIBLE" not in page.replace("NOT ADMISSIBLE", "")
+    assert "the bracket did not close" in page
