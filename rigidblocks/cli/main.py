@@ -26,6 +26,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "plot": ("plot", "draw a scene and an analysis result (png, svg, pdf)"),
     "import-dxf": ("dxf", "read a DXF drawing (closed polylines) into a scene file"),
     "export-dxf": ("dxf", "write a scene, its thrust line and forces to DXF"),
+    "import-compas": ("compas", "read a COMPAS Assembly or BlockModel (JSON) into a scene "
+                      "file"),
     "sweep": ("sweep", "parametric study from a spec file: many cases, in parallel, resumable"),
 }
 
