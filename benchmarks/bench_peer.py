@@ -41,7 +41,9 @@ the peer's examples) to the verdict (reading and validating the blocks, contacts
 assembly, problem, solve); the peer's from the block data (building its assembly, its
 interface detection, its solver's set-up and solve; ``times`` in the runner's output).
 Solve only: our Clarabel solve against its IPOPT solve (as its own timer prints them).
-The peer's own method (CRA or CRA-penalty) runs once per structure for its verdict.
+Both are also timed in CPU seconds of each process (``cpu``; one thread per side, so
+the machine's load stretches wall-clock times but hardly these), stage by stage on our
+side (read, contacts, assembly, build, solve), which gives the 3D profile. The peer's own method (CRA or CRA-penalty) runs once per structure for its verdict.
 
     python benchmarks/bench_peer.py [--tiny] [--out DIR] [--peer-python PATH] [--repeats N]
 
@@ -264,17 +266,25 @@ def run_ours(make_scene: Any, pyramid: int | None = None, forces: bool = False,
              contact_tol: Any = None) -> dict:
     """Time one ``check`` from the block data: ``make_scene()`` reads and validates the
     blocks (the scene dict, or the COMPAS file), then the verdict (no force state);
-    ``contact_tol`` may be a function of the scene. With ``forces``, also the state's
+    ``contact_tol`` may be a function of the scene. Wall-clock seconds (``total``,
+    ``read``, ``check``, ``solve``: Clarabel's own) and CPU seconds per stage (``cpu``:
+    read, contacts, assembly, build, solve, total). With ``forces``, also the state's
     joint forces (untimed)."""
-    t0 = time.perf_counter()
+    import bench_scaling as bs
+
+    bs._clock[0] = "cpu"
+    c0, t0 = time.process_time(), time.perf_counter()
     scene = make_scene()
     tol = contact_tol(scene) if callable(contact_tol) else contact_tol
-    t1 = time.perf_counter()
-    res = check(scene, load_factor=0.0, state=False, pyramid=pyramid, contact_tol=tol)
-    t2 = time.perf_counter()
+    c1, t1 = time.process_time(), time.perf_counter()
+    stages: dict[str, float] = {}
+    with bs.stage_timers(stages):
+        res = check(scene, load_factor=0.0, state=False, pyramid=pyramid, contact_tol=tol)
+    c2, t2 = time.process_time(), time.perf_counter()
     out = {"verdict": res.status, "total": t2 - t0, "read": t1 - t0, "check": t2 - t1,
            "solve": res.solve_time, "joints": res.contacts.n_joints,
-           "points": res.contacts.n_points}
+           "points": res.contacts.n_points,
+           "cpu": {"read": c1 - c0, **stages, "check": c2 - c1, "total": c2 - c0}}
     if tol is not None:
         out["contact_tol"] = tol
     if forces and res.status == "admissible":
@@ -364,6 +374,7 @@ def _min_runs(runs: list[dict]) -> dict:
         if vals:
             out[key] = min(vals)
     out["runs"] = [r.get("total") for r in runs]
+    out["cpu"] = _min_dict([r.get("cpu", {}) for r in runs])
     verdicts = {r["verdict"] for r in runs}
     if len(verdicts) > 1:
         out["verdict"] = "varies: " + ", ".join(sorted(verdicts))
@@ -378,7 +389,18 @@ def _min_peer(runs: list[dict]) -> dict:
             if isinstance(v, int | float):
                 times[k] = min(times.get(k, math.inf), v)
     out["times"] = times
+    out["cpu"] = _min_dict([r.get("cpu", {}) for r in runs])
     out["runs"] = [r.get("times", {}).get("total") for r in runs]
+    return out
+
+
+def _min_dict(ds: list[dict]) -> dict:
+    """Per key, the minimum over the dicts that have it."""
+    out: dict[str, float] = {}
+    for d in ds:
+        for k, v in d.items():
+            if isinstance(v, int | float):
+                out[k] = min(out.get(k, math.inf), v)
     return out
 
 
@@ -484,36 +506,6 @@ def bench(sizes: dict, python: str | None, timeouts: dict, repeats: int,
     return rows
 
 
-def profile_3d(sizes: dict, repeats: int) -> dict | None:
-    """Where our 3D time goes on the largest wall: read (scene dict to validated scene),
-    contacts, assembly, problem build, solve (minimum over the repeats, wall clock)."""
-    import bench_scaling as bs
-
-    if not sizes["walls"]:
-        return None
-    n = max(sizes["walls"])
-    s3 = extrude(running_bond_wall(*wall_shape(n)))
-    d3 = scene_to_dict(s3)
-    bs._clock[0] = "wall"
-    best: dict[str, float] = {}
-    for _ in range(repeats):
-        t: dict[str, float] = {}
-        t0 = time.perf_counter()
-        scene = scene_from_dict(d3)
-        t["read"] = time.perf_counter() - t0
-        t1 = time.perf_counter()
-        with bs.stage_timers(t):
-            check(scene, load_factor=0.0, state=False)
-        t["total_check"] = time.perf_counter() - t1
-        t["other"] = t["total_check"] - sum(t.get(k, 0.0) for k in
-                                             ("contacts", "assembly", "build", "solve"))
-        t["total"] = t["read"] + t["total_check"]
-        for k, v in t.items():
-            best[k] = min(best.get(k, math.inf), v)
-    return {"case": f"wall {len(s3.blocks) - 1} blocks, 3D cone", "seconds": best,
-            "loadavg": loadavg()}
-
-
 def summary_line(row: dict) -> str:
     """One line per structure: verdicts and total times."""
     parts = [f"{row['name']:<28}"]
@@ -549,7 +541,24 @@ def targets(rows: list[dict]) -> dict | None:
             "target_2d": TARGET_2D, "target_3d": TARGET_3D,
             "met_2d": rbe["total"] / o2["total"] >= TARGET_2D,
             "met_3d": rbe["total"] / o3["total"] >= TARGET_3D,
+            **_cpu_targets(w),
             "loadavg_start": w.get("loadavg_start"), "loadavg_end": w.get("loadavg_end")}
+
+
+def _cpu_targets(w: dict) -> dict:
+    """The same ratios in CPU seconds (one thread each side: robust to the load)."""
+    rc = w["peer"]["rbe"].get("cpu") or {}
+    c2, c3 = w["ours"]["2d"].get("cpu") or {}, w["ours"]["3d_cone"].get("cpu") or {}
+    if not (rc.get("total") and c2.get("total") and c3.get("total")):
+        return {}
+    ip = rc.get("ipopt", rc.get("solve"))
+    return {"cpu_rbe_total_s": rc["total"], "cpu_rbe_ipopt_s": ip,
+            "cpu_rbe_interfaces_s": rc.get("interfaces"),
+            "cpu_ours_2d_total_s": c2["total"], "cpu_ours_3d_cone_total_s": c3["total"],
+            "cpu_ratio_2d_total": rc["total"] / c2["total"],
+            "cpu_ratio_3d_total": rc["total"] / c3["total"],
+            "cpu_ratio_2d_solve": ip / c2["solve"], "cpu_ratio_3d_solve": ip / c3["solve"],
+            "cpu_profile_3d": c3}
 
 
 def hard_cases(rows: list[dict]) -> list[dict]:
@@ -691,8 +700,20 @@ def markdown(data: dict) -> str:
         body.append([r["name"], a2, a3, rtot, _ratio(rtot, a2), _ratio(rtot, a3), s2, s3,
                      ripo, _ratio(ripo, s2), _ratio(ripo, s3),
                      _t(p.get("cra", {}).get("times", {}))])
-    lines += ["Times in seconds, end to end (block data to verdict) and solve only "
+    lines += ["Wall-clock seconds, end to end (block data to verdict) and solve only "
               "(Clarabel against IPOPT):", "", markdown_table(head, body), ""]
+    body = []
+    for r in gen:
+        o, p = r["ours"], r["peer"]
+        rc = p.get("rbe", {}).get("cpu", {})
+        c2, c3 = o.get("2d", {}).get("cpu", {}), o.get("3d_cone", {}).get("cpu", {})
+        a2, a3, rt = _t(c2), _t(c3), _t(rc)
+        s2, s3, ri = _t(c2, "solve"), _t(c3, "solve"), _t(rc, "ipopt")
+        body.append([r["name"], a2, a3, rt, _ratio(rt, a2), _ratio(rt, a3), s2, s3, ri,
+                     _ratio(ri, s2), _ratio(ri, s3), _t(p.get("cra", {}).get("cpu", {}))])
+    lines += ["The same in CPU seconds of each process (one thread on each side, so the "
+              "machine's load stretches the wall clock above, not these):", "",
+              markdown_table(head, body), ""]
     if tg:
         lines += [f"Claims at the {tg['case']} (end to end: the peer's RBE "
                   f"{tg['rbe_total_s']:.3g} s = build {tg['rbe_build_s']:.3g} s + "
@@ -706,14 +727,27 @@ def markdown(data: dict) -> str:
                   f"- 3D exact cone: {tg['ratio_3d_total']:.3g}x end to end "
                   f"({tg['ours_3d_cone_total_s']:.3g} s), {tg['ratio_3d_solve']:.3g}x solve "
                   f"only; goal >= {tg['target_3d']:g}x end to end: "
-                  f"{'met' if tg['met_3d'] else 'NOT met'}", ""]
-    prof = data.get("profile_3d")
+                  f"{'met' if tg['met_3d'] else 'NOT met'}"]
+        if "cpu_ratio_2d_total" in tg:
+            lines += [f"- in CPU seconds: its RBE {tg['cpu_rbe_total_s']:.3g} s (IPOPT "
+                      f"{tg['cpu_rbe_ipopt_s']:.3g} s, interfaces "
+                      f"{tg['cpu_rbe_interfaces_s']:.3g} s); 2D "
+                      f"{tg['cpu_ratio_2d_total']:.3g}x end to end "
+                      f"({tg['cpu_ours_2d_total_s']:.3g} s), "
+                      f"{tg['cpu_ratio_2d_solve']:.3g}x solve only: "
+                      f"{'met' if tg['cpu_ratio_2d_total'] >= tg['target_2d'] else 'NOT met'}"
+                      f"; 3D cone {tg['cpu_ratio_3d_total']:.3g}x end to end "
+                      f"({tg['cpu_ours_3d_cone_total_s']:.3g} s), "
+                      f"{tg['cpu_ratio_3d_solve']:.3g}x solve only: "
+                      f"{'met' if tg['cpu_ratio_3d_total'] >= tg['target_3d'] else 'NOT met'}"]
+        lines += [""]
+    prof = (tg or {}).get("cpu_profile_3d")
     if prof:
-        s = prof["seconds"]
-        keys = ("read", "contacts", "assembly", "build", "solve", "other", "total")
-        lines += [f"Where our 3D time goes ({prof['case']}, minimum of the runs, "
-                  f"load average {prof['loadavg']}):", "",
-                  markdown_table(list(keys), [[s.get(k, 0.0) for k in keys]]), ""]
+        keys = ("read", "contacts", "assembly", "build", "solve", "total")
+        lines += [f"Where our 3D time goes at the {tg['case']} (exact cone, CPU seconds, "
+                  "each stage's minimum over the runs; read: the scene's blocks to a "
+                  "validated scene; build: the problem; solve: the Clarabel call):", "",
+                  markdown_table(list(keys), [[prof.get(k, 0.0) for k in keys]]), ""]
     if hard:
         lines += ["Hard cases:", "", markdown_table(
             ["method", "case", "expected", "answer", "grade"],
@@ -823,7 +857,6 @@ def main(argv: Sequence[str] | None = None) -> dict:
                 "cra_big": args.big_cra_timeout}
     started, la0 = time.strftime("%Y-%m-%d %H:%M:%S %Z"), loadavg()
     rows = bench(sizes, python, timeouts, args.repeats)
-    prof = profile_3d(sizes, args.repeats) if not args.tiny else None
     data = {"peer_available": python is not None, "peer_python": python,
             "peer_version": next((p.get("version") for r in rows
                                   for p in r["peer"].values() if p.get("version")), None),
@@ -833,7 +866,7 @@ def main(argv: Sequence[str] | None = None) -> dict:
             "repeats": args.repeats, "started": started, "loadavg_start": la0,
             "finished": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "loadavg_end": loadavg(),
             "timeouts_s": timeouts, "rbe_tension_tol": RBE_TENSION_TOL,
-            "rows": rows, "profile_3d": prof}
+            "rows": rows}
     data["targets"], data["hard_cases"] = targets(rows), hard_cases(rows)
     d = out_dir(args.out)
     write_results(d, NAME, data, markdown(data))

@@ -35,7 +35,8 @@ interfaces the sample file carries instead of detecting them. ``"export": PATH``
 the prepared assembly (supports, densities, rotation; before its interfaces are
 detected) as COMPAS JSON, untimed, for the other tool to read. ``times`` also has
 ``setup`` and ``ipopt``: the solver's own problem set-up and IPOPT solve, as its timer
-prints them. Thread settings come from the environment (the caller sets them).
+prints them; ``cpu`` has the process CPU seconds of the same stages (``ipopt``: the
+IPOPT calls alone). Thread settings come from the environment (the caller sets them).
 """
 
 from __future__ import annotations
@@ -157,6 +158,26 @@ def warm_up() -> None:
         rbe_solve(assembly, mu=0.6)
 
 
+def _time_ipopt() -> list[float]:
+    """Record the CPU seconds of each IPOPT solve of the peer's solvers (its
+    ``solve_nlp`` as its solver module calls it, wrapped); returns the list it fills."""
+    from compas_cra.equilibrium import cra_native
+
+    spent: list[float] = []
+    inner = getattr(cra_native.solve_nlp, "__wrapped__", cra_native.solve_nlp)
+
+    def timed(*args, **kwargs):
+        c0 = time.process_time()
+        try:
+            return inner(*args, **kwargs)
+        finally:
+            spent.append(time.process_time() - c0)
+
+    timed.__wrapped__ = inner
+    cra_native.solve_nlp = timed
+    return spent
+
+
 def run(case: dict, method: str) -> dict:
     """Build, detect interfaces and solve; the answer as a JSON-ready dict."""
     from compas_cra.algorithms import assembly_interfaces_numpy
@@ -165,25 +186,29 @@ def run(case: dict, method: str) -> dict:
     solvers = {"rbe": rbe_solve, "cra": cra_solve, "cra_penalty": cra_penalty_solve}
     out: dict = {"method": method, "case": case.get("name"), "times": {}}
     warm_up()
+    out["cpu"] = {}
+    c_all = time.process_time()
     t_all = time.perf_counter()
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     if "blocks" in case:
         assembly, keys = build_assembly(case)
     else:
         export, case["export"] = case.get("export"), None
         assembly, keys = prepare(case)
     out["times"]["build"] = time.perf_counter() - t0
+    out["cpu"]["build"] = time.process_time() - c0
     if "blocks" not in case and export:
         import compas
 
         compas.json_dump(assembly, export)  # untimed: the prepared assembly
     opts = case.get("interfaces", {})
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     if opts is not None:
         assembly_interfaces_numpy(assembly, nmax=int(opts.get("nmax", 10)),
                                   tmax=float(opts.get("tmax", 1e-6)),
                                   amin=float(opts.get("amin", 1e-6)))
     out["times"]["interfaces"] = time.perf_counter() - t0
+    out["cpu"]["interfaces"] = time.process_time() - c0
     edges = list(assembly.graph.edges())
     out["n_blocks"] = assembly.graph.number_of_nodes()
     out["n_interfaces"] = sum(len(assembly.graph.edge_attribute(e, "interfaces"))
@@ -193,7 +218,8 @@ def run(case: dict, method: str) -> dict:
     kwargs = {"mu": float(case["mu"]), "density": float(case.get("density_default", 1.0))}
     if method != "rbe":
         kwargs.update(d_bnd=float(case.get("d_bnd", 1e-3)), eps=float(case.get("eps", 1e-4)))
-    t0 = time.perf_counter()
+    ipopt_cpu = _time_ipopt()
+    t0, c0 = time.perf_counter(), time.process_time()
     log = io.StringIO()
     try:
         with contextlib.redirect_stdout(log):
@@ -204,11 +230,15 @@ def run(case: dict, method: str) -> dict:
         out["status"] = "failed"
         out["message"] = str(exc).splitlines()[0][:300]
     out["times"]["solve"] = time.perf_counter() - t0
+    out["cpu"]["solve"] = time.process_time() - c0
+    if ipopt_cpu:
+        out["cpu"]["ipopt"] = sum(ipopt_cpu)
     for label, key in (("set up", "setup"), ("solving", "ipopt")):
         m = re.search(rf"--- {label} time: ([0-9.eE+-]+) seconds ---", log.getvalue())
         if m:
             out["times"][key] = float(m.group(1))
     out["times"]["total"] = time.perf_counter() - t_all
+    out["cpu"]["total"] = time.process_time() - c_all
     joints = []
     if out["status"] == "solved":
         for u, v in edges:

@@ -99,6 +99,9 @@ def test_bench_peer_tiny_our_side(tmp_path):
         for o in r["ours"].values():
             assert len(o["runs"]) == 2 and o["total"] == min(o["runs"])
             assert 0 < o["solve"] <= o["check"] < o["total"]
+            c = o["cpu"]
+            assert {"read", "contacts", "assembly", "build", "solve", "total"} <= set(c)
+            assert c["solve"] <= c["total"] and c["read"] <= c["total"]
     md = (tmp_path / "bench_peer.md").read_text()
     assert "minimum over the runs" in md and "Load average" in md
     doc = json.loads((tmp_path / "bench_peer.json").read_text())
