@@ -43,7 +43,8 @@ interface detection, its solver's set-up and solve; ``times`` in the runner's ou
 Solve only: our Clarabel solve against its IPOPT solve (as its own timer prints them).
 Both are also timed in CPU seconds of each process (``cpu``; one thread per side, so
 the machine's load stretches wall-clock times but hardly these), stage by stage on our
-side (read, contacts, assembly, build, solve), which gives the 3D profile. The peer's own method (CRA or CRA-penalty) runs once per structure for its verdict.
+side (read, contacts, assembly, build, solve), which gives the 3D profile. The peer's
+own method (CRA or CRA-penalty) runs once per structure for its verdict.
 
     python benchmarks/bench_peer.py [--tiny] [--out DIR] [--peer-python PATH] [--repeats N]
 
@@ -607,10 +608,18 @@ def differences(row: dict) -> list[str]:
                       if tr else ""))
     own = {k: v for k, v in theirs.items() if k != "rbe"}
     for k, v in own.items():
-        if v != mine:
+        if v == mine:
+            continue
+        tr = p[k].get("tension_ratio")
+        if k == "cra_penalty" and v == "admissible" and tr and tr > RBE_TENSION_TOL:
+            out.append(f"its CRA-penalty ({v}) penalises tension instead of forbidding it: "
+                       f"its state carries tension {tr:.2g} of its compression")
+        elif v == "no answer":
+            out.append(f"its {k.upper()} gave no answer "
+                       f"({p[k].get('message', '')[:80]})")
+        else:
             out.append(f"its {k.upper()} ({v}) is non-associative with displacements "
-                       "bounded by d_bnd: a different question than the static theorem"
-                       if k.startswith("cra") else f"its {k}: {v}")
+                       "bounded by d_bnd: a different question than the static theorem")
     return out
 
 
