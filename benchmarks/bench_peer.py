@@ -49,10 +49,18 @@ own method (CRA or CRA-penalty) runs once per structure for its verdict.
     python benchmarks/bench_peer.py [--tiny] [--out DIR] [--peer-python PATH] [--repeats N]
 
 The peer's Python: ``--peer-python``, else ``RIGIDBLOCKS_PEER_PYTHON``, else
-``/work/venv-peer/bin/python``; ``none`` skips the peer. ``--redraw`` rewrites the
-tables and the chart from the run's ``bench_peer.json``. A full run into the default
-results folder also regenerates ``benchmarks/README.md`` (``make_readme.py``), so that
-the README's claims come from this run only.
+``/work/venv-peer/bin/python``; ``none`` skips the peer. It is a separate environment,
+never a dependency of rigidblocks (compas_cra ships its own IPOPT and OpenBLAS)::
+
+    python -m venv /work/venv-peer
+    /work/venv-peer/bin/pip install compas_cra==0.8.0 compas_assembly==0.7.1 compas==2.15.1
+
+Our side reads the peer's examples through :mod:`rigidblocks.compas`, so it runs with
+the ``compas`` extra installed (without it those rows say "not modelled" and why).
+
+``--redraw`` rewrites the tables and the chart from the run's ``bench_peer.json``. A
+full run into the default results folder also regenerates ``benchmarks/README.md``
+(``make_readme.py``), so that the README's claims come from this run only.
 """
 
 from __future__ import annotations
