@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import EXAMPLES
 
 import rigidblocks as rb
 from rigidblocks.cli.main import main
@@ -255,8 +256,7 @@ def test_blockmodel_material_density_times_g():
 
 
 def test_scene_to_assembly_and_back():
-    scene = read_scene(rb.io.scene_file.__file__.replace(
-        "rigidblocks/io/scene_file.py", "examples/box_stack_3d.json"))
+    scene = read_scene(EXAMPLES / "box_stack_3d.json")
     a = scene_to_assembly(scene)
     assert a.graph.number_of_nodes() == len(scene.blocks)
     back = from_compas(a, friction=scene.friction)
