@@ -10,9 +10,10 @@ discrete-element assemblies", CAD 2022, doi:10.1016/j.cad.2022.103216) offers
   whose facets are at distance f N from the axis (the pyramid circumscribes the cone).
   Its verdict here: admissible when the penalised tension is below 1e-4 of the total
   compression (``RBE_TENSION_TOL``), inadmissible otherwise or when IPOPT fails.
-- CRA, coupled rigid-block analysis (its Eq. 11): forces and small displacements with
-  complementarity, non-associative friction. Its verdict: admissible when IPOPT
-  converges, inadmissible when it reports the problem infeasible.
+- CRA, coupled rigid-block analysis (its Eq. 11; Eq. 14 with a tension penalty):
+  forces and small displacements with complementarity, non-associative friction. Its
+  verdict: admissible when IPOPT converges, inadmissible when it reports the problem
+  infeasible, no answer otherwise.
 
 Ours: :func:`rigidblocks.check` with ``load_factor=0`` (self-weight only) on the 2D
 scene where the structure is planar, on its extrusion (:func:`rigidblocks.scene.extrude`)
@@ -21,63 +22,80 @@ with the exact second-order Coulomb cone, and on the extrusion with an inscribed
 
 Structures: semicircular arches on abutments (radial joints, t/R = 0.15, 10-100
 voussoirs, straight intrados and extrados per voussoir so both tools see the same
-polyhedra), running-bond walls on a foundation of about 10-1,000 blocks, and the peer's
-own sample assemblies (run by the peer; by us too where their blocks are convex). The
-wall's foundation is cut, for the peer only, into one fixed piece under each
-bottom-course block: the peer's interface search looks for contacts among the ``nmax``
-nearest block centroids only, and would miss most of a long foundation; fixed pieces
-change nothing in the mechanics.
+polyhedra), running-bond walls on a foundation of about 10-1,000 blocks, and every
+sample and documented example of the peer (``PEER_EXAMPLES``: its set-up, supports,
+densities, rotation, friction, interface tolerances and solver as in its docs), read
+on our side from the COMPAS file of the prepared assembly through
+:mod:`rigidblocks.compas`. The wall's foundation is cut, for the peer only, into one
+fixed piece under each bottom-course block: the peer's interface search looks for
+contacts among the ``nmax`` nearest block centroids only, and would miss most of a long
+foundation; fixed pieces change nothing in the mechanics.
 
-Times: from blocks to verdict. Ours: the whole ``check`` call (contacts, assembly,
-problem, solve) and its solve alone; the peer's: building the assembly, its interface
-detection, and its solve (``times`` in the runner's output), each peer run in its own
-process under a time limit (``peer_runner.py``, run with the peer's Python:
-``--peer-python``, else ``RIGIDBLOCKS_PEER_PYTHON``, else ``/work/venv-peer/bin/python``;
-``none`` skips the peer).
+Protocol: both sides in one session, with the same thread settings (``THREADS``: one
+BLAS / OpenMP thread, set in this process before numpy loads and passed to every peer
+process), interleaved per structure (ours, the peer's RBE, ours, the peer's RBE, ...),
+``--repeats`` times (at least 3); each figure is the minimum over the repeats, and the
+machine's load average is recorded at the start and end of the run and of each
+structure. End to end: ours from the block data (the scene dict; the COMPAS file for
+the peer's examples) to the verdict (reading and validating the blocks, contacts,
+assembly, problem, solve); the peer's from the block data (building its assembly, its
+interface detection, its solver's set-up and solve; ``times`` in the runner's output).
+Solve only: our Clarabel solve against its IPOPT solve (as its own timer prints them).
+Both are also timed in CPU seconds of each process (``cpu``; one thread per side, so
+the machine's load stretches wall-clock times but hardly these), stage by stage on our
+side (read, contacts, assembly, build, solve), which gives the 3D profile. The peer's
+own method (CRA or CRA-penalty) runs once per structure for its verdict.
 
-    python benchmarks/bench_peer.py [--tiny] [--out DIR] [--peer-python PATH]
+    python benchmarks/bench_peer.py [--tiny] [--out DIR] [--peer-python PATH] [--repeats N]
 
-``--redraw`` rewrites the tables and chart from an existing ``bench_peer.json``;
-``--ours-only`` reruns our side of every structure of that JSON and keeps the peer's
-results as they were measured (its date is kept as ``peer_date``): the peer's samples
-are loaded by the peer's Python for their geometry only (no peer solve), and the force
-comparisons, which need the peer's per-joint forces, are kept from the run that
-measured them.
+The peer's Python: ``--peer-python``, else ``RIGIDBLOCKS_PEER_PYTHON``, else
+``/work/venv-peer/bin/python``; ``none`` skips the peer. It is a separate environment,
+never a dependency of rigidblocks (compas_cra ships its own IPOPT and OpenBLAS)::
+
+    python -m venv /work/venv-peer
+    /work/venv-peer/bin/pip install compas_cra==0.8.0 compas_assembly==0.7.1 compas==2.15.1
+
+Our side reads the peer's examples through :mod:`rigidblocks.compas`, so it runs with
+the ``compas`` extra installed (without it those rows say "not modelled" and why).
+
+``--redraw`` rewrites the tables and the chart from the run's ``bench_peer.json``. A
+full run into the default results folder also regenerates ``benchmarks/README.md``
+(``make_readme.py``), so that the README's claims come from this run only.
 """
 
 from __future__ import annotations
 
-import argparse
-import json
-import math
 import os
-import subprocess
 import sys
-import tempfile
-import time
-from collections.abc import Sequence
-from pathlib import Path
-from typing import Any
 
-import numpy as np
+#: the thread settings of both sides
+THREADS = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+if __name__ == "__main__":  # before numpy loads its BLAS
+    os.environ.update(THREADS)
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+import subprocess  # noqa: E402
+import tempfile  # noqa: E402
+import time  # noqa: E402
+from collections.abc import Sequence  # noqa: E402
+from pathlib import Path  # noqa: E402
+from typing import Any  # noqa: E402
+
+import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from common import (  # noqa: E402
-    markdown_table,
-    out_dir,
-    read_results,
-    rewrite_results,
-    write_results,
-)
+from common import markdown_table, out_dir, write_results  # noqa: E402
 
 from rigidblocks import check  # noqa: E402
 from rigidblocks.errors import InputError  # noqa: E402
 from rigidblocks.generators import build  # noqa: E402
 from rigidblocks.generators.walls import running_bond_wall  # noqa: E402
+from rigidblocks.io.scene_file import scene_from_dict, scene_to_dict  # noqa: E402
 from rigidblocks.scene.extrude import extrude  # noqa: E402
 from rigidblocks.scene.geometry import scene_size  # noqa: E402
-from rigidblocks.scene.model import Scene, make_block  # noqa: E402
-from rigidblocks.scene.validate import validate_scene  # noqa: E402
+from rigidblocks.scene.model import Scene  # noqa: E402
 
 NAME = "bench_peer"
 RUNNER = Path(__file__).resolve().parent / "peer_runner.py"
@@ -87,23 +105,81 @@ ARCH_T = 0.15
 ARCHES = (10, 20, 50, 100)
 WALLS = (10, 100, 1_000)
 HARD_ARCHES = ((10, 0.2), (20, 0.2))
+REPEATS = 3
 # CRA's displacement bound and overlap as in the peer's own sample examples (its solver
 # defaults are d_bnd = 1e-3, eps = 1e-4); run on the hard arches beside the defaults
 CRA_LOOSE = {"d_bnd": 0.1, "eps": 0.0}
-TINY = {"arches": (10,), "walls": (10,), "hard": ((10, 0.2),), "samples": ()}
-# the peer's samples with the supports, friction and interface settings of its examples
-SAMPLES = (
-    {"name": "cubes", "sample": "cubes.json", "supports": [0], "mu": 0.84,
-     "interfaces": {"nmax": 10, "amin": 1e-2, "tmax": 1e-2}},
-    {"name": "bridge", "sample": "bridge.json", "supports": [0, 1], "mu": 0.9, "d_bnd": 0.1,
-     "eps": 0.0, "interfaces": {"nmax": 10, "amin": 1e-6, "tmax": 1e-4}},
-    {"name": "shelf", "sample": "shelf.json", "supports": [0], "mu": 0.9, "d_bnd": 0.1,
-     "eps": 1e-3, "interfaces": {"nmax": 10, "amin": 1e-6, "tmax": 1e-4}},
-    {"name": "snake", "sample": "snake.json", "supports": [0], "mu": 0.7, "d_bnd": 0.1,
-     "eps": 0.0, "interfaces": {"nmax": 10, "amin": 1e-4, "tmax": 1e-2}},
+TINY = {"arches": (10,), "walls": (10,), "hard": ((10, 0.2),), "examples": ()}
+_DET = {"nmax": 10, "amin": 1e-2, "tmax": 1e-2}
+_FINE = {"nmax": 10, "amin": 1e-6, "tmax": 1e-4}
+_Y = [0, 1, 0]
+#: the peer's samples and documented examples (docs/examples/NN_*.py of compas_cra),
+#: with its own supports, densities, rotations, friction, interface tolerances and
+#: solver; ``interfaces: None`` keeps the interfaces its sample file carries (it does
+#: not detect them there); the four wedge types and the shelf variants are run with
+#: the settings of the example that uses one of them
+PEER_EXAMPLES: tuple[dict, ...] = (
+    {"name": "00 simple cube", "boxes": [[0, 0, 0], [0, 0, 1]], "supports": [0],
+     "mu": 0.84, "method": "cra", "interfaces": _FINE},
+    {"name": "01 cubes, 48 deg, mu 0.1", "boxes": [[0, 0, 0], [0, 0, 1]], "supports": [0],
+     "rotate": {"axis": _Y, "deg": 48.0}, "mu": 0.1, "method": "rbe", "interfaces": _FINE},
+    {"name": "02 cubes", "sample": "cubes.json", "supports": [0], "mu": 0.84,
+     "method": "cra", "interfaces": _DET},
+    {"name": "03 cubes, 40 deg, offset 0.75", "boxes": [[0, 0, 0], [0.75, 0, 1]],
+     "supports": [0], "rotate": {"axis": _Y, "deg": 40.0}, "mu": 0.84,
+     "method": "cra_penalty", "interfaces": _FINE},
+    {"name": "04 stacks, 20 deg", "boxes": [[0, 0, 0], [0, 0, 1], [0, 0, 2]],
+     "supports": [0], "rotate": {"axis": _Y, "deg": 20.0}, "mu": 0.84, "method": "cra",
+     "interfaces": _FINE},
+    *({"name": f"05 wedge {t}, 90 deg", "sample": f"{t}.json", "supports": [0, 1],
+       "rotate": {"axis": _Y, "deg": 90.0}, "mu": 0.84, "method": "cra", "d_bnd": 1e-2,
+       "interfaces": _DET} for t in ("type-a", "type-b", "type-c", "type-d")),
+    {"name": "06 arch", "arch": {"height": 5, "span": 10, "thickness": 0.5, "depth": 0.5,
+                                 "num_blocks": 20, "extra_support": False},
+     "supports": None, "mu": 0.7, "method": "cra", "interfaces": _DET},
+    {"name": "06 arch, extra support", "arch": {"height": 5, "span": 10, "thickness": 0.5,
+                                                "depth": 0.5, "num_blocks": 20,
+                                                "extra_support": True},
+     "supports": None, "mu": 0.7, "method": "cra_penalty", "interfaces": _DET},
+    *({"name": f"07 {s}", "sample": f"{s}.json", "supports": [0], "mu": 0.9,
+       "method": "cra_penalty", "d_bnd": 0.1, "eps": 1e-3, "interfaces": _FINE}
+      for s in ("shelf", "shelf-stable", "shelf-s1", "shelf-s2", "shelf-s3")),
+    {"name": "08 snake", "sample": "snake.json", "supports": [0], "mu": 0.7,
+     "method": "cra_penalty", "d_bnd": 0.1, "eps": 0.0,
+     "interfaces": {"nmax": 10, "amin": 1e-4, "tmax": 1e-2}},
+    {"name": "09 bridge", "sample": "bridge.json", "supports": [0, 1], "mu": 0.9,
+     "density": {str(k): 3.51 for k in (11, 12, 13, 14, 15)},
+     "method": "cra_penalty", "d_bnd": 0.1, "eps": 0.0, "interfaces": _FINE},
+    {"name": "10 armadillo", "sample": "armadillo_cra.json", "supports": None, "mu": 0.84,
+     "method": "rbe", "interfaces": None},
+    {"name": "11 concave-short, 40 deg", "sample": "concave-short.json", "supports": [0],
+     "rotate": {"axis": _Y, "deg": 40.0}, "mu": 0.84, "method": "cra", "d_bnd": 1e-2,
+     "eps": 1e-3, "interfaces": None},
+    {"name": "12 concave-long, 50 deg", "sample": "concave-long.json", "supports": [0],
+     "rotate": {"axis": _Y, "deg": 50.0}, "mu": 0.84, "method": "cra", "d_bnd": 1e-2,
+     "eps": 1e-3, "interfaces": None},
+    {"name": "13 curve-3-blocks", "sample": "curve-3-blocks.json", "supports": [0],
+     "mu": 0.84, "method": "cra", "interfaces": None},
+    {"name": "14 cube-curve-short", "sample": "cube-curve-short.json", "supports": [0],
+     "mu": 0.84, "density_default": 0.1, "method": "cra", "interfaces": None},
+    {"name": "15 cube-curve-tall", "sample": "cube-curve-tall.json", "supports": [0],
+     "mu": 0.84, "density_default": 0.1, "method": "cra", "interfaces": None},
+    {"name": "16 A", "sample": "A.json", "supports": [0, 1], "mu": 0.84, "method": "rbe",
+     "interfaces": _DET},
+    {"name": "16 H", "sample": "H.json", "supports": [0, 1], "mu": 0.84, "method": "rbe",
+     "interfaces": _DET},
 )
 HEYMAN = ("semicircular arch, radial joints, t/R above the minimum 0.1075 "
           "(Milankovitch 1907; Heyman 1969): stands")
+TARGET_2D, TARGET_3D = 100.0, 20.0
+
+
+def loadavg() -> list[float]:
+    """The machine's 1, 5 and 15 minute load averages."""
+    try:
+        return [round(x, 2) for x in os.getloadavg()]
+    except OSError:  # pragma: no cover
+        return []
 
 
 def wall_shape(n_blocks: int) -> tuple[int, int]:
@@ -176,8 +252,8 @@ def structures(sizes: dict) -> list[dict]:
                     "basis": "dry-stacked running bond on a foundation, self-weight only: "
                              "full bed joints, no horizontal force",
                     "peer": {"mu": 0.6, "blocks": peer_blocks(s3, "foundation")}})
-    for case in sizes["samples"]:
-        out.append({"name": f"peer sample {case['name']}", "kind": "peer sample",
+    for case in sizes["examples"]:
+        out.append({"name": f"peer {case['name']}", "kind": "peer example",
                     "blocks": None, "scene2d": None, "scene3d": None, "expected": None,
                     "basis": "", "peer": dict(case)})
     return out
@@ -195,19 +271,29 @@ def joint_forces(result: Any) -> dict[tuple[str, str], float]:
     return out
 
 
-def run_ours(scene: Scene, pyramid: int | None = None, forces: bool = False,
-             contact_tol: float | None = None) -> dict:
-    """Time ``check`` (verdict only); with ``forces``, also the state's joint forces."""
-    t0 = time.perf_counter()
-    res = check(scene, load_factor=0.0, state=False, pyramid=pyramid, contact_tol=contact_tol)
-    total = time.perf_counter() - t0
-    out = {"verdict": res.status, "total": total, "solve": res.solve_time,
-           "joints": res.contacts.n_joints}
-    if contact_tol is not None:
-        out["contact_tol"] = contact_tol
+def run_ours(make_scene: Any, pyramid: int | None = None, forces: bool = False,
+             contact_tol: Any = None) -> dict:
+    """Time one ``check`` from the block data: ``make_scene()`` reads and validates the
+    blocks (the scene dict, or the COMPAS file), then the verdict (no force state);
+    ``contact_tol`` may be a function of the scene. Wall-clock seconds (``total``,
+    ``read``, ``check``, ``solve``: Clarabel's own) and CPU seconds per stage (``cpu``:
+    read, contacts, assembly, build, solve, total). With ``forces``, also the state's
+    joint forces (untimed)."""
+    c0, t0 = time.process_time(), time.perf_counter()
+    scene = make_scene()
+    tol = contact_tol(scene) if callable(contact_tol) else contact_tol
+    c1, t1 = time.process_time(), time.perf_counter()
+    res = check(scene, load_factor=0.0, state=False, pyramid=pyramid, contact_tol=tol)
+    c2, t2 = time.process_time(), time.perf_counter()
+    stages = dict(res.cpu_timings)  # contacts, assembly, build, solve (CPU seconds)
+    out = {"verdict": res.status, "total": t2 - t0, "read": t1 - t0, "check": t2 - t1,
+           "solve": res.solve_time, "joints": res.contacts.n_joints,
+           "points": res.contacts.n_points,
+           "cpu": {"read": c1 - c0, **stages, "check": c2 - c1, "total": c2 - c0}}
+    if tol is not None:
+        out["contact_tol"] = tol
     if forces and res.status == "admissible":
-        state = check(scene, load_factor=0.0, state=True, pyramid=pyramid,
-                      contact_tol=contact_tol)
+        state = check(scene, load_factor=0.0, state=True, pyramid=pyramid, contact_tol=tol)
         out["forces"] = joint_forces(state)
     return out
 
@@ -221,14 +307,16 @@ def peer_python(arg: str | None) -> str | None:
 
 
 def run_peer(python: str, case: dict, method: str, timeout: float, tmp: Path) -> dict:
-    """One peer run in its own process; status "timeout" when it exceeds ``timeout`` s."""
+    """One peer run in its own process (thread settings ``THREADS``); status "timeout"
+    when it exceeds ``timeout`` s."""
     src, dst = tmp / "case.json", tmp / "out.json"
     src.write_text(json.dumps(case))
     dst.unlink(missing_ok=True)
+    env = {**os.environ, **THREADS}
     t0 = time.perf_counter()
     try:
         proc = subprocess.run([python, str(RUNNER), str(src), str(dst), method],
-                              capture_output=True, text=True, timeout=timeout)
+                              capture_output=True, text=True, timeout=timeout, env=env)
     except subprocess.TimeoutExpired:
         return {"method": method, "status": "timeout", "times": {"limit": timeout},
                 "message": f"no answer within {timeout:g} s (stopped)", "joints": []}
@@ -255,6 +343,14 @@ def peer_verdict(out: dict) -> str:
     return "no answer"
 
 
+def rbe_tension_ratio(out: dict) -> float | None:
+    """RBE's penalised tension over its total compression."""
+    if out.get("status") != "solved" or out.get("method") not in ("rbe", "cra_penalty"):
+        return None
+    comp = sum(j["fn"] for j in out["joints"])
+    return sum(abs(j["tension"]) for j in out["joints"]) / max(comp, 1e-300)
+
+
 def compare_forces(ours: dict[tuple[str, str], float], peer: dict) -> dict | None:
     """Per-joint total normal force, ours against the peer's (compression - tension)."""
     theirs: dict[tuple[str, str], float] = {}
@@ -267,76 +363,149 @@ def compare_forces(ours: dict[tuple[str, str], float], peer: dict) -> dict | Non
     a = np.array([ours[k] for k in common])
     b = np.array([theirs[k] for k in common])
     scale = max(np.abs(a).max(), np.abs(b).max(), 1e-300)
-    return {"joints": len(common), "ours_total": float(a.sum()), "peer_total": float(b.sum()),
+    return {"joints": len(common), "ours_only": len(set(ours) - set(theirs)),
+            "peer_only": len(set(theirs) - set(ours)),
+            "ours_total": float(a.sum()), "peer_total": float(b.sum()),
             "max_rel_diff": float(np.abs(a - b).max() / scale),
             "median_rel_diff": float(np.median(np.abs(a - b)) / scale)}
 
 
-def sample_scene(blocks: list[dict], mu: float) -> Scene:
-    """Our 3D scene of the peer's exported blocks (unit weight = its density).
-
-    Validated like a scene file (convex polyhedra, no overlaps): a sample with a
-    non-convex block raises :class:`InputError` naming it, and is reported as not
-    modelled rather than analysed with wrongly oriented faces.
-    """
-    bl = tuple(make_block(b["id"], b["vertices"], faces=b["faces"], support=b["support"],
-                          unit_weight=b["density"]) for b in blocks)
-    scene = Scene(dimension=3, blocks=bl, friction=mu, unit_weight=1.0, name="peer sample")
-    validate_scene(scene)
-    return scene
-
-
-def sample_contact_tol(scene: Scene, case: dict) -> float:
-    """The peer's interface tolerance tmax (a length) as our relative contact tolerance."""
-    return float(case["interfaces"]["tmax"]) / scene_size(scene)
+def _min_runs(runs: list[dict]) -> dict:
+    """The first run's answer with every time the minimum over the runs, and the runs'
+    totals kept as ``runs``."""
+    out = dict(runs[0])
+    for key in ("total", "read", "check", "solve"):
+        vals = [r[key] for r in runs if r.get(key) is not None]
+        if vals:
+            out[key] = min(vals)
+    out["runs"] = [r.get("total") for r in runs]
+    out["cpu"] = _min_dict([r.get("cpu", {}) for r in runs])
+    verdicts = {r["verdict"] for r in runs}
+    if len(verdicts) > 1:
+        out["verdict"] = "varies: " + ", ".join(sorted(verdicts))
+    return out
 
 
-def bench(sizes: dict, python: str | None, timeouts: dict, log=sys.stdout) -> list[dict]:
-    """Run both sides on every structure; one row per structure."""
+def _min_peer(runs: list[dict]) -> dict:
+    out = dict(runs[0])
+    times: dict[str, float] = {}
+    for r in runs:
+        for k, v in r.get("times", {}).items():
+            if isinstance(v, int | float):
+                times[k] = min(times.get(k, math.inf), v)
+    out["times"] = times
+    out["cpu"] = _min_dict([r.get("cpu", {}) for r in runs])
+    out["runs"] = [r.get("times", {}).get("total") for r in runs]
+    return out
+
+
+def _min_dict(ds: list[dict]) -> dict:
+    """Per key, the minimum over the dicts that have it."""
+    out: dict[str, float] = {}
+    for d in ds:
+        for k, v in d.items():
+            if isinstance(v, int | float):
+                out[k] = min(out.get(k, math.inf), v)
+    return out
+
+
+def _example_reader(path: Path, case: dict) -> tuple[Any, Any]:
+    """(make_scene, contact_tol) for one of the peer's examples, read from the COMPAS
+    file of its prepared assembly; raises InputError when we cannot model it."""
+    from rigidblocks.compas import read_compas
+
+    def make() -> Scene:
+        return read_compas(path, friction=float(case["mu"]),
+                           density=float(case.get("density_default", 1.0)))[0]
+
+    opts = case.get("interfaces")
+    tol = (None if opts is None else
+           (lambda s: float(opts["tmax"]) / scene_size(s)))
+    make()  # raises InputError (a non-convex block, say) before anything is timed
+    return make, tol
+
+
+def bench(sizes: dict, python: str | None, timeouts: dict, repeats: int,
+          log=sys.stdout) -> list[dict]:
+    """Both sides on every structure, interleaved; one row per structure."""
     rows = []
     with tempfile.TemporaryDirectory() as tmpd:
         tmp = Path(tmpd)
         for st in structures(sizes):
             row: dict[str, Any] = {k: st[k] for k in ("name", "kind", "blocks", "expected",
                                                       "basis")}
+            row["loadavg_start"] = loadavg()
+            big = (st["blocks"] or 0) >= 1_000
             small = (st["blocks"] or 0) <= 100
-            ours: dict[str, Any] = {}
+            variants: dict[str, tuple[Any, dict]] = {}
             if st["scene2d"] is not None:
-                ours["2d"] = run_ours(st["scene2d"], forces=small)
-                ours["3d_cone"] = run_ours(st["scene3d"], forces=small)
-                ours["3d_pyr8"] = run_ours(st["scene3d"], pyramid=8)
-            peer: dict[str, Any] = {}
-            if python is not None:
-                big = (st["blocks"] or 0) >= 1_000
-                runs = [("rbe", "rbe", {}), ("cra", "cra", {})]
-                if st["kind"] == "hard arch":
-                    runs.append(("cra_d0.1", "cra", CRA_LOOSE))
-                for key, method, extra in runs:
-                    lim = timeouts[method + ("_big" if big else "")]
-                    peer[key] = run_peer(python, {"name": st["name"], **st["peer"], **extra},
-                                         method, lim, tmp)
-                    peer[key]["verdict"] = peer_verdict(peer[key])
-                    peer[key]["settings"] = extra
-                if st["scene3d"] is None and peer["rbe"].get("blocks"):
+                d2, d3 = scene_to_dict(st["scene2d"]), scene_to_dict(st["scene3d"])
+                variants["2d"] = (lambda d=d2: scene_from_dict(d), {"forces": small})
+                variants["3d_cone"] = (lambda d=d3: scene_from_dict(d), {"forces": small})
+                variants["3d_pyr8"] = (lambda d=d3: scene_from_dict(d), {"pyramid": 8})
+            case = {"name": st["name"], **st["peer"]}
+            ours_runs: dict[str, list[dict]] = {m: [] for m in variants}
+            rbe_runs: list[dict] = []
+            not_modelled = None
+            for rep in range(repeats):
+                # a peer run that reached its time limit is not repeated
+                if python is not None and not (rbe_runs and rbe_runs[-1]["status"] in
+                                               ("timeout", "error")):
+                    if st["scene2d"] is None and rep == 0:
+                        case["export"] = str(tmp / "prepared.json")
+                    rbe_runs.append(run_peer(python, case, "rbe", timeouts["rbe"], tmp))
+                    case.pop("export", None)
+                if st["scene2d"] is None and rep == 0:
+                    prepared = tmp / "prepared.json"
                     try:
-                        s3 = sample_scene(peer["rbe"]["blocks"], st["peer"]["mu"])
-                        tol = sample_contact_tol(s3, st["peer"])
-                        ours["3d_cone"] = run_ours(s3, forces=True, contact_tol=tol)
-                        ours["3d_pyr8"] = run_ours(s3, pyramid=8, contact_tol=tol)
-                        row["blocks"] = sum(not b["support"] for b in peer["rbe"]["blocks"])
-                    except InputError as exc:
-                        ours["3d_cone"] = {"verdict": f"not modelled: {exc}"}
+                        if not prepared.exists():
+                            raise InputError("the peer's set-up was not exported")
+                        make, tol = _example_reader(prepared, st["peer"])
+                        variants["3d_cone"] = (make, {"forces": True, "contact_tol": tol})
+                        variants["3d_pyr8"] = (make, {"pyramid": 8, "contact_tol": tol})
+                        ours_runs = {m: [] for m in variants}
+                        row["blocks"] = sum(not b.support for b in make().blocks)
+                    except (InputError, ImportError) as exc:
+                        not_modelled = f"not modelled: {getattr(exc, 'detail', exc)}"
+                for m, (make, kw) in variants.items():
+                    ours_runs[m].append(run_ours(make, **{**kw, "forces": kw.get(
+                        "forces", False) and rep == 0}))
+            ours = {m: _min_runs(r) for m, r in ours_runs.items() if r}
+            if not_modelled:
+                ours["3d_cone"] = {"verdict": not_modelled}
+            peer: dict[str, Any] = {}
+            if rbe_runs:
+                peer["rbe"] = _min_peer(rbe_runs)
+                peer["rbe"]["verdict"] = peer_verdict(rbe_runs[0])
+                peer["rbe"]["tension_ratio"] = rbe_tension_ratio(rbe_runs[0])
+                peer["rbe"]["settings"] = {}
+                others = []
+                own = st["peer"].get("method", "cra")
+                if own != "rbe":
+                    others.append(("cra" if own == "cra" else own, own, {}))
+                if st["kind"] == "hard arch":
+                    others.append(("cra_d0.1", "cra", CRA_LOOSE))
+                for key, method, extra in others:
+                    lim = timeouts["cra_big" if big else "cra"]
+                    p = run_peer(python, {**case, **extra}, method, lim, tmp)
+                    p["verdict"] = peer_verdict(p)
+                    p["settings"] = extra
+                    if method == "cra_penalty":
+                        p["tension_ratio"] = rbe_tension_ratio(p)
+                    peer[key] = p
             for m in ("2d", "3d_cone"):
                 f = ours.get(m, {}).pop("forces", None)
                 if f and peer.get("rbe", {}).get("status") == "solved":
                     row[f"forces_{m}_vs_rbe"] = compare_forces(f, peer["rbe"])
-                if f and peer.get("cra", {}).get("status") == "solved":
-                    row[f"forces_{m}_vs_cra"] = compare_forces(f, peer["cra"])
+                for other in ("cra", "cra_penalty"):
+                    if f and peer.get(other, {}).get("status") == "solved":
+                        row[f"forces_{m}_vs_{other}"] = compare_forces(f, peer[other])
             for p in peer.values():
                 p.pop("blocks", None)
                 p.pop("joints", None)
                 p.pop("traceback", None)
             row["ours"], row["peer"] = ours, peer
+            row["loadavg_end"] = loadavg()
             rows.append(row)
             print(summary_line(row), file=log, flush=True)
     return rows
@@ -344,16 +513,18 @@ def bench(sizes: dict, python: str | None, timeouts: dict, log=sys.stdout) -> li
 
 def summary_line(row: dict) -> str:
     """One line per structure: verdicts and total times."""
-    parts = [f"{row['name']:<24}"]
+    parts = [f"{row['name']:<28}"]
     for m, r in row["ours"].items():
-        parts.append(f"{m}={r['verdict']}/{r.get('total', float('nan')):.3g}s")
+        parts.append(f"{m}={r['verdict'][:40]}/{r.get('total', float('nan')):.3g}s")
     for m, r in row["peer"].items():
         parts.append(f"{m}={r['verdict']}/{r['times'].get('total', float('nan')):.3g}s")
+    parts.append(f"load {row.get('loadavg_start')} -> {row.get('loadavg_end')}")
     return "  ".join(parts)
 
 
 def targets(rows: list[dict]) -> dict | None:
-    """The two ratios at the largest wall: peer RBE time over ours (2D, 3D cone)."""
+    """The ratios at the largest wall: the peer's RBE time over ours (2D, 3D cone),
+    end to end and solve only."""
     walls = [r for r in rows if r["kind"] == "wall" and r["peer"].get("rbe", {}).get(
         "status") == "solved"]
     if not walls:
@@ -361,19 +532,38 @@ def targets(rows: list[dict]) -> dict | None:
     w = max(walls, key=lambda r: r["blocks"])
     rbe = w["peer"]["rbe"]["times"]
     o2, o3 = w["ours"]["2d"], w["ours"]["3d_cone"]
+    ipopt = rbe.get("ipopt", rbe["solve"])
     return {"case": w["name"], "blocks": w["blocks"],
-            "rbe_total_s": rbe["total"], "rbe_solve_s": rbe["solve"],
-            "rbe_interfaces_s": rbe["interfaces"],
+            "rbe_total_s": rbe["total"], "rbe_solve_s": rbe["solve"], "rbe_ipopt_s": ipopt,
+            "rbe_setup_s": rbe.get("setup"), "rbe_interfaces_s": rbe["interfaces"],
+            "rbe_build_s": rbe.get("build"),
             "ours_2d_total_s": o2["total"], "ours_3d_cone_total_s": o3["total"],
+            "ours_2d_solve_s": o2["solve"], "ours_3d_cone_solve_s": o3["solve"],
             "ratio_2d_total": rbe["total"] / o2["total"],
-            "ratio_2d_solve": rbe["solve"] / o2["solve"],
             "ratio_3d_total": rbe["total"] / o3["total"],
-            "ratio_3d_solve": rbe["solve"] / o3["solve"],
-            "ratio_2d_total_vs_rbe_solve": rbe["solve"] / o2["total"],
-            "ratio_3d_total_vs_rbe_solve": rbe["solve"] / o3["total"],
-            "target_2d": 20.0, "target_3d": 1.0,
-            "met_2d": rbe["total"] / o2["total"] >= 20.0,
-            "met_3d": rbe["total"] / o3["total"] >= 1.0}
+            "ratio_2d_solve": ipopt / o2["solve"],
+            "ratio_3d_solve": ipopt / o3["solve"],
+            "target_2d": TARGET_2D, "target_3d": TARGET_3D,
+            "met_2d": rbe["total"] / o2["total"] >= TARGET_2D,
+            "met_3d": rbe["total"] / o3["total"] >= TARGET_3D,
+            **_cpu_targets(w),
+            "loadavg_start": w.get("loadavg_start"), "loadavg_end": w.get("loadavg_end")}
+
+
+def _cpu_targets(w: dict) -> dict:
+    """The same ratios in CPU seconds (one thread each side: robust to the load)."""
+    rc = w["peer"]["rbe"].get("cpu") or {}
+    c2, c3 = w["ours"]["2d"].get("cpu") or {}, w["ours"]["3d_cone"].get("cpu") or {}
+    if not (rc.get("total") and c2.get("total") and c3.get("total")):
+        return {}
+    ip = rc.get("ipopt", rc.get("solve"))
+    return {"cpu_rbe_total_s": rc["total"], "cpu_rbe_ipopt_s": ip,
+            "cpu_rbe_interfaces_s": rc.get("interfaces"),
+            "cpu_ours_2d_total_s": c2["total"], "cpu_ours_3d_cone_total_s": c3["total"],
+            "cpu_ratio_2d_total": rc["total"] / c2["total"],
+            "cpu_ratio_3d_total": rc["total"] / c3["total"],
+            "cpu_ratio_2d_solve": ip / c2["solve"], "cpu_ratio_3d_solve": ip / c3["solve"],
+            "cpu_profile_3d": c3}
 
 
 def hard_cases(rows: list[dict]) -> list[dict]:
@@ -393,6 +583,58 @@ def hard_cases(rows: list[dict]) -> list[dict]:
             out.append({"method": method, "case": r["name"], "expected": r["expected"],
                         "basis": r["basis"], "answer": ans, "grade": grade,
                         "message": msg})
+    return out
+
+
+def differences(row: dict) -> list[str]:
+    """Why our verdict and the peer's differ on one of its examples, from the models:
+    the interfaces and contact points each side found, and the friction laws."""
+    o, p = row["ours"].get("3d_cone", {}), row["peer"]
+    if not p:
+        return []
+    if "total" not in o:  # not modelled here: where its own two methods disagree
+        rbe, others = p.get("rbe", {}), [k for k in p if k != "rbe"]
+        tr = rbe.get("tension_ratio")
+        if (rbe.get("verdict") == "inadmissible" and tr is not None and tr < 1e-2
+                and any(p[k]["verdict"] == "admissible" for k in others)):
+            return [f"its RBE state carries tension {tr:.2g} of its compression, above "
+                    f"the {RBE_TENSION_TOL:g} this comparison allows: its quadratic "
+                    "objective trades a little penalised tension for smaller forces, so "
+                    "RBE's verdict here is the threshold's, while its CRA finds a state "
+                    "without tension"]
+        return []
+    mine = o["verdict"]
+    theirs = {k: v["verdict"] for k, v in p.items()}
+    if all(v == mine for v in theirs.values()):
+        return []
+    rbe = p.get("rbe", {})
+    out = [f"joints: ours {o.get('joints')} with {o.get('points')} contact points, its "
+           f"{rbe.get('n_interfaces', '-')} interfaces with {rbe.get('n_vertices', '-')} "
+           "vertices"]
+    pyr = row["ours"].get("3d_pyr8", {}).get("verdict")
+    if pyr is not None and pyr != mine:
+        out.append(f"our inscribed 8-facet pyramid answers {pyr}: the verdict sits "
+                   "between the inscribed and the circumscribed pyramid")
+    tr = rbe.get("tension_ratio")
+    if theirs.get("rbe") == "admissible" and mine == "inadmissible":
+        out.append("its RBE pyramid circumscribes the cone (up to 8% more friction "
+                   "than f along the facets' bisectors)"
+                   + (f" and it carries tension {tr:.2g} of its compression"
+                      if tr else ""))
+    own = {k: v for k, v in theirs.items() if k != "rbe"}
+    for k, v in own.items():
+        if v == mine:
+            continue
+        tr = p[k].get("tension_ratio")
+        if k == "cra_penalty" and v == "admissible" and tr and tr > RBE_TENSION_TOL:
+            out.append(f"its CRA-penalty ({v}) penalises tension instead of forbidding it: "
+                       f"its state carries tension {tr:.2g} of its compression")
+        elif v == "no answer":
+            out.append(f"its {k.upper()} gave no answer "
+                       f"({p[k].get('message', '')[:80]})")
+        else:
+            out.append(f"its {k.upper()} ({v}) is non-associative with displacements "
+                       "bounded by d_bnd: a different question than the static theorem")
     return out
 
 
@@ -421,7 +663,7 @@ def chart(rows: list[dict], path: Path) -> None:
             ax.scatter(*zip(*stops, strict=True), marker="x", s=60, color="k",
                        label=f"compas_cra {m.upper()} stopped at the time limit", zorder=5)
     ax.set_xlabel("blocks (running-bond wall, self-weight)")
-    ax.set_ylabel("seconds, blocks to verdict")
+    ax.set_ylabel("seconds, blocks to verdict (min of runs)")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
@@ -440,69 +682,101 @@ def _t(d: dict, key: str = "total") -> Any:
     return "-" if x is None else float(x)
 
 
-def markdown(rows: list[dict], tg: dict | None, hard: list[dict], python: str | None,
-             data: dict | None = None) -> str:
-    """The results section for benchmarks/README.md (``data``: the run's provenance)."""
+def _ratio(a: Any, b: Any) -> Any:
+    if isinstance(a, float) and isinstance(b, float) and b > 0:
+        return f"{a / b:.3g}x"
+    return "-"
+
+
+def markdown(data: dict) -> str:
+    """The results section for benchmarks/README.md, from one run's data."""
+    rows, tg, hard = data["rows"], data.get("targets"), data.get("hard_cases") or []
+    python = data["peer_python"] if data.get("peer_available") else None
     lines = ["## The peer: compas_cra", ""]
-    if data and data.get("ours_date"):
-        lines += [f"Two runs: the peer's results (verdicts, times, its forces) were measured "
-                  f"on {data['peer_date']} (`bench_peer.py "
-                  f"{' '.join(data.get('peer_argv') or [])}`); our side was rerun on "
-                  f"{data['ours_date']} (`--ours-only`, the peer unchanged). The force "
-                  "comparisons (in bench_peer.json), which need its per-joint forces, are those "
-                  "of its run, with our forces of that date. The machine is shared and its "
-                  "load differed between the two runs, so the time ratios carry that "
-                  "difference too (our side alone varied by up to 2x between runs)."
-                  + (f" Our side of {', '.join(data['ours_kept'])} is kept from the earlier "
-                     "run (the peer's Python was not available to load them)."
-                     if data.get("ours_kept") else ""), ""]
+    thr = ", ".join(f"{k}={v}" for k, v in (data.get("threads") or {}).items())
+    la0, la1 = data.get("loadavg_start"), data.get("loadavg_end")
+    lines += [f"One session ({data.get('started', '?')} to {data.get('finished', '?')}), "
+              f"both sides with the same thread settings ({thr}), interleaved per "
+              f"structure (ours, its RBE, ours, its RBE, ...), {data.get('repeats')} runs "
+              "each; every time is the minimum over the runs. Load average (1, 5, 15 min) "
+              f"at the start {la0} and at the end {la1} (each structure's in "
+              f"bench_peer.json). compas_cra {data.get('peer_version') or '-'}, its "
+              "solvers on its bundled IPOPT.", ""]
     if python is None:
         lines += ["The peer was not available in this run: our side only.", ""]
-    head = ["structure", "blocks", "ours 2D", "ours 3D cone", "ours 3D 8-pyr",
-            "RBE", "CRA", "ours 2D s", "ours 3D s", "RBE solve s", "RBE total s",
-            "CRA total s"]
+    gen = [r for r in rows if r["kind"] != "peer example"]
+    head = ["structure", "blocks", "ours 2D", "ours 3D cone", "ours 3D 8-pyr", "RBE",
+            "CRA"]
+    lines += ["Verdicts (self-weight):", "", markdown_table(head, [
+        [r["name"], r["blocks"], _v(r["ours"], "2d"), _v(r["ours"], "3d_cone"),
+         _v(r["ours"], "3d_pyr8"), _v(r["peer"], "rbe"), _v(r["peer"], "cra")]
+        for r in gen]), ""]
+    head = ["structure", "ours 2D s", "ours 3D s", "RBE s", "RBE / 2D", "RBE / 3D",
+            "ours 2D solve s", "ours 3D solve s", "RBE IPOPT s", "IPOPT / 2D solve",
+            "IPOPT / 3D solve", "CRA s"]
     body = []
-    for r in rows:
+    for r in gen:
         o, p = r["ours"], r["peer"]
-
-        body.append([r["name"], r["blocks"] if r["blocks"] is not None else "-",
-                     _v(o, "2d"), _v(o, "3d_cone"), _v(o, "3d_pyr8"), _v(p, "rbe"),
-                     _v(p, "cra"), _t(o.get("2d", {})), _t(o.get("3d_cone", {})),
-                     _t(p.get("rbe", {}).get("times", {}), "solve"),
-                     _t(p.get("rbe", {}).get("times", {})),
+        rt = p.get("rbe", {}).get("times", {})
+        a2, a3 = _t(o.get("2d", {})), _t(o.get("3d_cone", {}))
+        s2, s3 = _t(o.get("2d", {}), "solve"), _t(o.get("3d_cone", {}), "solve")
+        rtot, ripo = _t(rt), _t(rt, "ipopt")
+        body.append([r["name"], a2, a3, rtot, _ratio(rtot, a2), _ratio(rtot, a3), s2, s3,
+                     ripo, _ratio(ripo, s2), _ratio(ripo, s3),
                      _t(p.get("cra", {}).get("times", {}))])
-    lines += [markdown_table(head, body), ""]
+    lines += ["Wall-clock seconds, end to end (block data to verdict) and solve only "
+              "(Clarabel against IPOPT):", "", markdown_table(head, body), ""]
+    body = []
+    for r in gen:
+        o, p = r["ours"], r["peer"]
+        rc = p.get("rbe", {}).get("cpu", {})
+        c2, c3 = o.get("2d", {}).get("cpu", {}), o.get("3d_cone", {}).get("cpu", {})
+        a2, a3, rt = _t(c2), _t(c3), _t(rc)
+        s2, s3, ri = _t(c2, "solve"), _t(c3, "solve"), _t(rc, "ipopt")
+        body.append([r["name"], a2, a3, rt, _ratio(rt, a2), _ratio(rt, a3), s2, s3, ri,
+                     _ratio(ri, s2), _ratio(ri, s3), _t(p.get("cra", {}).get("cpu", {}))])
+    lines += ["The same in CPU seconds of each process (one thread on each side, so the "
+              "machine's load stretches the wall clock above, not these):", "",
+              markdown_table(head, body), ""]
     if tg:
-        lines += [f"Targets at the {tg['case']} (blocks to verdict, peer RBE total "
-                  f"{tg['rbe_total_s']:.3g} s of which solve {tg['rbe_solve_s']:.3g} s):",
-                  f"- 2D model >= 20x faster than its RBE: {tg['ratio_2d_total']:.3g}x "
-                  f"(solve only {tg['ratio_2d_solve']:.3g}x): "
+        lines += [f"Claims at the {tg['case']} (end to end: the peer's RBE "
+                  f"{tg['rbe_total_s']:.3g} s = build {tg['rbe_build_s']:.3g} s + "
+                  f"interfaces {tg['rbe_interfaces_s']:.3g} s + set-up "
+                  f"{tg['rbe_setup_s'] or 0:.3g} s + IPOPT {tg['rbe_ipopt_s']:.3g} s; load "
+                  f"average {tg['loadavg_start']} to {tg['loadavg_end']}):",
+                  f"- 2D: {tg['ratio_2d_total']:.3g}x faster than its RBE end to end "
+                  f"({tg['ours_2d_total_s']:.3g} s), {tg['ratio_2d_solve']:.3g}x solve only; "
+                  f"goal >= {tg['target_2d']:g}x end to end: "
                   f"{'met' if tg['met_2d'] else 'NOT met'}",
-                  f"- 3D exact cone at least as fast as its RBE: {tg['ratio_3d_total']:.3g}x "
-                  f"(solve only {tg['ratio_3d_solve']:.3g}x): "
-                  f"{'met' if tg['met_3d'] else 'NOT met'}",
-                  f"- without the peer's interface detection ({tg['rbe_interfaces_s']:.3g} s), "
-                  f"its RBE solve alone against our whole check: 2D "
-                  f"{tg['ratio_2d_total_vs_rbe_solve']:.3g}x, 3D cone "
-                  f"{tg['ratio_3d_total_vs_rbe_solve']:.3g}x", ""]
+                  f"- 3D exact cone: {tg['ratio_3d_total']:.3g}x end to end "
+                  f"({tg['ours_3d_cone_total_s']:.3g} s), {tg['ratio_3d_solve']:.3g}x solve "
+                  f"only; goal >= {tg['target_3d']:g}x end to end: "
+                  f"{'met' if tg['met_3d'] else 'NOT met'}"]
+        if "cpu_ratio_2d_total" in tg:
+            lines += [f"- in CPU seconds: its RBE {tg['cpu_rbe_total_s']:.3g} s (IPOPT "
+                      f"{tg['cpu_rbe_ipopt_s']:.3g} s, interfaces "
+                      f"{tg['cpu_rbe_interfaces_s']:.3g} s); 2D "
+                      f"{tg['cpu_ratio_2d_total']:.3g}x end to end "
+                      f"({tg['cpu_ours_2d_total_s']:.3g} s), "
+                      f"{tg['cpu_ratio_2d_solve']:.3g}x solve only: "
+                      f"{'met' if tg['cpu_ratio_2d_total'] >= tg['target_2d'] else 'NOT met'}"
+                      f"; 3D cone {tg['cpu_ratio_3d_total']:.3g}x end to end "
+                      f"({tg['cpu_ours_3d_cone_total_s']:.3g} s), "
+                      f"{tg['cpu_ratio_3d_solve']:.3g}x solve only: "
+                      f"{'met' if tg['cpu_ratio_3d_total'] >= tg['target_3d'] else 'NOT met'}"]
+        lines += [""]
+    prof = (tg or {}).get("cpu_profile_3d")
+    if prof:
+        keys = ("read", "contacts", "assembly", "build", "solve", "total")
+        lines += [f"Where our 3D time goes at the {tg['case']} (exact cone, CPU seconds, "
+                  "each stage's minimum over the runs; read: the scene's blocks to a "
+                  "validated scene; build: the problem; solve: the Clarabel call):", "",
+                  markdown_table(list(keys), [[prof.get(k, 0.0) for k in keys]]), ""]
     if hard:
         lines += ["Hard cases:", "", markdown_table(
             ["method", "case", "expected", "answer", "grade"],
             [[h["method"], h["case"], h["expected"], h["answer"], h["grade"]]
              for h in hard]), ""]
-    samples = [r for r in rows if r["kind"] == "peer sample" and "3d_cone" in r["ours"]]
-    if samples:
-        lines += ["The peer's samples as convex polyhedra in our 3D model: joints found by "
-                  "our contact detection (tolerance: the peer's tmax over the scene size; "
-                  "a sample with a non-convex block is not modelled) against the peer's "
-                  "interfaces "
-                  "(its tolerances tmax of 1e-4 to 1e-2, several interfaces per pair on "
-                  "curved or stepped contacts): " + "; ".join(
-                      f"{r['name'].split()[-1]} {r['ours']['3d_cone'].get('joints', '-')} vs "
-                      f"{r['peer'].get('rbe', {}).get('n_interfaces', '-')}"
-                      for r in samples)
-                  + ". Where these differ the verdicts compare different models, not "
-                  "methods.", ""]
     loose = [h for h in hard if "d_bnd" in h["method"]]
     if loose:
         lines += ["CRA's verdict on the arches depends on its displacement bound: with its "
@@ -512,6 +786,48 @@ def markdown(rows: list[dict], tg: dict | None, hard: list[dict], python: str | 
                                       and h["case"].startswith("arch")}))
                   + "; with the bound of its own examples (d_bnd = 0.1, eps = 0) it answers "
                   + ", ".join(sorted({h["answer"] for h in loose})) + ".", ""]
+    ex = [r for r in rows if r["kind"] == "peer example"]
+    if ex:
+        head = ["example", "free blocks", "ours joints / points", "its interfaces / "
+                "vertices", "ours cone", "ours 8-pyr", "RBE", "its method", "forces vs RBE "
+                "(max rel. diff.)", "ours s", "RBE s"]
+        body = []
+        for r in ex:
+            o, p = r["ours"], r["peer"]
+            c = o.get("3d_cone", {})
+            rbe = p.get("rbe", {})
+            own = [k for k in p if k != "rbe"]
+            fr = r.get("forces_3d_cone_vs_rbe")
+            body.append([
+                r["name"].removeprefix("peer "), r["blocks"] if r["blocks"] else "-",
+                f"{c['joints']} / {c['points']}" if "joints" in c else "-",
+                f"{rbe.get('n_interfaces', '-')} / {rbe.get('n_vertices', '-')}",
+                c.get("verdict", "-") if "total" in c else "not modelled",
+                _v(o, "3d_pyr8"), _v(p, "rbe"),
+                f"{own[0].upper()}: {p[own[0]]['verdict']}" if own else "(RBE)",
+                f"{fr['max_rel_diff']:.2g} on {fr['joints']}" if fr else "-",
+                _t(c), _t(rbe.get("times", {}))])
+        lines += ["The peer's samples and documented examples, each with its own set-up "
+                  "(supports, densities, rotation, friction, interface tolerances, solver), "
+                  "read on our side from the COMPAS file of the prepared assembly "
+                  "(`rigidblocks.compas`; contact tolerance: its tmax over the scene "
+                  "size):", "", markdown_table(head, body), ""]
+        nm = [r for r in ex if "total" not in r["ours"].get("3d_cone", {})]
+        if nm:
+            lines += ["Not modelled today (3D blocks must be convex; non-convex blocks are "
+                      "another branch's work, and these rows run once the scene validation "
+                      "accepts them): " + "; ".join(
+                          f"{r['name'].removeprefix('peer ')} "
+                          "(" + r["ours"].get("3d_cone", {}).get("verdict", "")
+                          .removeprefix("not modelled: ") + ")"
+                          for r in nm), ""]
+        diffs = [(r["name"].removeprefix("peer "), differences(r)) for r in ex]
+        diffs = [(n, d) for n, d in diffs if d]
+        if diffs:
+            lines += ["Where the verdicts differ, the models (on the examples we do not "
+                      "model yet, where its RBE and its CRA differ):", ""]
+            lines += [f"- {n}: " + "; ".join(d) + "." for n, d in diffs]
+            lines += [""]
     lines += ["RBE counts as admissible when its penalised tension is below "
               f"{RBE_TENSION_TOL:g} of the total compression; its 8-facet pyramid "
               "circumscribes the Coulomb cone, ours (`pyramid=8`) is inscribed. Time limits "
@@ -519,95 +835,18 @@ def markdown(rows: list[dict], tg: dict | None, hard: list[dict], python: str | 
     return "\n".join(lines)
 
 
-def sample_blocks(python: str, case: dict) -> list[dict]:
-    """The peer's sample assembly as polyhedra, loaded by the peer's Python (no solve)."""
-    code = ("import json, sys; sys.path.insert(0, sys.argv[1]); import peer_runner as p; "
-            "a, k = p.load_sample(json.loads(sys.argv[2])); "
-            "print(json.dumps(p.export_blocks(a, k)))")
-    proc = subprocess.run([python, "-c", code, str(RUNNER.parent), json.dumps(case)],
-                          capture_output=True, text=True, timeout=300, check=True)
-    return json.loads(proc.stdout.strip().splitlines()[-1])
-
-
-def structure_named(name: str) -> dict:
-    """The structure of :func:`structures` called ``name`` (only that one is built)."""
-    empty: dict = {"arches": (), "walls": (), "hard": (), "samples": ()}
-    candidates = ([("arches", n) for n in ARCHES] + [("hard", h) for h in HARD_ARCHES]
-                  + [("samples", c) for c in SAMPLES] + [("walls", n) for n in WALLS])
-    for key, item in candidates:
-        if key == "arches" and name != f"arch {item} v, t/R {ARCH_T}":
-            continue
-        if key == "hard" and name != f"arch {item[0]} v, t/R {item[1]}":
-            continue
-        if key == "samples" and name != f"peer sample {item['name']}":
-            continue
-        if key == "walls" and not name.startswith("wall "):
-            continue
-        st = structures({**empty, key: (item,)})[0]
-        if st["name"] == name:
-            return st
-    raise ValueError(f"{name!r} of bench_peer.json is not a known structure")
-
-
-def ours_only(out: str | Path | None, python: str | None, log=sys.stdout) -> dict:
-    """Rerun our side of every structure of an existing bench_peer.json; keep the peer's.
-
-    Structures are rebuilt from their names' sizes (arches, walls) or, for the peer's
-    samples, from the blocks its Python exports; without the peer's Python a sample's
-    previous our-side results are kept and marked so. Force comparisons need the peer's
-    per-joint forces, which the JSON does not keep: they stay as measured before."""
-    d = out_dir(out)
-    data = read_results(d, NAME)
-    previous = data.get("ours_date", data["date"])
-    data.setdefault("peer_date", data["date"])
-    data.setdefault("peer_argv", data.get("argv"))
-    kept: list[str] = []
-    for row in data["rows"]:
-        st = structure_named(row["name"])
-        ours: dict[str, Any] = {}
-        if st["scene2d"] is not None:
-            ours["2d"] = run_ours(st["scene2d"])
-            ours["3d_cone"] = run_ours(st["scene3d"])
-            ours["3d_pyr8"] = run_ours(st["scene3d"], pyramid=8)
-        elif python is not None:
-            try:
-                s3 = sample_scene(sample_blocks(python, st["peer"]), st["peer"]["mu"])
-                tol = sample_contact_tol(s3, st["peer"])
-                ours["3d_cone"] = run_ours(s3, contact_tol=tol)
-                ours["3d_pyr8"] = run_ours(s3, pyramid=8, contact_tol=tol)
-            except InputError as exc:
-                ours["3d_cone"] = {"verdict": f"not modelled: {exc}"}
-        else:
-            kept.append(row["name"])
-            ours = {m: {**o, "kept_from": previous} for m, o in row["ours"].items()}
-        for m, o in ours.items():
-            old = row["ours"].get(m, {})
-            if "verdict" in old and old["verdict"] != o["verdict"]:
-                print(f"{row['name']} {m}: verdict {old['verdict']} -> {o['verdict']}",
-                      file=log)
-        row["ours"] = ours
-        print(summary_line(row), file=log, flush=True)
-    data["ours_date"] = time.strftime("%Y-%m-%d %H:%M %Z")
-    data["ours_kept"] = kept
-    data["targets"], data["hard_cases"] = targets(data["rows"]), hard_cases(data["rows"])
-    data["date"] = time.strftime("%Y-%m-%d")
-    pyth = data["peer_python"] if data["peer_available"] else None
-    rewrite_results(d, NAME, data, markdown(data["rows"], data["targets"],
-                                            data["hard_cases"], pyth, data))
+def _write(data: dict, d: Path) -> None:
+    (d / f"{NAME}.md").write_text(markdown(data).rstrip() + "\n")
     chart(data["rows"], d / f"{NAME}.png")
-    return data
 
 
 def redraw(out: str | Path | None) -> dict:
-    """Rewrite bench_peer.md, the PNG and the targets from an existing bench_peer.json."""
+    """Rewrite bench_peer.md and the PNG from the run's bench_peer.json."""
     d = out_dir(out)
-    data = read_results(d, NAME)
-    rows = data["rows"]
-    data["targets"], data["hard_cases"] = targets(rows), hard_cases(rows)
-    python = data["peer_python"] if data["peer_available"] else None
-    rewrite_results(d, NAME, data, markdown(rows, data["targets"], data["hard_cases"],
-                                            python, data))
-    chart(rows, d / f"{NAME}.png")
+    data = json.loads((d / f"{NAME}.json").read_text())
+    data["targets"], data["hard_cases"] = targets(data["rows"]), hard_cases(data["rows"])
+    (d / f"{NAME}.json").write_text(json.dumps(data, indent=1) + "\n")
+    _write(data, d)
     return data
 
 
@@ -618,37 +857,49 @@ def main(argv: Sequence[str] | None = None) -> dict:
     parser.add_argument("--tiny", action="store_true", help="smallest sizes only")
     parser.add_argument("--peer-python", default=None,
                         help="the peer's Python ('none': our side only)")
+    parser.add_argument("--repeats", type=int, default=REPEATS,
+                        help=f"runs per structure and side (default {REPEATS})")
     parser.add_argument("--rbe-timeout", type=float, default=300.0)
     parser.add_argument("--cra-timeout", type=float, default=150.0)
-    parser.add_argument("--big-cra-timeout", type=float, default=600.0,
+    parser.add_argument("--big-cra-timeout", type=float, default=120.0,
                         help="time limit of CRA on the 1,000-block wall")
+    parser.add_argument("--no-examples", action="store_true",
+                        help="leave out the peer's samples and examples")
     parser.add_argument("--redraw", action="store_true",
                         help="rewrite the tables and chart from the existing JSON")
-    parser.add_argument("--ours-only", action="store_true",
-                        help="rerun our side of the existing JSON's structures, keep the "
-                             "peer's results as measured")
     args = parser.parse_args(argv)
     if args.redraw:
         return redraw(args.out)
-    if args.ours_only:
-        return ours_only(args.out, peer_python(args.peer_python))
-    sizes = dict(TINY) if args.tiny else {"arches": ARCHES, "walls": WALLS,
-                                          "hard": HARD_ARCHES, "samples": SAMPLES}
+    if args.repeats < 1:
+        parser.error("--repeats must be >= 1")
+    sizes = dict(TINY) if args.tiny else {
+        "arches": ARCHES, "walls": WALLS, "hard": HARD_ARCHES,
+        "examples": () if args.no_examples else PEER_EXAMPLES}
     python = peer_python(args.peer_python)
     if python is None:
         print("peer unavailable: our side only", file=sys.stderr)
     timeouts = {"rbe": args.rbe_timeout, "cra": args.cra_timeout,
-                "rbe_big": args.rbe_timeout, "cra_big": args.big_cra_timeout}
-    rows = bench(sizes, python, timeouts)
-    tg, hard = targets(rows), hard_cases(rows)
+                "cra_big": args.big_cra_timeout}
+    started, la0 = time.strftime("%Y-%m-%d %H:%M:%S %Z"), loadavg()
+    rows = bench(sizes, python, timeouts, args.repeats)
     data = {"peer_available": python is not None, "peer_python": python,
             "peer_version": next((p.get("version") for r in rows
                                   for p in r["peer"].values() if p.get("version")), None),
+            "threads": {k: os.environ.get(k) for k in THREADS},
+            "peer_threads": next((p.get("threads") for r in rows
+                                  for p in r["peer"].values() if p.get("threads")), None),
+            "repeats": args.repeats, "started": started, "loadavg_start": la0,
+            "finished": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "loadavg_end": loadavg(),
             "timeouts_s": timeouts, "rbe_tension_tol": RBE_TENSION_TOL,
-            "rows": rows, "targets": tg, "hard_cases": hard}
+            "rows": rows}
+    data["targets"], data["hard_cases"] = targets(rows), hard_cases(rows)
     d = out_dir(args.out)
-    write_results(d, NAME, data, markdown(rows, tg, hard, python))
+    write_results(d, NAME, data, markdown(data))
     chart(rows, d / f"{NAME}.png")
+    if args.out is None and not args.tiny:
+        import make_readme
+
+        make_readme.main([])
     return data
 
 

@@ -22,6 +22,21 @@ Methods (Kao et al. 2022, doi:10.1016/j.cad.2022.103216): ``rbe`` rigid-block
 equilibrium (paper Eq. 6, a quadratic program with a tension penalty, friction as an
 8-facet pyramid), ``cra`` coupled rigid-block analysis (Eq. 11, non-associative,
 complementarity constraints), ``cra_penalty`` (Eq. 14).
+
+Besides ``blocks``, a case may name one of the peer's own set-ups instead (its samples
+and documented examples): ``"sample": FILE`` (a file of ``compas_cra.SAMPLE``), or
+``"boxes": [[x, y, z], ...]`` (unit boxes centred there, the first ones the supports
+given), or ``"arch": {"height", "span", "thickness", "depth", "num_blocks"}``
+(``compas_cra.geometry.Arch``); then ``"rotate": {"axis": [x, y, z], "deg": a}`` (the
+whole assembly about the origin, as ``rotate_assembly``), ``"supports"``,
+``"density": {node: value}`` (``density_setup``), ``"density_default"`` (the
+solver's ``density`` for blocks without one), and ``"interfaces": null`` to keep the
+interfaces the sample file carries instead of detecting them. ``"export": PATH`` writes
+the prepared assembly (supports, densities, rotation; before its interfaces are
+detected) as COMPAS JSON, untimed, for the other tool to read. ``times`` also has
+``setup`` and ``ipopt``: the solver's own problem set-up and IPOPT solve, as its timer
+prints them; ``cpu`` has the process CPU seconds of the same stages (``ipopt``: the
+IPOPT calls alone). Thread settings come from the environment (the caller sets them).
 """
 
 from __future__ import annotations
@@ -29,6 +44,8 @@ from __future__ import annotations
 import contextlib
 import io
 import json
+import os
+import re
 import sys
 import time
 import traceback
@@ -57,7 +74,6 @@ def build_assembly(case: dict):
 
 def load_sample(case: dict):
     """One of compas_cra's own sample assemblies (``case["sample"]``, a file name)."""
-    import os
 
     import compas
     import compas_cra
@@ -65,8 +81,50 @@ def load_sample(case: dict):
 
     assembly = compas.json_load(os.path.join(compas_cra.SAMPLE, case["sample"]))
     assembly = assembly.copy(cls=CRA_Assembly)
-    assembly.set_boundary_conditions(case.get("supports", [0]))
+    supports = case.get("supports", [0])
+    if supports is not None:  # None: the file's own
+        assembly.set_boundary_conditions(supports)
     keys = {k: str(k) for k in assembly.graph.nodes()}
+    return assembly, keys
+
+
+def prepare(case: dict):
+    """The assembly of a case: its blocks, or one of the peer's samples or examples."""
+    from compas_cra.datastructures import CRA_Assembly
+
+    if "sample" in case:
+        assembly, keys = load_sample(case)
+    elif "boxes" in case:
+        from compas.geometry import Box, Frame, Translation
+        from compas_assembly.datastructures import Block
+
+        assembly = CRA_Assembly()
+        for k, c in enumerate(case["boxes"]):
+            frame = Frame.worldXY().transformed(Translation.from_vector(c))
+            assembly.add_block(Block.from_shape(Box(1, 1, 1, frame=frame)), node=k)
+        assembly.set_boundary_conditions(case.get("supports", [0]))
+        keys = {k: str(k) for k in assembly.graph.nodes()}
+    elif "arch" in case:
+        from compas_cra.geometry import Arch
+
+        assembly = Arch(**case["arch"]).assembly().copy(cls=CRA_Assembly)
+        supports = case.get("supports")
+        if supports is not None:
+            assembly.set_boundary_conditions(supports)
+        keys = {k: str(k) for k in assembly.graph.nodes()}
+    else:
+        return build_assembly(case)
+    if case.get("density"):
+        from compas_cra.equilibrium import density_setup
+
+        density_setup(assembly, {int(k): float(v) for k, v in case["density"].items()})
+    if case.get("rotate"):
+        rot = case["rotate"]
+        assembly.rotate_assembly([0, 0, 0], rot["axis"], rot["deg"])
+    if case.get("export"):
+        import compas
+
+        compas.json_dump(assembly, case["export"])
     return assembly, keys
 
 
@@ -100,6 +158,26 @@ def warm_up() -> None:
         rbe_solve(assembly, mu=0.6)
 
 
+def _time_ipopt() -> list[float]:
+    """Record the CPU seconds of each IPOPT solve of the peer's solvers (its
+    ``solve_nlp`` as its solver module calls it, wrapped); returns the list it fills."""
+    from compas_cra.equilibrium import cra_native
+
+    spent: list[float] = []
+    inner = getattr(cra_native.solve_nlp, "__wrapped__", cra_native.solve_nlp)
+
+    def timed(*args, **kwargs):
+        c0 = time.process_time()
+        try:
+            return inner(*args, **kwargs)
+        finally:
+            spent.append(time.process_time() - c0)
+
+    timed.__wrapped__ = inner
+    cra_native.solve_nlp = timed
+    return spent
+
+
 def run(case: dict, method: str) -> dict:
     """Build, detect interfaces and solve; the answer as a JSON-ready dict."""
     from compas_cra.algorithms import assembly_interfaces_numpy
@@ -108,41 +186,59 @@ def run(case: dict, method: str) -> dict:
     solvers = {"rbe": rbe_solve, "cra": cra_solve, "cra_penalty": cra_penalty_solve}
     out: dict = {"method": method, "case": case.get("name"), "times": {}}
     warm_up()
+    out["cpu"] = {}
+    c_all = time.process_time()
     t_all = time.perf_counter()
-    t0 = time.perf_counter()
-    if "sample" in case:
-        assembly, keys = load_sample(case)
-        out["blocks"] = export_blocks(assembly, keys)
-    else:
+    t0, c0 = time.perf_counter(), time.process_time()
+    if "blocks" in case:
         assembly, keys = build_assembly(case)
+    else:
+        export, case["export"] = case.get("export"), None
+        assembly, keys = prepare(case)
     out["times"]["build"] = time.perf_counter() - t0
+    out["cpu"]["build"] = time.process_time() - c0
+    if "blocks" not in case and export:
+        import compas
+
+        compas.json_dump(assembly, export)  # untimed: the prepared assembly
     opts = case.get("interfaces", {})
-    t0 = time.perf_counter()
-    assembly_interfaces_numpy(assembly, nmax=int(opts.get("nmax", 10)),
-                              tmax=float(opts.get("tmax", 1e-6)),
-                              amin=float(opts.get("amin", 1e-6)))
+    t0, c0 = time.perf_counter(), time.process_time()
+    if opts is not None:
+        assembly_interfaces_numpy(assembly, nmax=int(opts.get("nmax", 10)),
+                                  tmax=float(opts.get("tmax", 1e-6)),
+                                  amin=float(opts.get("amin", 1e-6)))
     out["times"]["interfaces"] = time.perf_counter() - t0
+    out["cpu"]["interfaces"] = time.process_time() - c0
     edges = list(assembly.graph.edges())
     out["n_blocks"] = assembly.graph.number_of_nodes()
     out["n_interfaces"] = sum(len(assembly.graph.edge_attribute(e, "interfaces"))
                               for e in edges)
     out["n_vertices"] = sum(len(i.points) for e in edges
                             for i in assembly.graph.edge_attribute(e, "interfaces"))
-    kwargs = {"mu": float(case["mu"]), "density": float(case.get("density", 1.0))}
+    kwargs = {"mu": float(case["mu"]), "density": float(case.get("density_default", 1.0))}
     if method != "rbe":
         kwargs.update(d_bnd=float(case.get("d_bnd", 1e-3)), eps=float(case.get("eps", 1e-4)))
-    t0 = time.perf_counter()
+    ipopt_cpu = _time_ipopt()
+    t0, c0 = time.perf_counter(), time.process_time()
     log = io.StringIO()
     try:
         with contextlib.redirect_stdout(log):
-            solvers[method](assembly, **kwargs)
+            solvers[method](assembly, timer=True, **kwargs)
         out["status"] = "solved"
         out["message"] = ""
     except ValueError as exc:
         out["status"] = "failed"
         out["message"] = str(exc).splitlines()[0][:300]
     out["times"]["solve"] = time.perf_counter() - t0
+    out["cpu"]["solve"] = time.process_time() - c0
+    if ipopt_cpu:
+        out["cpu"]["ipopt"] = sum(ipopt_cpu)
+    for label, key in (("set up", "setup"), ("solving", "ipopt")):
+        m = re.search(rf"--- {label} time: ([0-9.eE+-]+) seconds ---", log.getvalue())
+        if m:
+            out["times"][key] = float(m.group(1))
     out["times"]["total"] = time.perf_counter() - t_all
+    out["cpu"]["total"] = time.process_time() - c_all
     joints = []
     if out["status"] == "solved":
         for u, v in edges:
@@ -158,6 +254,8 @@ def run(case: dict, method: str) -> dict:
                     "fv": sum(f["c_v"] for f in forces),
                 })
     out["joints"] = joints
+    out["threads"] = {k: os.environ.get(k) for k in
+                      ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")}
     return out
 
 

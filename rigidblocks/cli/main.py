@@ -28,6 +28,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "report": ("report", "one self-contained HTML report: answer, pictures, 3D view, joints"),
     "import-dxf": ("dxf", "read a DXF drawing (closed polylines) into a scene file"),
     "export-dxf": ("dxf", "write a scene, its thrust line and forces to DXF"),
+    "import-compas": ("compas", "read a COMPAS Assembly or BlockModel (JSON) into a scene "
+                      "file"),
     "sweep": ("sweep", "parametric study from a spec file: many cases, in parallel, resumable"),
 }
 
