@@ -417,11 +417,15 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
 
     def result(status: str, lam: float | None = None, v: Verdict | None = None,
                converged: bool | None = None) -> LoadResult:
-        st = na.state(f, lam, v) if (state and v is not None and lam is not None) else None
+        st = na.state(f, lam, v) if (v is not None and lam is not None) else None
+        mech, gov = None, ()
+        if st is not None:
+            mech, gov = _collapse_mechanism(cv, na, f, lam, st)
         hist = tuple(trials)
         return LoadResult(**_fields(na, "max_load_multiplier", status, f, lam, hist,
-                                    converged), state=st, load_multiplier=lam,
-                          load_multiplier_bounds=bounds)
+                                    converged), state=st if state else None,
+                          load_multiplier=lam, load_multiplier_bounds=bounds,
+                          mechanism=mech, governing=gov)
 
     if up.status == "unstable":
         na.notes.append("the dead load alone has no admissible state (static problem)")
@@ -476,6 +480,35 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
     return result("collapse", br.good, best_v, True)
 
 
+def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: float,
+                        st: ForceState) -> tuple[Any, tuple[int, ...]]:
+    """The mechanism of the computed state: max lambda under the cohesion-only laws
+    |T| <= f N* of its normal forces N* (one LP); its duals are block velocities whose
+    marked joints slide without dilatancy. It is the collapse mechanism when that LP's
+    multiplier equals the computed one (to 1e-3): otherwise a note says so, and None."""
+    from ..equilibrium import mechanism
+
+    c = cv.contacts
+    pj = c.point_joint
+    fj = cv.f_joint(f)
+    mk = na.marked & np.isfinite(fj)
+    f_eff = np.where(mk, 0.0, fj)
+    cap = np.where(mk, fj, 0.0)[pj] * np.maximum(st.normal, 0.0) / cv.scaling.force
+    prob, _ = build_max_load(cv.system, cv.scaling, f_eff, cv.pyramid, cap=cap)
+    res = cv._run(prob, "maximum load (capped laws)", tight=True)
+    if res.status != OPTIMAL:
+        return None, ()
+    lam_cap = float(res.z[prob.cols["lambda"]][0])
+    if abs(lam_cap - lam) > 1e-3 * max(abs(lam), 1e-9):
+        na.notes.append(f"with the normal forces of the computed state as fixed shear "
+                        f"capacities the multiplier would be {lam_cap:.6g}: no collapse "
+                        "mechanism is given")
+        return None, ()
+    mech = mechanism(cv.system, cv.scaling.row, res.y[prob.rows["equilibrium"]])
+    sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
+    return mech, sliding
+
+
 def _frictionless_bound(cv: ConvexMethod, marked: np.ndarray, f: float) -> float | None:
     """The associative multiplier with the marked joints frictionless (cohesion kept):
     a lower bound on any non-associative collapse multiplier (Drucker 1954)."""
@@ -494,7 +527,7 @@ def _frictionless_bound(cv: ConvexMethod, marked: np.ndarray, f: float) -> float
     x = rres.z[rprob.cols["x"]]
     if float(rres.z[rprob.cols["r"]][0]) > ADMISSIBLE_TOL * max(1.0, float(np.abs(x).max())):
         return None
-    return max(lam, 0.0)
+    return lam if lam > ADMISSIBLE_TOL else 0.0  # round-off of a zero bound
 
 
 def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
@@ -517,8 +550,7 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
     def out(status: str, fstar: float | None = None, v: Verdict | None = None,
             lower: float | None = None, upper: float | None = None,
             converged: bool | None = None) -> FrictionResult:
-        st = na.state(fstar, lf, v) if (state and v is not None and fstar is not None) \
-            else None
+        st = na.state(fstar, lf, v) if (v is not None and fstar is not None) else None
         gov: tuple[int, ...] = ()
         if st is not None and fstar is not None and fstar > 0:
             fj = na.f_joint(fstar)
@@ -527,7 +559,7 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
             gov = tuple(int(k) for k in np.flatnonzero(at & na.uniform))
         return FrictionResult(**_fields(na, "min_friction", status, fstar, lf,
                                         tuple(trials), converged),
-                              state=st, governing=gov, friction_factor=fstar,
+                              state=st if state else None, governing=gov, friction_factor=fstar,
                               friction_angle_deg=(_m.degrees(_m.atan(fstar))
                                                   if fstar is not None else None),
                               lower=lower, upper=upper)
