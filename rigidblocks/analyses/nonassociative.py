@@ -60,7 +60,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..equilibrium import force_state
-from ..errors import InputError
+from ..errors import InputError, SolverFailure
 from ..methods import ADMISSIBLE, FAILURE, INADMISSIBLE, UNDECIDED, Method, Verdict
 from ..methods.convex import ADMISSIBLE_TOL, STATE_SLACK, ConvexMethod
 from ..methods.distortion import DistortionMethod
@@ -71,15 +71,17 @@ from ..solvers import OPTIMAL
 from .search import FRICTION_CEILING, UNBOUNDED_AT, bisect
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
-FIXED_POINT_TOL = 1e-7
+FIXED_POINT_TOL = 1e-6
 #: iteration budget of one fixed-point run (convex path)
 FIXED_POINT_MAX_ITER = 300
 #: iterations in a row without a falling change before the damping is halved
-STALL = 3
+STALL = 12
 #: smallest damping factor
 MIN_DAMPING = 1.0 / 64
 #: relative accuracy of the non-associative multiplier and friction
 NA_RTOL = 1e-5
+#: the first trial of the multiplier lies this far (relative) below the associative one
+TOP_RTOL = 1e-6
 #: the reason of a distortion run that found an admissible iterate but did not settle
 _UNSETTLED = "admissible; the iteration budget"
 
@@ -217,22 +219,26 @@ class ConvexNonAssociative(NonAssociative):
         """The least-energy state under the capped laws, or of their relaxation:
         (x scaled, breach R); x None when the equilibrium equations have no solution."""
         cv = self.cv
-        prob = build_energy_qp(self.system, cv.scaling, f_eff, lf, STATE_SLACK, cv.pyramid,
-                               cap)
-        res = cv._run(prob, "non-associative state")
-        if res.status == OPTIMAL:
-            return res.z[prob.cols["x"]], 0.0
+
+        def energy(relax: float) -> np.ndarray | None:
+            prob = build_energy_qp(self.system, cv.scaling, f_eff, lf, relax, cv.pyramid,
+                                   cap)
+            try:
+                res = cv._run(prob, "non-associative state")
+            except SolverFailure:  # (almost) infeasible: decided by the relaxation
+                return None
+            return res.z[prob.cols["x"]] if res.status == OPTIMAL else None
+
+        x = energy(STATE_SLACK)
+        if x is not None:
+            return x, 0.0
         rprob, _ = build_relaxation(self.system, cv.scaling, f_eff, lf, cv.pyramid, cap=cap)
         rres = cv._run(rprob, "relaxation", tight=True)
         if rres.status != OPTIMAL:
             return None, math.inf
         R = max(float(rres.z[rprob.cols["r"]][0]), 0.0)
-        prob = build_energy_qp(self.system, cv.scaling, f_eff, lf, R + STATE_SLACK,
-                               cv.pyramid, cap)
-        res = cv._run(prob, "non-associative state")
-        if res.status == OPTIMAL:
-            return res.z[prob.cols["x"]], R
-        return rres.z[rprob.cols["x"]], R
+        x = energy(R + STATE_SLACK)
+        return (rres.z[rprob.cols["x"]] if x is None else x), R
 
     def fixed_point(self, f: float, load_factor: float) -> FixedPoint:
         t0 = time.perf_counter()
@@ -456,7 +462,7 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
             if bad > UNBOUNDED_AT:
                 return result("unbounded", converged=True)
     else:
-        top = hi * (1.0 - rtol)
+        top = hi * (1.0 - TOP_RTOL)
         ok, v = decide(top)
         if ok is True:
             na.notes.append("the non-associative multiplier reaches the associative one")
