@@ -253,10 +253,13 @@ class ConvexNonAssociative(NonAssociative):
         f_pt = np.where(mk, fj, 0.0)[pj]
         t_pt = c.tensile_strength[pj] * c.point_areas / F
         nsl = sysm.layout.normal
-        x0 = self.elastic(load_factor)
-        if x0 is None:  # start from the least-energy state of the no-tension law
-            x0, _ = self._solve_capped(np.full(c.n_joints, math.inf), load_factor,
-                                       np.zeros(c.n_points))
+        # the start: X0 with the no-tension law imposed (its least-energy state with the
+        # normal links alone, whose plastic distortions are openings only), or X0's
+        # normal forces with tension cleared when that has no solution
+        x0, _ = self._solve_capped(np.full(c.n_joints, math.inf), load_factor,
+                                   np.zeros(c.n_points))
+        if x0 is None:
+            x0 = self.elastic(load_factor)
             if x0 is None:
                 return FixedPoint(INADMISSIBLE, np.full(sysm.layout.size, np.nan), 0, True,
                                   math.inf, "the equilibrium equations have no solution",
