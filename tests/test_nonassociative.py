@@ -269,3 +269,24 @@ def test_cli_flow(tmp_path, capsys):
     assert main(["friction", str(p), "--load-factor", "0.2", "--flow", NA]) == 0
     assert "non-associative" in capsys.readouterr().out
     assert main(["load", str(p), "--flow", "dilatant"]) == 2
+
+
+def test_bench_nonassoc_tiny(tmp_path):
+    """The benchmark runs on its tiny sizes: the 2 x 2 wall at f = 0.8 collapses at
+    lambda = 0.8 under both laws (the whole wall slides on its base: one sliding joint
+    against the support, validation.md), and the chart is written."""
+    import importlib.util
+
+    from conftest import ROOT
+
+    spec = importlib.util.spec_from_file_location(
+        "bench_nonassoc", ROOT / "benchmarks" / "bench_nonassoc.py")
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    data = bench.main(["--tiny", "--out", str(tmp_path)])
+    (row,) = data["walls"]
+    assert row["assoc_lambda"] == pytest.approx(0.8, rel=1e-6)
+    assert row["convex_lambda"] == pytest.approx(0.8, rel=RTOL)
+    assert row["distortion_lambda"] == pytest.approx(0.8, rel=RTOL)
+    assert (tmp_path / "bench_nonassoc.png").stat().st_size > 0
+    assert (tmp_path / "bench_nonassoc.md").read_text().startswith("## Non-associative")
