@@ -190,6 +190,8 @@ class ConvexNonAssociative(NonAssociative):
         self.cv = inner
         self.tol = tol
         self.max_iter = max_iter
+        #: the initial damping factor of the fixed-point update
+        self.damping = 1.0
         self._lu: Any = None
         self._lu_done = False
 
@@ -265,7 +267,7 @@ class ConvexNonAssociative(NonAssociative):
                                   math.inf, "the equilibrium equations have no solution",
                                   time=time.perf_counter() - t0)
         N = np.maximum(x0[nsl], -t_pt)
-        beta, rises = 1.0, 0
+        beta, rises = self.damping, 0
         past: list[np.ndarray] = []
         hist: list[float] = []
         x, R = x0, math.inf
