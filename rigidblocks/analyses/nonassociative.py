@@ -483,7 +483,7 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
             na.notes.append("bracket wider than 1e-3 relative: undecided, no number")
             return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None,
                                         tuple(trials), bool(last["converged"])),
-                              load_multiplier_bounds=(br.lower, br.upper))
+                              load_multiplier_bounds=bounds, bracket=(br.lower, br.upper))
     if lo is not None and br.good < lo * (1.0 - 1e-6):
         na.notes.append(f"the computed multiplier {br.good:.6g} is below the frictionless "
                         f"bound {lo:.6g}: the state reached from the elastic state "
@@ -568,8 +568,10 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
             at = (np.abs(st.joint_shear) >= (1 - 1e-5) * fj * st.joint_normal) \
                 & (st.joint_normal > 1e-9 * max(1.0, float(np.abs(st.joint_normal).max())))
             gov = tuple(int(k) for k in np.flatnonzero(at & na.uniform))
+        bracket = (lower, upper) if (status == UNDECIDED and lower is not None
+                                     and upper is not None) else None
         return FrictionResult(**_fields(na, "min_friction", status, fstar, lf,
-                                        tuple(trials), converged),
+                                        tuple(trials), converged), bracket=bracket,
                               state=st if state else None, governing=gov, friction_factor=fstar,
                               friction_angle_deg=(_m.degrees(_m.atan(fstar))
                                                   if fstar is not None else None),
@@ -610,6 +612,7 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
         na.notes.append(f"the iteration did not settle at f = {br.undecided_at:.9g}: the "
                         f"friction is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
         if br.too_wide(1e-3, 1e-6):
+            na.notes.append("bracket wider than 1e-3 relative: undecided, no number")
             return out(UNDECIDED, lower=br.lower, upper=br.upper, converged=False)
     return out("stable", br.good, best, br.lower, br.upper, True)
 
