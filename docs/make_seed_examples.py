@@ -261,10 +261,10 @@ def readings(gen: str, load_factor: float = 0.0, **params: Any) -> dict[str, Any
 def fmt_demand(c: Any) -> str:
     if c is None or c.friction_demand is None:
         return "n/a"
-    f = c.friction_demand
+    f, k = c.friction_demand
     if not math.isfinite(f):
         return "infinite"
-    a, b = c.contacts.block_pairs_ids()[c.friction_demand_joint]
+    a, b = c.joint_name(k)
     return f"{f:.4f} ({math.degrees(math.atan(f)):.2f} deg) at {a}-{b}"
 
 
@@ -321,7 +321,7 @@ def demand_weight(target: float = 0.25) -> float:
     for _ in range(60):
         mid = math.sqrt(lo * hi)
         d = check(build("reference", self_weight=True, unit_weight=mid),
-                  friction="infinite", load_factor=1.0).friction_demand
+                  friction="infinite", load_factor=1.0).friction_demand[0]
         lo, hi = (mid, hi) if d > target else (lo, mid)
     return math.sqrt(lo * hi)
 
@@ -331,7 +331,7 @@ def _ratio_deg(a: Any, b: Any) -> str:
     fb = getattr(b, "friction_demand", None)
     if fa is None or fb is None:
         return "n/a"
-    return ratio(math.degrees(math.atan(fa)), math.degrees(math.atan(fb)))
+    return ratio(math.degrees(math.atan(fa[0])), math.degrees(math.atan(fb[0])))
 
 
 def readings_section() -> list[str]:
@@ -372,7 +372,7 @@ def readings_section() -> list[str]:
     w("Reference model with self-weight: with the generator's blocks (W_top = W_central = "
       "50 N) the static f* is H / (P + W_top + W_central) = 0.25, the seed's value, but "
       "the least-energy state needs "
-      f"{got[READINGS[1][0]]['demand'].friction_demand:.4f}; the demand reading gives 0.25 "
+      f"{got[READINGS[1][0]]['demand'].friction_demand[0]:.4f}; the demand reading gives 0.25 "
       f"when the blocks are {uw / 20000.0:.3g} times as heavy (unit weight "
       f"{uw / 1000:.4g} kN/m^3 with these sizes). The seed does not give its blocks' "
       "sizes, so both readings fit a geometry; the non-associative friction equals the "
