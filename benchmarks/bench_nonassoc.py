@@ -30,7 +30,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from common import markdown_table, out_dir, write_results  # noqa: E402
 
 import rigidblocks as rb  # noqa: E402
-from rigidblocks.examples import build  # noqa: E402
+from rigidblocks.generators import build  # noqa: E402
 
 NA = "non-associative"
 #: (courses, blocks per course) of the walls; the distortion iteration on the first few

@@ -20,7 +20,7 @@ from rigidblocks.analyses.nonassociative import flow_mask, is_nonassociative
 from rigidblocks.cli.main import main
 from rigidblocks.contacts import detect_contacts
 from rigidblocks.errors import InputError
-from rigidblocks.examples import build
+from rigidblocks.generators import build
 from rigidblocks.io import read_scene
 from rigidblocks.io.scene_file import dumps_scene, loads_json, scene_from_dict
 
