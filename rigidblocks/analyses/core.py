@@ -11,6 +11,7 @@ bisect on its verdicts (:mod:`.search`). Results are immutable
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 from ..errors import InputError
@@ -215,9 +216,11 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         raise InputError("the scene has no live load (no \"live\": true load and no "
                          "live_body_force): there is nothing to multiply", scene.source)
     if is_nonassociative(scene, flow):
-        return max_load_nonassociative(scene, friction, method, flow=flow, state=state,
-                                       solver=solver, settings=settings, pyramid=pyramid,
-                                       contact_tol=contact_tol, progress=progress)
+        res = max_load_nonassociative(scene, friction, method, flow=flow, state=state,
+                                      solver=solver, settings=settings, pyramid=pyramid,
+                                      contact_tol=contact_tol, progress=progress)
+        return replace(res, tilt_angle_deg=tilt_angle_deg(scene, res.load_multiplier)
+                       if res.status == "collapse" else None)
     f = friction_value(scene.effective_friction if friction is None else friction)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol, progress=progress)

@@ -432,15 +432,11 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
         mech, gov = None, ()
         if st is not None:
             mech, gov = _collapse_mechanism(cv, na, f, lam, st)
-        from .core import tilt_angle_deg
-
         hist = tuple(trials)
         return LoadResult(**_fields(na, "max_load_multiplier", status, f, lam, hist,
                                     converged), state=st if state else None,
                           load_multiplier=lam, load_multiplier_bounds=bounds,
-                          mechanism=mech, governing=gov,
-                          tilt_angle_deg=tilt_angle_deg(scene, lam)
-                          if status == "collapse" else None)
+                          mechanism=mech, governing=gov)
 
     if up.status == "unstable":
         na.notes.append("the dead load alone has no admissible state (static problem)")
