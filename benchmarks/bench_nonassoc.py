@@ -139,7 +139,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     d = out_dir(args.out)
     chart(curve, d / "bench_nonassoc.png")
     header = ["wall", "blocks", "lambda assoc", "s", "lambda non-assoc (convex)", "s",
-              "convex solves", "trials", "lambda non-assoc (distortion)", "s",
+              "convex iterations (QPs)", "trials", "lambda non-assoc (distortion)", "s",
               "distortion iterations"]
     rows = [[f"{r['courses']} x {r['per_course']}", r["blocks"], r["assoc_lambda"],
              r["assoc_seconds"], _cell(r["convex_lambda"]), r["convex_seconds"],
