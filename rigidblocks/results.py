@@ -121,6 +121,12 @@ class Result:
     #: seconds per stage (contacts, assembly, build, solve, state), wall clock and CPU
     timings: dict[str, float] = field(default_factory=dict, repr=False)
     cpu_timings: dict[str, float] = field(default_factory=dict, repr=False)
+    #: the sliding rule of the analysis ("associative", or "non-associative" where some
+    #: joint slides without dilatancy); ``converged`` and ``history`` describe the
+    #: non-associative iteration (its trials, each with its status and iterations)
+    flow: str = "associative"
+    converged: bool | None = None
+    history: tuple = field(default=(), repr=False)
 
     #: the statuses that are not verdicts: the method could not decide, or broke down
     UNDECIDED: ClassVar[tuple[str, ...]] = ("undecided", "failure")
@@ -192,6 +198,38 @@ class Result:
     def _answer(self) -> dict[str, Any]:  # pragma: no cover - overridden
         raise NotImplementedError
 
+    def _flow_dict(self) -> dict[str, Any]:
+        """The keys of a non-associative analysis (none for an associative one)."""
+        if self.flow == "associative":
+            return {}
+        return {"flow": self.flow, "iterations": self.iterations,
+                "converged": self.converged,
+                "history": [dict(h) if isinstance(h, dict) else h for h in self.history]}
+
+
+#: forces below this fraction of the largest joint force count as zero in the demand
+DEMAND_TOL = 1e-7
+
+
+def max_demand(st: ForceState | None) -> tuple[float, int] | None:
+    """The largest |T|/N over the joints of a force state and its joint (None without a
+    state or joints).
+
+    Forces below ``DEMAND_TOL`` of the largest joint force are round-off of the solver
+    (an iterative method stops at a violation of about 1e-9 of it): a joint whose N is
+    that small carries nothing and needs no friction unless its |T| is larger.
+    """
+    if st is None or not len(st.joint_normal):
+        return None
+    N, T = st.joint_normal, np.abs(st.joint_shear)
+    big = max(float(np.abs(N).max(initial=0.0)), float(T.max(initial=0.0)), 1e-300)
+    loaded = N > DEMAND_TOL * big
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d = np.where(loaded, T / np.where(loaded, N, 1.0),
+                     np.where(T > DEMAND_TOL * big, np.inf, 0.0))
+    k = int(np.argmax(d))
+    return float(d[k]), k
+
 
 def headline(result: Any, symbols: bool = False) -> str:
     """The answer of a result in one line: what the CLI prints as its verdict, what a
@@ -242,6 +280,8 @@ class CheckResult(Result):
     achievable violation of the joint laws (force units; 0 when admissible).
     ``breaches``: where the joint laws are breached in that least-violation state,
     (joint, breach in force units), largest first.
+    ``friction_demand`` (a property): the largest |T|/N of the force state and
+    its joint; under non-associative sliding the state is the one reached from X0.
     """
 
     admissible: bool | None = False
@@ -252,11 +292,7 @@ class CheckResult(Result):
     def friction_demand(self) -> tuple[float, int] | None:
         """The largest |T|/N over the joints of the force state and its joint (None
         without a state): the friction the state of least complementary energy needs."""
-        st = self.state
-        if st is None or not len(st.demand):
-            return None
-        k = int(np.argmax(st.demand))
-        return float(st.demand[k]), k
+        return max_demand(self.state)
 
     def _answer(self) -> dict[str, Any]:
         fd = self.friction_demand
@@ -265,7 +301,7 @@ class CheckResult(Result):
                 "friction_demand": fd[0] if fd else None,
                 "friction_demand_joint": list(self.joint_name(fd[1])) if fd else None,
                 "breaches": [{"joint": list(self.joint_name(k)), "breach": v}
-                             for k, v in self.breaches]}
+                             for k, v in self.breaches], **self._flow_dict()}
 
 
 @dataclass(frozen=True, eq=False)
@@ -286,12 +322,12 @@ class FrictionResult(Result):
         return {"friction_factor": self.friction_factor,
                 "friction_angle_deg": self.friction_angle_deg,
                 "governing_joints": [list(p) for p in self.governing_joints],
-                "load_factor": self.load_factor}
+                "load_factor": self.load_factor, **self._flow_dict()}
 
 
 @dataclass(frozen=True, eq=False)
 class LoadResult(Result):
-    """Maximum load multiplier (associative friction).
+    """Maximum load multiplier (associative friction, or non-associative with ``flow``).
 
     status: "collapse" (finite lambda*), "unbounded" (no multiplier makes it collapse)
     or "unstable" (the dead load alone has no admissible state); "undecided" or
@@ -303,11 +339,17 @@ class LoadResult(Result):
     load_multiplier: float | None = None
     mechanism: Mechanism | None = field(default=None, repr=False)
     tilt_angle_deg: float | None = None
+    #: non-associative: [lo, hi] with hi the associative multiplier (an upper bound)
+    #: and lo a proven lower bound (None where there is none)
+    load_multiplier_bounds: tuple[float | None, float | None] | None = None
 
     def _answer(self) -> dict[str, Any]:
         out = {"load_multiplier": self.load_multiplier,
                "friction": friction_label(self.friction),
-               "tilt_angle_deg": self.tilt_angle_deg}
+               "tilt_angle_deg": self.tilt_angle_deg, **self._flow_dict()}
+        if self.flow != "associative":
+            b = self.load_multiplier_bounds
+            out["load_multiplier_bounds"] = None if b is None else list(b)
         if self.mechanism is not None:
             m = self.mechanism
             order = m.ranking

@@ -11,6 +11,7 @@ bisect on its verdicts (:mod:`.search`). Results are immutable
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 from ..errors import InputError
@@ -18,6 +19,12 @@ from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_me
 from ..methods.convex import FRICTION_RTOL
 from ..results import CheckResult, FrictionResult, LoadResult
 from ..scene.model import Scene, friction_label, friction_value
+from .nonassociative import (
+    check_nonassociative,
+    is_nonassociative,
+    max_load_nonassociative,
+    min_friction_nonassociative,
+)
 from .search import friction_by_bisection, load_by_bisection
 
 #: relative accuracy of lambda* where it is bisected (methods without a fast path)
@@ -69,6 +76,7 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
           method: str = "clarabel", *, solver: str | None = None, state: bool = True,
           settings: dict | None = None, pyramid: int | None = None,
           contact_tol: float | None = None, progress: Progress | None = None,
+          flow: str | None = None,
           ) -> CheckResult:
     """Is there an admissible equilibrium state under dead + load_factor x live?
 
@@ -98,10 +106,13 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
             model). Convex path only.
         progress: a :class:`~rigidblocks.methods.Progress` the analysis keeps up to
             date (stage, solves, iterations), for a progress line.
+        flow: "associative" or "non-associative" for every joint without its own
+            ``flow`` (None: the scene's); see :mod:`.nonassociative`.
 
     Returns:
         :class:`~rigidblocks.results.CheckResult` with status "admissible",
-        "inadmissible", or (distortion method) "undecided" or "failure".
+        "inadmissible", or (distortion method) "undecided" or "failure", and the
+        friction demand of its state (the largest |T|/N, and the joint).
 
     Notes:
         Convex path: posed as the relaxation R = min r over equilibrium states whose
@@ -109,6 +120,11 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
         admissible iff R <= 1e-9 of the largest force of the relaxation's state (see
         :mod:`rigidblocks.methods.convex`).
     """
+    if is_nonassociative(scene, flow):
+        return check_nonassociative(scene, friction, _load_factor(scene, load_factor), method,
+                                    flow=flow, state=state, solver=solver, settings=settings,
+                                    pyramid=pyramid, contact_tol=contact_tol,
+                                    progress=progress)
     f = friction_value(scene.effective_friction if friction is None else friction)
     lf = _load_factor(scene, load_factor)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
@@ -128,8 +144,10 @@ def min_friction(scene: Scene, load_factor: float | None = None,
                  solver: str | None = None, state: bool = True, rtol: float = FRICTION_RTOL,
                  settings: dict | None = None, pyramid: int | None = None,
                  contact_tol: float | None = None, progress: Progress | None = None,
-                 ) -> FrictionResult:
-    """The smallest uniform friction coefficient f* that admits equilibrium.
+                 flow: str | None = None) -> FrictionResult:
+    """The smallest uniform friction coefficient f* that admits equilibrium (with
+    ``flow="non-associative"``: the smallest f at which the non-associative analysis
+    finds the structure standing, :func:`.nonassociative.min_friction_nonassociative`).
 
     Joints with their own friction override keep it. Status "stable" with f*;
     "unstable" (no number) when even infinite friction admits no equilibrium: the
@@ -142,6 +160,11 @@ def min_friction(scene: Scene, load_factor: float | None = None,
         a verdict is only as sharp as its violation tolerance).
     """
     lf = _load_factor(scene, load_factor)
+    if is_nonassociative(scene, flow):
+        return min_friction_nonassociative(scene, lf, method, flow=flow, state=state,
+                                           solver=solver, settings=settings,
+                                           pyramid=pyramid, contact_tol=contact_tol,
+                                           progress=progress)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol, progress=progress)
     if m.contacts.n_joints and not m.uniform.any():
@@ -169,8 +192,9 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
                         settings: dict | None = None, pyramid: int | None = None,
                         contact_tol: float | None = None, rtol: float = LOAD_RTOL,
                         mechanism: str = "vertex", progress: Progress | None = None,
-                        ) -> LoadResult:
-    """The largest multiplier lambda* of the live loads (associative friction).
+                        flow: str | None = None) -> LoadResult:
+    """The largest multiplier lambda* of the live loads (associative friction; with
+    ``flow="non-associative"`` see :func:`.nonassociative.max_load_nonassociative`).
 
     Status "collapse" with lambda* and (convex path) the collapse mechanism; "unbounded"
     when no multiplier makes the structure collapse; "unstable" when the dead load alone
@@ -191,6 +215,12 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     if not scene.has_live_load:
         raise InputError("the scene has no live load (no \"live\": true load and no "
                          "live_body_force): there is nothing to multiply", scene.source)
+    if is_nonassociative(scene, flow):
+        res = max_load_nonassociative(scene, friction, method, flow=flow, state=state,
+                                      solver=solver, settings=settings, pyramid=pyramid,
+                                      contact_tol=contact_tol, progress=progress)
+        return replace(res, tilt_angle_deg=tilt_angle_deg(scene, res.load_multiplier)
+                       if res.status == "collapse" else None)
     f = friction_value(scene.effective_friction if friction is None else friction)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol, progress=progress)

@@ -42,6 +42,9 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("--joints", nargs="?", const="-", default=None, metavar="CSV",
                    help="the per-joint table (N, T, eccentricity, |T|/N, mode): in the "
                    "JSON with --json, else printed, or written to the CSV file given")
+    p.add_argument("--flow", choices=("associative", "non-associative"), default=None,
+                   help="sliding rule of every joint without its own (default: the "
+                   "scene's flow, else associative)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
@@ -63,7 +66,8 @@ def run(args: argparse.Namespace) -> int:
         scene, friction=getattr(args, "friction", None),
         load_factor=getattr(args, "load_factor", None), method=args.method,
         solver=args.solver, state=state, contact_tol=args.contact_tol, progress=progress,
-        **options), progress, show=not args.json and sys.stderr.isatty())
+        flow=getattr(args, "flow", None), **options), progress,
+        show=not args.json and sys.stderr.isatty())
     if csv_path is not None:
         _write_csv(res, csv_path)
     if args.json:
@@ -171,6 +175,8 @@ def report(scene, res, joints: bool = False) -> str:
                              f"their friction limit: {_joint_list(res.governing_joints)}")
         else:
             lines.append(f"verdict    {headline(res).upper()}")
+    if res.flow != "associative":
+        lines += _flow_lines(res)
     lines += [f"note       {n}" for n in res.notes]
     if joints:
         lines += _table(res)
@@ -199,6 +205,19 @@ def _table(res) -> list[str]:
         name = "-".join(r["joint"])
         out.append(f"{name:<24} {r['N']:12.5g} {r['T']:12.5g} {e:>10} {r['demand']:8.4g}  "
                    f"{r['state']:<15} {r['mode'] or '-'}")
+    return out
+
+
+def _flow_lines(res) -> list[str]:
+    """The non-associative analysis: its iterations and bounds."""
+    out = [f"flow       {res.flow}: {res.iterations} iteration(s), "
+           f"{'converged' if res.converged else 'not converged'}"]
+    b = getattr(res, "load_multiplier_bounds", None)
+    if b is not None:
+        lo = "-" if b[0] is None else f"{b[0]:.6g}"
+        hi = "-" if b[1] is None else f"{b[1]:.6g}"
+        out.append(f"bounds     [{lo}, {hi}]   (frictionless lower bound, associative "
+                   "upper bound)")
     return out
 
 

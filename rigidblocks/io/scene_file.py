@@ -16,17 +16,18 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
-from ..scene.model import INFINITE, Block, JointOverride, Load, Scene, Units
+from ..scene.model import FLOWS, INFINITE, Block, JointOverride, Load, Scene, Units
 
 FORMAT = "rigidblocks-scene"
 VERSION = 1
 
 TOP_KEYS = {"format", "version", "name", "dimension", "units", "depth", "unit_weight",
-            "friction", "blocks", "loads", "live_body_force", "joints", "load_factor"}
+            "friction", "blocks", "loads", "live_body_force", "joints", "load_factor",
+            "flow"}
 TOP_REQUIRED = ("format", "version", "dimension", "blocks")
 BLOCK_KEYS = {"id", "vertices", "faces", "support", "unit_weight"}
 LOAD_KEYS = {"block", "force", "point", "moment", "live"}
-JOINT_KEYS = {"blocks", "friction", "cohesion", "tensile_strength"}
+JOINT_KEYS = {"blocks", "friction", "cohesion", "tensile_strength", "flow"}
 UNIT_KEYS = {"length", "force"}
 
 
@@ -68,6 +69,13 @@ def _friction(v: Any, where: str):
     if isinstance(v, str):
         raise InputError(f'expected a number >= 0 or "infinite", got "{v}"', where)
     return _number(v, where, minimum=0)
+
+
+def _flow(v: Any, where: str) -> str:
+    if v not in FLOWS:
+        raise InputError(f'expected "associative" or "non-associative", got {json.dumps(v)}',
+                         where)
+    return v
 
 
 def _bool(v: Any, where: str) -> bool:
@@ -151,6 +159,7 @@ def _parse(doc: Any, source: str | None) -> Scene:
            if "live_body_force" in top else None)
     load_factor = (_number(top["load_factor"], '"load_factor"', minimum=0)
                    if "load_factor" in top else None)
+    flow = _flow(top["flow"], '"flow"') if "flow" in top else None
 
     if not isinstance(top["blocks"], list):
         raise InputError('"blocks" must be a list of blocks')
@@ -159,7 +168,8 @@ def _parse(doc: Any, source: str | None) -> Scene:
     joints = tuple(_parse_joint(j, i) for i, j in enumerate(_list(top, "joints")))
     return Scene(dimension=dim, blocks=blocks, loads=loads, joints=joints, name=name,
                  units=units, depth=depth, unit_weight=unit_weight, friction=friction,
-                 live_body_force=lbf, load_factor=load_factor, source=source)
+                 live_body_force=lbf, load_factor=load_factor, flow=flow,
+                 source=source)
 
 
 def _list(top: dict, key: str) -> list:
@@ -244,7 +254,8 @@ def _parse_joint(j: Any, i: int) -> JointOverride:
            if "cohesion" in j else None)
     ts = (_number(j["tensile_strength"], f'{where} "tensile_strength"', minimum=0)
           if "tensile_strength" in j else None)
-    return JointOverride((pair[0], pair[1]), friction, coh, ts)
+    flow = _flow(j["flow"], f'{where} "flow"') if "flow" in j else None
+    return JointOverride((pair[0], pair[1]), friction, coh, ts, flow)
 
 
 def loads_json(text: str, source: str | None = None) -> Any:
@@ -302,10 +313,13 @@ def scene_to_dict(scene: Scene) -> dict:
         doc["live_body_force"] = list(scene.live_body_force)
     if scene.load_factor is not None:
         doc["load_factor"] = scene.load_factor
+    if scene.flow is not None:
+        doc["flow"] = scene.flow
     if scene.joints:
         doc["joints"] = [_drop_none({"blocks": list(j.blocks), "friction": j.friction,
                                      "cohesion": j.cohesion,
-                                     "tensile_strength": j.tensile_strength})
+                                     "tensile_strength": j.tensile_strength,
+                                     "flow": j.flow})
                          for j in scene.joints]
     return doc
 

@@ -89,8 +89,15 @@ class JointRows:
 
 def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
                n_cols: int, relax_col: int | None = None,
-               relax_rhs: float = 0.0, pyramid: int | None = None) -> JointRows:
+               relax_rhs: float = 0.0, pyramid: int | None = None,
+               cap: np.ndarray | None = None) -> JointRows:
     """Rows of the joint laws for friction coefficients ``f_joint`` (per joint).
+
+    ``cap`` (P,), scaled force units: an extra shear capacity per contact point, added to
+    the friction rows' right-hand sides like a cohesion (per joint, the sum over its
+    points). With ``f_joint = 0`` on a joint it makes the cohesion-only law
+    |T| <= cap + c a of the non-associative iteration
+    (:mod:`rigidblocks.analyses.nonassociative`).
 
     ``relax_col`` adds -1 x that column to every row (the relaxation variable r);
     ``relax_rhs`` adds a fixed relaxation to every right-hand side instead.
@@ -106,6 +113,9 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
     a_pt = c.point_areas
     tens = c.tensile_strength[pj] * a_pt / F + relax_rhs
     coh_joint = c.cohesion * c.areas / F
+    cap_pt = np.zeros(P) if cap is None else np.asarray(cap, dtype=float)
+    if cap is not None:
+        coh_joint = coh_joint + np.bincount(pj, cap_pt, minlength=c.n_joints)
     # -- no tension: -N_k (- r) <= sigma a_k
     nrow = sp.coo_matrix((-np.ones(P), (np.arange(P), lay.normal.start + np.arange(P))),
                          shape=(P, n_cols))
@@ -151,7 +161,7 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
             fk = f_joint[pj[K]]
             vals = np.concatenate([-fk, -fk, np.ones(nK), -np.ones(nK)])
             lin_blocks.append(sp.coo_matrix((vals, (rows, cols)), shape=(2 * nK, n_cols)))
-            hk = c.cohesion[pj[K]] * a_pt[K] / F
+            hk = c.cohesion[pj[K]] * a_pt[K] / F + cap_pt[K]
             h_parts.append(np.concatenate([hk, hk]) + relax_rhs)
             fric_joint = np.concatenate([pj[K], pj[K]])
             nsum = sp.coo_matrix((np.ones(2 * nK), (np.concatenate([r, r + nK]),
@@ -176,7 +186,7 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
         lin_blocks.append(sp.coo_matrix((np.concatenate(vals),
                                          (np.concatenate(rows), np.concatenate(cols))),
                                         shape=(k * nK, n_cols)))
-        hk = c.cohesion[pj[K]] * a_pt[K] / F * cosk
+        hk = (c.cohesion[pj[K]] * a_pt[K] / F + cap_pt[K]) * cosk
         h_parts.append(np.tile(hk, k) + relax_rhs)
         fric_joint = np.tile(pj[K], k)
         nsum = sp.coo_matrix((np.full(k * nK, cosk), (np.arange(k * nK), np.tile(K, k))),
@@ -198,7 +208,7 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
             vals = np.concatenate([vals, -np.ones(nK)])
         soc_rows = sp.coo_matrix((vals, (rows, cols)), shape=(3 * nK, n_cols)).tocsr()
         h_soc = np.zeros(3 * nK)
-        h_soc[r] = c.cohesion[pj[K]] * a_pt[K] / F + relax_rhs
+        h_soc[r] = c.cohesion[pj[K]] * a_pt[K] / F + cap_pt[K] + relax_rhs
         soc = (3,) * nK
         fric_joint = pj[K]
         fric_head = None  # set below, after the linear rows are counted
@@ -263,8 +273,11 @@ def _stack(eq_A, eq_b, jr: JointRows, extra_lin=None, extra_h=None):
 
 def build_relaxation(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
                      load_factor: float, pyramid: int | None = None,
-                     uniform: np.ndarray | None = None) -> tuple[ConicProblem, JointRows]:
+                     uniform: np.ndarray | None = None,
+                     cap: np.ndarray | None = None) -> tuple[ConicProblem, JointRows]:
     """min r  s.t.  equilibrium at ``load_factor``, joint laws relaxed by r, r >= 0.
+
+    ``cap``: extra shear capacity per contact point (see :func:`joint_rows`).
 
     ``uniform`` (a mask of joints, with finite nonzero ``f_joint`` there) makes their
     friction the problem's parameter "f" (:func:`friction_parameter`), so that the
@@ -274,7 +287,7 @@ def build_relaxation(system: EquilibriumSystem, scaling: Scaling, f_joint: np.nd
     nc = n + 1
     Aeq = sp.hstack([_equilibrium(system, scaling), sp.csr_matrix((system.n_rows, 1))])
     beq = -scaling.row * (system.dead + load_factor * system.live) / scaling.force
-    jr = joint_rows(system, scaling, f_joint, nc, relax_col=n, pyramid=pyramid)
+    jr = joint_rows(system, scaling, f_joint, nc, relax_col=n, pyramid=pyramid, cap=cap)
     r_nonneg = sp.coo_matrix(([-1.0], ([0], [n])), shape=(1, nc))
     A, b = _stack(Aeq, beq, jr, r_nonneg, np.zeros(1))
     cvec = np.zeros(nc)
@@ -292,14 +305,16 @@ def build_relaxation(system: EquilibriumSystem, scaling: Scaling, f_joint: np.nd
 
 
 def build_max_load(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
-                   pyramid: int | None = None) -> tuple[ConicProblem, JointRows]:
-    """max lambda  s.t.  A x + F_dead + lambda F_live = 0, joint laws."""
+                   pyramid: int | None = None,
+                   cap: np.ndarray | None = None) -> tuple[ConicProblem, JointRows]:
+    """max lambda  s.t.  A x + F_dead + lambda F_live = 0, joint laws (``cap``: extra
+    shear capacity per contact point, see :func:`joint_rows`)."""
     n = system.layout.size
     nc = n + 1
     live = (scaling.row * system.live / scaling.force)[:, None]
     Aeq = sp.hstack([_equilibrium(system, scaling), sp.csr_matrix(live)])
     beq = -scaling.row * system.dead / scaling.force
-    jr = joint_rows(system, scaling, f_joint, nc, pyramid=pyramid)
+    jr = joint_rows(system, scaling, f_joint, nc, pyramid=pyramid, cap=cap)
     A, b = _stack(Aeq, beq, jr)
     cvec = np.zeros(nc)
     cvec[n] = -1.0
@@ -325,12 +340,14 @@ def flexibility(system: EquilibriumSystem) -> np.ndarray:
 
 def build_energy_qp(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
                     load_factor: float, relax: float = 0.0,
-                    pyramid: int | None = None) -> ConicProblem:
-    """min 1/2 x'Cx  s.t.  equilibrium at ``load_factor``, joint laws relaxed by ``relax``."""
+                    pyramid: int | None = None, cap: np.ndarray | None = None,
+                    ) -> ConicProblem:
+    """min 1/2 x'Cx  s.t.  equilibrium at ``load_factor``, joint laws relaxed by ``relax``
+    (``cap``: extra shear capacity per contact point, see :func:`joint_rows`)."""
     n = system.layout.size
     Aeq = _equilibrium(system, scaling)
     beq = -scaling.row * (system.dead + load_factor * system.live) / scaling.force
-    jr = joint_rows(system, scaling, f_joint, n, relax_rhs=relax, pyramid=pyramid)
+    jr = joint_rows(system, scaling, f_joint, n, relax_rhs=relax, pyramid=pyramid, cap=cap)
     A, b = _stack(Aeq, beq, jr)
     P = sp.diags(flexibility(system), format="csc")
     return ConicProblem(c=np.zeros(n), A=A, b=b, n_eq=system.n_rows,

@@ -20,6 +20,23 @@ from ..errors import InputError
 
 INFINITE = "infinite"
 Friction = float | Literal["infinite"]
+ASSOCIATIVE = "associative"
+NON_ASSOCIATIVE = "non-associative"
+#: the sliding rules of a joint (the scene's and a joint's ``flow``)
+FLOWS = (ASSOCIATIVE, NON_ASSOCIATIVE)
+Flow = Literal["associative", "non-associative"]
+
+
+def flow_value(flow: object) -> str:
+    """The sliding rule named by ``flow``: "associative" or "non-associative" (also
+    spelt with an underscore or without the hyphen, any case); anything else is an
+    :class:`InputError`."""
+    if isinstance(flow, str):
+        v = flow.strip().lower().replace("_", "-")
+        v = {"nonassociative": NON_ASSOCIATIVE}.get(v, v)
+        if v in FLOWS:
+            return v
+    raise InputError(f'flow must be "associative" or "non-associative", got {flow!r}')
 
 
 def friction_value(f: object) -> float:
@@ -111,13 +128,15 @@ class JointOverride:
     """The law of the joint(s) between two blocks, overriding the scene's defaults.
 
     ``friction`` None keeps the scene's f; cohesion and tensile strength are stresses
-    over the contact area (None means 0, a dry joint).
+    over the contact area (None means 0, a dry joint); ``flow`` None keeps the scene's
+    sliding rule.
     """
 
     blocks: tuple[str, str]
     friction: Friction | None = None
     cohesion: float | None = None
     tensile_strength: float | None = None
+    flow: Flow | None = None
 
 
 @dataclass(frozen=True)
@@ -147,6 +166,7 @@ class Scene:
     #: lambda at which check and friction evaluate dead + lambda x live when the caller
     #: gives none (None: 1)
     load_factor: float | None = None
+    flow: Flow | None = None
     # where the scene came from, for messages (a file name); not part of the scene
     source: str | None = field(default=None, compare=False)
 
@@ -166,6 +186,11 @@ class Scene:
     @property
     def effective_friction(self) -> Friction:
         return INFINITE if self.friction is None else self.friction
+
+    @property
+    def effective_flow(self) -> str:
+        """The sliding rule of every joint without its own: "associative" by default."""
+        return ASSOCIATIVE if self.flow is None else self.flow
 
     @property
     def length_unit(self) -> str:
@@ -202,7 +227,7 @@ class Scene:
         if not isinstance(other, Scene):
             return NotImplemented
         names = ("dimension", "blocks", "loads", "joints", "name", "units", "depth",
-                 "unit_weight", "friction", "live_body_force", "load_factor")
+                 "unit_weight", "friction", "live_body_force", "load_factor", "flow")
         return all(getattr(self, n) == getattr(other, n) for n in names)
 
     __hash__ = None  # type: ignore[assignment]

@@ -199,15 +199,24 @@ class DistortionSolver:
         return self.project_equilibrium(np.zeros(self.P + self.m), self.rhs(load_factor))
 
     def laws(self, f_joint: np.ndarray, tension: np.ndarray | None = None,
-             cohesion: np.ndarray | None = None) -> _Laws:
-        """Per-joint rows G v <= h (v = N1, N2, T) and the candidate maps of P_K."""
+             cohesion: np.ndarray | None = None,
+             nonassociative: np.ndarray | None = None) -> _Laws:
+        """Per-joint rows G v <= h (v = N1, N2, T) and the candidate maps of P_K.
+
+        ``nonassociative`` (m,) marks joints whose sliding does not dilate: their
+        projection caps the shear at the friction threshold and leaves the normal forces
+        as they are (the seed's separate normal and shear links, :class:`_NonAssocLaws`).
+        """
         c = self.system.contacts
         F = self.scaling.force
         a = c.point_areas
         ts = c.tensile_strength if tension is None else tension
         co = c.cohesion if cohesion is None else cohesion
-        return _Laws(f_joint, ts[c.point_joint] * a / F, co * c.areas / F,
-                     np.array([self.C[self.i0], self.C[self.i0 + 1], self.C[self.it]]).T)
+        args = (f_joint, ts[c.point_joint] * a / F, co * c.areas / F,
+                np.array([self.C[self.i0], self.C[self.i0 + 1], self.C[self.it]]).T)
+        if nonassociative is not None and np.any(nonassociative):
+            return _NonAssocLaws(*args, np.asarray(nonassociative, dtype=bool))
+        return _Laws(*args)
 
     def gather(self, x: np.ndarray) -> np.ndarray:
         return np.stack([x[self.i0], x[self.i0 + 1], x[self.it]], axis=1)
@@ -239,13 +248,8 @@ class DistortionSolver:
         scale = float(np.abs(wv).max(initial=0.0))
         if not scale > 0:
             return None
-        fin = np.isfinite(laws.f)
-        aw = np.abs(wv[:, 2])
-        s = wv[:, :2] + np.where(fin, laws.f, 0.0)[:, None] * aw[:, None]
-        breach = max(float(np.maximum(s, 0.0).max(initial=0.0)),
-                     float(np.where(fin, 0.0, aw).max(initial=0.0))) / scale
-        resist = float(np.sum(laws.h[:, :2] * np.maximum(-s, 0.0))
-                       + np.sum(np.where(fin, laws.h[:, 2], 0.0) * aw))
+        breach, resist = laws.flow(wv)
+        breach /= scale
         work = float(y @ b) - resist
         if work <= 0 or breach > flow_tol:
             return None
@@ -521,6 +525,20 @@ class _Laws:
         self.G, self.h, self.active = G, h, np.stack([np.ones(m, bool)] * 2 + [fin] * 2, 1)
         self.cw = cflex  # the C metric: weights C on the joint's (N1, N2, T)
 
+    def flow(self, wv: np.ndarray) -> tuple[float, float]:
+        """(largest breach of the flow rule, resistance sigma_K(w)) of joint deformations
+        ``wv`` (per joint w_N1, w_N2, w_T) under the associative flow rule: per point
+        w_N + f |w_T| <= 0 (opening by at least f times the slip; no slip where f is
+        infinite), resisted by the tensile strengths and the cohesion."""
+        fin = np.isfinite(self.f)
+        aw = np.abs(wv[:, 2])
+        s = wv[:, :2] + np.where(fin, self.f, 0.0)[:, None] * aw[:, None]
+        breach = max(float(np.maximum(s, 0.0).max(initial=0.0)),
+                     float(np.where(fin, 0.0, aw).max(initial=0.0)))
+        resist = float(np.sum(self.h[:, :2] * np.maximum(-s, 0.0))
+                       + np.sum(np.where(fin, self.h[:, 2], 0.0) * aw))
+        return breach, resist
+
     def rows(self, v: np.ndarray) -> np.ndarray:
         G = self.G
         r = G[..., 0] * v[:, None, 0] + G[..., 1] * v[:, None, 1] + G[..., 2] * v[:, None, 2]
@@ -573,3 +591,53 @@ class _Laws:
         out[k, :2] = nk
         out[k, 2] = sg[k] * tk
         return out
+
+
+class _NonAssocLaws(_Laws):
+    """Joint laws where the marked joints slide without dilatancy (the seed's links).
+
+    The seed's joint has separate links: normal links that carry no tension (beyond a
+    tensile strength) and shear links capped at f times the normal force. Its
+    projection (Eq. 4: "nullify all tensile forces in the links orthogonal to the joints
+    and ... lower, until equal to their threshold value, all the shear forces") is, per
+    marked joint, N_i <- max(N_i, -t_i), then T <- clip(T, +-(f (N_1 + N_2) + c)): the
+    shear is capped without changing the normal forces. This is not the metric
+    projection onto the Coulomb set (that one raises N: dilatancy); a fixed point of
+    the iteration with it is a state whose plastic distortions are openings where N is
+    at its tensile limit and slips without dilatancy where |T| is at its threshold.
+    Unmarked joints keep the associative projection of :class:`_Laws`.
+    """
+
+    def __init__(self, f: np.ndarray, t: np.ndarray, c: np.ndarray, cflex: np.ndarray,
+                 marked: np.ndarray):
+        super().__init__(f, t, c, cflex)
+        self.marked = marked
+        #: the normal-force sums of the last projection (the dissipation of a slip)
+        self.nsum = np.zeros(len(f))
+
+    def project(self, y: np.ndarray) -> np.ndarray:
+        out = super().project(y)
+        k = self.marked
+        n = np.maximum(y[k, :2], -self.h[k, :2])
+        cap = np.where(self.fin[k], np.maximum(self.ff[k] * n.sum(axis=1) + self.h[k, 2],
+                                               0.0), np.inf)
+        out[k, :2] = n
+        out[k, 2] = np.clip(y[k, 2], -cap, cap)
+        self.nsum = out[:, 0] + out[:, 1]
+        return out
+
+    def flow(self, wv: np.ndarray) -> tuple[float, float]:
+        """The flow rule without dilatancy on the marked joints: no closing (w_N <= 0
+        per point) and any slip, resisted by the shear threshold at the current normal
+        forces, (f (N_1 + N_2) + c) |w_T|; the associative rule on the others."""
+        breach, resist = super().flow(np.where(self.marked[:, None], 0.0, wv))
+        k = self.marked
+        w = wv[k]
+        aw = np.abs(w[:, 2])
+        fin = self.fin[k]
+        breach = max(breach, float(np.maximum(w[:, :2], 0.0).max(initial=0.0)))
+        thr = np.maximum(self.ff[k] * self.nsum[k] + self.h[k, 2], 0.0)
+        resist += float(np.sum(self.h[k, :2] * np.maximum(-w[:, :2], 0.0))
+                        + np.sum(np.where(fin, thr * aw, 0.0)))
+        breach = max(breach, float(np.where(fin, 0.0, aw).max(initial=0.0)))
+        return breach, resist

@@ -1,0 +1,623 @@
+"""Non-associative sliding: Coulomb friction without dilatancy, the seed's joint law.
+
+The seed's joint has separate links: normal links that carry no tension and shear
+links that slip at f times the normal force, so a slip does not open the joint. The
+admissible force states are the same as with associative friction (|T| <= f N, N >= 0),
+but the limit theorems no longer hold: the associative collapse multiplier is only an
+upper bound on the non-associative one (Radenkovic's first theorem; Drucker, "Coulomb
+friction, plasticity, and limit loads", J. Appl. Mech. 21, 1954), and the multiplier of
+frictionless joints is a lower bound (Drucker 1954; Radenkovic's second theorem: the
+law |T| <= 0, whose normality is sliding without dilatancy, lies inside Coulomb's).
+
+Non-associative answers are not unique: a pinch (a self-stress in the normal links that
+no load causes) raises the shear the joints can carry. The state computed here is the
+one reached from the elastic state X0, the least-complementary-energy state under
+equilibrium alone (the seed's Eq. 3, before any joint law is imposed): a state X with
+
+    A X + F = 0,   N >= -t,   |T_j| <= f_j (N_j1 + N_j2) + c_j,
+    C (X - X0) = A^T y + p,
+
+whose plastic distortion p is an opening (-N direction) only where a normal link is at
+its tensile limit and a slip along the joint (no normal component: no dilatancy) only
+where a shear link is at its threshold, in the direction of its shear. Two independent
+algorithms compute it:
+
+* ``convex`` (2D and 3D): a sequence of convex problems in the spirit of Gilbert,
+  Casapulla & Ahmed (Computers & Structures 84, 2006, 873-887): each marked joint's
+  Coulomb law is replaced by the cohesion-only law |T| <= f N_prev (N_prev the previous
+  iterate's normal forces, per contact point in 3D), and the least-energy state under
+  it is the next iterate; from N_0 = the normal forces of X0 (tension clipped), iterated
+  to a fixed point, with damping when the change stops falling (cycle detection).
+  The KKT conditions of the last problem are the conditions above: the normal cone of
+  a cohesion-only law has no normal component. Where the capped problem is infeasible
+  the iterate is the least-energy state of its relaxation (the smallest uniform breach
+  R of the laws); a fixed point with R > 0 is a state the iteration settles on that the
+  joints cannot carry: inadmissible.
+* ``distortion`` (2D): the seed's impressed-distortion iteration
+  (:mod:`rigidblocks.solvers.distortion`) whose projection onto the joint laws caps the
+  shear links at f times the normal force without changing the normal links
+  (:class:`~rigidblocks.solvers.distortion._NonAssocLaws`); its fixed point satisfies
+  the same conditions, with p the accumulated distortions.
+
+Verdicts: ``admissible`` at a fixed point within the laws; ``inadmissible`` when even
+the associative (static) problem has no admissible state (proven), at a fixed point
+that breaches the laws (convex), or when the distortion iteration drifts along a
+mechanism without dilatancy on which the loads do more work than the joints dissipate
+at their current normal forces; ``undecided`` (with the reason) when the iteration does
+not settle within its budget. The analyses bisect on these verdicts: ``load`` between 0
+and the associative multiplier, ``friction`` upwards from the static f*.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from ..equilibrium import force_state
+from ..errors import InputError, SolverFailure
+from ..methods import ADMISSIBLE, FAILURE, INADMISSIBLE, UNDECIDED, Method, Verdict
+from ..methods.convex import ADMISSIBLE_TOL, STATE_SLACK, ConvexMethod
+from ..methods.distortion import DistortionMethod
+from ..problems.formulation import build_energy_qp, build_max_load, build_relaxation, flexibility
+from ..results import CheckResult, ForceState, FrictionResult, LoadResult
+from ..scene.model import NON_ASSOCIATIVE, Scene, flow_value, friction_label, friction_value
+from ..solvers import OPTIMAL
+from .search import FRICTION_CEILING, UNBOUNDED_AT, bisect
+
+#: relative change of the normal forces (of the largest force) that ends the iteration
+FIXED_POINT_TOL = 1e-6
+#: iteration budget of one fixed-point run (convex path)
+FIXED_POINT_MAX_ITER = 300
+#: iterations in a row without a falling change before the damping is halved
+STALL = 12
+#: smallest damping factor
+MIN_DAMPING = 1.0 / 64
+#: relative accuracy of the non-associative multiplier and friction
+NA_RTOL = 1e-5
+#: the first trial of the multiplier lies this far (relative) below the associative one
+TOP_RTOL = 1e-6
+#: the reason of a distortion run that found an admissible iterate but did not settle
+_UNSETTLED = "admissible; the iteration budget"
+
+#: the note every non-associative result carries
+STATE_NOTE = ("non-associative sliding (no dilatancy): the answer is the one reached from "
+              "the elastic state X0 (least complementary energy under equilibrium alone, "
+              "the seed's starting point), with no pinch the loads do not cause; other "
+              "states, and so other answers, may exist")
+
+
+def flow_mask(scene: Scene, contacts: Any, flow: str | None = None) -> np.ndarray:
+    """(m,) True where a joint slides without dilatancy.
+
+    ``flow`` (None: the scene's ``flow``) is the rule of every joint without its own
+    ``flow`` override; the overrides keep theirs.
+    """
+    default = flow_value(flow) if flow is not None else scene.effective_flow
+    m = contacts.n_joints
+    mask = np.full(m, default == NON_ASSOCIATIVE)
+    own = {frozenset(j.blocks): j.flow for j in scene.joints if j.flow is not None}
+    if own:
+        ids = contacts.block_ids
+        for k, (a, b) in enumerate(contacts.pairs):
+            rule = own.get(frozenset((ids[a], ids[b])))
+            if rule is not None:
+                mask[k] = rule == NON_ASSOCIATIVE
+    return mask
+
+
+def is_nonassociative(scene: Scene, flow: str | None = None) -> bool:
+    """Does any joint of ``scene`` slide without dilatancy (``flow`` as in
+    :func:`flow_mask`)?"""
+    default = flow_value(flow) if flow is not None else scene.effective_flow
+    return default == NON_ASSOCIATIVE or any(j.flow == NON_ASSOCIATIVE for j in scene.joints)
+
+
+@dataclass
+class FixedPoint:
+    """One non-associative run at (f, lambda).
+
+    ``x``: the link forces (force units) of the last iterate; ``converged``: the
+    iteration settled; ``history``: the relative change of the normal forces per
+    iteration (convex path) or the joint-law violation per iteration (distortion).
+    """
+
+    status: str
+    x: np.ndarray
+    iterations: int
+    converged: bool
+    violation: float
+    reason: str = ""
+    history: list[float] = field(default_factory=list)
+    time: float = 0.0
+
+
+class NonAssociative(Method):
+    """Non-associative verdicts on top of an opened method (``inner``)."""
+
+    def __init__(self, inner: Method, marked: np.ndarray):
+        super().__init__(inner.scene, inner.system, inner.timings)
+        self.inner = inner
+        self.name = inner.name
+        self.solver = inner.solver
+        self.notes = inner.notes
+        self.marked = np.asarray(marked, dtype=bool)
+        self.runs = 0
+        self.fp_iterations = 0
+        self.converged_runs = 0
+
+    @property
+    def n_solves(self) -> int:
+        return self.inner.n_solves
+
+    @property
+    def solve_time(self) -> float:
+        return self.inner.solve_time
+
+    @property
+    def iterations(self) -> int:
+        return self.fp_iterations
+
+    def fixed_point(self, f: float, load_factor: float) -> FixedPoint:
+        raise NotImplementedError
+
+    def admissible(self, f: float, load_factor: float, for_state: bool = False) -> Verdict:
+        r = self.fixed_point(f, load_factor)
+        self.runs += 1
+        self.fp_iterations += r.iterations
+        self.converged_runs += bool(r.converged)
+        notes = (r.reason,) if r.reason else ()
+        return Verdict(r.status, 0.0 if r.status == ADMISSIBLE else r.violation, notes, r)
+
+    def state(self, f: float, load_factor: float, verdict: Verdict) -> ForceState | None:
+        if verdict.status != ADMISSIBLE or verdict.data is None:
+            return None
+        return force_state(self.system, verdict.data.x,
+                           "non-associative state reached from the elastic state")
+
+
+class ConvexNonAssociative(NonAssociative):
+    """The sequence of convex problems (Gilbert, Casapulla & Ahmed 2006), 2D and 3D."""
+
+    def __init__(self, inner: ConvexMethod, marked: np.ndarray,
+                 tol: float = FIXED_POINT_TOL, max_iter: int = FIXED_POINT_MAX_ITER):
+        super().__init__(inner, marked)
+        self.cv = inner
+        self.tol = tol
+        self.max_iter = max_iter
+        #: the initial damping factor of the fixed-point update
+        self.damping = 1.0
+        self._lu: Any = None
+        self._lu_done = False
+
+    def elastic(self, load_factor: float) -> np.ndarray | None:
+        """X0 = K A^T (A K A^T)^-1 (-F) in scaled units (None: A K A^T is singular, the
+        linked structure is a mechanism)."""
+        sysm, sc = self.system, self.cv.scaling
+        As = sp.diags(sc.row) @ sysm.A.tocsr()
+        K = 1.0 / flexibility(sysm)
+        if not self._lu_done:
+            self._lu_done = True
+            if As.shape[0]:
+                try:
+                    lu = spla.splu((As @ sp.diags(K) @ As.T).tocsc())
+                    d = np.abs(lu.U.diagonal())
+                    if d.size and d.min() > 1e-12 * d.max() and np.all(np.isfinite(d)):
+                        self._lu = lu
+                except RuntimeError:
+                    self._lu = None
+        if self._lu is None:
+            return None
+        b = -sc.row * (sysm.dead + load_factor * sysm.live) / sc.force
+        return K * (As.T @ self._lu.solve(b))
+
+    def _solve_capped(self, f_eff: np.ndarray, lf: float, cap: np.ndarray
+                      ) -> tuple[np.ndarray | None, float]:
+        """The least-energy state under the capped laws, or of their relaxation:
+        (x scaled, breach R); x None when the equilibrium equations have no solution."""
+        cv = self.cv
+
+        def energy(relax: float) -> np.ndarray | None:
+            prob = build_energy_qp(self.system, cv.scaling, f_eff, lf, relax, cv.pyramid,
+                                   cap)
+            try:
+                res = cv._run(prob, "non-associative state")
+            except SolverFailure:  # (almost) infeasible: decided by the relaxation
+                return None
+            return res.z[prob.cols["x"]] if res.status == OPTIMAL else None
+
+        x = energy(STATE_SLACK)
+        if x is not None:
+            return x, 0.0
+        rprob, _ = build_relaxation(self.system, cv.scaling, f_eff, lf, cv.pyramid, cap=cap)
+        rres = cv._run(rprob, "relaxation", tight=True)
+        if rres.status != OPTIMAL:
+            return None, math.inf
+        R = max(float(rres.z[rprob.cols["r"]][0]), 0.0)
+        x = energy(R + STATE_SLACK)
+        return (rres.z[rprob.cols["x"]] if x is None else x), R
+
+    def fixed_point(self, f: float, load_factor: float) -> FixedPoint:
+        t0 = time.perf_counter()
+        cv, sysm = self.cv, self.system
+        c = sysm.contacts
+        F = cv.scaling.force
+        pj = c.point_joint
+        fj = cv.f_joint(f)
+        fin = np.isfinite(fj)
+        mk = self.marked & fin
+        f_eff = np.where(mk, 0.0, fj)
+        f_pt = np.where(mk, fj, 0.0)[pj]
+        t_pt = c.tensile_strength[pj] * c.point_areas / F
+        nsl = sysm.layout.normal
+        # the start: X0 with the no-tension law imposed (its least-energy state with the
+        # normal links alone, whose plastic distortions are openings only), or X0's
+        # normal forces with tension cleared when that has no solution
+        x0, _ = self._solve_capped(np.full(c.n_joints, math.inf), load_factor,
+                                   np.zeros(c.n_points))
+        if x0 is None:
+            x0 = self.elastic(load_factor)
+            if x0 is None:
+                return FixedPoint(INADMISSIBLE, np.full(sysm.layout.size, np.nan), 0, True,
+                                  math.inf, "the equilibrium equations have no solution",
+                                  time=time.perf_counter() - t0)
+        N = np.maximum(x0[nsl], -t_pt)
+        beta, rises = self.damping, 0
+        past: list[np.ndarray] = []
+        hist: list[float] = []
+        x, R = x0, math.inf
+        for k in range(1, self.max_iter + 1):
+            x, R = self._solve_capped(f_eff, load_factor, f_pt * N)
+            if x is None:
+                return FixedPoint(INADMISSIBLE, np.full(sysm.layout.size, np.nan), k, True,
+                                  math.inf, "the equilibrium equations have no solution",
+                                  hist, time.perf_counter() - t0)
+            scale = max(1.0, float(np.abs(x).max(initial=0.0)))
+            Nn = np.maximum(x[nsl], -t_pt)  # a relaxed state's tension is not a cap
+            change = float(np.abs(Nn - N).max(initial=0.0)) / scale
+            hist.append(change)
+            if change <= self.tol:
+                if R <= ADMISSIBLE_TOL * scale:
+                    return FixedPoint(ADMISSIBLE, x * F, k, True, 0.0,
+                                      f"fixed point after {k} convex solves (change "
+                                      f"{change:.2g})", hist, time.perf_counter() - t0)
+                return FixedPoint(INADMISSIBLE, x * F, k, True, R * F,
+                                  f"the iteration from the elastic state settles after {k} "
+                                  f"solves on normal forces with which the joints cannot "
+                                  f"carry the shear (breach {R * F:.3g})", hist,
+                                  time.perf_counter() - t0)
+            # damping: halved when the change has not fallen for STALL iterations in a
+            # row, or when the iterate returns to one of the last few (a cycle)
+            rises = rises + 1 if len(hist) > 1 and change > 0.95 * hist[-2] else 0
+            cycle = any(float(np.abs(Nn - p).max()) <= 1e-3 * change * scale
+                        for p in past[:-1])
+            if (rises >= STALL or cycle) and beta > MIN_DAMPING:
+                beta, rises = 0.5 * beta, 0
+                past.clear()
+            past.append(Nn)
+            if len(past) > 6:
+                past.pop(0)
+            N = N + beta * (Nn - N)
+        return FixedPoint(UNDECIDED, x * F, self.max_iter, False, R * F,
+                          f"no fixed point within {self.max_iter} convex solves (last "
+                          f"relative change {hist[-1]:.3g}, damping {beta:g})", hist,
+                          time.perf_counter() - t0)
+
+
+class DistortionNonAssociative(NonAssociative):
+    """The seed's distortion iteration with separate normal and shear links (2D)."""
+
+    def __init__(self, inner: DistortionMethod, marked: np.ndarray):
+        super().__init__(inner, marked)
+        self.dm = inner
+
+    def fixed_point(self, f: float, load_factor: float) -> FixedPoint:
+        ds = self.dm.solver_
+        laws = ds.laws(self.f_joint(f), nonassociative=self.marked)
+        r = self.dm.run(laws, load_factor, optimal=True, keep_history=True)
+        F = ds.scaling.force
+        status, reason, settled = r.status, r.reason, r.status == ADMISSIBLE
+        if status == ADMISSIBLE and reason.startswith(_UNSETTLED):
+            status, settled = UNDECIDED, False
+            reason = ("an admissible iterate, but the iteration did not settle on its "
+                      "fixed point: " + reason)
+        if status == ADMISSIBLE:
+            reason = f"fixed point after {r.iterations} iterations"
+        return FixedPoint(status, r.x * F, r.iterations, settled or status == INADMISSIBLE,
+                          r.violation * F, reason, r.history, r.time)
+
+
+def nonassociative_method(m: Method, marked: np.ndarray) -> NonAssociative:
+    """The non-associative verdicts of an opened method."""
+    if isinstance(m, ConvexMethod):
+        return ConvexNonAssociative(m, marked)
+    if isinstance(m, DistortionMethod):
+        return DistortionNonAssociative(m, marked)
+    raise InputError(f"method {m.name!r} has no non-associative analysis")
+
+
+# -- the analyses -----------------------------------------------------------------------
+def _open(scene: Scene, method: str, flow: str | None, **kw: Any
+          ) -> tuple[NonAssociative, ConvexMethod]:
+    """The non-associative method and a convex method for the static bounds."""
+    from ..methods import open_method
+
+    m = open_method(scene, method, **kw)
+    na = nonassociative_method(m, flow_mask(scene, m.contacts, flow))
+    if isinstance(m, ConvexMethod):
+        return na, m
+    cv = ConvexMethod(scene, m.system, m.timings)
+    return na, cv
+
+
+def _fields(na: NonAssociative, analysis: str, status: str, friction: Any,
+            load_factor: float | None, history: tuple = (), converged: bool | None = None
+            ) -> dict[str, Any]:
+    notes = [STATE_NOTE] + [n for n in na.notes if n != STATE_NOTE]
+    return dict(analysis=analysis, status=status, friction=friction_label(friction),
+                load_factor=load_factor, contacts=na.contacts, solver=na.solver,
+                n_solves=na.n_solves, solve_time=na.solve_time, iterations=na.iterations,
+                units=(na.scene.length_unit, na.scene.force_unit), notes=tuple(notes),
+                timings=dict(na.timings.wall), cpu_timings=dict(na.timings.cpu),
+                flow=NON_ASSOCIATIVE, converged=converged, history=history)
+
+
+def _trial(kind: str, value: float, v: Verdict) -> dict[str, Any]:
+    d = v.data
+    return {kind: value, "status": v.status,
+            "iterations": int(d.iterations) if d is not None else 0,
+            "converged": bool(d.converged) if d is not None else False}
+
+
+def check_nonassociative(scene: Scene, friction: Any = None, load_factor: float = 1.0,
+                         method: str = "clarabel", *, flow: str | None = None,
+                         state: bool = True, **kw: Any) -> CheckResult:
+    """Is the state reached from the elastic state admissible under non-associative
+    sliding? See the module docstring; the arguments are those of
+    :func:`rigidblocks.analyses.check`."""
+    f = friction_value(scene.effective_friction if friction is None else friction)
+    lf = float(load_factor)
+    na, cv = _open(scene, method, flow, **kw)
+    hist: list[dict[str, Any]] = []
+    static = cv.admissible(f, lf)
+    if static.status != ADMISSIBLE:
+        na.notes.append("no admissible state exists at all (the associative, static "
+                        "problem has none): inadmissible under either flow rule")
+        return CheckResult(**_fields(na, "check", INADMISSIBLE, f, lf, (), True),
+                           admissible=False, violation=static.violation)
+    v = na.admissible(f, lf)
+    hist.append(_trial("load_factor", lf, v))
+    na.explain(v)
+    st = na.state(f, lf, v)
+    d = v.data
+    status = v.status if v.status in (ADMISSIBLE, INADMISSIBLE, UNDECIDED) else FAILURE
+    return CheckResult(**_fields(na, "check", status, f, lf, tuple(d.history) if d else (),
+                                 bool(d.converged) if d else None),
+                       state=st if state else None, admissible=v.admissible,
+                       violation=0.0 if v.status == ADMISSIBLE else v.violation)
+
+
+def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "clarabel",
+                            *, flow: str | None = None, state: bool = True,
+                            rtol: float = NA_RTOL, **kw: Any) -> LoadResult:
+    """The collapse multiplier under non-associative sliding, reached from the elastic
+    state, by bisection between 0 and the associative multiplier (an upper bound).
+
+    ``load_multiplier_bounds`` = [lo, hi]: hi the associative multiplier (Radenkovic's
+    first theorem), lo the associative multiplier with frictionless marked joints
+    (Drucker 1954; None where it is not defined: the frictionless dead load has no
+    admissible state).
+    """
+    if not scene.has_live_load:
+        raise InputError("the scene has no live load (no \"live\": true load and no "
+                         "live_body_force): there is nothing to multiply", scene.source)
+    f = friction_value(scene.effective_friction if friction is None else friction)
+    na, cv = _open(scene, method, flow, **kw)
+    trials: list[dict[str, Any]] = []
+    up = cv.load_limit(f, 1e-9)
+    hi = up.value if up.status == "collapse" else None
+    if up.status == "unbounded":
+        na.notes.append("the associative multiplier is unbounded: no upper bound")
+    lo = _frictionless_bound(cv, na.marked, f)
+    bounds = (lo, math.inf if up.status == "unbounded" else hi)
+
+    def result(status: str, lam: float | None = None, v: Verdict | None = None,
+               converged: bool | None = None) -> LoadResult:
+        st = na.state(f, lam, v) if (v is not None and lam is not None) else None
+        mech, gov = None, ()
+        if st is not None:
+            mech, gov = _collapse_mechanism(cv, na, f, lam, st)
+        hist = tuple(trials)
+        return LoadResult(**_fields(na, "max_load_multiplier", status, f, lam, hist,
+                                    converged), state=st if state else None,
+                          load_multiplier=lam, load_multiplier_bounds=bounds,
+                          mechanism=mech, governing=gov)
+
+    if up.status == "unstable":
+        na.notes.append("the dead load alone has no admissible state (static problem)")
+        return result("unstable", converged=True)
+
+    def decide(lam: float) -> tuple[bool | None, Verdict]:
+        v = na.admissible(f, lam)
+        trials.append(_trial("load_factor", lam, v))
+        if v.status == FAILURE:
+            na.explain(v)
+        return v.admissible, v
+
+    ok0, v0 = decide(0.0)
+    if ok0 is not True:
+        na.explain(v0)
+        return result("unstable" if ok0 is False else UNDECIDED, converged=ok0 is False)
+    if hi is None:  # associative unbounded: bracket by doubling
+        good, bad, best = 0.0, 1.0, v0
+        while True:
+            ok, v = decide(bad)
+            if ok is None:
+                na.explain(v)
+                return result(UNDECIDED, converged=False)
+            if ok is False:
+                break
+            good, best = bad, v
+            bad *= 2
+            if bad > UNBOUNDED_AT:
+                return result("unbounded", converged=True)
+    else:
+        top = hi * (1.0 - TOP_RTOL)
+        ok, v = decide(top)
+        if ok is True:
+            na.notes.append("the non-associative multiplier reaches the associative one")
+            return result("collapse", top, v, True)
+        good, bad, best = 0.0, top, v0
+    br = bisect(decide, bad, good, rtol)
+    best_v = br.good_data or best
+    if br.undecided_at is not None:
+        last = trials[-1]
+        na.notes.append(f"the iteration did not settle at lambda = {br.undecided_at:.9g}: "
+                        f"the multiplier is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
+        if br.too_wide(1e-3, 1e-6):
+            na.notes.append("bracket wider than 1e-3 relative: undecided, no number")
+            return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None,
+                                        tuple(trials), bool(last["converged"])),
+                              load_multiplier_bounds=bounds, bracket=(br.lower, br.upper))
+    if lo is not None and br.good < lo * (1.0 - 1e-6):
+        na.notes.append(f"the computed multiplier {br.good:.6g} is below the frictionless "
+                        f"bound {lo:.6g}: the state reached from the elastic state "
+                        "collapses earlier than some other state would")
+    return result("collapse", br.good, best_v, True)
+
+
+def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: float,
+                        st: ForceState) -> tuple[Any, tuple[int, ...]]:
+    """The mechanism of the computed state: max lambda under the cohesion-only laws
+    |T| <= f N* of its normal forces N* (one LP); its duals are block velocities whose
+    marked joints slide without dilatancy. It is the collapse mechanism when that LP's
+    multiplier equals the computed one (to 1e-3): otherwise a note says so, and None."""
+    from ..equilibrium import mechanism
+
+    c = cv.contacts
+    pj = c.point_joint
+    fj = cv.f_joint(f)
+    mk = na.marked & np.isfinite(fj)
+    f_eff = np.where(mk, 0.0, fj)
+    cap = np.where(mk, fj, 0.0)[pj] * np.maximum(st.normal, 0.0) / cv.scaling.force
+    prob, _ = build_max_load(cv.system, cv.scaling, f_eff, cv.pyramid, cap=cap)
+    res = cv._run(prob, "maximum load (capped laws)", tight=True)
+    if res.status != OPTIMAL:
+        return None, ()
+    lam_cap = float(res.z[prob.cols["lambda"]][0])
+    if abs(lam_cap - lam) > 1e-3 * max(abs(lam), 1e-9):
+        na.notes.append(f"with the normal forces of the computed state as fixed shear "
+                        f"capacities the multiplier would be {lam_cap:.6g}: no collapse "
+                        "mechanism is given")
+        return None, ()
+    mech = mechanism(cv.system, cv.scaling.row, res.y[prob.rows["equilibrium"]])
+    sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
+    return mech, sliding
+
+
+def _frictionless_bound(cv: ConvexMethod, marked: np.ndarray, f: float) -> float | None:
+    """The associative multiplier with the marked joints frictionless (cohesion kept):
+    a lower bound on any non-associative collapse multiplier (Drucker 1954)."""
+    fj = np.where(marked, 0.0, cv.f_joint(f))
+    prob, _ = build_max_load(cv.system, cv.scaling, fj, cv.pyramid)
+    res = cv._run(prob, "maximum load (frictionless bound)", tight=True)
+    if res.status != OPTIMAL:
+        return None
+    lam = float(res.z[prob.cols["lambda"]][0])
+    if lam < -ADMISSIBLE_TOL:
+        return None
+    rprob, _ = build_relaxation(cv.system, cv.scaling, fj, 0.0, cv.pyramid)
+    rres = cv._run(rprob, "relaxation", tight=True)
+    if rres.status != OPTIMAL:
+        return None
+    x = rres.z[rprob.cols["x"]]
+    if float(rres.z[rprob.cols["r"]][0]) > ADMISSIBLE_TOL * max(1.0, float(np.abs(x).max())):
+        return None
+    return lam if lam > ADMISSIBLE_TOL else 0.0  # round-off of a zero bound
+
+
+def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
+                                method: str = "clarabel", *, flow: str | None = None,
+                                state: bool = True, rtol: float = NA_RTOL,
+                                **kw: Any) -> FrictionResult:
+    """The smallest uniform f at which the non-associative analysis finds the structure
+    standing at ``load_factor`` (the seed's "friction needed"), by bisection upwards
+    from the static f* (below which no state is admissible at all)."""
+    import math as _m
+
+    lf = float(load_factor)
+    na, cv = _open(scene, method, flow, **kw)
+    if na.contacts.n_joints and not na.uniform.any():
+        raise InputError("every joint has its own friction override: there is no uniform "
+                         "friction to minimise", scene.source)
+    trials: list[dict[str, Any]] = []
+    lim = cv.friction_limit(lf, 1e-9)
+
+    def out(status: str, fstar: float | None = None, v: Verdict | None = None,
+            lower: float | None = None, upper: float | None = None,
+            converged: bool | None = None) -> FrictionResult:
+        st = na.state(fstar, lf, v) if (v is not None and fstar is not None) else None
+        gov: tuple[int, ...] = ()
+        if st is not None and fstar is not None and fstar > 0:
+            fj = na.f_joint(fstar)
+            at = (np.abs(st.joint_shear) >= (1 - 1e-5) * fj * st.joint_normal) \
+                & (st.joint_normal > 1e-9 * max(1.0, float(np.abs(st.joint_normal).max())))
+            gov = tuple(int(k) for k in np.flatnonzero(at & na.uniform))
+        bracket = (lower, upper) if (status == UNDECIDED and lower is not None
+                                     and upper is not None) else None
+        return FrictionResult(**_fields(na, "min_friction", status, fstar, lf,
+                                        tuple(trials), converged), bracket=bracket,
+                              state=st if state else None, governing=gov, friction_factor=fstar,
+                              friction_angle_deg=(_m.degrees(_m.atan(fstar))
+                                                  if fstar is not None else None),
+                              lower=lower, upper=upper)
+
+    if lim.status != "stable":
+        na.notes.append("no friction admits an equilibrium state (static problem)")
+        return out("unstable" if lim.status == "unstable" else lim.status, converged=True)
+    fs = float(lim.value)
+
+    def decide(fv: float) -> tuple[bool | None, Verdict]:
+        v = na.admissible(fv, lf)
+        trials.append(_trial("friction", fv, v))
+        return v.admissible, v
+
+    first = fs * (1.0 + rtol) if fs > 0 else 0.0
+    ok, v = decide(first)
+    if ok is True:
+        na.notes.append("the non-associative friction equals the static f*")
+        return out("stable", first, v, fs, first, True)
+    bad, good, best = first, max(2.0 * fs, 1e-3), None
+    while True:
+        ok, v = decide(good)
+        if ok is True:
+            best = v
+            break
+        if ok is False:
+            bad = good
+        else:
+            na.notes.append(f"the iteration did not settle at f = {good:.9g}")
+        good *= 2.0
+        if good > FRICTION_CEILING:
+            na.notes.append(f"no friction up to {FRICTION_CEILING:g} is found standing")
+            return out("unstable" if bad >= good / 2 else UNDECIDED, converged=False)
+    br = bisect(decide, bad, good, rtol)
+    best = br.good_data or best
+    if br.undecided_at is not None:
+        na.notes.append(f"the iteration did not settle at f = {br.undecided_at:.9g}: the "
+                        f"friction is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
+        if br.too_wide(1e-3, 1e-6):
+            na.notes.append("bracket wider than 1e-3 relative: undecided, no number")
+            return out(UNDECIDED, lower=br.lower, upper=br.upper, converged=False)
+    return out("stable", br.good, best, br.lower, br.upper, True)
+
+
+__all__ = ["ConvexNonAssociative", "DistortionNonAssociative", "FixedPoint",
+           "NonAssociative", "STATE_NOTE", "check_nonassociative", "flow_mask",
+           "is_nonassociative", "max_load_nonassociative", "min_friction_nonassociative",
+           "nonassociative_method"]

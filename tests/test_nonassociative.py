@@ -1,0 +1,293 @@
+"""Non-associative sliding (``flow="non-associative"``): the scene keys, the CLI, and
+the validation cases of validation.md ("Non-associative sliding").
+
+Each analysis is run on both algorithms where they apply: the convex path's sequence of
+cohesion-capped problems (Gilbert, Casapulla & Ahmed, Computers & Structures 84, 2006)
+and the seed's distortion iteration with separate normal and shear links (2D).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from conftest import EXAMPLES, make_scene, rect
+
+import rigidblocks as rb
+from rigidblocks.analyses.nonassociative import flow_mask, is_nonassociative
+from rigidblocks.cli.main import main
+from rigidblocks.contacts import detect_contacts
+from rigidblocks.errors import InputError
+from rigidblocks.generators import build
+from rigidblocks.io import read_scene
+from rigidblocks.io.scene_file import dumps_scene, loads_json, scene_from_dict
+
+NA = "non-associative"
+BOTH = ("clarabel", "distortion")
+#: the analyses bisect to 1e-5 relative (the first trial 1e-7 below the associative
+#: multiplier): a closed form is met to that
+RTOL = 2e-5
+
+
+def pinched(f=0.3):
+    """A unit block between a fixed base and a fixed lintel, both touching it, under a
+    horizontal body force lambda W (W = 10)."""
+    return make_scene([
+        {"id": "base", "vertices": rect(-1, -1, 3, 1), "support": True},
+        {"id": "B", "vertices": rect(0, 0, 1, 1)},
+        {"id": "lintel", "vertices": rect(-1, 1, 3, 1), "support": True},
+    ], unit_weight=10.0, friction=f, live_body_force=[1, 0])
+
+
+def block(b=1.0, h=2.0, f=0.3):
+    return make_scene([
+        {"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+        {"id": "B", "vertices": rect(0, 0, b, h)},
+    ], unit_weight=20.0, friction=f, live_body_force=[1, 0])
+
+
+def stack(n=3, b=1.0, h=1.0, f=0.3):
+    blocks = [{"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True}]
+    blocks += [{"id": f"B{k}", "vertices": rect(0, k * h, b, h)} for k in range(n)]
+    return make_scene(blocks, unit_weight=20.0, friction=f, live_body_force=[1, 0])
+
+
+# -- the scene format ---------------------------------------------------------------
+def _doc(**top):
+    d = {"format": "rigidblocks-scene", "version": 1, "dimension": 2, "friction": 0.4,
+         "blocks": [{"id": "base", "vertices": rect(0, -1, 2, 1), "support": True},
+                    {"id": "A", "vertices": rect(0.5, 0, 1, 1)},
+                    {"id": "B", "vertices": rect(0.5, 1, 1, 1)}]}
+    d.update(top)
+    return d
+
+
+def test_flow_round_trips():
+    doc = _doc(flow=NA, joints=[{"blocks": ["A", "B"], "flow": "associative"}])
+    scene = scene_from_dict(doc)
+    assert scene.flow == NA and scene.joints[0].flow == "associative"
+    again = scene_from_dict(loads_json(dumps_scene(scene)))
+    assert again == scene and dumps_scene(again) == dumps_scene(scene)
+    assert "flow" not in dumps_scene(scene_from_dict(_doc()))
+
+
+@pytest.mark.parametrize("where", ["top", "joint"])
+@pytest.mark.parametrize("value", ["nonassociative", "Non-Associative", 1, None])
+def test_flow_values_are_checked(where, value):
+    doc = _doc(flow=value) if where == "top" else _doc(
+        joints=[{"blocks": ["A", "B"], "flow": value}])
+    with pytest.raises(InputError, match="flow"):
+        scene_from_dict(doc)
+
+
+def test_flow_mask_takes_the_overrides():
+    scene = scene_from_dict(_doc(joints=[{"blocks": ["B", "A"], "flow": NA}]))
+    c = detect_contacts(scene)
+    mask = flow_mask(scene, c)
+    assert [c.joint_label(k) for k in np.flatnonzero(mask)] == ["A-B"]
+    assert flow_mask(scene, c, NA).all()
+    assert is_nonassociative(scene) and not is_nonassociative(scene.with_changes(joints=()))
+    with pytest.raises(InputError):
+        flow_mask(scene, c, "dilatant")
+
+
+# -- closed forms ---------------------------------------------------------------------
+@pytest.mark.parametrize("method", BOTH)
+def test_pinched_block_slides_at_f(method):
+    """A block pinched between a fixed base and a fixed lintel, pushed sideways.
+
+    Associative: any slip along the base must open the joint by f |slip| (normality),
+    which the lintel forbids, and likewise at the lintel: there is no mechanism and no
+    finite collapse multiplier (the kinematic theorem: "unbounded").
+
+    Non-associative: a slip opens nothing, so the block slides on both joints at once
+    when lambda W > f (N_base + N_lintel). The elastic state X0 under the weight alone
+    hangs W/2 from the lintel (tension); the no-tension link clears it, leaving
+    N_base = W and N_lintel = 0: no pinch that the load does not cause. The horizontal
+    load does not change the normal forces (its moment is taken by the base's normal
+    links), so the block slides at lambda = f (validation.md, "A block pinched between
+    two fixed parallel faces").
+    """
+    scene = pinched(0.3)
+    assoc = rb.max_load_multiplier(scene, method="clarabel")
+    assert assoc.status == "unbounded"
+    res = rb.max_load_multiplier(scene, method=method, flow=NA)
+    assert res.status == "collapse" and res.converged
+    assert res.load_multiplier == pytest.approx(0.3, rel=RTOL)
+    assert res.load_multiplier_bounds == (0.0, math.inf)
+    assert any("elastic state" in n for n in res.notes)
+    d = res.to_dict()
+    assert d["flow"] == NA and d["load_multiplier_bounds"] == [0.0, math.inf]
+    assert d["iterations"] == res.iterations > 0 and d["converged"] is True
+    if method == "clarabel":  # the capped LP's mechanism: both joints slide
+        assert set(res.mechanism.modes) == {"slide"}
+
+
+@pytest.mark.parametrize("method", BOTH)
+def test_pinched_block_friction_is_the_load_factor(method):
+    """The same block at load factor 0.2: non-associative, it stands iff f >= 0.2
+    (N_base = W, N_lintel = 0 as above); associative, a pinch lets any f > 0 hold it."""
+    res = rb.min_friction(pinched(), load_factor=0.2, method=method, flow=NA)
+    assert res.status == "stable"
+    assert res.friction_factor == pytest.approx(0.2, rel=RTOL)
+    assoc = rb.min_friction(pinched(), load_factor=0.2)
+    assert assoc.friction_factor < 1e-3
+
+
+@pytest.mark.parametrize("method", BOTH)
+@pytest.mark.parametrize("f", [0.3, 0.8])
+def test_single_block_both_laws(method, f):
+    """A b x h block (1 x 2) on a base under lambda W horizontally: it slides at
+    lambda = f or tips about its toe at lambda = b/h (moment of lambda W at h/2 against
+    W at b/2), whichever comes first: lambda* = min(f, b/h) (validation.md). The only
+    sliding joint is against the support and the slip needs no opening: both flow rules
+    give the same multiplier (validation.md, "a single sliding joint against a
+    support")."""
+    expect = min(f, 0.5)
+    na = rb.max_load_multiplier(block(f=f), method=method, flow=NA)
+    assert na.load_multiplier == pytest.approx(expect, rel=RTOL)
+    assert na.load_multiplier_bounds[1] == pytest.approx(expect, rel=1e-6)
+    assert na.load_multiplier_bounds[0] == 0.0  # frictionless: it slides at once
+
+
+@pytest.mark.parametrize("f", [0.3, 0.8])
+def test_stack_both_laws(f):
+    """A stack of three unit blocks on a base under lambda W per block: every mechanism
+    slides at one level (the blocks above move together) or tips the blocks above a
+    joint about its toe. Sliding at level k: lambda (n - k) W <= f (n - k) W, so
+    lambda = f at every level; tipping the whole stack (the worst): lambda 3 W (3 h / 2)
+    = 3 W b / 2, lambda = b / (3 h) = 1/3. lambda* = min(f, 1/3) under both laws (one
+    sliding joint per mechanism)."""
+    expect = min(f, 1.0 / 3.0)
+    for method in BOTH:
+        res = rb.max_load_multiplier(stack(f=f), method=method, flow=NA)
+        assert res.load_multiplier == pytest.approx(expect, rel=RTOL), method
+    assoc = rb.max_load_multiplier(stack(f=f))
+    assert assoc.load_multiplier == pytest.approx(expect, rel=1e-6)
+
+
+def test_single_box_3d():
+    """3D: a box on a slab under a horizontal body force (box_stack with one box,
+    1 x 1 x 1, f = 0.3 < b/h = 1): slides at lambda = f under both laws."""
+    scene = build("box_stack", boxes=1, friction=0.3)
+    res = rb.max_load_multiplier(scene, flow=NA)
+    assert res.status == "collapse"
+    assert res.load_multiplier == pytest.approx(0.3, rel=RTOL)
+
+
+# -- properties ------------------------------------------------------------------------
+WALLS = [dict(courses=c, blocks_per_course=b, friction=f)
+         for c, b, f in [(2, 2, 0.4), (3, 2, 0.7), (3, 3, 0.9), (4, 2, 0.6)]]
+ARCHES = [("arch", dict(voussoirs=7, thickness=0.25, friction=0.6)),
+          ("arch", dict(voussoirs=9, thickness=0.2, friction=0.5, springing="piers")),
+          ("flat_arch", dict(friction=0.5, springing="piers")),
+          ("stocky_arch", dict(friction=0.5))]
+
+
+@pytest.mark.parametrize("case", [("wall", w) for w in WALLS] + ARCHES,
+                         ids=lambda c: f"{c[0]}-{'-'.join(map(str, c[1].values()))}")
+def test_nonassociative_below_associative(case):
+    """lambda(non-associative) <= lambda(associative) (Radenkovic's first theorem;
+    Drucker 1954): the admissible states are the same under both laws, so no state the
+    iteration reaches can stand above the associative multiplier. The frictionless
+    multiplier, where it exists, is at most the associative one too."""
+    name, kw = case
+    scene = build(name, **kw)
+    if not scene.has_live_load:
+        scene = scene.with_changes(live_body_force=(1.0, 0.0))
+    res = rb.max_load_multiplier(scene, flow=NA, state=False)
+    assoc = rb.max_load_multiplier(scene, state=False)
+    if assoc.status != "collapse":
+        assert res.status == assoc.status
+        return
+    assert res.status == "collapse"
+    lo, hi = res.load_multiplier_bounds
+    assert hi == pytest.approx(assoc.load_multiplier, rel=1e-6)
+    assert res.load_multiplier <= hi * (1 + 1e-9)
+    if lo is not None:
+        assert lo <= hi * (1 + 1e-9)
+
+
+def test_a_wall_loses_load_without_dilatancy():
+    """A 5 x 3 running-bond wall at f = 0.8: the associative mechanism slides along
+    stepped bed and head joints, dilating; without dilatancy it carries less."""
+    scene = build("wall", courses=5, blocks_per_course=3, friction=0.8)
+    res = rb.max_load_multiplier(scene, flow=NA, state=False)
+    lo, hi = res.load_multiplier_bounds
+    assert res.status == "collapse" and res.load_multiplier < 0.9 * hi
+
+
+# -- the two algorithms ------------------------------------------------------------------
+EXAMPLES_2D = [p.name for p in sorted(EXAMPLES.glob("*.json"))
+               if read_scene(p).dimension == 2 and read_scene(p).has_live_load]
+
+
+@pytest.mark.parametrize("name", EXAMPLES_2D)
+def test_algorithms_agree_on_examples(name):
+    """Both algorithms compute the state reached from X0 whose plastic distortions are
+    openings at the no-tension limit and slips without dilatancy at the friction
+    threshold (module docstring of rigidblocks.analyses.nonassociative); where both
+    decide they agree to the bisection's tolerance."""
+    scene = read_scene(EXAMPLES / name)
+    a = rb.max_load_multiplier(scene, flow=NA, state=False)
+    b = rb.max_load_multiplier(scene, flow=NA, method="distortion", state=False)
+    if "undecided" in (a.status, b.status):
+        pytest.skip(f"one algorithm is undecided: {a.status}, {b.status}")
+    assert a.status == b.status
+    if a.status == "collapse":
+        assert a.load_multiplier == pytest.approx(b.load_multiplier, rel=RTOL)
+
+
+# -- friction demand and the CLI -----------------------------------------------------------
+def test_friction_demand_of_the_check():
+    """At lambda = 0.2 the block's base carries T = 0.2 W over N = W: demand 0.2."""
+    res = rb.check(block(f=0.3), load_factor=0.2)
+    assert res.friction_demand[0] == pytest.approx(0.2, rel=1e-6)
+    assert res.to_dict()["friction_demand_joint"] == ["base", "B"]
+    na = rb.check(pinched(), load_factor=0.2, flow=NA)
+    assert na.admissible and na.friction_demand[0] == pytest.approx(0.2, rel=1e-6)
+    assert na.to_dict()["friction_demand_joint"] == ["base", "B"]  # not the lintel's 0/0
+    assert rb.check(block(f=0.1), load_factor=0.2).friction_demand is None
+
+
+def test_cli_flow(tmp_path, capsys):
+    p = tmp_path / "pinched.json"
+    p.write_text(dumps_scene(pinched()))
+    assert main(["load", str(p), "--flow", NA, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["status"] == "collapse" and out["flow"] == NA
+    assert out["load_multiplier"] == pytest.approx(0.3, rel=RTOL)
+    assert out["load_multiplier_bounds"] == [0.0, "infinite"]
+    assert isinstance(out["iterations"], int) and out["converged"] is True
+    assert main(["check", str(p), "--load-factor", "0.4", "--flow", NA, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["admissible"] is False
+    assert main(["check", str(p), "--load-factor", "0.4", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["admissible"] is True and out["friction_demand"] is not None
+    assert main(["friction", str(p), "--load-factor", "0.2", "--flow", NA]) == 0
+    assert "non-associative" in capsys.readouterr().out
+    assert main(["load", str(p), "--flow", "dilatant"]) == 2
+
+
+def test_bench_nonassoc_tiny(tmp_path):
+    """The benchmark runs on its tiny sizes: the 2 x 2 wall at f = 0.8 collapses at
+    lambda = 0.8 under both laws (the whole wall slides on its base: one sliding joint
+    against the support, validation.md), and the chart is written."""
+    import importlib.util
+
+    from conftest import ROOT
+
+    spec = importlib.util.spec_from_file_location(
+        "bench_nonassoc", ROOT / "benchmarks" / "bench_nonassoc.py")
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    data = bench.main(["--tiny", "--out", str(tmp_path)])
+    (row,) = data["walls"]
+    assert row["assoc_lambda"] == pytest.approx(0.8, rel=1e-6)
+    assert row["convex_lambda"] == pytest.approx(0.8, rel=RTOL)
+    assert row["distortion_lambda"] == pytest.approx(0.8, rel=RTOL)
+    assert (tmp_path / "bench_nonassoc.png").stat().st_size > 0
+    assert (tmp_path / "bench_nonassoc.md").read_text().startswith("## Non-associative")
