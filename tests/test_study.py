@@ -158,6 +158,27 @@ def test_scene_file_source_with_friction_override(tmp_path):
                          analyses=["min_thickness"])
 
 
+def test_flow_is_a_sweep_parameter(tmp_path):
+    """A 1 x 2 block on a base (f = 0.3, horizontal body force): both flow rules give
+    lambda* = min(f, b/h) = 0.3 (docs/validation.md; the non-associative law only
+    changes what a pinched joint can carry). A misspelt flow is refused at expansion."""
+    from conftest import make_scene, rect
+
+    path = tmp_path / "block.json"
+    rb.write_scene(make_scene([
+        {"id": "base", "vertices": rect(-2, -1, 5, 1), "support": True},
+        {"id": "B", "vertices": rect(0, 0, 1, 2)},
+    ], unit_weight=1.0, friction=0.3, live_body_force=[1, 0]), path)
+    res = study.run(str(path), grid={"flow": ["associative", "non-associative"]},
+                    analyses=["max_load_multiplier"], workers=1, progress=False)
+    df = res.frame
+    assert list(df["flow"]) == ["associative", "non-associative"]
+    assert np.allclose(df["load_multiplier"], 0.3, rtol=1e-4)
+    with pytest.raises(InputError, match="non-associative"):
+        study.make_sweep(str(path), grid={"flow": ["nonassociative"]},
+                         analyses=["max_load_multiplier"])
+
+
 # -- resume -------------------------------------------------------------------------------
 class Stop(Exception):
     pass

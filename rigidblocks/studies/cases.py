@@ -14,7 +14,7 @@ from ..scene.model import INFINITE
 
 #: parameters a scene source accepts (scene fields), besides ``load_factor``
 SCENE_PARAMS = ("friction", "depth", "unit_weight")
-RESERVED = ("load_factor",)
+RESERVED = ("load_factor", "flow")
 
 
 def _plain(v: Any) -> Any:
@@ -30,7 +30,8 @@ def _is_number(v: Any) -> bool:
 def _param_specs(generator: str | None) -> dict[str, Any]:
     """Parameter name -> default (the type a value must have)."""
     if generator is None:
-        return {"friction": 0.0, "depth": 1.0, "unit_weight": 1.0, "load_factor": 1.0}
+        return {"friction": 0.0, "depth": 1.0, "unit_weight": 1.0, "load_factor": 1.0,
+                "flow": "associative"}
     from ..generators import get
 
     gen = get(generator)
@@ -39,7 +40,7 @@ def _param_specs(generator: str | None) -> dict[str, Any]:
     if clash:  # pragma: no cover - no registered generator has one
         raise InputError(f"generator {generator!r} has a parameter named {sorted(clash)[0]!r}, "
                          "which sweeps reserve")
-    return {**params, "load_factor": 1.0}
+    return {**params, "load_factor": 1.0, "flow": "associative"}
 
 
 def check_value(name: str, value: Any, default: Any, where: str) -> Any:
@@ -68,6 +69,9 @@ def check_value(name: str, value: Any, default: Any, where: str) -> Any:
         raise InputError(f"expected {kind}, got {json.dumps(v, default=str)}", where)
     if name in ("friction", "unit_weight", "load_factor") and _is_number(v) and v < 0:
         raise InputError(f"must be >= 0, got {v}", where)
+    if name == "flow" and v not in ("associative", "non-associative"):
+        raise InputError(f'must be "associative" or "non-associative", got {json.dumps(v)}',
+                         where)
     return v
 
 

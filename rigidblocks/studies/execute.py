@@ -69,14 +69,14 @@ def _scene_of(job: _Job, params: Mapping[str, Any]) -> Scene:
 
 
 def answer(analysis: Analysis, job: _Job, params: Mapping[str, Any],
-           load_factor: float | None, scene: Callable[[], Scene],
+           load_factor: float | None, scene: Callable[[], Scene], flow: str | None = None,
            ) -> tuple[dict[str, Any], float]:
     """The row entries of one analysis of a case and its solve time: the one place where
     a sweep maps an analysis name to the function that answers it.
 
     ``params`` are the generator's (or scene's) parameters, ``scene`` builds the case's
-    scene (once, on first call); ``load_factor`` None is the scene's. An undecided
-    check leaves ``admissible`` empty (None), as its status says.
+    scene (once, on first call); ``load_factor`` and ``flow`` None are the scene's. An
+    undecided check leaves ``admissible`` empty (None), as its status says.
     """
     name, method = analysis.name, job.method
     if name == "min_thickness":
@@ -90,7 +90,9 @@ def answer(analysis: Analysis, job: _Job, params: Mapping[str, Any],
         raise InputError(f"unknown analysis {name!r} (choose from {', '.join(ANALYSES)})")
     from ..analyses import analysis as registered
 
-    r = registered(name).run(scene(), load_factor=load_factor, method=method, state=False)
+    extra = {"flow": flow} if flow is not None else {}
+    r = registered(name).run(scene(), load_factor=load_factor, method=method, state=False,
+                             **extra)
     row = {f"{name}_status": r.status}
     row.update({k: getattr(r, k) for k in ANSWERS[name]})
     return row, float(r.solve_time)
@@ -115,7 +117,7 @@ def run_case(job: _Job, params: Mapping[str, Any]) -> dict[str, Any]:
 
     try:
         for a in job.analyses:
-            entries, solve_time = answer(a, job, gen_params, lf, scene)
+            entries, solve_time = answer(a, job, gen_params, lf, scene, params.get("flow"))
             row.update(entries)
             row["solve_time"] += solve_time
     except Exception as err:  # noqa: BLE001 - every failure is recorded, the study goes on
