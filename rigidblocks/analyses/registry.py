@@ -27,10 +27,10 @@ class AnalysisInfo:
     takes: tuple[str, ...]
     answers: tuple[str, ...]
 
-    def run(self, scene: Scene, *, friction: Any = None, load_factor: float = 1.0,
+    def run(self, scene: Scene, *, friction: Any = None, load_factor: float | None = None,
             **options: Any) -> Result:
         """Run on ``scene``; ``friction`` and ``load_factor`` go where the analysis
-        takes them (a question that does not take one ignores it)."""
+        takes them (a question that does not take one ignores it; None: the scene's)."""
         given = {"friction": friction, "load_factor": load_factor}
         return self.function(scene, **{k: given[k] for k in self.takes}, **options)
 

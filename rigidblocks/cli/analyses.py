@@ -15,17 +15,20 @@ from ..methods import METHODS, Progress
 from ..results import headline
 from .progress import run_interruptible
 
+#: options of the question an analysis answers: command-line name -> keyword argument
+QUESTION_OPTIONS = ("friction", "load_factor", "method", "solver", "contact_tol", "flow")
 
-def add_args(p: argparse.ArgumentParser, name: str) -> None:
-    p.add_argument("scene", help="scene file (JSON, see docs/scene-format.md)")
-    if name in ("check", "load"):
+
+def add_question_args(p: argparse.ArgumentParser, takes: tuple[str, ...]) -> None:
+    """The options of the question asked (``takes``: friction and/or load_factor)."""
+    if "friction" in takes:
         p.add_argument("--friction", help='friction coefficient f, or "infinite" '
                        "(default: the scene's)")
-    if name in ("check", "friction"):
+    if "load_factor" in takes:
         p.add_argument("--load-factor", type=float, default=None,
                        help="lambda multiplying the live loads (default: the scene's "
                        "load_factor, or 1)")
-    p.add_argument("--method", default="clarabel",
+    p.add_argument("--method", default=None,
                    help=" or ".join(f'"{m}"' for m in METHODS)
                    + ' (default "clarabel": the convex path)')
     p.add_argument("--solver", default=None,
@@ -34,6 +37,20 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("--contact-tol", type=float, default=None,
                    help="contact tolerance relative to the scene's size (default 1e-7): "
                    "faces this close count as touching")
+    p.add_argument("--flow", choices=("associative", "non-associative"), default=None,
+                   help="sliding rule of every joint without its own (default: the "
+                   "scene's flow, else associative)")
+
+
+def question(args: argparse.Namespace) -> dict[str, Any]:
+    """The question's options given on the command line, as keyword arguments."""
+    return {k: getattr(args, k) for k in QUESTION_OPTIONS
+            if getattr(args, k, None) is not None}
+
+
+def add_args(p: argparse.ArgumentParser, name: str) -> None:
+    p.add_argument("scene", help="scene file (JSON, see docs/scene-format.md)")
+    add_question_args(p, analysis(name).takes)
     if name == "load":
         p.add_argument("--mechanism", choices=("vertex", "blend"), default="vertex",
                        help="vertex: one collapse mechanism, joints ranked by relative "
@@ -42,9 +59,6 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("--joints", nargs="?", const="-", default=None, metavar="CSV",
                    help="the per-joint table (N, T, eccentricity, |T|/N, mode): in the "
                    "JSON with --json, else printed, or written to the CSV file given")
-    p.add_argument("--flow", choices=("associative", "non-associative"), default=None,
-                   help="sliding rule of every joint without its own (default: the "
-                   "scene's flow, else associative)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
@@ -63,10 +77,7 @@ def run(args: argparse.Namespace) -> int:
     state = args.command == "check" or args.joints is not None
     progress = Progress()
     res = run_interruptible(lambda: analysis(args.command).run(
-        scene, friction=getattr(args, "friction", None),
-        load_factor=getattr(args, "load_factor", None), method=args.method,
-        solver=args.solver, state=state, contact_tol=args.contact_tol, progress=progress,
-        flow=getattr(args, "flow", None), **options), progress,
+        scene, state=state, progress=progress, **question(args), **options), progress,
         show=not args.json and sys.stderr.isatty())
     if csv_path is not None:
         _write_csv(res, csv_path)

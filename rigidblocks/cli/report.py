@@ -15,10 +15,7 @@ from pathlib import Path
 from ..analyses import ANALYSES
 from ..errors import InputError
 from ..io import read_scene
-
-#: command-line option -> keyword argument of the analysis functions
-ANALYSIS_OPTIONS = {"friction": "friction", "load_factor": "load_factor", "method": "method",
-                    "solver": "solver", "contact_tol": "contact_tol"}
+from .analyses import EXIT, add_question_args, question
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
@@ -26,18 +23,7 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("--analysis", choices=[a.command for a in ANALYSES.values()],
                    default=None,
                    help="the question to answer (default: none, the scene alone)")
-    p.add_argument("--friction", default=None,
-                   help='friction coefficient f, or "infinite", for check and load '
-                   "(default: the scene's)")
-    p.add_argument("--load-factor", type=float, default=None,
-                   help="lambda multiplying the live loads, for check and friction "
-                   "(default 1)")
-    p.add_argument("--method", default=None,
-                   help='"clarabel" (convex path, default) or "distortion"')
-    p.add_argument("--solver", default=None,
-                   help="back end of the convex path: clarabel, highs, scs, ecos, cvxpy-NAME")
-    p.add_argument("--contact-tol", type=float, default=None,
-                   help="contact tolerance relative to the scene's size (default 1e-7)")
+    add_question_args(p, ("friction", "load_factor"))
     p.add_argument("--title", default=None, help="the report's title (default: the scene's name)")
     p.add_argument("-o", "--output", default=None,
                    help="output file, .html (default: SCENE with .html)")
@@ -48,8 +34,7 @@ def run(args: argparse.Namespace) -> int:
     if out.suffix.lower() not in (".html", ".htm"):
         raise InputError(f"a report is an HTML file: use .html, not '{out.suffix}'", str(out))
     scene = read_scene(args.scene)
-    options = {kw: getattr(args, opt) for opt, kw in ANALYSIS_OPTIONS.items()
-               if getattr(args, opt) is not None}
+    options = question(args)
     if args.analysis is None and options:
         raise InputError("--" + ", --".join(sorted(o.replace("_", "-") for o in options))
                          + " need --analysis")
@@ -65,4 +50,4 @@ def run(args: argparse.Namespace) -> int:
     status = getattr(result, "status", None)
     print(f"wrote {out}" + (f" ({args.analysis}: {status})" if status else "")
           + f"; open it in a browser, e.g. file://{out.resolve()}")
-    return 0
+    return EXIT.get(status, 0)

@@ -190,6 +190,16 @@ def arrow_handle(colour: str, label: str) -> Any:
                   label=label)
 
 
+def load_legend(kinds: set[bool], extra: list[Any]) -> None:
+    """Legend entries for the loads drawn: ``kinds`` holds False for a dead load drawn,
+    True for a live one."""
+    if False in kinds:
+        extra.append(arrow_handle(DEAD_COLOUR, "dead load (value shown)"))
+    if True in kinds:
+        extra.append(arrow_handle(LIVE_COLOUR, "live load, multiplied by "
+                                  "\N{GREEK SMALL LETTER LAMDA}"))
+
+
 def line_handle(colour: str, label: str, **kw: Any) -> Any:
     from matplotlib.lines import Line2D
 

@@ -40,8 +40,8 @@ from .marks import (
     MOVING_COLOUR,
     OPEN_COLOUR,
     SLIDE_COLOUR,
-    arrow_handle,
     line_handle,
+    load_legend,
     load_marks,
     marked_joints,
     new_axes,
@@ -278,11 +278,7 @@ def _draw_loads(ax: Any, scene: Scene, lo: np.ndarray, hi: np.ndarray,
         kinds.add(m.live)
         lo = np.minimum(lo, np.minimum(m.tail, m.tip))
         hi = np.maximum(hi, np.maximum(m.tail, m.tip))
-    if False in kinds:
-        extra.append(arrow_handle(DEAD_COLOUR, "dead load (value shown)"))
-    if True in kinds:
-        extra.append(arrow_handle(LIVE_COLOUR, "live load, multiplied by "
-                                  "\N{GREEK SMALL LETTER LAMDA}"))
+    load_legend(kinds, extra)
     return lo, hi
 
 
