@@ -21,7 +21,6 @@ and it writes ``bench_methods.json`` and ``bench_methods.md`` (see benchmarks/co
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 import time
 from collections.abc import Sequence
@@ -33,7 +32,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from common import markdown_table, write_results  # noqa: E402
 
 import rigidblocks as rb  # noqa: E402
+from rigidblocks.analyses.search import friction_by_bisection  # noqa: E402
 from rigidblocks.io import read_scene  # noqa: E402
+from rigidblocks.methods import open_method  # noqa: E402
 from rigidblocks.scene.model import Scene  # noqa: E402
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -63,32 +64,15 @@ def scenes(tiny: bool) -> list[tuple[str, Scene]]:
 
 
 def bisection(scene: Scene, load_factor: float, rtol: float = RTOL) -> tuple[float | None, int]:
-    """f* by plain bisection over Clarabel's check(): (f*, number of check calls).
+    """f* by plain bisection over Clarabel's verdicts (the analyses' own search for
+    methods without a fast path, on the convex method): (f*, number of solves).
 
     f = infinite must be admissible; f = 0 is tried, then f = 1, 2, 4, ... brackets
     f*, then the bracket is halved until hi - lo <= rtol hi.
     """
-    calls = 0
-
-    def ok(f: float) -> bool:
-        nonlocal calls
-        calls += 1
-        return rb.check(scene, friction=f, load_factor=load_factor, state=False).admissible
-
-    if not ok(math.inf):
-        return None, calls
-    if ok(0.0):
-        return 0.0, calls
-    lo, hi = 0.0, 1.0
-    while not ok(hi):
-        lo, hi = hi, 2.0 * hi
-    while hi - lo > rtol * hi:
-        mid = 0.5 * (lo + hi)
-        if ok(mid):
-            hi = mid
-        else:
-            lo = mid
-    return hi, calls
+    m = open_method(scene)
+    lim = friction_by_bisection(m, load_factor, rtol)
+    return (lim.value if lim.status == "stable" else None), m.n_solves
 
 
 def timed_min_friction(scene: Scene, load_factor: float, **kw: Any) -> dict[str, Any]:
