@@ -96,6 +96,7 @@ from rigidblocks.io.scene_file import scene_from_dict, scene_to_dict  # noqa: E4
 from rigidblocks.scene.extrude import extrude  # noqa: E402
 from rigidblocks.scene.geometry import scene_size  # noqa: E402
 from rigidblocks.scene.model import Scene  # noqa: E402
+from rigidblocks.scene.polyhedra import POLY_TOL  # noqa: E402
 
 NAME = "bench_peer"
 RUNNER = Path(__file__).resolve().parent / "peer_runner.py"
@@ -363,8 +364,10 @@ def compare_forces(ours: dict[tuple[str, str], float], peer: dict) -> dict | Non
     a = np.array([ours[k] for k in common])
     b = np.array([theirs[k] for k in common])
     scale = max(np.abs(a).max(), np.abs(b).max(), 1e-300)
-    return {"joints": len(common), "ours_only": len(set(ours) - set(theirs)),
-            "peer_only": len(set(theirs) - set(ours)),
+    mine, its = sorted(set(ours) - set(theirs)), sorted(set(theirs) - set(ours))
+    return {"joints": len(common), "ours_only": len(mine), "peer_only": len(its),
+            "ours_only_pairs": [list(k) for k in mine[:20]],
+            "peer_only_pairs": [list(k) for k in its[:20]],
             "ours_total": float(a.sum()), "peer_total": float(b.sum()),
             "max_rel_diff": float(np.abs(a - b).max() / scale),
             "median_rel_diff": float(np.median(np.abs(a - b)) / scale)}
@@ -421,7 +424,7 @@ def _example_reader(path: Path, case: dict) -> tuple[Any, Any]:
     opts = case.get("interfaces")
     tol = (None if opts is None else
            (lambda s: float(opts["tmax"]) / scene_size(s)))
-    make()  # raises InputError (a non-convex block, say) before anything is timed
+    make()  # raises InputError (a face that is not planar, say) before anything is timed
     return make, tol
 
 
@@ -464,7 +467,9 @@ def bench(sizes: dict, python: str | None, timeouts: dict, repeats: int,
                         variants["3d_cone"] = (make, {"forces": True, "contact_tol": tol})
                         variants["3d_pyr8"] = (make, {"pyramid": 8, "contact_tol": tol})
                         ours_runs = {m: [] for m in variants}
-                        row["blocks"] = sum(not b.support for b in make().blocks)
+                        blocks = make().blocks
+                        row["blocks"] = sum(not b.support for b in blocks)
+                        row["supports"] = [str(b.id) for b in blocks if b.support]
                     except (InputError, ImportError) as exc:
                         not_modelled = f"not modelled: {getattr(exc, 'detail', exc)}"
                 for m, (make, kw) in variants.items():
@@ -635,6 +640,55 @@ def differences(row: dict) -> list[str]:
         else:
             out.append(f"its {k.upper()} ({v}) is non-associative with displacements "
                        "bounded by d_bnd: a different question than the static theorem")
+    return out
+
+
+def model_notes(row: dict) -> list[str]:
+    """How the two models of one of its examples differ where the counts of interfaces
+    or contact points differ, and why the forces differ where they do, from the run's
+    data (the verdicts may agree)."""
+    o, rbe = row["ours"].get("3d_cone", {}), row["peer"].get("rbe", {})
+    if "total" not in o or not rbe:
+        return []
+    out = []
+    mj, mp = o.get("joints"), o.get("points")
+    tj, tp = rbe.get("n_interfaces"), rbe.get("n_vertices")
+    fr = row.get("forces_3d_cone_vs_rbe")
+    pairs = ""
+    if fr:
+        pairs = (f" on the same {fr['joints']} block pairs" if not fr["ours_only"]
+                 and not fr["peer_only"] else
+                 f" ({fr['joints']} block pairs in common, {fr['ours_only']} ours only, "
+                 f"{fr['peer_only']} its only)")
+    sup = set(row.get("supports") or ())
+    extra = (fr or {}).get("ours_only_pairs") or []
+    if extra and sup and all(set(k) <= sup for k in extra):
+        out.append(f"our {fr['ours_only']} joint(s) on block pairs without an interface "
+                   "of its join two supports (" + ", ".join("-".join(k) for k in extra)
+                   + "): they carry nothing the verdict depends on")
+    if tj is not None and mj is not None and tj > mj:
+        out.append(f"its {tj} interfaces against our {mj} joints{pairs}: it makes one "
+                   "interface of each pair of touching faces of its meshes (a plane of "
+                   "contact covered by several mesh faces gives several), we make one "
+                   "joint of each plane two blocks share (the union of their faces in it, "
+                   "in one or more pieces)")
+    elif tj is not None and mj is not None and mj > tj:
+        out.append(f"our {mj} joints against its {tj} interfaces{pairs}")
+    if tp is not None and mp is not None and tp > mp:
+        out.append(f"its {tp} interface vertices against our {mp} contact points: its "
+                   "forces sit at every vertex of each interface polygon, ours at the "
+                   "corners of the convex hull of each joint's region (the same resultants "
+                   "for a no-tension joint)")
+    if (fr and fr["max_rel_diff"] > 1e-2 and mp and row.get("blocks")
+            and 3 * mp > 6 * row["blocks"]):
+        out.append(f"forces differ by up to {fr['max_rel_diff']:.2g} of the largest joint "
+                   f"force (median {fr['median_rel_diff']:.2g}): with more force "
+                   f"components ({3 * mp}, three at each of our contact points) than "
+                   f"equilibrium equations ({6 * row['blocks']}) the admissible state need "
+                   "not be unique, and the two sides pick "
+                   "different ones (ours: least complementary energy over our contact "
+                   "points; its RBE: its quadratic objective over its vertex forces, "
+                   "tension penalised)")
     return out
 
 
@@ -814,18 +868,26 @@ def markdown(data: dict) -> str:
                   "size):", "", markdown_table(head, body), ""]
         nm = [r for r in ex if "total" not in r["ours"].get("3d_cone", {})]
         if nm:
-            lines += ["Not modelled today (3D blocks must be convex; non-convex blocks are "
-                      "another branch's work, and these rows run once the scene validation "
-                      "accepts them): " + "; ".join(
+            lines += ["Refused by our scene validation (3D blocks are closed polyhedra with "
+                      "planar faces, convex or not; a face whose vertices lie off its plane "
+                      f"by more than {POLY_TOL:g} x the block's size is refused with the "
+                      "deviation stated, not triangulated), in its own words: " + "; ".join(
                           f"{r['name'].removeprefix('peer ')} "
                           "(" + r["ours"].get("3d_cone", {}).get("verdict", "")
                           .removeprefix("not modelled: ") + ")"
                           for r in nm), ""]
+        notes = [(r["name"].removeprefix("peer "), model_notes(r)) for r in ex]
+        notes = [(n, d) for n, d in notes if d]
+        if notes:
+            lines += ["Where the two models of an example differ (interfaces, contact "
+                      "points) or their forces do:", ""]
+            lines += [f"- {n}: " + "; ".join(d) + "." for n, d in notes]
+            lines += [""]
         diffs = [(r["name"].removeprefix("peer "), differences(r)) for r in ex]
         diffs = [(n, d) for n, d in diffs if d]
         if diffs:
             lines += ["Where the verdicts differ, the models (on the examples we do not "
-                      "model yet, where its RBE and its CRA differ):", ""]
+                      "model, where its RBE and its CRA differ):", ""]
             lines += [f"- {n}: " + "; ".join(d) + "." for n, d in diffs]
             lines += [""]
     lines += ["RBE counts as admissible when its penalised tension is below "
