@@ -656,24 +656,25 @@ def model_notes(row: dict) -> list[str]:
     fr = row.get("forces_3d_cone_vs_rbe")
     pairs = ""
     if fr:
-        pairs = (f" on the same {fr['joints']} block pairs" if not fr["ours_only"]
-                 and not fr["peer_only"] else
-                 f" ({fr['joints']} block pairs in common, {fr['ours_only']} ours only, "
+        n = fr["joints"]
+        pairs = (f" on the same {n} block pair{'s' if n != 1 else ''}"
+                 if not fr["ours_only"] and not fr["peer_only"] else
+                 f" ({n} block pairs in common, {fr['ours_only']} ours only, "
                  f"{fr['peer_only']} its only)")
     sup = set(row.get("supports") or ())
     extra = (fr or {}).get("ours_only_pairs") or []
-    if extra and sup and all(set(k) <= sup for k in extra):
-        out.append(f"our {fr['ours_only']} joint(s) on block pairs without an interface "
-                   "of its join two supports (" + ", ".join("-".join(k) for k in extra)
-                   + "): they carry nothing the verdict depends on")
     if tj is not None and mj is not None and tj > mj:
-        out.append(f"its {tj} interfaces against our {mj} joints{pairs}: it makes one "
+        out.append(f"its {tj} interfaces against our {mj} joints{pairs}: it has one "
                    "interface of each pair of touching faces of its meshes (a plane of "
                    "contact covered by several mesh faces gives several), we make one "
                    "joint of each plane two blocks share (the union of their faces in it, "
                    "in one or more pieces)")
     elif tj is not None and mj is not None and mj > tj:
-        out.append(f"our {mj} joints against its {tj} interfaces{pairs}")
+        why = ""
+        if extra and sup and all(set(k) <= sup for k in extra) and not fr["peer_only"]:
+            why = (": ours also joins two supports (" + ", ".join("-".join(k) for k in extra)
+                   + "), a joint that carries nothing the verdict depends on")
+        out.append(f"our {mj} joints against its {tj} interfaces{pairs}{why}")
     if tp is not None and mp is not None and tp > mp:
         out.append(f"its {tp} interface vertices against our {mp} contact points: its "
                    "forces sit at every vertex of each interface polygon, ours at the "

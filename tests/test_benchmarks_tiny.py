@@ -112,6 +112,35 @@ def test_bench_peer_tiny_our_side(tmp_path):
 
 
 
+def test_bench_peer_model_notes():
+    """The notes on how the two models of one of the peer's examples differ come from
+    the run's counts: more interfaces on the same block pairs (its interfaces are per
+    pair of mesh faces), an extra joint of ours between two supports, and forces that
+    differ where there are more force components than equilibrium equations."""
+    bench = load_peer_bench()
+    fr = {"joints": 3, "ours_only": 0, "peer_only": 0, "ours_only_pairs": [],
+          "peer_only_pairs": [], "max_rel_diff": 0.09, "median_rel_diff": 1e-5}
+    row = {"blocks": 3, "supports": ["0"], "forces_3d_cone_vs_rbe": fr,
+           "ours": {"3d_cone": {"total": 0.1, "joints": 6, "points": 24}},
+           "peer": {"rbe": {"n_interfaces": 16, "n_vertices": 58}}}
+    notes = bench.model_notes(row)
+    assert notes[0].startswith("its 16 interfaces against our 6 joints on the same 3 "
+                               "block pairs")
+    assert "convex hull" in notes[1] and "72" in notes[2] and "18" in notes[2]
+    wedge = {"blocks": 1, "supports": ["0", "1"], "forces_3d_cone_vs_rbe": {
+        **fr, "joints": 2, "ours_only": 1, "ours_only_pairs": [["0", "1"]],
+        "max_rel_diff": 1e-6},
+        "ours": {"3d_cone": {"total": 0.1, "joints": 3, "points": 12}},
+        "peer": {"rbe": {"n_interfaces": 2, "n_vertices": 8}}}
+    (note,) = bench.model_notes(wedge)
+    assert "joins two supports (0-1)" in note
+    same = {**wedge, "forces_3d_cone_vs_rbe": None,
+            "ours": {"3d_cone": {"total": 0.1, "joints": 2, "points": 8}}}
+    assert bench.model_notes(same) == []
+    refused = {**same, "ours": {"3d_cone": {"verdict": "not modelled: face 1"}}}
+    assert bench.model_notes(refused) == []
+
+
 def load_script(name):
     spec = importlib.util.spec_from_file_location(name, ROOT / "benchmarks" / f"{name}.py")
     mod = importlib.util.module_from_spec(spec)
