@@ -20,13 +20,21 @@ import numpy as np
 
 from ..equilibrium import EquilibriumSystem, force_state, mechanism
 from ..errors import InputError, SolverFailure
-from ..problems.formulation import Scaling, build_energy_qp, build_max_load, build_relaxation
+from ..problems.formulation import (
+    Scaling,
+    build_energy_qp,
+    build_max_load,
+    build_relaxation,
+    joint_violations,
+)
 from ..results import ForceState
 from ..scene.model import Scene
 from ..solvers import INFEASIBLE, OPTIMAL, UNBOUNDED, Runner, SolverResult
+from ..solvers.policy import describe
 from .base import (
     ADMISSIBLE,
     INADMISSIBLE,
+    UNDECIDED,
     Limit,
     Method,
     Progress,
@@ -48,6 +56,10 @@ FRICTION_ATOL = 1e-9
 #: slack (reference-force units) granted to the force-state QP at a limit state, where
 #: the admissible set shrinks to a point and round-off would make it empty
 STATE_SLACK = 1e-9
+#: a verdict whose threshold ADMISSIBLE_TOL x (largest scaled force) exceeds this
+#: (relative to the lightest blocks' loads) is undecided: the forces span more orders
+#: than the solver's tolerance and double precision can resolve
+RESOLVE_LIMIT = 1e-5
 #: the note of a relaxation whose equilibrium equations have no solution
 NO_EQUILIBRIUM = ("the equilibrium equations have no solution with these joints (the "
                   "scene is a mechanism)")
@@ -55,7 +67,15 @@ NO_EQUILIBRIUM = ("the equilibrium equations have no solution with these joints 
 
 @dataclass(frozen=True, eq=False)
 class Relaxation:
-    """One relaxation solve: R(f), dR/df, and what the analyses read from it."""
+    """One relaxation solve: R(f), dR/df, and what the analyses read from it.
+
+    ``R`` is the larger of the solver's r and the largest breach of the joint laws by its
+    own state (per joint, relative to the joint's scale, see
+    :meth:`~rigidblocks.problems.formulation.Scaling.per_block`); ``low`` the lower bound
+    on R from the duals (the dual objective); ``residual`` the state's largest
+    equilibrium residual (per-block units). ``zero``: the state itself is admissible to
+    ``tol``; ``positive``: the dual bound certifies R > ``tol``; neither: undecided.
+    """
 
     R: float | None  # None: the equilibrium equations have no solution
     slope: float
@@ -64,10 +84,23 @@ class Relaxation:
     prob: Any
     tol: float  # R <= tol counts as zero (ADMISSIBLE_TOL x the largest scaled force)
     f: float = math.nan
+    low: float = math.inf
+    residual: float = 0.0
+    #: why the verdict cannot be decided ("" when it can)
+    unresolved: str = ""
 
     @property
     def zero(self) -> bool:
-        return self.R is not None and self.R <= self.tol
+        return (not self.unresolved and self.R is not None and self.R <= self.tol
+                and self.residual <= self.tol)
+
+    @property
+    def positive(self) -> bool:
+        return not self.unresolved and self.R is not None and self.low > self.tol
+
+    @property
+    def decided(self) -> bool:
+        return self.R is None and not self.unresolved or self.zero or self.positive
 
 
 class ConvexMethod(Method):
@@ -84,7 +117,7 @@ class ConvexMethod(Method):
                              progress=self.progress)
         self.solver = self.runner.solver
         with timings.stage("build"):
-            self.scaling = Scaling.of(system)
+            self.scaling = Scaling.per_block(system)
         self.pyramid = pyramid
         #: relaxation problems by load factor, with the uniform friction as parameter
         self._relax: dict[float, tuple[Any, Any]] = {}
@@ -115,9 +148,12 @@ class ConvexMethod(Method):
     def iterations(self) -> int:
         return self.runner.iterations
 
-    def _run(self, problem: Any, what: str, tight: bool = False) -> SolverResult:
+    def _run(self, problem: Any, what: str, tight: bool = False,
+             confirm: bool = False) -> SolverResult:
         w0, c0 = self.runner.wall_time, time.process_time()
         try:
+            if confirm:
+                return self.runner.confirm(problem, what)
             return self.runner.run(problem, what, tight)
         finally:
             self.timings.add("solve", self.runner.wall_time - w0, time.process_time() - c0)
@@ -143,27 +179,71 @@ class ConvexMethod(Method):
         return prob, jr
 
     def relaxation(self, f: float, load_factor: float) -> Relaxation:
-        """R(f) and dR/df (from the duals of the friction rows of the uniform joints)."""
+        """R(f) and dR/df (from the duals of the friction rows of the uniform joints).
+
+        The back end's answer is checked by the solver policy; a verdict it leaves near
+        the threshold (the state's own breach above ``tol`` but the dual bound below it)
+        is confirmed by a tighter solve (:meth:`~rigidblocks.solvers.Runner.confirm`)
+        before it is called undecided."""
         prob, jr = self._relaxation_problem(f, load_factor)
-        res = self._run(prob, "relaxation", tight=True)
+        rx = self._read(prob, jr, self._run(prob, "relaxation", tight=True), f)
+        if not rx.decided and not rx.unresolved.startswith("forces span"):
+            again = self._read(prob, jr, self._run(prob, "relaxation", confirm=True), f)
+            if again.decided or not rx.unresolved:
+                rx = again
+        return rx
+
+    def _read(self, prob: Any, jr: Any, res: SolverResult, f: float) -> Relaxation:
+        """The relaxation's numbers from one checked solve (see :class:`Relaxation`)."""
+        if res.verified is False:
+            why = (f"the {res.solver} answer ({res.status}) fails its check against the "
+                   f"problem: {describe(res.residuals)}")
+            return Relaxation(None, 0.0, res, jr, prob, ADMISSIBLE_TOL, f, unresolved=why)
         if res.status != OPTIMAL:
             return Relaxation(None, 0.0, res, jr, prob, ADMISSIBLE_TOL, f)
         z, y = res.z, res.y
-        R = max(float(z[prob.cols["r"]][0]), 0.0)
         x = z[prob.cols["x"]]
-        tol = ADMISSIBLE_TOL * max(1.0, float(np.max(np.abs(x), initial=0.0)))
+        viol = joint_violations(prob, jr, z, self.system.contacts.n_joints)
+        R = max(float(z[prob.cols["r"]][0]), float(viol.max(initial=0.0)), 0.0)
+        eq = prob.rows["equilibrium"]
+        residual = float(np.abs(prob.A[eq] @ z - prob.b[eq]).max(initial=0.0))
+        low = float(-prob.b @ y)
+        big = float(np.max(np.abs(x), initial=0.0))
+        tol = ADMISSIBLE_TOL * max(1.0, big)
+        unresolved = ""
+        if tol > RESOLVE_LIMIT:
+            unresolved = (f"forces span {big:.1e} times the loads of the lightest blocks "
+                          f"they act on: their joint laws are resolved only to {tol:.1e} "
+                          "of those loads (double precision and the solver's tolerance "
+                          "cannot separate admissible from inadmissible there)")
         head = prob.rows["joints"].start + jr.fric_head
         uni = self.uniform[jr.fric_joint]
         nsum = jr.fric_nsum @ z
         slope = float(np.sum(y[head][uni] * nsum[uni]))
-        return Relaxation(R, slope, res, jr, prob, tol, f)
+        return Relaxation(R, slope, res, jr, prob, tol, f, low, residual, unresolved)
+
+    def _violation_force(self, rx: Relaxation) -> float:
+        """The largest breach of the joint laws by the relaxation's state, force units."""
+        z = rx.res.z
+        c = self.system.contacts
+        viol = joint_violations(rx.prob, rx.jr, z, c.n_joints)
+        lay = self.system.layout
+        sj = np.ones(c.n_joints)
+        if c.n_points:
+            sj[c.point_joint] = self.scaling.cols(lay.size)[lay.normal]
+        top = float((viol * sj).max(initial=0.0))
+        return max(top, rx.R * float(sj.min(initial=1.0))) * self.scaling.force
 
     def _verdict(self, rx: Relaxation) -> Verdict:
+        if rx.unresolved:
+            return Verdict(UNDECIDED, math.nan, (rx.unresolved,), rx)
         if rx.R is None:  # equilibrium equations cannot be met at all: a mechanism
             return Verdict(INADMISSIBLE, math.inf, (NO_EQUILIBRIUM,), rx)
         if rx.zero:
             return Verdict(ADMISSIBLE, 0.0, (), rx)
-        return Verdict(INADMISSIBLE, rx.R * self.scaling.force, (), rx)
+        if rx.positive:
+            return Verdict(INADMISSIBLE, self._violation_force(rx), (), rx)
+        return Verdict(UNDECIDED, self._violation_force(rx), (near_threshold(rx),), rx)
 
     def admissible(self, f: float, load_factor: float, for_state: bool = False) -> Verdict:
         return self._verdict(self.relaxation(f, load_factor))
@@ -172,7 +252,7 @@ class ConvexMethod(Method):
         rx = verdict.data
         if not isinstance(rx, Relaxation) or rx.R is None:
             return ()
-        x = rx.res.z[rx.prob.cols["x"]] * self.scaling.force
+        x = self.scaling.forces(rx.res.z[rx.prob.cols["x"]])
         return ranked_breaches(self.system, x, self.f_joint(f))
 
     # -- the force state ---------------------------------------------------------------
@@ -196,15 +276,17 @@ class ConvexMethod(Method):
         try:
             res = self._run(prob, "force-state")
             status = res.raw_status if res.status != OPTIMAL else None
+            if status is None and res.verified is False:
+                status = f"{res.raw_status}, failing its check ({describe(res.residuals)})"
         except SolverFailure as exc:
             status = exc.status
         with self.timings.stage("state"):
             if status is None:
-                return force_state(self.system, res.z[prob.cols["x"]] * self.scaling.force,
+                return force_state(self.system, self.scaling.forces(res.z[prob.cols["x"]]),
                                    "least complementary energy")
             self.notes.append(f"force state: the solution of the limit problem (the "
                               f"least-energy QP ended with status {status})")
-            return force_state(self.system, limit.z[limit_x] * self.scaling.force,
+            return force_state(self.system, self.scaling.forces(limit.z[limit_x]),
                                "solution of the limit problem")
 
     # -- f*: Newton steps on R(f) ------------------------------------------------------
@@ -220,12 +302,18 @@ class ConvexMethod(Method):
         """
         lf = load_factor
         rx = self.relaxation(math.inf, lf)
+        if not rx.decided:
+            self.notes.append(f"at infinite friction: {rx.unresolved or near_threshold(rx)}")
+            return Limit("undecided")
         if not rx.zero:
             if rx.R is None:
                 self.notes.append(NO_EQUILIBRIUM)
             return Limit("unstable")
         lo, hi, at_hi = 0.0, math.inf, rx  # at_hi: the relaxation at the upper end
         rx = self.relaxation(0.0, lf)
+        if rx.unresolved or not rx.decided and rx.R is None:
+            self.notes.append(f"at f = 0: {rx.unresolved or near_threshold(rx)}")
+            return Limit("undecided")
         if rx.R is None:
             raise SolverFailure("the relaxation at f = 0 has no solution although infinite "
                                 "friction has one", self.solver, rx.res.raw_status)
@@ -267,6 +355,18 @@ class ConvexMethod(Method):
                 if not math.isfinite(hi) or trial < hi * (1.0 - 1e3 * rtol):
                     raise
                 undecided = exc.status
+                forced = hi - 4.0 * (hi - trial)
+                if forced <= lo:
+                    break
+                continue
+            if not rx.decided:
+                # a verdict near the threshold that a tighter solve did not settle: as
+                # for a failed solve, probe further below the certified upper end
+                why = rx.unresolved or near_threshold(rx)
+                if not math.isfinite(hi) or trial < hi * (1.0 - 1e3 * rtol):
+                    self.notes.append(f"at f = {trial:.10g}: {why}")
+                    return Limit("undecided", None, lo, hi if math.isfinite(hi) else None)
+                undecided = "undecided (near the threshold)"
                 forced = hi - 4.0 * (hi - trial)
                 if forced <= lo:
                     break
@@ -317,8 +417,16 @@ class ConvexMethod(Method):
             prob, jr = build_max_load(self.system, self.scaling, self.f_joint(f),
                                       self.pyramid)
         res = self._run(prob, "maximum load", tight=True)
+        if res.verified is False:
+            self.notes.append(f"the {res.solver} answer to the maximum-load problem "
+                              f"({res.status}) fails its check against the problem: "
+                              f"{describe(res.residuals)}: undecided")
+            return Limit("undecided")
         if res.status == UNBOUNDED:
-            return Limit("unbounded" if self._dead_admissible(f) else "unstable")
+            dead = self._dead_admissible(f)
+            if dead is None:
+                return Limit("undecided")
+            return Limit("unbounded" if dead else "unstable")
         if res.status == INFEASIBLE:
             return Limit("unstable")
         lam = float(res.z[prob.cols["lambda"]][0])
@@ -326,7 +434,10 @@ class ConvexMethod(Method):
             self.notes.append(f"the largest admissible multiplier is negative ({lam:.6g}): "
                               "the dead load alone is not admissible")
             return Limit("unstable")
-        if not self._dead_admissible(f):
+        dead = self._dead_admissible(f)
+        if dead is None:
+            return Limit("undecided", None, None, lam)
+        if not dead:
             self.notes.append(f"largest admissible multiplier {lam:.6g}, but only with the "
                               "live load propping the structure up")
             return Limit("unstable")
@@ -355,16 +466,31 @@ class ConvexMethod(Method):
         return Limit("collapse", lam, lam, lam, governing=sliding, mechanism=mech,
                      at=Verdict(ADMISSIBLE, 0.0, (), (res, prob)))
 
-    def _dead_admissible(self, f: float) -> bool:
+    def _dead_admissible(self, f: float) -> bool | None:
         """Is lambda = 0 admissible? The admissible multipliers form an interval, which
         may lie wholly above 0 when the live load props up a structure that cannot stand
-        under its dead load alone. One relaxation solve (none without a dead load)."""
+        under its dead load alone. One relaxation solve (none without a dead load); None
+        (with a note) when that verdict is undecided."""
         if not np.any(self.system.dead):
             return True
-        if not self.relaxation(f, 0.0).zero:
+        rx = self.relaxation(f, 0.0)
+        if not rx.decided:
+            self.notes.append(f"under the dead load alone: "
+                              f"{rx.unresolved or near_threshold(rx)}")
+            return None
+        if not rx.zero:
             self.notes.append("the dead load alone is not admissible")
             return False
         return True
+
+
+def near_threshold(rx: Relaxation) -> str:
+    """Why a relaxation near the admissibility threshold decides nothing."""
+    return (f"near the admissibility threshold even after a tighter solve: the state "
+            f"found breaches the joint laws by {rx.R:.2e} and its equilibrium by "
+            f"{rx.residual:.2e}, the duals bound the smallest breach below by "
+            f"{rx.low:.2e}, and the threshold is {rx.tol:.2e} (relative to each joint's "
+            "scale): undecided")
 
 
 def _root_step(R: float, s: float, f: float, prev: tuple[float, float] | None) -> float:

@@ -18,10 +18,13 @@ Joint laws (design.md): N_k >= -sigma_t a_k; 2D: |T_j| <= f_j sum_k N_k + c_j a_
 joint (or per point with one shear per point); 3D: ||(T1, T2)_k|| <= f_j N_k + c_j a_k, a
 second-order cone per contact point. ``f_j = inf`` (Heyman) leaves the shear free.
 
-Scaling: x is divided by a reference force F (the largest resultant load on one
-block), force rows are left as they are and each moment row is divided by its block's
-size, so that the numbers are of order one and a scene in mm and N gives the same
-problem as the same scene in m and kN.
+Scaling (:class:`Scaling`): each moment row is divided by its block's size; with
+:meth:`Scaling.of` x is divided by one reference force F (the largest resultant load on
+one block); with :meth:`Scaling.per_block` (the convex path) each block's rows are
+divided by its own load and each joint's unknowns and law rows by the load of the
+lighter block it touches, so that the numbers are of order one block by block, a light
+block's equilibrium is not lost in a heavy block's round-off, and a scene in mm and N
+gives the same problem as the same scene in m and kN.
 """
 
 from __future__ import annotations
@@ -37,30 +40,101 @@ from ..solvers.base import ConicProblem
 
 @dataclass(frozen=True, eq=False)
 class Scaling:
-    """x_scaled = x / force; equilibrium rows multiplied by ``row`` / force."""
+    """Scaled unknowns and rows: x = ``force`` x ``col`` x x_scaled; equilibrium rows
+    multiplied by ``row`` / ``force``; joint-law rows in units of ``force`` x ``col``.
+
+    :meth:`of` is the uniform scaling (``col`` = 1, one reference force for the whole
+    scene); :meth:`per_block` scales each block's rows by its own load and each joint's
+    unknowns and law rows by the load of the lighter block it touches, so that a light
+    block's equilibrium and joint laws are resolved relative to its own forces, not to
+    the heaviest block of the scene.
+    """
 
     force: float
     row: np.ndarray
+    col: np.ndarray | None = None
+    #: (n_free,) each free block's load scale (scene units), per_block only
+    block_load: np.ndarray | None = None
 
-    @classmethod
-    def of(cls, system: EquilibriumSystem) -> Scaling:
+    def cols(self, n: int) -> np.ndarray:
+        """The column scale of the n unknowns (ones for the uniform scaling)."""
+        return np.ones(n) if self.col is None else self.col
+
+    def forces(self, x_scaled: np.ndarray) -> np.ndarray:
+        """Scaled unknowns back to forces in the scene's units."""
+        return x_scaled * self.force * self.cols(len(x_scaled))
+
+    @property
+    def spread(self) -> float:
+        """Largest over smallest block load scale (1 for the uniform scaling)."""
+        bl = self.block_load
+        if bl is None or not bl.size:
+            return 1.0
+        return float(bl.max() / bl.min())
+
+    @staticmethod
+    def _moment_rows(system: EquilibriumSystem) -> np.ndarray:
         d = system.dofs
         nf = system.n_rows // d if d else 0
         sizes = system.sizes[system.free_blocks]
         row = np.ones(system.n_rows)
         if nf:
-            nforce = system.contacts.dimension
             mom = np.zeros((nf, d), dtype=bool)
-            mom[:, nforce:] = True
+            mom[:, system.contacts.dimension:] = True
             row = np.where(mom, 1.0 / sizes[:, None], 1.0).ravel()
-        mags = []
-        for vec in (system.dead, system.live):
-            v = (vec * row).reshape(nf, d) if nf else np.zeros((0, d))
-            mags.append(np.abs(v).max() if v.size else 0.0)
-        force = max(mags)
+        return row
+
+    @staticmethod
+    def _block_loads(system: EquilibriumSystem, row: np.ndarray) -> np.ndarray:
+        d = system.dofs
+        nf = system.n_rows // d if d else 0
+        if not nf:
+            return np.zeros(0)
+        return np.maximum(np.abs(system.dead * row).reshape(nf, d).max(axis=1),
+                          np.abs(system.live * row).reshape(nf, d).max(axis=1))
+
+    @classmethod
+    def of(cls, system: EquilibriumSystem) -> Scaling:
+        """One reference force F (the largest resultant load on one block) for the
+        whole scene; moment rows divided by the block's size."""
+        row = cls._moment_rows(system)
+        loads = cls._block_loads(system, row)
+        force = float(loads.max(initial=0.0))
         if not np.isfinite(force) or force <= 0:
             force = 1.0
-        return cls(force=float(force), row=row)
+        return cls(force=force, row=row)
+
+    @classmethod
+    def per_block(cls, system: EquilibriumSystem) -> Scaling:
+        """Each free block's rows divided by its own load scale L_b (the largest of its
+        dead and live force components and moments over its size; F for a block without
+        loads), each joint's unknowns and law rows by s_j = min L_b over the free blocks
+        it touches (F = max L_b stays the reference force of reports)."""
+        base = cls.of(system)
+        F = base.force
+        loads = cls._block_loads(system, base.row)
+        ok = np.isfinite(loads) & (loads > 0)
+        L = np.where(ok, loads, F)
+        d = system.dofs
+        row = base.row * np.repeat(F / L, d) if L.size else base.row
+        c = system.contacts
+        lay = system.layout
+        # each joint's scale: the lighter free block it touches
+        full = np.full(len(system.block_rows), np.inf)
+        free = system.free_blocks
+        full[free] = L
+        sj = np.minimum(full[c.pairs[:, 0]], full[c.pairs[:, 1]]) if c.n_joints else \
+            np.zeros(0)
+        sj = np.where(np.isfinite(sj), sj, F) / F
+        col = np.empty(lay.size)
+        col[lay.normal] = sj[c.point_joint]
+        if lay.shear == "joint" and c.dimension == 2:
+            col[lay.tangential] = sj
+        elif c.dimension == 2:
+            col[lay.tangential] = sj[c.point_joint]
+        else:
+            col[lay.tangential] = np.repeat(sj[c.point_joint], 2)
+        return cls(force=F, row=row, col=col, block_load=L)
 
 
 @dataclass(frozen=True, eq=False)
@@ -85,6 +159,9 @@ class JointRows:
     fric_joint: np.ndarray
     fric_nsum: sp.csr_matrix
     f_entries: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+    #: the joint of every row of ``G_lin`` and of every cone of ``G_soc``
+    lin_joint: np.ndarray | None = None
+    soc_joint: np.ndarray | None = None
 
 
 def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
@@ -107,13 +184,19 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
     """
     c = system.contacts
     lay = system.layout
-    F = scaling.force
     pj = c.point_joint
     P = c.n_points
     a_pt = c.point_areas
-    tens = c.tensile_strength[pj] * a_pt / F + relax_rhs
-    coh_joint = c.cohesion * c.areas / F
-    cap_pt = np.zeros(P) if cap is None else np.asarray(cap, dtype=float)
+    # the law rows of a point (joint) are in units of its unknowns' scale
+    F_pt = scaling.force * scaling.cols(lay.size)[lay.normal]
+    F_joint = np.full(c.n_joints, scaling.force)
+    if P:
+        F_joint[pj] = F_pt
+    tens = c.tensile_strength[pj] * a_pt / F_pt + relax_rhs
+    coh_joint = c.cohesion * c.areas / F_joint
+    # the extra capacity, given in units of the reference force, in the points' units
+    cap_pt = np.zeros(P) if cap is None else \
+        np.asarray(cap, dtype=float) * scaling.force / F_pt
     if cap is not None:
         coh_joint = coh_joint + np.bincount(pj, cap_pt, minlength=c.n_joints)
     # -- no tension: -N_k (- r) <= sigma a_k
@@ -161,7 +244,7 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
             fk = f_joint[pj[K]]
             vals = np.concatenate([-fk, -fk, np.ones(nK), -np.ones(nK)])
             lin_blocks.append(sp.coo_matrix((vals, (rows, cols)), shape=(2 * nK, n_cols)))
-            hk = c.cohesion[pj[K]] * a_pt[K] / F + cap_pt[K]
+            hk = c.cohesion[pj[K]] * a_pt[K] / F_pt[K] + cap_pt[K]
             h_parts.append(np.concatenate([hk, hk]) + relax_rhs)
             fric_joint = np.concatenate([pj[K], pj[K]])
             nsum = sp.coo_matrix((np.ones(2 * nK), (np.concatenate([r, r + nK]),
@@ -186,7 +269,7 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
         lin_blocks.append(sp.coo_matrix((np.concatenate(vals),
                                          (np.concatenate(rows), np.concatenate(cols))),
                                         shape=(k * nK, n_cols)))
-        hk = (c.cohesion[pj[K]] * a_pt[K] / F + cap_pt[K]) * cosk
+        hk = (c.cohesion[pj[K]] * a_pt[K] / F_pt[K] + cap_pt[K]) * cosk
         h_parts.append(np.tile(hk, k) + relax_rhs)
         fric_joint = np.tile(pj[K], k)
         nsum = sp.coo_matrix((np.full(k * nK, cosk), (np.arange(k * nK), np.tile(K, k))),
@@ -208,7 +291,7 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
             vals = np.concatenate([vals, -np.ones(nK)])
         soc_rows = sp.coo_matrix((vals, (rows, cols)), shape=(3 * nK, n_cols)).tocsr()
         h_soc = np.zeros(3 * nK)
-        h_soc[r] = c.cohesion[pj[K]] * a_pt[K] / F + cap_pt[K] + relax_rhs
+        h_soc[r] = c.cohesion[pj[K]] * a_pt[K] / F_pt[K] + cap_pt[K] + relax_rhs
         soc = (3,) * nK
         fric_joint = pj[K]
         fric_head = None  # set below, after the linear rows are counted
@@ -227,9 +310,37 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
     else:
         fric_head = G_lin.shape[0] + np.arange(len(fric_joint)) * 3
         block = np.ones(len(f_ent[0]), dtype=int)
+    if c.dimension == 3 and pyramid is None:
+        lin_joint, soc_joint = pj, fric_joint
+    else:
+        lin_joint, soc_joint = np.concatenate([pj, fric_joint]), np.zeros(0, dtype=int)
     return JointRows(G_lin=G_lin, h_lin=h_lin, G_soc=soc_rows, h_soc=h_soc, soc=soc,
                      n_normal_rows=P, fric_head=fric_head, fric_joint=fric_joint,
-                     fric_nsum=nsum, f_entries=(block, *f_ent))
+                     fric_nsum=nsum, f_entries=(block, *f_ent), lin_joint=lin_joint,
+                     soc_joint=soc_joint)
+
+
+def joint_violations(problem: ConicProblem, jr: JointRows, z: np.ndarray, n_joints: int,
+                     relax: float = 0.0) -> np.ndarray:
+    """(n_joints,) the largest breach of each joint's laws by the unknowns x of the
+    solution ``z`` of ``problem`` (0 where the laws hold), in the units of the joint's
+    law rows: read from the problem's own rows (its friction parameter included), with
+    every column but x left out (the relaxation r) and ``relax`` (a relaxation added to
+    the right-hand sides when the rows were built) taken back."""
+    out = np.zeros(n_joints)
+    rows = problem.rows["joints"]
+    xs = problem.cols["x"]
+    x = np.zeros(problem.n)
+    x[xs] = z[xs]
+    v = problem.b[rows] - relax - (problem.A @ x)[rows]  # slacks: >= 0 when the laws hold
+    nl = jr.G_lin.shape[0]
+    if nl:
+        np.maximum.at(out, jr.lin_joint, np.maximum(-v[:nl], 0.0))
+    if jr.soc:
+        q = v[nl:].reshape(-1, 3)
+        np.maximum.at(out, jr.soc_joint,
+                      np.maximum(np.hypot(q[:, 1], q[:, 2]) - q[:, 0], 0.0))
+    return out
 
 
 def friction_parameter(A: sp.csc_matrix, jr: JointRows, first_joint_row: int,
@@ -254,7 +365,10 @@ def friction_parameter(A: sp.csc_matrix, jr: JointRows, first_joint_row: int,
 
 
 def _equilibrium(system: EquilibriumSystem, scaling: Scaling) -> sp.csr_matrix:
-    return sp.diags(scaling.row) @ system.A.tocsr()
+    A = sp.diags(scaling.row) @ system.A.tocsr()
+    if scaling.col is not None:
+        A = (A @ sp.diags(scaling.col)).tocsr()
+    return A
 
 
 def _stack(eq_A, eq_b, jr: JointRows, extra_lin=None, extra_h=None):
@@ -349,7 +463,9 @@ def build_energy_qp(system: EquilibriumSystem, scaling: Scaling, f_joint: np.nda
     beq = -scaling.row * (system.dead + load_factor * system.live) / scaling.force
     jr = joint_rows(system, scaling, f_joint, n, relax_rhs=relax, pyramid=pyramid, cap=cap)
     A, b = _stack(Aeq, beq, jr)
-    P = sp.diags(flexibility(system), format="csc")
+    col = scaling.cols(n)
+    w = (col / col.max(initial=1.0)) ** 2 if n else col  # energy of the unscaled forces
+    P = sp.diags(flexibility(system) * w, format="csc")
     return ConicProblem(c=np.zeros(n), A=A, b=b, n_eq=system.n_rows,
                         n_nonneg=jr.G_lin.shape[0], soc=jr.soc, P=P,
                         cols={"x": slice(0, n)}, rows={"equilibrium": slice(0, system.n_rows)})

@@ -80,7 +80,72 @@ class SolverResult:
     raw_status: str
     iterations: int = 0
     solve_time: float = 0.0
+    #: the answer's residuals against the problem itself (:func:`residuals`), and
+    #: whether they passed the check of the solver policy (None: not checked)
+    residuals: dict = field(default_factory=dict)
+    verified: bool | None = None
 
     @property
     def ok(self) -> bool:
         return self.status == OPTIMAL
+
+
+def _cone_breach(problem: ConicProblem, s: np.ndarray) -> float:
+    """How far ``s`` (slacks of the inequality rows: nonnegative rows, then cones) is
+    outside the cone: the largest negative entry, or norm of the tail above the head."""
+    ne, nl = problem.n_eq, problem.n_nonneg
+    out = float(np.maximum(-s[ne:ne + nl], 0.0).max(initial=0.0))
+    if problem.soc:
+        ks = set(problem.soc)
+        pos = ne + nl
+        if ks == {3}:
+            q = s[pos:pos + 3 * len(problem.soc)].reshape(-1, 3)
+            out = max(out, float(np.maximum(np.hypot(q[:, 1], q[:, 2]) - q[:, 0],
+                                            0.0).max(initial=0.0)))
+        else:
+            for k in problem.soc:
+                q = s[pos:pos + k]
+                out = max(out, float(np.linalg.norm(q[1:]) - q[0]))
+                pos += k
+    return out
+
+
+def residuals(problem: ConicProblem, res: SolverResult) -> dict:
+    """The answer's residuals against the problem itself, relative to its size.
+
+    Optimal: ``primal`` (equality rows |A z - b| and cone breach of b - A z, over
+    max(1, |b|, |A| |z|)), ``dual`` (|P z + c + A'y| and cone breach of y, over
+    max(1, |c|, |P z|, |A|' |y|): the sizes of the terms that cancel) and ``gap`` (|primal - dual objective| over max(1, |objective|)).
+    Infeasible with a certificate y: ``certificate`` (|A'y| and the cone breach of y,
+    over |y| |A|) and ``margin`` (-b'y over |y| max(1, |b|), > 0 for a certificate).
+    Empty when the back end returned nothing to check.
+    """
+    A, b, c = problem.A, problem.b, problem.c
+    ne = problem.n_eq
+    if res.status == OPTIMAL and res.z is not None and res.y is not None:
+        z, y = res.z, res.y
+        Az = A @ z
+        s = b - Az
+        absA = abs(A)
+        pscale = max(1.0, float(np.abs(b).max(initial=0.0)),
+                     float((absA @ np.abs(z)).max(initial=0.0)))
+        primal = max(float(np.abs(s[:ne]).max(initial=0.0)), _cone_breach(problem, s))
+        Pz = problem.P @ z if problem.P is not None else np.zeros_like(z)
+        dres = Pz + c + A.T @ y
+        dscale = max(1.0, float(np.abs(c).max(initial=0.0)), float(np.abs(Pz).max(initial=0.0)),
+                     float((absA.T @ np.abs(y)).max(initial=0.0)))
+        dual = max(float(np.abs(dres).max(initial=0.0)), _cone_breach(problem, y))
+        pobj = float(c @ z + 0.5 * z @ Pz)
+        dobj = float(-b @ y - 0.5 * z @ Pz)
+        return {"primal": primal / pscale, "dual": dual / dscale,
+                "gap": abs(pobj - dobj) / max(1.0, abs(pobj), abs(dobj))}
+    if res.status == INFEASIBLE and res.y is not None:
+        y = res.y
+        ny = float(np.abs(y).max(initial=0.0))
+        if not ny > 0:
+            return {"certificate": float("inf"), "margin": 0.0}
+        na = float(abs(A).max()) if A.nnz else 1.0
+        cert = max(float(np.abs(A.T @ y).max(initial=0.0)), _cone_breach(problem, y))
+        return {"certificate": cert / (ny * na),
+                "margin": float(-b @ y) / (ny * max(1.0, float(np.abs(b).max(initial=0.0))))}
+    return {}

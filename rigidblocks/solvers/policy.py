@@ -11,17 +11,25 @@ back end is driven to that answer is decided here, in one place:
   where a back end's defaults are looser;
 * **retries**: a solve that ends short of optimal is retried once with
   :data:`REFINE_SETTINGS` (stronger regularisation, refined KKT solves), then at the
-  back end's defaults if the tight tolerances were out of reach.
+  back end's defaults if the tight tolerances were out of reach;
+* **verification**: every answer is checked against the problem itself before it is
+  passed on (:func:`~rigidblocks.solvers.base.residuals`: an optimal answer's primal and
+  dual residuals and duality gap, an infeasibility certificate's residual and margin)
+  to :data:`VERIFY_TOL`. An answer that fails the check, or an infeasible or unbounded
+  status without a certificate to check, is solved again by :data:`FALLBACK` at the
+  tight settings; if that answer fails too, the result is returned with
+  ``verified=False`` and its residuals, and the methods report the verdict as
+  undecided with them (never as a verdict).
 """
 
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from ..errors import InputError, SolverFailure
-from .base import INFEASIBLE, OPTIMAL, UNBOUNDED, ConicProblem, SolverResult
+from .base import INFEASIBLE, OPTIMAL, UNBOUNDED, ConicProblem, SolverResult, residuals
 from .registry import SOLVERS, solve
 
 #: tolerances of the verdict-deciding solves (the relaxations, the max-load LP)
@@ -41,6 +49,12 @@ TIGHT_SETTINGS = {
 REFINE_SETTINGS = {"clarabel": {"static_regularization_constant": 1e-7,
                                 "iterative_refinement_reltol": 1e-14,
                                 "iterative_refinement_abstol": 1e-14}}
+#: settings of a confirming solve (a verdict near its threshold): Clarabel two orders
+#: tighter than RELAX_SETTINGS, with refined KKT solves
+CONFIRM_SETTINGS = {"tol_gap_abs": 1e-12, "tol_gap_rel": 1e-12, "tol_feas": 1e-12,
+                    "tol_ktratio": 1e-9, "max_iter": 400,
+                    "iterative_refinement_reltol": 1e-14,
+                    "iterative_refinement_abstol": 1e-14}
 #: back ends that solve linear programs only
 LP_ONLY = ("highs",)
 #: the back end that takes the problems an LP-only back end cannot
@@ -48,6 +62,13 @@ FALLBACK = "clarabel"
 #: user tolerances looser than this are noted in results (verdicts compare with 1e-9)
 LOOSE_TOL = 1e-9
 _DONE = (OPTIMAL, INFEASIBLE, UNBOUNDED)
+#: largest residual (relative, see :func:`~rigidblocks.solvers.base.residuals`) of a
+#: verified answer: above what Clarabel leaves at its defaults (1.5e-7 on the corbel
+#: dome's relaxation at f = 1, where the tight tolerances are out of its reach), two
+#: orders below what SCS leaves at its defaults (1e-4)
+VERIFY_TOL = 1e-6
+#: smallest relative margin -b'y of a verified infeasibility certificate
+CERT_MARGIN = 1e-9
 
 
 def check_solver(name: str) -> str:
@@ -99,18 +120,44 @@ class Runner:
             self.progress.iterations = self.iterations
         return res
 
-    def run(self, problem: ConicProblem, what: str, tight: bool = False) -> SolverResult:
+    def run(self, problem: ConicProblem, what: str, tight: bool = False,
+            verify: bool = True) -> SolverResult:
         """Solve ``problem`` (named ``what`` in errors): optimal, infeasible or unbounded;
-        anything else raises :class:`SolverFailure` with the back end's status."""
+        anything else raises :class:`SolverFailure` with the back end's status. With
+        ``verify`` the answer is checked (module docstring): a failed check is solved
+        again by :data:`FALLBACK`, and what still fails comes back ``verified=False``."""
         if self.progress is not None:
             self.progress.stage = f"{what} problem"
-        settings = self.settings
-        solver = self.solver
+        res = self._run(problem, what, tight, self.solver, self.settings)
+        if not verify:
+            return res
+        res = verified(problem, res)
+        if res.verified or (res.solver == FALLBACK and tight and not self.settings):
+            return res
+        try:
+            again = verified(problem, self._run(problem, what, True, FALLBACK, {}))
+        except SolverFailure:
+            return res
+        again = replace(again, residuals={**again.residuals,
+                                          "rejected": f"{res.solver} {res.status}: "
+                                                      f"{describe(res.residuals)}"})
+        return again
+
+    def confirm(self, problem: ConicProblem, what: str) -> SolverResult:
+        """A tighter, checked solve of a problem whose answer left a verdict near its
+        threshold: :data:`FALLBACK` at :data:`CONFIRM_SETTINGS`."""
+        res = self._solve(problem, FALLBACK, CONFIRM_SETTINGS)
+        if res.status not in _DONE:
+            res = self._run(problem, what, True, FALLBACK, {})
+        return verified(problem, res)
+
+    def _run(self, problem: ConicProblem, what: str, tight: bool, solver: str,
+             base: dict) -> SolverResult:
         if problem.P is not None and solver in LP_ONLY:
-            solver, settings = FALLBACK, {}
+            solver, base = FALLBACK, {}
+        settings = base
         if tight and solver in TIGHT_SETTINGS:
-            settings = {**TIGHT_SETTINGS[solver], **settings}
-        base = self.settings if solver == self.solver else {}
+            settings = {**TIGHT_SETTINGS[solver], **base}
         res = self._solve(problem, solver, settings)
         refine = REFINE_SETTINGS.get(solver, {})
         if res.status not in _DONE and refine and not refine.keys() & settings.keys():
@@ -125,5 +172,31 @@ class Runner:
         return res
 
 
-__all__ = ["FALLBACK", "LP_ONLY", "REFINE_SETTINGS", "RELAX_SETTINGS", "TIGHT_SETTINGS",
-           "Runner", "check_solver"]
+def verified(problem: ConicProblem, res: SolverResult) -> SolverResult:
+    """``res`` with its residuals and whether they pass :data:`VERIFY_TOL`: an optimal
+    answer by its primal and dual residuals and gap, an infeasible one by its
+    certificate; an unbounded one, or one without what it takes to check it, fails
+    unless Clarabel gave it (its statuses come with their own certificate tests)."""
+    r = residuals(problem, res)
+    if res.status == OPTIMAL and r:
+        ok = max(r["primal"], r["dual"], r["gap"]) <= VERIFY_TOL
+    elif res.status == INFEASIBLE and r:
+        ok = r["certificate"] <= VERIFY_TOL and r["margin"] > CERT_MARGIN
+    else:
+        ok = res.solver == FALLBACK
+    return replace(res, residuals=r, verified=ok)
+
+
+def describe(r: dict) -> str:
+    """The residuals of :func:`verified` in words."""
+    names = {"primal": "primal residual", "dual": "dual residual", "gap": "duality gap",
+             "certificate": "certificate residual", "margin": "certificate margin"}
+    parts = [f"{names[k]} {v:.1e}" for k, v in r.items() if k in names]
+    if "rejected" in r:
+        parts.append(f"answer rejected before: {r['rejected']}")
+    return ", ".join(parts) or "nothing to check"
+
+
+__all__ = ["CERT_MARGIN", "CONFIRM_SETTINGS", "FALLBACK", "LP_ONLY", "REFINE_SETTINGS",
+           "RELAX_SETTINGS", "TIGHT_SETTINGS", "VERIFY_TOL", "Runner", "check_solver",
+           "describe", "verified"]
