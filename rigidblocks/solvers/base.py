@@ -115,7 +115,8 @@ def residuals(problem: ConicProblem, res: SolverResult) -> dict:
 
     Optimal: ``primal`` (equality rows |A z - b| and cone breach of b - A z, over
     max(1, |b|, |A| |z|)), ``dual`` (|P z + c + A'y| and cone breach of y, over
-    max(1, |c|, |P z|, |A|' |y|): the sizes of the terms that cancel) and ``gap`` (|primal - dual objective| over max(1, |objective|)).
+    max(1, |c|, |P z|, |A|' |y|): the sizes of the terms that cancel) and ``gap``
+    (|primal - dual objective| over max(1, |objective|)).
     Infeasible with a certificate y: ``certificate`` (|A'y| and the cone breach of y,
     over |y| |A|) and ``margin`` (-b'y over |y| max(1, |b|), > 0 for a certificate).
     Empty when the back end returned nothing to check.

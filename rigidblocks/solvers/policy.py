@@ -99,9 +99,13 @@ class Runner:
     #: progress line reads it), or None
     progress: Any = None
 
+    #: check every answer (the setting ``verify``: False measures a back end alone)
+    verify: bool = True
+
     def __post_init__(self) -> None:
         self.solver = check_solver(self.solver)
         self.settings = dict(self.settings or {})
+        self.verify = bool(self.settings.pop("verify", self.verify))
 
     def loose_settings(self) -> list[str]:
         """User tolerance settings looser than the verdict threshold."""
@@ -129,7 +133,7 @@ class Runner:
         if self.progress is not None:
             self.progress.stage = f"{what} problem"
         res = self._run(problem, what, tight, self.solver, self.settings)
-        if not verify:
+        if not (verify and self.verify):
             return res
         res = verified(problem, res)
         if res.verified or (res.solver == FALLBACK and tight and not self.settings):
