@@ -54,11 +54,12 @@ Verdicts (status of a run, with a reason):
   k/2 and k as if they fell like 1/sqrt(k) (slower than a converging run does), and
   the drift g is turned into block velocities y = (A K A^T)^-1 A g. The run stops as
   inadmissible when the extrapolated limit exceeds half the violation and ``GAP`` x
-  tol, and y is a collapse mechanism: the loads do positive work on it beyond what the
-  links resist, and its joint deformations follow the associative flow rule to within
-  ``FLOW_TOL`` of the largest (Farkas' certificate, see :meth:`mechanism_of`). Both
-  tests together: a feasible run can pass through plateaus of the violation, but its
-  drift is then no mechanism.
+  tol, and y is a collapse mechanism checked as Farkas' certificate to a tolerance that
+  scales with the problem: the loads do net work on it beyond what the links resist,
+  well above round-off, and its breach of the associative flow rule is so small that
+  an admissible state would need forces ``CERT_FORCE`` times those of the iteration
+  (see :meth:`mechanism_of`). Both tests together: a feasible run can pass through
+  plateaus of the violation, but its drift is then no such mechanism.
 * ``undecided``: near f* (or lambda*) the gap between E and K shrinks to zero and the
   iteration needs of the order of 1/gap iterations to see it. A run that stalls with a
   violation below ``GAP`` x tol (less than 1% decrease between k/2 and k) is "stalled";
@@ -92,8 +93,13 @@ STALL = 0.99
 #: a stalled violation above GAP x tol is a gap between equilibrium and the joint laws
 GAP = 100.0
 SQRT2 = math.sqrt(2.0)
-#: relative breach of the flow rule accepted in a mechanism certifying inadmissibility
-FLOW_TOL = 0.02
+#: a mechanism certifies inadmissibility only if every admissible state would need forces
+#: above CERT_FORCE times the largest force of the iteration (see :meth:`mechanism_of`)
+CERT_FORCE = 1e6
+#: ... and if the net work of the loads on it exceeds this fraction of sum |y_i b_i|
+WORK_RTOL = 1e-6
+#: relative round-off of the joint deformations w = A^T y, added to the flow-rule breach
+ROUNDOFF = 1e-13
 #: step and dual residual below which an admissible iterate is the QP's state
 STATE_TOL = 1e-8
 #: last iteration at which the penalty may be rebalanced
@@ -227,33 +233,46 @@ class DistortionSolver:
         return x
 
     def mechanism_of(self, laws: _Laws, g: np.ndarray, b: np.ndarray,
-                     flow_tol: float = FLOW_TOL) -> tuple[float, float] | None:
-        """The virtual motion read off the iteration's drift, if it is a collapse mechanism.
+                     scale: float = 1.0) -> tuple[float, float] | None:
+        """The virtual motion read off the iteration's drift, if it certifies that no
+        admissible state exists (Farkas' lemma, the kinematic theorem), checked to a
+        tolerance that scales with the problem.
 
         When equilibrium E and the joint laws K do not meet, the multiplier increment
         g = x_hat - z (per iteration) tends to the C-shortest vector from K to E, and
-        C g = A^T y with block velocities y = (A K A^T)^-1 A g: a motion whose joint
-        deformations w = A^T y satisfy the associative flow rule (per point
-        w_N + f |w_T| <= 0: the joint opens by at least f times its slip; no slip where
-        f is infinite) and on which the loads do positive work beyond what the links can
-        resist, y'b - sigma_K(w) > 0, with sigma_K(w) = sum_k t_k (-w_N - f |w_T|)_k
-        + sum_j c_j |w_T|_j (tensile strength t, cohesion c). That is Farkas' certificate
-        (the kinematic theorem). Returned as (work, breach) when the work is positive and
-        the flow rule holds to ``flow_tol`` of the largest deformation, else None.
+        C g = A^T y with block velocities y = (A K A^T)^-1 A g. Their joint deformations
+        w = A^T y split per contact point into a part that follows the associative flow
+        rule (w_N + f |w_T| <= 0: the joint opens by at least f times its slip; no slip
+        where f is infinite) and a breach e (the excess w_N + f |w_T| > 0, and |w_T|
+        where f is infinite). For every state X in E, y'b = w'X; the part that follows
+        the flow rule does at most the dissipation D = sum_k t_k (-w_N - f |w_T|)_k +
+        sum_j c_j |w_T|_j on a state within the joint laws (tensile strength t, cohesion
+        c), and the breach at most ||e||_1 ||X||_inf. So an admissible state needs
+
+            ||X||_inf >= (y'b - D) / ||e||_1 = X_req.
+
+        The motion certifies inadmissibility when the net work y'b - D exceeds
+        ``WORK_RTOL`` of sum |y_i b_i| (well above its round-off) and X_req exceeds
+        ``CERT_FORCE`` x ``scale`` (``scale``: the largest force of the iteration's
+        states, at least the loads): no admissible state has forces within a million
+        times those of the problem. Returned as (net work, X_req / scale), else None.
         """
         if self.lu is None:
             return None
         y = self.lu.solve(self.As @ self.scatter(g))
         wv = self.gather(self.AsT @ y)
-        scale = float(np.abs(wv).max(initial=0.0))
-        if not scale > 0:
+        if not float(np.abs(wv).max(initial=0.0)) > 0:
             return None
         breach, resist = laws.flow(wv)
-        breach /= scale
+        # the round-off of w = A^T y on top of the breach
+        breach += ROUNDOFF * float(np.abs(wv).sum())
         work = float(y @ b) - resist
-        if work <= 0 or breach > flow_tol:
+        if not work > WORK_RTOL * float(np.abs(y * b).sum() + abs(resist)):
             return None
-        return work, breach
+        ratio = work / breach / max(scale, 1.0)
+        if ratio < CERT_FORCE:
+            return None
+        return work, ratio
 
     @staticmethod
     def _anderson(aa: dict[str, Any], z: np.ndarray, u: np.ndarray, zn: np.ndarray,
@@ -437,15 +456,18 @@ class DistortionSolver:
                 # the limit of the violation if it fell like 1/sqrt(k) (slower than the
                 # iteration does when the sets meet): a positive limit is a gap
                 limit = (SQRT2 * viol - half) / (SQRT2 - 1.0)
-                cert = (self.mechanism_of(laws, du, b)
+                scale = max(1.0, float(np.abs(v).max(initial=0.0)),
+                            float(np.abs(v0).max(initial=0.0)))
+                cert = (self.mechanism_of(laws, du, b, scale)
                         if viol > GAP * tol and limit > 0.5 * viol else None)
                 if cert is not None:
                     status = "inadmissible"
                     reason = (f"the violation tends to {limit:.3g} > 0 (reference-force "
                               f"units; {half:.3g} at iteration {k // 2}, {viol:.3g} at {k}) "
-                              f"and the loads do work {cert[0]:.3g} on a virtual motion "
-                              f"that follows the flow rule to {cert[1]:.2g} of its largest "
-                              "joint deformation: equilibrium and joint laws do not meet")
+                              f"and the loads do net work {cert[0]:.3g} on a virtual motion "
+                              "whose breach of the flow rule leaves no admissible state "
+                              f"with forces below {cert[1]:.2g} times those of the "
+                              "iteration: equilibrium and joint laws do not meet")
                 elif viol <= GAP * tol and viol > STALL * half:
                     status = "undecided"
                     reason = (f"stalled: the violation stays at {viol:.3g}, within {GAP:g} "
@@ -526,18 +548,28 @@ class _Laws:
         self.cw = cflex  # the C metric: weights C on the joint's (N1, N2, T)
 
     def flow(self, wv: np.ndarray) -> tuple[float, float]:
-        """(largest breach of the flow rule, resistance sigma_K(w)) of joint deformations
-        ``wv`` (per joint w_N1, w_N2, w_T) under the associative flow rule: per point
+        """(breach of the flow rule, resistance sigma_K(w)) of joint deformations ``wv``
+        (per joint w_N1, w_N2, w_T) under the associative flow rule: per point
         w_N + f |w_T| <= 0 (opening by at least f times the slip; no slip where f is
-        infinite), resisted by the tensile strengths and the cohesion."""
+        infinite), resisted by the tensile strengths and the cohesion. The breach is the
+        l1 norm of the part of w outside the rule's cone (the excess w_N + f |w_T| > 0,
+        and |w_T| where f is infinite), which bounds its work on a state by
+        breach x ||X||_inf."""
         fin = np.isfinite(self.f)
         aw = np.abs(wv[:, 2])
         s = wv[:, :2] + np.where(fin, self.f, 0.0)[:, None] * aw[:, None]
-        breach = max(float(np.maximum(s, 0.0).max(initial=0.0)),
-                     float(np.where(fin, 0.0, aw).max(initial=0.0)))
+        breach = float(np.maximum(s, 0.0).sum() + np.where(fin, 0.0, aw).sum())
         resist = float(np.sum(self.h[:, :2] * np.maximum(-s, 0.0))
                        + np.sum(np.where(fin, self.h[:, 2], 0.0) * aw))
         return breach, resist
+
+    def to_cone(self, wv: np.ndarray) -> np.ndarray:
+        """Joint deformations mapped into the flow rule's cone: the slip dropped where f
+        is infinite, the opening raised to f times the slip where it falls short."""
+        out = wv.copy()
+        out[:, 2] = np.where(self.fin, wv[:, 2], 0.0)
+        out[:, :2] = np.minimum(wv[:, :2], -(self.ff * np.abs(out[:, 2]))[:, None])
+        return out
 
     def rows(self, v: np.ndarray) -> np.ndarray:
         G = self.G
@@ -635,9 +667,18 @@ class _NonAssocLaws(_Laws):
         w = wv[k]
         aw = np.abs(w[:, 2])
         fin = self.fin[k]
-        breach = max(breach, float(np.maximum(w[:, :2], 0.0).max(initial=0.0)))
+        breach += float(np.maximum(w[:, :2], 0.0).sum())
         thr = np.maximum(self.ff[k] * self.nsum[k] + self.h[k, 2], 0.0)
         resist += float(np.sum(self.h[k, :2] * np.maximum(-w[:, :2], 0.0))
                         + np.sum(np.where(fin, thr * aw, 0.0)))
-        breach = max(breach, float(np.where(fin, 0.0, aw).max(initial=0.0)))
+        breach += float(np.where(fin, 0.0, aw).sum())
         return breach, resist
+
+    def to_cone(self, wv: np.ndarray) -> np.ndarray:
+        """The associative map on the unmarked joints; on the marked ones no closing and
+        no slip where f is infinite."""
+        out = super().to_cone(wv)
+        k = self.marked
+        out[k, 2] = np.where(self.fin[k], wv[k, 2], 0.0)
+        out[k, :2] = np.minimum(wv[k, :2], 0.0)
+        return out
