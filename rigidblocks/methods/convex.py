@@ -60,6 +60,12 @@ STATE_SLACK = 1e-9
 #: (relative to the lightest blocks' loads) is undecided: the forces span more orders
 #: than the solver's tolerance and double precision can resolve
 RESOLVE_LIMIT = 1e-5
+#: beginning of the reason of a verdict undecided for that reason
+FORCES_SPAN = "forces span"
+#: an admissible state at a limit whose forces exceed this many times the loads of the
+#: blocks they act on is noted: the limit is an ill-conditioned infimum (the forces grow
+#: without bound as the limit is approached), not a value with moderate forces
+FORCE_WARN = 1e4
 #: the note of a relaxation whose equilibrium equations have no solution
 NO_EQUILIBRIUM = ("the equilibrium equations have no solution with these joints (the "
                   "scene is a mechanism)")
@@ -187,7 +193,7 @@ class ConvexMethod(Method):
         before it is called undecided."""
         prob, jr = self._relaxation_problem(f, load_factor)
         rx = self._read(prob, jr, self._run(prob, "relaxation", tight=True), f)
-        if not rx.decided and not rx.unresolved.startswith("forces span"):
+        if not rx.decided and not rx.unresolved.startswith(FORCES_SPAN):
             again = self._read(prob, jr, self._run(prob, "relaxation", confirm=True), f)
             if again.decided or not rx.unresolved:
                 rx = again
@@ -212,7 +218,7 @@ class ConvexMethod(Method):
         tol = ADMISSIBLE_TOL * max(1.0, big)
         unresolved = ""
         if tol > RESOLVE_LIMIT:
-            unresolved = (f"forces span {big:.1e} times the loads of the lightest blocks "
+            unresolved = (f"{FORCES_SPAN} {big:.1e} times the loads of the lightest blocks "
                           f"they act on: their joint laws are resolved only to {tol:.1e} "
                           "of those loads (double precision and the solver's tolerance "
                           "cannot separate admissible from inadmissible there)")
@@ -246,7 +252,16 @@ class ConvexMethod(Method):
         return Verdict(UNDECIDED, self._violation_force(rx), (near_threshold(rx),), rx)
 
     def admissible(self, f: float, load_factor: float, for_state: bool = False) -> Verdict:
-        return self._verdict(self.relaxation(f, load_factor))
+        rx = self.relaxation(f, load_factor)
+        v = self._verdict(rx)
+        if v.status == ADMISSIBLE:
+            ratio = self.force_ratio(f, load_factor, rx)
+            if ratio > FORCE_WARN:
+                note = (f"admissible only with forces {ratio:.1e} times the loads of the "
+                        "blocks they act on: near a limit approached with ever larger "
+                        "forces (an infimum), an ill-conditioned verdict")
+                v = Verdict(v.status, v.violation, (*v.notes, note), v.data)
+        return v
 
     def breaches(self, f: float, verdict: Verdict) -> tuple[tuple[int, float], ...]:
         rx = verdict.data
@@ -327,6 +342,7 @@ class ConvexMethod(Method):
         probe_below_hi = True  # next time Newton lands on or past hi, probe just below hi
         forced: float | None = None  # the next trial, after a relaxation the solver missed
         undecided = ""  # the solver's status where it could not decide near f*
+        unresolved_below: float | None = None  # a trial whose forces are beyond resolution
         for _ in range(100):
             if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
                 break
@@ -360,6 +376,11 @@ class ConvexMethod(Method):
                     break
                 continue
             if not rx.decided:
+                if rx.unresolved.startswith(FORCES_SPAN) and math.isfinite(hi):
+                    # below the certified upper end the states need forces beyond what
+                    # can be resolved: f* is an infimum approached by unbounded forces
+                    unresolved_below = trial
+                    break
                 # a verdict near the threshold that a tighter solve did not settle: as
                 # for a failed solve, probe further below the certified upper end
                 why = rx.unresolved or near_threshold(rx)
@@ -387,6 +408,7 @@ class ConvexMethod(Method):
             self.notes.append(f"near f* some relaxations ended with status {undecided}; f* "
                               f"is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
                               f"{(hi - lo) / hi:.1e})")
+        self._infimum_note(hi, lf, at_hi, lo, unresolved_below)
         governing: tuple[int, ...] = ()
         if last is not None:
             res, jr, prob = last.res, last.jr, last.prob
@@ -399,6 +421,48 @@ class ConvexMethod(Method):
                 strong = w > 1e-3 * w.max()
                 governing = tuple(sorted({int(j) for j in jr.fric_joint[strong]}))
         return Limit("stable", hi, lo, hi, governing=governing, at=self._verdict(at_hi))
+
+    def force_ratio(self, f: float, load_factor: float, rx: Relaxation) -> float:
+        """How many times the loads of the blocks they act on the forces of an admissible
+        state at (f, lambda) must be: the relaxation's state gives an upper bound, and
+        where that exceeds FORCE_WARN the least-energy state (forces no larger than
+        needed) decides."""
+        if rx.res.z is None:
+            return 0.0
+        big = float(np.abs(rx.res.z[rx.prob.cols["x"]]).max(initial=0.0))
+        if big <= FORCE_WARN:
+            return big
+        with self.timings.stage("build"):
+            prob = build_energy_qp(self.system, self.scaling, self.f_joint(f), load_factor,
+                                   rx.R + STATE_SLACK, self.pyramid)
+        try:
+            res = self._run(prob, "force-state")
+        except SolverFailure:
+            return big
+        if res.status != OPTIMAL or res.verified is False:
+            return big
+        return min(big, float(np.abs(res.z[prob.cols["x"]]).max(initial=0.0)))
+
+    def _infimum_note(self, hi: float, load_factor: float, at_hi: Relaxation, lo: float,
+                      unresolved_below: float | None) -> None:
+        """Say so when f* is an ill-conditioned infimum (module docstring of
+        :data:`FORCE_WARN`)."""
+        if not math.isfinite(hi) or not at_hi.zero:
+            return
+        ratio = self.force_ratio(hi, load_factor, at_hi)
+        if unresolved_below is not None:
+            self.notes.append(
+                f"f* is an infimum approached with ever larger forces: at f = "
+                f"{unresolved_below:.10g} an admissible state would need forces beyond "
+                f"what the solver can resolve, at f = {hi:.10g} (reported) forces "
+                f"{ratio:.1e} times the loads of the blocks they act on; the infimum lies "
+                f"in [{lo:.10g}, {hi:.10g}]")
+        elif ratio > FORCE_WARN:
+            self.notes.append(
+                f"the state at f* needs forces {ratio:.1e} times the loads of the blocks "
+                "they act on: f* is an infimum approached with ever larger forces (the "
+                "value is ill-conditioned; below it no state is admissible, near it only "
+                "states with forces growing without bound)")
 
     # -- lambda*: one LP ---------------------------------------------------------------
     def load_limit(self, f: float, rtol: float, mechanism_kind: str = "vertex") -> Limit:
