@@ -58,8 +58,11 @@ FRICTION_ATOL = 1e-9
 STATE_SLACK = 1e-9
 #: a verdict whose threshold ADMISSIBLE_TOL x (largest scaled force) exceeds this
 #: (relative to the lightest blocks' loads) is undecided: the forces span more orders
-#: than the solver's tolerance and double precision can resolve
-RESOLVE_LIMIT = 1e-5
+#: than the solver's tolerance and double precision can resolve (a joint carrying a
+#: million times the load of the lighter block it touches); above RESOLVE_NOTE the
+#: verdict says how coarsely it resolves the lightest blocks
+RESOLVE_LIMIT = 1e-3
+RESOLVE_NOTE = 1e-6
 #: beginning of the reason of a verdict undecided for that reason
 FORCES_SPAN = "forces span"
 #: an admissible state at a limit whose forces exceed this many times the loads of the
@@ -122,6 +125,8 @@ class ConvexMethod(Method):
         self.runner = Runner(solver, settings or {}, scene.source or "",
                              progress=self.progress)
         self.solver = self.runner.solver
+        self._rejected_noted = False
+        self._coarse_noted = False
         with timings.stage("build"):
             self.scaling = Scaling.per_block(system)
         self.pyramid = pyramid
@@ -158,9 +163,15 @@ class ConvexMethod(Method):
              confirm: bool = False) -> SolverResult:
         w0, c0 = self.runner.wall_time, time.process_time()
         try:
-            if confirm:
-                return self.runner.confirm(problem, what)
-            return self.runner.run(problem, what, tight)
+            n = len(self.runner.rejected)
+            res = (self.runner.confirm(problem, what) if confirm
+                   else self.runner.run(problem, what, tight))
+            if len(self.runner.rejected) > n and not self._rejected_noted:
+                self._rejected_noted = True
+                self.notes.append(f"answers of {self.solver} that failed their check against "
+                                  f"the problem were solved again by clarabel (first: "
+                                  f"{self.runner.rejected[n]})")
+            return res
         finally:
             self.timings.add("solve", self.runner.wall_time - w0, time.process_time() - c0)
 
@@ -217,6 +228,11 @@ class ConvexMethod(Method):
         big = float(np.max(np.abs(x), initial=0.0))
         tol = ADMISSIBLE_TOL * max(1.0, big)
         unresolved = ""
+        if tol > RESOLVE_NOTE and not self._coarse_noted:
+            self._coarse_noted = True
+            self.notes.append(f"forces reach {big:.1e} times the loads of the lightest "
+                              "blocks they act on: the joint laws of those blocks are "
+                              f"resolved to {tol:.1e} of their loads")
         if tol > RESOLVE_LIMIT:
             unresolved = (f"{FORCES_SPAN} {big:.1e} times the loads of the lightest blocks "
                           f"they act on: their joint laws are resolved only to {tol:.1e} "

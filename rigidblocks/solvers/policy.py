@@ -101,6 +101,8 @@ class Runner:
 
     #: check every answer (the setting ``verify``: False measures a back end alone)
     verify: bool = True
+    #: answers of the back end that were rejected and solved again by FALLBACK
+    rejected: list = field(default_factory=list)
 
     def __post_init__(self) -> None:
         self.solver = check_solver(self.solver)
@@ -132,20 +134,30 @@ class Runner:
         again by :data:`FALLBACK`, and what still fails comes back ``verified=False``."""
         if self.progress is not None:
             self.progress.stage = f"{what} problem"
-        res = self._run(problem, what, tight, self.solver, self.settings)
-        if not (verify and self.verify):
-            return res
-        res = verified(problem, res)
-        if res.verified or (res.solver == FALLBACK and tight and not self.settings):
-            return res
+        check = verify and self.verify
+        res = None
+        try:
+            res = self._run(problem, what, tight, self.solver, self.settings)
+        except SolverFailure as exc:
+            if not check or self.solver == FALLBACK:
+                raise
+            # another back end that fails: the default one answers, and it is noted
+            rejected = f"{exc.solver} ended with status {exc.status}"
+        else:
+            if not check:
+                return res
+            res = verified(problem, res)
+            if res.verified or (res.solver == FALLBACK and tight and not self.settings):
+                return res
+            rejected = f"{res.solver} {res.status}: {describe(res.residuals)}"
         try:
             again = verified(problem, self._run(problem, what, True, FALLBACK, {}))
         except SolverFailure:
+            if res is None:
+                raise
             return res
-        again = replace(again, residuals={**again.residuals,
-                                          "rejected": f"{res.solver} {res.status}: "
-                                                      f"{describe(res.residuals)}"})
-        return again
+        self.rejected.append(f"the {what} problem ({rejected})")
+        return replace(again, residuals={**again.residuals, "rejected": rejected})
 
     def confirm(self, problem: ConicProblem, what: str) -> SolverResult:
         """A tighter, checked solve of a problem whose answer left a verdict near its

@@ -1,0 +1,350 @@
+"""Right or honestly undecided at the extremes: blocks of very different sizes (per-block
+scaling), every back end's answer checked, infima reached only with unbounded forces,
+the distortion method's inadmissibility certificate, and monotone verdicts on walls.
+
+Every case is worked out by hand in its docstring.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from conftest import EXAMPLES, make_scene, rect
+
+from rigidblocks import check, max_load_multiplier, min_friction
+from rigidblocks.examples.solids import box, solid
+from rigidblocks.examples.walls import running_bond_wall
+from rigidblocks.io import read_scene, scene_from_dict
+from rigidblocks.methods import open_method
+from rigidblocks.solvers import policy
+from rigidblocks.solvers.base import SolverResult
+
+
+def small_on_big(w: float, h: float, x0: float = 0.0, live: bool = True):
+    """A w x h block on top of a 1000 x 1000 block, on a support, infinite friction."""
+    top = {"live_body_force": [1, 0]} if live else {}
+    return make_scene([
+        {"id": "base", "vertices": rect(-600, -100, 1200, 100), "support": True},
+        {"id": "big", "vertices": rect(-500, 0, 1000, 1000)},
+        {"id": "small", "vertices": rect(x0, 1000, w, h)},
+    ], unit_weight=20.0, friction="infinite", **top)
+
+
+# -- 1. a small block on a huge one -------------------------------------------------------
+
+@pytest.mark.parametrize("w", [0.1, 0.01, 1e-3])
+def test_small_block_on_huge_one_tips_at_its_own_b_over_h(w):
+    """A w x 3w block on a 1000 x 1000 block, infinite friction, horizontal body force
+    lambda x weight on both. The small block tips about its downstream toe when the
+    moment of lambda W at its centroid (arm 3w/2) exceeds that of W (arm w/2):
+    lambda = w / 3w = 1/3. The big block (with the small one on it) tips at about
+    b/h = 1, later. So lambda* = 1/3: at 0.3 admissible, at 0.5 not. With one reference
+    force for the whole scene the small block's equilibrium (weight 2e-7 of the big
+    one's at w = 1e-3) drowned in the big block's round-off and lambda* was 1."""
+    s = small_on_big(w, 3 * w)
+    r = max_load_multiplier(s, state=False)
+    assert r.status == "collapse"
+    assert r.load_multiplier == pytest.approx(1 / 3, rel=1e-6)
+    assert check(s, load_factor=0.3, state=False).status == "admissible"
+    c = check(s, load_factor=0.5, state=False)
+    assert c.status == "inadmissible" and c.violation > 0
+    hi = max_load_multiplier(s, solver="highs", state=False)
+    assert hi.load_multiplier == pytest.approx(1 / 3, rel=1e-6)
+
+
+@pytest.mark.parametrize("w", [0.1, 1e-3])
+def test_tiny_block_overhanging_the_edge_is_not_admissible(w):
+    """A w x 3w block whose centroid lies 0.1 w beyond the big block's right edge
+    (x = 500), under its own weight: the contact segment is [500 - 0.4 w, 500], and a
+    compression-only resultant within it cannot pass through the centroid's vertical at
+    500 + 0.1 w: inadmissible. Moved 0.2 w back (centroid 0.1 w inside the edge) it
+    stands."""
+    out = small_on_big(w, 3 * w, x0=500 - 0.4 * w, live=False)
+    assert check(out, load_factor=0.0, state=False).status == "inadmissible"
+    inside = small_on_big(w, 3 * w, x0=500 - 0.6 * w, live=False)
+    assert check(inside, load_factor=0.0, state=False).status == "admissible"
+
+
+def test_small_box_on_huge_cube_3d():
+    """3D: a 1 x 1 x 2 box on a 1000 m cube on a support, horizontal body force along
+    x, infinite friction: the box tips about its downstream bottom edge at
+    lambda = b/h = 1/2 (the cube, b/h = 1, later): lambda* = 0.5."""
+    doc = {"format": "rigidblocks-scene", "version": 1, "dimension": 3,
+           "unit_weight": 20.0, "friction": "infinite", "live_body_force": [1, 0, 0],
+           "blocks": [solid("base", box(-600, -600, -100, 1200, 1200, 100), support=True),
+                      solid("cube", box(-500, -500, 0, 1000, 1000, 1000)),
+                      solid("box", box(0, 0, 1000, 1, 1, 2))]}
+    r = max_load_multiplier(scene_from_dict(doc), state=False)
+    assert r.status == "collapse"
+    assert r.load_multiplier == pytest.approx(0.5, rel=1e-6)
+
+
+def test_forces_beyond_resolution_are_undecided():
+    """A 1000 x 1000 block (weight 2e7) balanced on a 1e-2 x 1e-2 shim (weight 2e-3)
+    centred under it: the shim's joints carry 1e10 times its own load, so its joint laws
+    could be judged only to 1e-9 x 1e10 of that load. The verdict is undecided, with the
+    reason, rather than a verdict the arithmetic cannot support."""
+    s = make_scene([
+        {"id": "base", "vertices": rect(-600, -100, 1200, 100), "support": True},
+        {"id": "shim", "vertices": rect(-0.005, 0, 0.01, 0.01)},
+        {"id": "big", "vertices": [[-500, 0.01], [500, 0.01], [500, 1000.01],
+                                   [-500, 1000.01]]},
+    ], unit_weight=20.0, friction="infinite")
+    c = check(s, load_factor=0.0, state=False)
+    assert c.status == "undecided"
+    assert any("forces span" in n for n in c.notes)
+
+
+# -- 5. every back end's answer checked ---------------------------------------------------
+
+def _sloppy(solve):
+    """A back end wrapper that spoils every optimal answer of "osqp" (the state scaled by
+    1 + 1e-3, so that equilibrium fails by 1e-3 of the loads) and of every back end when
+    ``everyone`` is set."""
+    state = {"everyone": False}
+
+    def spoilt(problem, solver="clarabel", **settings):
+        res = solve(problem, solver, **settings)
+        if res.z is not None and (solver == "osqp" or state["everyone"]):
+            return SolverResult(res.status, res.z * (1 + 1e-3), res.y, res.objective,
+                                res.solver, res.raw_status)
+        return res
+
+    return spoilt, state
+
+
+def test_an_answer_failing_its_check_is_solved_again(monkeypatch, block_on_base):
+    """A b = 1, h = 2 block with f = 0.4 slides at lambda* = f = 0.4 (it tips at
+    b/h = 0.5). A back end whose states miss equilibrium by 1e-3 of the loads is caught
+    by the residual check, the problem is solved again by Clarabel, and the result says
+    so; when every answer is spoilt the verdict is undecided with the residuals."""
+    spoilt, state = _sloppy(policy.solve)
+    monkeypatch.setattr(policy, "solve", spoilt)
+    s = block_on_base(1.0, 2.0, 0.4)
+    r = max_load_multiplier(s, solver="osqp", state=False)
+    assert r.load_multiplier == pytest.approx(0.4, rel=1e-6)
+    assert any("solved again by clarabel" in n for n in r.notes)
+    fr = min_friction(s, load_factor=0.3, solver="osqp", state=False)
+    assert fr.friction_factor == pytest.approx(0.3, rel=1e-6)
+    state["everyone"] = True
+    c = check(s, load_factor=0.2, state=False)
+    assert c.status == "undecided"
+    assert any("primal residual" in n for n in c.notes)
+    r = max_load_multiplier(s, state=False)
+    assert r.status == "undecided" and r.load_multiplier is None
+
+
+def test_osqp_at_its_defaults_is_checked():
+    """The flat arch with vertical joints needs f* = 0.4714045 under its own weight
+    (Clarabel, HiGHS). OSQP at its defaults answered relaxations loosely enough to
+    report 0.851; checked and re-solved, its answer is Clarabel's."""
+    s = read_scene(EXAMPLES / "flat_arch_vertical.json")
+    ref = min_friction(s, load_factor=0.0, state=False).friction_factor
+    r = min_friction(s, load_factor=0.0, solver="osqp", state=False)
+    assert r.friction_factor == pytest.approx(ref, rel=1e-6)
+
+
+# -- 6. an infimum reached only with unbounded forces -------------------------------------
+
+def pinched(t: float = 0.5, h: float = 1.0, a: float = 0.5):
+    """A trapezoid block hanging between two supports whose faces overhang it: its sides
+    lean inwards by d = t h over its height h, it has nothing below it."""
+    d = t * h
+    return make_scene([
+        {"id": "L", "vertices": [[-a - d - 1, 0], [-a - d, 0], [-a, h], [-a - d - 1, h]],
+         "support": True},
+        {"id": "R", "vertices": [[a + d, 0], [a + d + 1, 0], [a + d + 1, h], [a, h]],
+         "support": True},
+        {"id": "B", "vertices": [[-a - d, 0], [a + d, 0], [a, h], [-a, h]]},
+    ], unit_weight=1.0, friction=1.0)
+
+
+def test_friction_infimum_with_unbounded_forces_is_said_to_be_one():
+    """Each overhanging face (length L = sqrt(h^2 + d^2)) pushes the block with N,
+    inwards and downwards (vertical part N d / L), and holds it with friction T <= f N
+    along the face (vertical part T h / L). Vertical equilibrium of the weight W:
+    2 (T h - N d) / L = W, so N >= W L / (2 (f h - d)): admissible for every
+    f > d / h = 0.5, with forces growing like 1 / (f - 0.5), and never at f = 0.5. f* =
+    0.5 is an infimum that is not attained; the answer says so, and a check at
+    f = 0.5 (1 + 1e-5), with N = 1.1e5 W, says how large the forces are."""
+    s = pinched()
+    r = min_friction(s, state=False)
+    assert r.status == "stable"
+    assert 0.5 <= r.friction_factor <= 0.5 * (1 + 1e-3)
+    assert any("infimum" in n for n in r.notes)
+    assert check(s, friction=0.5, state=False).status == "inadmissible"
+    c = check(s, friction=0.5 * (1 + 1e-5), state=False)
+    assert c.status == "admissible"
+    assert any("times the loads" in n for n in c.notes)
+
+
+# -- 4. the distortion method's certificate -----------------------------------------------
+
+def pushed_block(H: float):
+    """A 1 x 1 block (weight W = 1) on a base, pushed by a live horizontal force H at
+    its centroid height."""
+    return make_scene([
+        {"id": "base", "vertices": rect(-2, -1, 5, 1), "support": True},
+        {"id": "B", "vertices": rect(0, 0, 1, 1)},
+    ], unit_weight=1.0, friction=0.3,
+        loads=[{"block": "B", "force": [H, 0], "point": [0.5, 0.5], "live": True}])
+
+
+@pytest.mark.parametrize("k", [1.001, 1.01])
+def test_distortion_never_calls_inadmissible_just_above_f_star(k):
+    """Sliding on the bed joint needs f >= H / W; tipping about the toe needs
+    H (1/2) <= W (1/2), H <= W: with H = 0.3 W, f* = 0.3 (a slab that does not tip).
+    Just above f* (0.1 % and 1 %) an admissible state exists; the distortion method may
+    find it or stay undecided, but never certifies that none exists. Below f*, at 0.9
+    f*, its certificate holds."""
+    s = pushed_block(0.3)
+    c = check(s, friction=0.3 * k, method="distortion", state=False)
+    assert c.status in ("admissible", "undecided")
+    assert check(s, friction=0.27, method="distortion", state=False).status == \
+        "inadmissible"
+
+
+def test_mechanism_certificate_rejects_a_motion_that_breaches_the_flow_rule():
+    """The block of the previous test at f = 0.2 (< f* = 0.3) under H = 0.3 W: sliding
+    to the right while lifting by f times the slip (velocity (1, 0.2), no rotation)
+    follows the associative flow rule exactly, and the loads do work H - 0.2 W = 0.1 W
+    > 0 on it: no admissible state exists (Farkas' lemma). The same motion without the
+    lift slides without opening: it breaches the flow rule at both contact points by
+    f x slip = 0.2, so an admissible state would only need forces of the order of
+    0.1 / 0.4 of the loads, and it certifies nothing."""
+    m = open_method(pushed_block(0.3), "distortion")
+    ds = m.solver_
+    laws = ds.laws(m.f_joint(0.2))
+    b = ds.rhs(1.0)
+    for vel, certifies in (((1.0, 0.2, 0.0), True), ((1.0, 0.0, 0.0), False)):
+        # duals y = -v (scaled rows), and the drift g with C g = A^T y
+        y = -np.array(vel) / ds.scaling.row
+        g = ds.gather(ds.K * (ds.AsT @ y))
+        cert = ds.mechanism_of(laws, g, b, 1.0)
+        assert (cert is not None) is certifies
+        if certifies:
+            assert cert[0] == pytest.approx(0.1 / ds.scaling.force, rel=1e-9)
+
+
+# -- 8. monotone verdicts on walls of growing size ----------------------------------------
+
+WALLS = [(1, 2), (3, 4), (8, 12), (20, 25)]
+
+
+@pytest.mark.parametrize("courses,per_course", WALLS)
+def test_wall_verdicts_are_monotone(courses, per_course):
+    """Admissibility is monotone in f (a state admissible at f is admissible at any
+    larger f) and in the load factor below lambda* (the admissible multipliers form an
+    interval containing 0 when the dead load stands). On running-bond walls of growing
+    size: with lambda* at f = 0.6 from the LP, lambda* (1 - 1e-4) is admissible at f =
+    0.6, 1 and infinite; lambda* (1 + 1e-4) is not at f = 0.6; f* at lambda* (1 - 1e-4)
+    is at most 0.6."""
+    s = running_bond_wall(courses=courses, blocks_per_course=per_course, friction=0.6)
+    lam = max_load_multiplier(s, state=False).load_multiplier
+    below, above = lam * (1 - 1e-4), lam * (1 + 1e-4)
+    for f in (0.6, 1.0, "infinite"):
+        assert check(s, friction=f, load_factor=below, state=False).status == "admissible"
+    assert check(s, friction=0.6, load_factor=above, state=False).status == "inadmissible"
+    fr = min_friction(s, load_factor=below, state=False)
+    assert fr.status == "stable" and fr.friction_factor <= 0.6 * (1 + 1e-7)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("courses,per_course", [(50, 100), (100, 200)])
+def test_big_wall_verdicts_are_monotone(courses, per_course):
+    """The 5,000- and 20,000-block running-bond walls (0.4 x 0.2 m blocks, f = 0.6,
+    horizontal live body force): lambda* at f = 0.6 is 0.385 (20,000 blocks), so at load
+    factor 0.2 the wall stands at f = 0.6 and, a fortiori, with infinite friction; the
+    friction it needs there is at most 0.6."""
+    s = running_bond_wall(courses=courses, blocks_per_course=per_course, friction=0.6)
+    assert check(s, friction="infinite", load_factor=0.2, state=False).status == "admissible"
+    assert check(s, friction=0.6, load_factor=0.2, state=False).status == "admissible"
+    fr = min_friction(s, load_factor=0.2, state=False)
+    assert fr.status == "stable" and fr.friction_factor <= 0.6
+
+
+# -- property: hand limits of free-standing top blocks bound lambda* ----------------------
+
+def top_block_bound(scene, f: float) -> float:
+    """The smallest of min(f, b/h) over the free-standing top blocks of a scene of
+    rectangles under a horizontal body force (+x): a block that touches nothing but the
+    blocks it rests on, over its whole width (horizontal bed joints), slides at
+    lambda = f and tips about its right toe at lambda = (b/2) / (h/2) = b/h with
+    everything else held still. Each is a mechanism (a neighbour at its side would
+    resist the slip of the tipping block on their head joint, and is excluded), so
+    lambda* <= min(f, b/h)."""
+    boxes = {}
+    for blk in scene.blocks:
+        p = np.asarray(blk.points)
+        boxes[blk.id] = (p[:, 0].min(), p[:, 1].min(), p[:, 0].max(), p[:, 1].max(),
+                         blk.support)
+    bound = math.inf
+    for bid, (x0, y0, x1, y1, sup) in boxes.items():
+        if sup:
+            continue
+        eps = 1e-9 * max(x1 - x0, y1 - y0)
+        covered = side = False
+        rests = 0.0
+        for oid, (a0, b0, a1, b1, _) in boxes.items():
+            if oid == bid:
+                continue
+            if abs(b0 - y1) <= eps and a1 > x0 + eps and a0 < x1 - eps:
+                covered = True
+            if (abs(a0 - x1) <= eps or abs(a1 - x0) <= eps) and b1 > y0 + eps and \
+                    b0 < y1 - eps:
+                side = True
+            if abs(b1 - y0) <= eps:
+                rests += max(0.0, min(x1, a1) - max(x0, a0))
+        if covered or side or rests < (x1 - x0) * (1 - 1e-9):
+            continue
+        bound = min(bound, f, (x1 - x0) / (y1 - y0))
+    return bound
+
+
+def random_stack(rng, n: int, f: float):
+    """n rectangles stacked on a support, sizes log-uniform over four orders of
+    magnitude, each wholly on the one below (offset at random within it)."""
+    blocks = [{"id": "base", "vertices": rect(-1e3, -10, 2e3, 10), "support": True}]
+    x, y, w_below = -50.0, 0.0, 100.0
+    for i in range(n):
+        w = min(w_below, 10 ** rng.uniform(-1.5, 2.0))
+        h = 10 ** rng.uniform(-1.5, 2.0)
+        x = x + rng.uniform(0, w_below - w)
+        blocks.append({"id": f"s{i}", "vertices": rect(x, y, w, h)})
+        y, w_below = y + h, w
+    return make_scene(blocks, unit_weight=20.0, friction=f, live_body_force=[1, 0])
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_top_block_limits_bound_lambda_star_on_random_stacks(seed):
+    """Property (see :func:`top_block_bound`): lambda* <= min(f, b/h) of the top block
+    of a random stack, whatever the spread of the block sizes below it."""
+    rng = np.random.default_rng(seed)
+    f = float(rng.uniform(0.2, 1.5))
+    s = random_stack(rng, int(rng.integers(1, 7)), f)
+    bound = top_block_bound(s, f)
+    assert math.isfinite(bound)
+    r = max_load_multiplier(s, state=False)
+    if r.status == "collapse":
+        assert r.load_multiplier <= bound * (1 + 1e-7)
+    else:
+        assert r.status in ("unstable", "undecided")
+
+
+@pytest.mark.parametrize("courses,per_course", [(1, 1), (2, 3), (4, 10), (12, 30), (25, 40)])
+def test_top_block_limits_bound_lambda_star_on_walls(courses, per_course):
+    """Property (see :func:`top_block_bound`) on running-bond walls of many sizes and
+    block proportions, with every other block of the top course left out so that the
+    others stand free: each slides at f and tips at b/h (a half block at b/h / 2)."""
+    top = courses - 1
+    gaps = [(top, 1, i, 1) for i in range(1, per_course, 2)]
+    for f, (bl, bh) in ((0.6, (0.4, 0.2)), (0.9, (0.2, 0.5))):
+        s = running_bond_wall(courses=courses, blocks_per_course=per_course, friction=f,
+                              block_length=bl, block_height=bh, openings=gaps)
+        bound = top_block_bound(s, f)
+        assert math.isfinite(bound)
+        r = max_load_multiplier(s, state=False)
+        assert r.status == "collapse"
+        assert r.load_multiplier <= bound * (1 + 1e-7)
