@@ -1,10 +1,16 @@
 """The convex path: verdicts from the relaxation R(f, lambda), f* by Newton steps on R,
 lambda* from one LP (SOCP in 3D), the force state from the least-energy QP.
 
-Admissible iff R <= 1e-9 of the largest force of the relaxation's own state (the
-interior-point solver's accuracy is relative to the size of its solution). The
-relaxation is always feasible when the equilibrium equations can be met, so it avoids
-the degenerate feasibility problems at the limit. The problems come from
+The problems are scaled block by block (:meth:`Scaling.per_block`): each block's rows
+by its own load, each joint's forces and law rows by its lighter block's load.
+Admissible iff the relaxation's own state breaches the joint laws and equilibrium by at
+most 1e-9 of its largest scaled force (the interior-point solver's accuracy is relative
+to the size of its solution); inadmissible iff the duals bound R above that; between the
+two a tighter solve decides, or the verdict is undecided, as it is where the forces span
+more orders than the solver can resolve (:data:`RESOLVE_LIMIT`). Every back end's answer
+is checked by the solver policy. The relaxation is always feasible when the equilibrium
+equations can be met, so it avoids the degenerate feasibility problems at the limit.
+The problems come from
 :mod:`rigidblocks.problems.formulation`; the back ends and their policy from
 :mod:`rigidblocks.solvers`.
 """
