@@ -206,26 +206,37 @@ def test_distortion_never_calls_inadmissible_just_above_f_star(k):
         "inadmissible"
 
 
-def test_mechanism_certificate_rejects_a_motion_that_breaches_the_flow_rule():
-    """The block of the previous test at f = 0.2 (< f* = 0.3) under H = 0.3 W: sliding
+def test_mechanism_certificate_rejects_a_motion_that_breaches_the_flow_rule(monkeypatch):
+    """The block of the previous test under H = 0.3 W. At f = 0.2 (< f* = 0.3), sliding
     to the right while lifting by f times the slip (velocity (1, 0.2), no rotation)
     follows the associative flow rule exactly, and the loads do work H - 0.2 W = 0.1 W
     > 0 on it: no admissible state exists (Farkas' lemma). The same motion without the
     lift slides without opening: it breaches the flow rule at both contact points by
     f x slip = 0.2, so an admissible state would only need forces of the order of
-    0.1 / 0.4 of the loads, and it certifies nothing."""
+    0.1 / 0.4 of the loads: unpolished it certifies nothing, polished (the lift added)
+    it is the mechanism above. At f = 0.4 (> f*) every motion that follows the flow
+    rule takes work: H - 0.4 W < 0 for the sliding one, and nothing certifies."""
+    from rigidblocks.solvers import distortion
+
     m = open_method(pushed_block(0.3), "distortion")
     ds = m.solver_
-    laws = ds.laws(m.f_joint(0.2))
     b = ds.rhs(1.0)
-    for vel, certifies in (((1.0, 0.2, 0.0), True), ((1.0, 0.0, 0.0), False)):
+
+    def cert(f, vel):
         # duals y = -v (scaled rows), and the drift g with C g = A^T y
         y = -np.array(vel) / ds.scaling.row
-        g = ds.gather(ds.K * (ds.AsT @ y))
-        cert = ds.mechanism_of(laws, g, b, 1.0)
-        assert (cert is not None) is certifies
-        if certifies:
-            assert cert[0] == pytest.approx(0.1 / ds.scaling.force, rel=1e-9)
+        return ds.mechanism_of(ds.laws(m.f_joint(f)), ds.gather(ds.K * (ds.AsT @ y)), b,
+                               1.0)
+
+    exact = cert(0.2, (1.0, 0.2, 0.0))
+    assert exact is not None
+    assert exact[0] == pytest.approx(0.1 / ds.scaling.force, rel=1e-9)
+    assert cert(0.2, (1.0, 0.0, 0.0)) is not None  # polished into the exact one
+    assert cert(0.4, (1.0, 0.4, 0.0)) is None
+    assert cert(0.4, (1.0, 0.0, 0.0)) is None
+    monkeypatch.setattr(distortion, "POLISH", 0)
+    assert cert(0.2, (1.0, 0.0, 0.0)) is None
+    assert cert(0.2, (1.0, 0.2, 0.0)) is not None
 
 
 # -- 8. monotone verdicts on walls of growing size ----------------------------------------
