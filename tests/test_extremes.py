@@ -14,8 +14,8 @@ import pytest
 from conftest import EXAMPLES, make_scene, rect
 
 from rigidblocks import check, max_load_multiplier, min_friction
-from rigidblocks.examples.solids import box, solid
-from rigidblocks.examples.walls import running_bond_wall
+from rigidblocks.generators.solids import box, solid
+from rigidblocks.generators.walls import running_bond_wall
 from rigidblocks.io import read_scene, scene_from_dict
 from rigidblocks.methods import open_method
 from rigidblocks.solvers import policy
