@@ -365,9 +365,12 @@ class ConvexMethod(Method):
         forced: float | None = None  # the next trial, after a relaxation the solver missed
         undecided = ""  # the solver's status where it could not decide near f*
         unresolved_below: float | None = None  # a trial whose forces are beyond resolution
+        near: float | None = None  # the largest trial left near the threshold (undecided)
         for _ in range(100):
             if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
                 break
+            if near is not None and math.isfinite(hi) and hi - near <= rtol * hi:
+                break  # certified just above a trial at the threshold: f* is there
             newton = lo + _root_step(R_lo, s_lo, lo, prev) if s_lo > 0 else math.inf
             if forced is not None:
                 trial, forced = forced, None
@@ -403,16 +406,20 @@ class ConvexMethod(Method):
                     # can be resolved: f* is an infimum approached by unbounded forces
                     unresolved_below = trial
                     break
-                # a verdict near the threshold that a tighter solve did not settle: as
-                # for a failed solve, probe further below the certified upper end
-                why = rx.unresolved or near_threshold(rx)
-                if not math.isfinite(hi) or trial < hi * (1.0 - 1e3 * rtol):
-                    self.notes.append(f"at f = {trial:.10g}: {why}")
+                if rx.unresolved:  # no checked answer: nothing to go on
+                    self.notes.append(f"at f = {trial:.10g}: {rx.unresolved}")
                     return Limit("undecided", None, lo, hi if math.isfinite(hi) else None)
+                # a verdict near the threshold that a tighter solve did not settle: f* is
+                # about there; certify just above it, or (close below the certified upper
+                # end) probe further below, as for a failed solve
                 undecided = "undecided (near the threshold)"
-                forced = hi - 4.0 * (hi - trial)
-                if forced <= lo:
-                    break
+                near = trial if near is None else max(near, trial)
+                if math.isfinite(hi) and trial >= hi * (1.0 - 1e3 * rtol):
+                    forced = hi - 4.0 * (hi - trial)
+                    if forced <= lo:
+                        break
+                else:
+                    forced = trial * (1.0 + rtol)
                 continue
             if rx.R is None:
                 raise SolverFailure("relaxation problem lost its solution", self.solver,
@@ -427,8 +434,10 @@ class ConvexMethod(Method):
             raise SolverFailure("minimum friction did not converge in 100 solves",
                                 self.solver, "iteration limit")
         if undecided:
-            self.notes.append(f"near f* some relaxations ended with status {undecided}; f* "
-                              f"is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
+            at = (f" (the last at f = {near:.10g}, within {(hi - near) / hi:.1e} of the "
+                  "certified upper end, which is reported)" if near is not None else "")
+            self.notes.append(f"near f* some relaxations ended with status {undecided}{at}; "
+                              f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
                               f"{(hi - lo) / hi:.1e})")
         self._infimum_note(hi, lf, at_hi, lo, unresolved_below)
         governing: tuple[int, ...] = ()
