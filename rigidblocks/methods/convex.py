@@ -1,8 +1,9 @@
 """The convex path: verdicts from the relaxation R(f, lambda), f* by Newton steps on R,
 lambda* from one LP (SOCP in 3D), the force state from the least-energy QP.
 
-The problems are scaled block by block (:meth:`Scaling.per_block`): each block's rows
-by its own load, each joint's forces and law rows by its lighter block's load.
+Where the blocks' loads span more than two orders the problems are scaled block by
+block (:meth:`Scaling.per_block`): each block's rows by its own load, each joint's
+forces and law rows by its lighter block's load.
 Admissible iff the relaxation's own state breaches the joint laws and equilibrium by at
 most 1e-9 of its largest scaled force (the interior-point solver's accuracy is relative
 to the size of its solution); inadmissible iff the duals bound R above that; between the
@@ -134,7 +135,7 @@ class ConvexMethod(Method):
         self._rejected_noted = False
         self._coarse_noted = False
         with timings.stage("build"):
-            self.scaling = Scaling.per_block(system)
+            self.scaling = Scaling.for_system(system)
         self.pyramid = pyramid
         #: relaxation problems by load factor, with the uniform friction as parameter
         self._relax: dict[float, tuple[Any, Any]] = {}
