@@ -135,7 +135,11 @@ class ConvexMethod(Method):
         self._rejected_noted = False
         self._coarse_noted = False
         with timings.stage("build"):
-            self.scaling = Scaling.for_system(system)
+            #: the scaling of the verdicts, limits and states of this method
+            #: (:meth:`Scaling.for_system`); ``scaling``, the uniform one, is the scaling
+            #: of problems other modules build on this method's system
+            self.vscaling = Scaling.for_system(system)
+            self.scaling = Scaling.of(system)
         self.pyramid = pyramid
         #: relaxation problems by load factor, with the uniform friction as parameter
         self._relax: dict[float, tuple[Any, Any]] = {}
@@ -189,12 +193,12 @@ class ConvexMethod(Method):
         later values of f only set those entries."""
         if not math.isfinite(f):
             with self.timings.stage("build"):
-                return build_relaxation(self.system, self.scaling, self.f_joint(f),
+                return build_relaxation(self.system, self.vscaling, self.f_joint(f),
                                         load_factor, self.pyramid)
         cached = self._relax.get(load_factor)
         if cached is None:
             with self.timings.stage("build"):
-                cached = build_relaxation(self.system, self.scaling, self.f_joint(1.0),
+                cached = build_relaxation(self.system, self.vscaling, self.f_joint(1.0),
                                           load_factor, self.pyramid, uniform=self.uniform)
             self._relax[load_factor] = cached
         prob, jr = cached
@@ -259,9 +263,9 @@ class ConvexMethod(Method):
         lay = self.system.layout
         sj = np.ones(c.n_joints)
         if c.n_points:
-            sj[c.point_joint] = self.scaling.cols(lay.size)[lay.normal]
+            sj[c.point_joint] = self.vscaling.cols(lay.size)[lay.normal]
         top = float((viol * sj).max(initial=0.0))
-        return max(top, rx.R * float(sj.min(initial=1.0))) * self.scaling.force
+        return max(top, rx.R * float(sj.min(initial=1.0))) * self.vscaling.force
 
     def _verdict(self, rx: Relaxation) -> Verdict:
         if rx.unresolved:
@@ -290,7 +294,7 @@ class ConvexMethod(Method):
         rx = verdict.data
         if not isinstance(rx, Relaxation) or rx.R is None:
             return ()
-        x = self.scaling.forces(rx.res.z[rx.prob.cols["x"]])
+        x = self.vscaling.forces(rx.res.z[rx.prob.cols["x"]])
         return ranked_breaches(self.system, x, self.f_joint(f))
 
     # -- the force state ---------------------------------------------------------------
@@ -309,7 +313,7 @@ class ConvexMethod(Method):
             res, prob = data
             relax, limit, limit_x = STATE_SLACK, res, prob.cols["x"]
         with self.timings.stage("build"):
-            prob = build_energy_qp(self.system, self.scaling, self.f_joint(f), load_factor,
+            prob = build_energy_qp(self.system, self.vscaling, self.f_joint(f), load_factor,
                                    relax, self.pyramid)
         try:
             res = self._run(prob, "force-state")
@@ -320,11 +324,11 @@ class ConvexMethod(Method):
             status = exc.status
         with self.timings.stage("state"):
             if status is None:
-                return force_state(self.system, self.scaling.forces(res.z[prob.cols["x"]]),
+                return force_state(self.system, self.vscaling.forces(res.z[prob.cols["x"]]),
                                    "least complementary energy")
             self.notes.append(f"force state: the solution of the limit problem (the "
                               f"least-energy QP ended with status {status})")
-            return force_state(self.system, self.scaling.forces(limit.z[limit_x]),
+            return force_state(self.system, self.vscaling.forces(limit.z[limit_x]),
                                "solution of the limit problem")
 
     # -- f*: Newton steps on R(f) ------------------------------------------------------
@@ -465,7 +469,7 @@ class ConvexMethod(Method):
         if big <= FORCE_WARN:
             return big
         with self.timings.stage("build"):
-            prob = build_energy_qp(self.system, self.scaling, self.f_joint(f), load_factor,
+            prob = build_energy_qp(self.system, self.vscaling, self.f_joint(f), load_factor,
                                    rx.R + STATE_SLACK, self.pyramid)
         try:
             res = self._run(prob, "force-state")
@@ -510,7 +514,7 @@ class ConvexMethod(Method):
         (:func:`~rigidblocks.methods.vertex.vertex_dual`); "blend" keeps the
         interior-point duals (the centre of the face)."""
         with self.timings.stage("build"):
-            prob, jr = build_max_load(self.system, self.scaling, self.f_joint(f),
+            prob, jr = build_max_load(self.system, self.vscaling, self.f_joint(f),
                                       self.pyramid)
         res = self._run(prob, "maximum load", tight=True)
         if res.verified is False:
@@ -557,7 +561,7 @@ class ConvexMethod(Method):
                                       f"{work_at:.6g}, {work_at / lam - 1:.1e} (relative) "
                                       "above lambda*")
         with self.timings.stage("state"):
-            mech = mechanism(self.system, self.scaling.row, y_eq, kind)
+            mech = mechanism(self.system, self.vscaling.row, y_eq, kind)
         sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
         return Limit("collapse", lam, lam, lam, governing=sliding, mechanism=mech,
                      at=Verdict(ADMISSIBLE, 0.0, (), (res, prob)))
