@@ -1,9 +1,9 @@
 """The convex path: verdicts from the relaxation R(f, lambda), f* by Newton steps on R,
 lambda* from one LP (SOCP in 3D), the force state from the least-energy QP.
 
-Where the blocks' loads span more than two orders the problems are scaled block by
-block (:meth:`Scaling.per_block`): each block's rows by its own load, each joint's
-forces and law rows by its lighter block's load.
+The relaxations are scaled block by block (:meth:`Scaling.per_block`): each block's
+rows by its own load, each joint's forces and law rows by its lighter block's load; the
+max-load problem too where the blocks' loads span more than two orders.
 Admissible iff the relaxation's own state breaches the joint laws and equilibrium by at
 most 1e-9 of its largest scaled force (the interior-point solver's accuracy is relative
 to the size of its solution); inadmissible iff the duals bound R above that; between the
@@ -135,10 +135,13 @@ class ConvexMethod(Method):
         self._rejected_noted = False
         self._coarse_noted = False
         with timings.stage("build"):
-            #: the scaling of the verdicts, limits and states of this method
-            #: (:meth:`Scaling.for_system`); ``scaling``, the uniform one, is the scaling
-            #: of problems other modules build on this method's system
-            self.vscaling = Scaling.for_system(system)
+            #: the scaling of the relaxations (verdicts, f*) and their states: block by
+            #: block (:meth:`Scaling.per_block`); ``lscaling`` that of the max-load
+            #: problem (:meth:`Scaling.for_system`: uniform on scenes of like blocks, where
+            #: the interior-point lambda* is closer to the simplex one); ``scaling``, the
+            #: uniform one, that of problems other modules build on this system
+            self.vscaling = Scaling.per_block(system)
+            self.lscaling = Scaling.for_system(system)
             self.scaling = Scaling.of(system)
         self.pyramid = pyramid
         #: relaxation problems by load factor, with the uniform friction as parameter
@@ -235,7 +238,10 @@ class ConvexMethod(Method):
         R = max(float(z[prob.cols["r"]][0]), float(viol.max(initial=0.0)), 0.0)
         eq = prob.rows["equilibrium"]
         residual = float(np.abs(prob.A[eq] @ z - prob.b[eq]).max(initial=0.0))
-        low = float(-prob.b @ y)
+        # the dual objective bounds R below up to the dual residual's work on the state
+        dres = prob.c + prob.A.T @ y
+        low = float(-prob.b @ y) - float(np.abs(dres).sum()) * max(
+            1.0, float(np.abs(z).max(initial=0.0)))
         big = float(np.max(np.abs(x), initial=0.0))
         tol = ADMISSIBLE_TOL * max(1.0, big)
         unresolved = ""
@@ -309,11 +315,13 @@ class ConvexMethod(Method):
         data = verdict.data
         if isinstance(data, Relaxation):
             relax, limit, limit_x = data.R + STATE_SLACK, data.res, data.prob.cols["x"]
+            scaling = self.vscaling
         else:  # the max-load LP: (result, problem)
             res, prob = data
             relax, limit, limit_x = STATE_SLACK, res, prob.cols["x"]
+            scaling = self.lscaling
         with self.timings.stage("build"):
-            prob = build_energy_qp(self.system, self.vscaling, self.f_joint(f), load_factor,
+            prob = build_energy_qp(self.system, scaling, self.f_joint(f), load_factor,
                                    relax, self.pyramid)
         try:
             res = self._run(prob, "force-state")
@@ -324,11 +332,11 @@ class ConvexMethod(Method):
             status = exc.status
         with self.timings.stage("state"):
             if status is None:
-                return force_state(self.system, self.vscaling.forces(res.z[prob.cols["x"]]),
+                return force_state(self.system, scaling.forces(res.z[prob.cols["x"]]),
                                    "least complementary energy")
             self.notes.append(f"force state: the solution of the limit problem (the "
                               f"least-energy QP ended with status {status})")
-            return force_state(self.system, self.vscaling.forces(limit.z[limit_x]),
+            return force_state(self.system, scaling.forces(limit.z[limit_x]),
                                "solution of the limit problem")
 
     # -- f*: Newton steps on R(f) ------------------------------------------------------
@@ -514,7 +522,7 @@ class ConvexMethod(Method):
         (:func:`~rigidblocks.methods.vertex.vertex_dual`); "blend" keeps the
         interior-point duals (the centre of the face)."""
         with self.timings.stage("build"):
-            prob, jr = build_max_load(self.system, self.vscaling, self.f_joint(f),
+            prob, jr = build_max_load(self.system, self.lscaling, self.f_joint(f),
                                       self.pyramid)
         res = self._run(prob, "maximum load", tight=True)
         if res.verified is False:
@@ -561,7 +569,7 @@ class ConvexMethod(Method):
                                       f"{work_at:.6g}, {work_at / lam - 1:.1e} (relative) "
                                       "above lambda*")
         with self.timings.stage("state"):
-            mech = mechanism(self.system, self.vscaling.row, y_eq, kind)
+            mech = mechanism(self.system, self.lscaling.row, y_eq, kind)
         sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
         return Limit("collapse", lam, lam, lam, governing=sliding, mechanism=mech,
                      at=Verdict(ADMISSIBLE, 0.0, (), (res, prob)))
