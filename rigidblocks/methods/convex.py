@@ -71,6 +71,12 @@ STATE_SLACK = 1e-9
 #: verdict says how coarsely it resolves the lightest blocks
 RESOLVE_LIMIT = 1e-3
 RESOLVE_NOTE = 1e-5
+#: in the search for f*, a relaxation whose value exceeds this many times the threshold
+#: is a lower point even where its dual bound cannot certify it
+CLEARLY = 10.0
+#: the search for f* ends when a trial left at the threshold lies within this (relative)
+#: of the certified upper end: closer, R(f) is below what the solver resolves
+NEAR_STOP = 1e-5
 #: beginning of the reason of a verdict undecided for that reason
 FORCES_SPAN = "forces span"
 #: an admissible state at a limit whose forces exceed this many times the loads of the
@@ -210,20 +216,24 @@ class ConvexMethod(Method):
             prob = prob.with_parameter("f", f)
         return prob, jr
 
-    def relaxation(self, f: float, load_factor: float) -> Relaxation:
+    def relaxation(self, f: float, load_factor: float, confirm: bool = True) -> Relaxation:
         """R(f) and dR/df (from the duals of the friction rows of the uniform joints).
 
-        The back end's answer is checked by the solver policy; a verdict it leaves near
-        the threshold (the state's own breach above ``tol`` but the dual bound below it)
-        is confirmed by a tighter solve (:meth:`~rigidblocks.solvers.Runner.confirm`)
-        before it is called undecided."""
+        The back end's answer is checked by the solver policy; with ``confirm``, a
+        verdict it leaves near the threshold (the state's own breach above ``tol`` but
+        the dual bound below it) is confirmed by a tighter solve
+        (:meth:`~rigidblocks.solvers.Runner.confirm`) before it is called undecided."""
         prob, jr = self._relaxation_problem(f, load_factor)
         rx = self._read(prob, jr, self._run(prob, "relaxation", tight=True), f)
-        if not rx.decided and not rx.unresolved.startswith(FORCES_SPAN):
-            again = self._read(prob, jr, self._run(prob, "relaxation", confirm=True), f)
-            if again.decided or not rx.unresolved:
-                rx = again
-        return rx
+        return self._confirmed(rx) if confirm else rx
+
+    def _confirmed(self, rx: Relaxation) -> Relaxation:
+        """An undecided relaxation solved again at the confirming tolerances."""
+        if rx.decided or rx.unresolved.startswith(FORCES_SPAN):
+            return rx
+        again = self._read(rx.prob, rx.jr, self._run(rx.prob, "relaxation", confirm=True),
+                           rx.f)
+        return again if again.decided or not rx.unresolved else rx
 
     def _read(self, prob: Any, jr: Any, res: SolverResult, f: float) -> Relaxation:
         """The relaxation's numbers from one checked solve (see :class:`Relaxation`)."""
@@ -380,11 +390,15 @@ class ConvexMethod(Method):
         undecided = ""  # the solver's status where it could not decide near f*
         unresolved_below: float | None = None  # a trial whose forces are beyond resolution
         near: float | None = None  # the largest trial left near the threshold (undecided)
+        step_up = rtol  # relative step above a trial left at the threshold
+        lower_primal = False  # a lower point rests on the relaxation's primal value
         for _ in range(100):
             if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
                 break
-            if near is not None and math.isfinite(hi) and hi - near <= rtol * hi:
-                break  # certified just above a trial at the threshold: f* is there
+            if near is not None and math.isfinite(hi) and hi - near <= NEAR_STOP * hi:
+                # certified just above a trial at the threshold, where the solver's
+                # resolution ends: f* is there (the bracket goes into the notes)
+                break
             newton = lo + _root_step(R_lo, s_lo, lo, prev) if s_lo > 0 else math.inf
             if forced is not None:
                 trial, forced = forced, None
@@ -403,7 +417,17 @@ class ConvexMethod(Method):
                 trial = 0.5 * (lo + hi)
                 probe_below_hi = True
             try:
-                rx = self.relaxation(trial, lf)
+                rx = self.relaxation(trial, lf, confirm=False)
+                if (not rx.decided and not rx.unresolved and rx.R is not None
+                        and rx.R > CLEARLY * rx.tol):
+                    # the relaxation's own value is far above the threshold, though its
+                    # dual bound is too weak to certify it: a lower point for the search
+                    # (f* is reported at the certified upper end either way)
+                    lower_primal = True
+                    prev = (lo, s_lo)
+                    lo, R_lo, s_lo = trial, rx.R, rx.slope
+                    last = rx
+                    continue
             except SolverFailure as exc:
                 # just below f* the relaxation can be too degenerate for the interior-point
                 # solver: probe four times further below the certified upper end
@@ -433,7 +457,13 @@ class ConvexMethod(Method):
                     if forced <= lo:
                         break
                 else:
-                    forced = trial * (1.0 + rtol)
+                    # step up from the trial by a relative offset that grows fourfold at
+                    # every further trial left at the threshold (never past the midpoint
+                    # to a certified upper end): a few solves reach a certified point
+                    forced = trial * (1.0 + step_up)
+                    if math.isfinite(hi):
+                        forced = min(forced, 0.5 * (trial + hi))
+                    step_up *= 4.0
                 continue
             if rx.R is None:
                 raise SolverFailure("relaxation problem lost its solution", self.solver,
@@ -453,6 +483,10 @@ class ConvexMethod(Method):
             self.notes.append(f"near f* some relaxations ended with status {undecided}{at}; "
                               f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
                               f"{(hi - lo) / hi:.1e})")
+        if lower_primal and lo > 0:
+            self.notes.append(f"the lower end of f*'s bracket ({lo:.10g}) rests on the "
+                              "relaxation's value, far above the threshold but not "
+                              "certified by its dual bound; f* is the certified upper end")
         self._infimum_note(hi, lf, at_hi, lo, unresolved_below)
         governing: tuple[int, ...] = ()
         if last is not None:
