@@ -362,3 +362,23 @@ def test_top_block_limits_bound_lambda_star_on_walls(courses, per_course):
         r = max_load_multiplier(s, state=False)
         assert r.status == "collapse"
         assert r.load_multiplier <= bound * (1 + 1e-7)
+
+
+def test_friction_bracket_ends_where_the_solver_stops_resolving():
+    """A 17 x 18 running-bond wall under its horizontal live load at full value: Newton's
+    steps on R(f) end with a narrow bracket whose lower end is not certified by the dual
+    bound; just below the certified upper end R is predicted under what the solver
+    certifies, so the search stops there and says so instead of a last probe that could
+    not decide. The answer agrees with the simplex back end (HiGHS: exact duals, so its
+    bracket is tight): f* = 1.0753988 there, and our certified upper end lies within
+    1e-6 above it; lambda* by HiGHS at f = 1.075399 is >= 1 (the wall stands), at
+    1.07539 below 1."""
+    wall = running_bond_wall(17, 18)
+    r = min_friction(wall, load_factor=1.0, state=False)
+    exact = min_friction(wall, load_factor=1.0, state=False, solver="highs")
+    lo, hi = exact.bracket
+    assert hi - lo <= 1e-6 * hi
+    assert lo <= r.friction_factor <= hi * (1 + 1e-6)
+    assert r.bracket[0] <= lo and r.bracket[1] == r.friction_factor
+    assert any("below what the solver certifies" in n for n in r.notes)
+    assert r.n_solves <= 6

@@ -77,6 +77,10 @@ CLEARLY = 10.0
 #: the search for f* ends when a trial left at the threshold lies within this (relative)
 #: of the certified upper end: closer, R(f) is below what the solver resolves
 NEAR_STOP = 1e-5
+#: a bracket of f* narrower than this (relative) whose lower end's Newton step lands
+#: about at the upper end is not probed just below the upper end where R is predicted
+#: below what the solver certifies (:func:`beyond_resolution`)
+NARROW = 1e-3
 #: beginning of the reason of a verdict undecided for that reason
 FORCES_SPAN = "forces span"
 #: an admissible state at a limit whose forces exceed this many times the loads of the
@@ -413,6 +417,20 @@ class ConvexMethod(Method):
             elif probe_below_hi:
                 trial = hi * (1.0 - 0.5 * rtol)
                 probe_below_hi = False
+                if (last is not None and hi - lo <= NARROW * hi and newton <= 2 * hi - lo
+                        and beyond_resolution(last, s_lo * (hi - trial))):
+                    # a narrow bracket whose lower end's Newton step lands about at the
+                    # upper end (R about linear across it); R just below the upper end,
+                    # estimated with that slope, is below what the solver can certify: a
+                    # probe there would end near the threshold
+                    self.notes.append(
+                        f"below the certified upper end f = {hi:.10g} the relaxation is "
+                        f"about {s_lo * (hi - trial):.1e} (slope {s_lo:.4g}), below what "
+                        f"the solver certifies there (its dual bound was "
+                        f"{last.R - last.low:.1e} short at f = {lo:.10g}): f* is "
+                        f"bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
+                        f"{(hi - lo) / hi:.1e}), reported at the upper end")
+                    break
             else:
                 trial = 0.5 * (lo + hi)
                 probe_below_hi = True
@@ -457,10 +475,14 @@ class ConvexMethod(Method):
                     if forced <= lo:
                         break
                 else:
-                    # step up from the trial by a relative offset that grows fourfold at
-                    # every further trial left at the threshold (never past the midpoint
-                    # to a certified upper end): a few solves reach a certified point
+                    # step up from the trial by twice its Newton step (R there is at most
+                    # the value read), at least by a relative offset that grows fourfold
+                    # at every further trial left at the threshold (never past the
+                    # midpoint to a certified upper end): a few solves reach a certified
+                    # point
                     forced = trial * (1.0 + step_up)
+                    if rx.slope > 0:
+                        forced = max(forced, trial + 2.0 * rx.R / rx.slope)
                     if math.isfinite(hi):
                         forced = min(forced, 0.5 * (trial + hi))
                     step_up *= 4.0
@@ -634,6 +656,13 @@ def near_threshold(rx: Relaxation) -> str:
             f"{rx.residual:.2e}, the duals bound the smallest breach below by "
             f"{rx.low:.2e}, and the threshold is {rx.tol:.2e} (relative to each joint's "
             "scale): undecided")
+
+
+def beyond_resolution(rx: Relaxation, value: float) -> bool:
+    """Whether a relaxation of about ``value`` can be neither certified positive (the dual
+    bound fell short of ``rx.R`` by more than that at the nearby lower point ``rx``) nor
+    taken as a lower point on its value (:data:`CLEARLY`)."""
+    return value < CLEARLY * rx.tol and value < rx.R - rx.low
 
 
 def _root_step(R: float, s: float, f: float, prev: tuple[float, float] | None) -> float:
