@@ -111,6 +111,41 @@ def _regions(scene: Scene, shapes: list, pending: list[tuple], eps: float, add) 
         add(key, i, j, n, t1, t2, o, ring, float(area[k]))
 
 
+def _rings(rings: list[np.ndarray]):
+    """Shapely polygons of 2D rings, built in one call."""
+    import shapely
+
+    counts = [len(r) for r in rings]
+    return shapely.polygons(shapely.linearrings(
+        np.concatenate(rings), indices=np.repeat(np.arange(len(rings)), counts)))
+
+
+def _clip_faces(faces: list[tuple], eps: float, add) -> None:
+    """The joints of coplanar faces of convex blocks, all at once.
+
+    ``faces`` holds (key, i, j, normal, t1, t2, origin, i's face, j's face), the faces
+    in the plane's 2D frame. Each contact is the intersection of the two convex faces
+    (a convex polygon, simplified at ``eps / 2``), kept where its area exceeds eps^2.
+    """
+    import shapely
+
+    inter = shapely.intersection(_rings([f[7] for f in faces]), _rings([f[8] for f in faces]))
+    ok = np.flatnonzero((shapely.get_type_id(inter) == 3) & ~shapely.is_empty(inter)
+                        & (shapely.area(inter) > eps * eps))
+    if not len(ok):
+        return
+    poly = shapely.simplify(inter[ok], eps * 0.5)
+    area = shapely.area(poly)
+    coords, idx = shapely.get_coordinates(shapely.get_exterior_ring(poly), return_index=True)
+    starts = np.concatenate([[0], np.cumsum(np.bincount(idx, minlength=len(poly)))])
+    for k, g in enumerate(ok):
+        ring = coords[starts[k]:starts[k + 1] - 1]
+        if len(ring) < 3:
+            continue
+        key, i, j, n, t1, t2, o = faces[g][:7]
+        add(key, i, j, n, t1, t2, o, ring, float(area[k]))
+
+
 def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
     """Find every joint of a 3D scene.
 
@@ -118,7 +153,6 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
         scene: a validated 3D scene.
         tol: relative tolerance; coincidence is judged at ``tol x scene size``.
     """
-    import shapely
 
     L = scene_size(scene)
     eps = tol * L
@@ -133,6 +167,7 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
     shapes = [shape(b) for b in scene.blocks]
     pairs, normals, tangents, polys, areas, order = [], [], [], [], [], []
     pending: list[tuple] = []  # planes of pairs with a non-convex block, done together
+    faces: list[tuple] = []  # coplanar face pairs of convex blocks, clipped together
 
     def add(key: tuple[int, int], i: int, j: int, n: np.ndarray, t1: np.ndarray,
             t2: np.ndarray, o: np.ndarray, ring: np.ndarray, area: float) -> None:
@@ -162,16 +197,9 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
                 pa = scene.blocks[i].points[si.faces[fi]]
                 pb = scene.blocks[j].points[sj.faces[fj]]
                 o = pa[0]
-                A = shapely.Polygon(np.stack([(pa - o) @ t1, (pa - o) @ t2], axis=1))
-                B = shapely.Polygon(np.stack([(pb - o) @ t1, (pb - o) @ t2], axis=1))
-                inter = shapely.intersection(A, B)
-                if inter.is_empty or inter.geom_type != "Polygon" or inter.area <= eps * eps:
-                    continue
-                inter = shapely.simplify(inter, eps * 0.5)
-                ring = np.asarray(inter.exterior.coords)[:-1]
-                if len(ring) < 3:
-                    continue
-                add((pk, fk), i, j, n, t1, t2, o, ring, inter.area)
+                frame = np.stack([t1, t2], axis=1)
+                faces.append(((pk, fk), i, j, n, t1, t2, o, (pa - o) @ frame,
+                              (pb - o) @ frame))
             continue
         # a non-convex block: one joint per plane, the faces of each side in it united
         groups: list[list[int]] = []
@@ -187,10 +215,12 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
             f0 = fi_all[g[0]]
             pending.append(((pk, gk), i, j, ni[f0], si.faces[f0][0],
                             sorted(set(fi_all[g].tolist())), sorted(set(fj_all[g].tolist()))))
+    if faces:
+        _clip_faces(faces, eps, add)
     if pending:
         _regions(scene, shapes, pending, eps, add)
     m = len(pairs)
-    if pending:  # joints in the order of the candidate pairs, as for convex blocks
+    if pending:  # joints in the order of the candidate pairs and their faces
         perm = sorted(range(m), key=order.__getitem__)
         pairs, normals, tangents, polys, areas = (
             [x[k] for k in perm] for x in (pairs, normals, tangents, polys, areas))

@@ -282,6 +282,9 @@ def _validate_block(b: Block) -> None:
         if len(set(f)) != len(f):
             raise InputError(f"face {k} repeats a vertex", where)
     s = shape(b)
+    key = _shape_key(b, "valid")  # the checks below hold for every copy of the shape
+    if key in _SAME_SHAPE:
+        return
     faces, normals, local = s.faces, s.normals, s.local  # same order as b.faces
     nn = np.linalg.norm(normals, axis=1)
     small = np.flatnonzero(nn <= 1e-12 * size**2)
@@ -322,6 +325,7 @@ def _validate_block(b: Block) -> None:
     vol, _ = polyhedron_volume_centroid(b)
     if vol <= 1e-12 * size**3:
         raise InputError("polyhedron has zero volume", where)
+    _remember(key, True)
 
 
 def _face_frame(n: np.ndarray) -> np.ndarray:
