@@ -219,6 +219,31 @@ def test_a_wall_loses_load_without_dilatancy():
     assert res.status == "collapse" and res.load_multiplier < 0.9 * hi
 
 
+@pytest.mark.parametrize("method", BOTH)
+def test_mechanism_option_is_honoured(method, tmp_path, capsys):
+    """A 3 x 3 running-bond wall at f = 0.6 < t/h: without dilatancy, as with it, the
+    wall slides at lambda = f, and every bed joint could slide at once with everything
+    above it. ``mechanism="vertex"`` (the default) draws one mechanism of the capped
+    laws' optimal face, the wall sliding on its foundation; ``"blend"`` the interior-point
+    mix of all of them, as for associative friction (test_honest_answers.py)."""
+    wall = build("wall", courses=3, blocks_per_course=3)
+    vx = rb.max_load_multiplier(wall, flow=NA, method=method, state=False).to_dict()
+    assert vx["load_multiplier"] == pytest.approx(0.6, rel=RTOL)
+    assert vx["mechanism"]["kind"] == "vertex"
+    assert {tuple(sorted(p)) for p in vx["mechanism"]["sliding"]} == {
+        ("c0b0", "foundation"), ("c0b1", "foundation"), ("c0b2", "foundation")}
+    bl = rb.max_load_multiplier(wall, flow=NA, method=method, state=False,
+                                mechanism="blend").to_dict()
+    assert bl["mechanism"]["kind"] == "blend" and len(bl["mechanism"]["sliding"]) > 3
+    p = tmp_path / "wall.json"
+    p.write_text(dumps_scene(wall))
+    assert main(["load", str(p), "--flow", NA, "--method", method, "--mechanism",
+                 "blend"]) == 0
+    assert "the blend of every optimal mechanism" in capsys.readouterr().out
+    assert main(["load", str(p), "--flow", NA, "--method", method, "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["mechanism"]["kind"] == "vertex"
+
+
 # -- the two algorithms ------------------------------------------------------------------
 EXAMPLES_2D = [p.name for p in sorted(EXAMPLES.glob("*.json"))
                if read_scene(p).dimension == 2 and read_scene(p).has_live_load]

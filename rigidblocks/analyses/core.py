@@ -218,7 +218,8 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     if is_nonassociative(scene, flow):
         res = max_load_nonassociative(scene, friction, method, flow=flow, state=state,
                                       solver=solver, settings=settings, pyramid=pyramid,
-                                      contact_tol=contact_tol, progress=progress)
+                                      contact_tol=contact_tol, progress=progress,
+                                      mechanism=mechanism)
         return replace(res, tilt_angle_deg=tilt_angle_deg(scene, res.load_multiplier)
                        if res.status == "collapse" else None)
     f = friction_value(scene.effective_friction if friction is None else friction)

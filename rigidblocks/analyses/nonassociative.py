@@ -404,14 +404,17 @@ def check_nonassociative(scene: Scene, friction: Any = None, load_factor: float 
 
 def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "clarabel",
                             *, flow: str | None = None, state: bool = True,
-                            rtol: float = NA_RTOL, **kw: Any) -> LoadResult:
+                            rtol: float = NA_RTOL, mechanism: str = "vertex",
+                            **kw: Any) -> LoadResult:
     """The collapse multiplier under non-associative sliding, reached from the elastic
     state, by bisection between 0 and the associative multiplier (an upper bound).
 
     ``load_multiplier_bounds`` = [lo, hi]: hi the associative multiplier (Radenkovic's
     first theorem), lo the associative multiplier with frictionless marked joints
     (Drucker 1954; None where it is not defined: the frictionless dead load has no
-    admissible state).
+    admissible state). ``mechanism``: "vertex" (default) or "blend", which of the
+    optimal mechanisms of the computed state is drawn, as for associative friction
+    (see :func:`_collapse_mechanism`).
     """
     if not scene.has_live_load:
         raise InputError("the scene has no live load (no \"live\": true load and no "
@@ -431,7 +434,7 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
         st = na.state(f, lam, v) if (v is not None and lam is not None) else None
         mech, gov = None, ()
         if st is not None:
-            mech, gov = _collapse_mechanism(cv, na, f, lam, st)
+            mech, gov = _collapse_mechanism(cv, na, f, lam, st, mechanism)
         hist = tuple(trials)
         return LoadResult(**_fields(na, "max_load_multiplier", status, f, lam, hist,
                                     converged), state=st if state else None,
@@ -492,12 +495,18 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
 
 
 def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: float,
-                        st: ForceState) -> tuple[Any, tuple[int, ...]]:
+                        st: ForceState, kind: str = "vertex") -> tuple[Any, tuple[int, ...]]:
     """The mechanism of the computed state: max lambda under the cohesion-only laws
     |T| <= f N* of its normal forces N* (one LP); its duals are block velocities whose
     marked joints slide without dilatancy. It is the collapse mechanism when that LP's
-    multiplier equals the computed one (to 1e-3): otherwise a note says so, and None."""
+    multiplier equals the computed one (to 1e-3): otherwise a note says so, and None.
+
+    ``kind``: "vertex" picks one mechanism of that LP's optimal face (one that can be
+    drawn, :func:`~rigidblocks.methods.vertex.vertex_dual`), "blend" keeps the
+    interior-point duals (a mix of every optimal mechanism), as the associative
+    analysis does."""
     from ..equilibrium import mechanism
+    from ..methods.vertex import vertex_dual
 
     c = cv.contacts
     pj = c.point_joint
@@ -515,7 +524,24 @@ def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: flo
                         f"capacities the multiplier would be {lam_cap:.6g}: no collapse "
                         "mechanism is given")
         return None, ()
-    mech = mechanism(cv.system, cv.scaling.row, res.y[prob.rows["equilibrium"]])
+    eq = prob.rows["equilibrium"]
+    y_eq, got = res.y[eq], "blend"
+    if kind == "vertex":
+        with cv.timings.stage("mechanism"):
+            vd = vertex_dual(prob, res, eq, cv.system.dofs,
+                             time_limit=max(1.0, res.solve_time))
+        if vd is None:
+            na.notes.append("mechanism: the blend of the optimal face (no vertex could "
+                            "be found)")
+        else:
+            y_eq, got = vd[0][eq], vd[1]
+            work_at = float(prob.b @ vd[0])
+            if work_at > lam_cap * (1 + 1e-6) + 1e-9:
+                na.notes.append(f"mechanism: the one drawn (an extreme point next to the "
+                                f"optimal face) balances at lambda = {work_at:.6g}, "
+                                f"{work_at / lam_cap - 1:.1e} (relative) above the "
+                                "capped laws' multiplier")
+    mech = mechanism(cv.system, cv.scaling.row, y_eq, got)
     sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
     return mech, sliding
 
