@@ -46,7 +46,17 @@ the machine's load stretches wall-clock times but hardly these), stage by stage 
 side (read, contacts, assembly, build, solve), which gives the 3D profile. The peer's
 own method (CRA or CRA-penalty) runs once per structure for its verdict.
 
+Non-associative friction (section "non-associative", ``--only nonassoc`` runs it alone
+and keeps the static figures of an earlier run in bench_peer.json, ``--only static``
+the converse): its CRA and CRA-penalty, which model friction without dilatancy with
+complementarity and small displacements, against our ``check(..., flow=
+"non-associative")`` at self-weight, on small arches and walls and the peer's examples;
+with the static f* and our non-associative friction (``min_friction``) to show how far
+each structure is from the verdict's threshold, and the differences explained from the
+run's data where they can be (see :func:`na_differences`).
+
     python benchmarks/bench_peer.py [--tiny] [--out DIR] [--peer-python PATH] [--repeats N]
+                                    [--only static|nonassoc]
 
 The peer's Python: ``--peer-python``, else ``RIGIDBLOCKS_PEER_PYTHON``, else
 ``/work/venv-peer/bin/python``; ``none`` skips the peer. It is a separate environment,
@@ -86,7 +96,14 @@ from typing import Any  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from common import markdown_table, out_dir, write_results  # noqa: E402
+from common import (  # noqa: E402
+    machine,
+    markdown_table,
+    out_dir,
+    read_results,
+    rewrite_results,
+    write_results,
+)
 
 from rigidblocks import check  # noqa: E402
 from rigidblocks.errors import InputError  # noqa: E402
@@ -516,6 +533,345 @@ def bench(sizes: dict, python: str | None, timeouts: dict, repeats: int,
     return rows
 
 
+# -- non-associative friction: its CRA and CRA-penalty against our flow="non-associative" --
+#: the structures of the non-associative section besides the peer's examples
+NA_SIZES = {"arches": (10, 20), "hard": ((10, 0.2),), "walls": (10, 30)}
+NA_TINY = {"arches": (10,), "hard": (), "walls": (10,), "examples": ()}
+#: 1 / cos(22.5 deg): how much more friction than f the peer's 8-facet pyramid, whose
+#: facets lie at f N from its axis, allows along the facets' bisectors
+PYRAMID_EXCESS = 1.0 / math.cos(math.pi / 8)
+NA = "non-associative"
+
+
+def run_ours_na(make_scene: Any, contact_tol: Any = None) -> dict:
+    """Time one non-associative ``check`` at load factor 0 from the block data (as
+    :func:`run_ours`); its verdict, fixed-point iterations and reason."""
+    from rigidblocks.errors import SolverFailure
+
+    c0, t0 = time.process_time(), time.perf_counter()
+    scene = make_scene()
+    tol = contact_tol(scene) if callable(contact_tol) else contact_tol
+    try:
+        res = check(scene, load_factor=0.0, state=False, contact_tol=tol, flow=NA)
+    except SolverFailure as exc:
+        return {"verdict": "failure", "reason": str(exc)[:200],
+                "total": time.perf_counter() - t0, "cpu": {}}
+    c1, t1 = time.process_time(), time.perf_counter()
+    reason = [n for n in res.notes if not n.startswith("non-associative sliding")]
+    return {"verdict": res.status, "total": t1 - t0, "solve": res.solve_time,
+            "iterations": res.iterations, "converged": res.converged,
+            "violation": res.violation if res.status == "inadmissible" else 0.0,
+            "reason": "; ".join(reason)[:300], "joints": res.contacts.n_joints,
+            "points": res.contacts.n_points, "cpu": {"total": c1 - c0}}
+
+
+def friction_na(scene: Scene, contact_tol: float | None) -> dict:
+    """At load factor 0: the static f* and the non-associative friction (the smallest f
+    at which the state reached from the elastic state stands), with their times."""
+    from rigidblocks import min_friction
+    from rigidblocks.errors import SolverFailure
+
+    out: dict[str, Any] = {}
+    for key, flow in (("static", None), ("na", NA)):
+        t0 = time.perf_counter()
+        try:
+            r = min_friction(scene, load_factor=0.0, state=False, contact_tol=contact_tol,
+                             flow=flow)
+            out[key] = {"status": r.status, "f": r.friction_factor,
+                        "bracket": list(r.bracket) if r.bracket else None}
+        except SolverFailure as exc:
+            out[key] = {"status": "failure", "f": None, "bracket": None,
+                        "reason": str(exc)[:200]}
+        out[key]["time"] = time.perf_counter() - t0
+    return out
+
+
+def peer_na_verdict(out: dict) -> str:
+    """The verdict of its CRA or CRA-penalty: as :func:`peer_verdict`, and a
+    CRA-penalty state counts as admissible under the rule RBE's does (penalised tension
+    below ``RBE_TENSION_TOL`` of the compression)."""
+    v = peer_verdict(out)
+    tr = rbe_tension_ratio(out)
+    if v == "admissible" and out.get("method") == "cra_penalty" and tr is not None \
+            and tr > RBE_TENSION_TOL:
+        return "inadmissible"
+    return v
+
+
+def bench_nonassoc(sizes: dict, python: str | None, timeouts: dict, repeats: int,
+                   log=sys.stdout) -> list[dict]:
+    """Self-weight verdicts without dilatancy, ours against the peer's CRA and
+    CRA-penalty, on small arches and walls and the peer's examples; interleaved per
+    structure (ours, its CRA, ours, its CRA-penalty, ours, ...), ours ``repeats`` times
+    (the minimum time), each peer method once, as its CRA runs in :func:`bench`."""
+    rows = []
+    with tempfile.TemporaryDirectory() as tmpd:
+        tmp = Path(tmpd)
+        for st in structures(sizes):
+            row: dict[str, Any] = {k: st[k] for k in ("name", "kind", "blocks")}
+            row["mu"] = float(st["peer"]["mu"])
+            row["d_bnd"] = float(st["peer"].get("d_bnd", 1e-3))
+            row["eps"] = float(st["peer"].get("eps", 1e-4))
+            row["loadavg_start"] = loadavg()
+            case = {"name": st["name"], **st["peer"]}
+            variants: dict[str, tuple[Any, Any]] = {}
+            if st["scene2d"] is not None:
+                d2, d3 = scene_to_dict(st["scene2d"]), scene_to_dict(st["scene3d"])
+                variants["2d"] = (lambda d=d2: scene_from_dict(d), None)
+                variants["3d_cone"] = (lambda d=d3: scene_from_dict(d), None)
+            else:
+                prepared = tmp / "prepared.json"
+                prepared.unlink(missing_ok=True)
+                if python is not None:
+                    run_peer(python, {**case, "export": str(prepared)}, "export",
+                             timeouts["cra"], tmp)
+                try:
+                    if not prepared.exists():
+                        raise InputError("the peer's set-up was not exported")
+                    make, tol = _example_reader(prepared, st["peer"])
+                    variants["3d_cone"] = (make, tol)
+                    blocks = make().blocks
+                    row["blocks"] = sum(not b.support for b in blocks)
+                except (InputError, ImportError) as exc:
+                    row["ours"] = {"3d_cone": {
+                        "verdict": f"not modelled: {getattr(exc, 'detail', exc)}"[:200]}}
+                    row["peer"] = {}
+                    row["loadavg_end"] = loadavg()
+                    rows.append(row)
+                    print(f"{row['name']:<28}  not modelled", file=log, flush=True)
+                    continue
+            peer_runs: list[tuple[str, str, dict]] = []
+            if python is not None:
+                peer_runs = [("cra", "cra", {}), ("cra_penalty", "cra_penalty", {})]
+                if st["kind"] in ("arch", "hard arch"):
+                    peer_runs.append(("cra_d0.1", "cra", CRA_LOOSE))
+            runs: dict[str, list[dict]] = {m: [] for m in variants}
+            peer: dict[str, Any] = {}
+            for rep in range(max(repeats, len(peer_runs))):
+                if rep < repeats:
+                    for m, (make, tol) in variants.items():
+                        runs[m].append(run_ours_na(make, tol))
+                if rep < len(peer_runs):
+                    key, method, extra = peer_runs[rep]
+                    p = run_peer(python, {**case, **extra}, method, timeouts["cra"], tmp)
+                    p["verdict"] = peer_na_verdict(p)
+                    p["settings"] = extra
+                    p["tension_ratio"] = rbe_tension_ratio(p)
+                    for k in ("blocks", "joints", "traceback"):
+                        p.pop(k, None)
+                    peer[key] = p
+            ours = {}
+            for m, r in runs.items():
+                o = dict(r[0])
+                o["total"] = min(x["total"] for x in r)
+                o["runs"] = [x["total"] for x in r]
+                if len({x["verdict"] for x in r}) > 1:
+                    o["verdict"] = "varies: " + ", ".join(sorted({x["verdict"] for x in r}))
+                ours[m] = o
+            make, tol = variants["3d_cone"]
+            scene = make()
+            row["friction"] = friction_na(scene, tol(scene) if callable(tol) else tol)
+            row["ours"], row["peer"] = ours, peer
+            row["loadavg_end"] = loadavg()
+            row["notes"] = na_differences(row)
+            rows.append(row)
+            print(na_summary_line(row), file=log, flush=True)
+    return rows
+
+
+def run_nonassoc(sizes: dict, python: str | None, timeouts: dict, repeats: int) -> dict:
+    """The non-associative section's run: its rows, agreement counts and session."""
+    started, la0 = time.strftime("%Y-%m-%d %H:%M:%S %Z"), loadavg()
+    rows = bench_nonassoc(sizes, python, timeouts, repeats)
+    return {"date": time.strftime("%Y-%m-%d"), "machine": machine(), "argv": sys.argv[1:],
+            "started": started, "loadavg_start": la0,
+            "finished": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "loadavg_end": loadavg(),
+            "threads": {k: os.environ.get(k) for k in THREADS}, "repeats": repeats,
+            "timeouts_s": {"cra": timeouts["cra"]},
+            "peer_version": next((p.get("version") for r in rows
+                                  for p in r["peer"].values() if p.get("version")), None),
+            "rows": rows, "agreement": na_agreement(rows)}
+
+
+def na_summary_line(row: dict) -> str:
+    parts = [f"{row['name']:<28}"]
+    for m, r in row["ours"].items():
+        parts.append(f"{m}={r['verdict'][:30]}/{r.get('total', float('nan')):.3g}s")
+    fr = row.get("friction", {}).get("na", {})
+    if fr.get("f") is not None:
+        parts.append(f"f_na={fr['f']:.4g}")
+    for m, r in row["peer"].items():
+        parts.append(f"{m}={r['verdict']}/{r['times'].get('total', float('nan')):.3g}s")
+    return "  ".join(parts)
+
+
+def _decided(v: str) -> bool:
+    return v in ("admissible", "inadmissible")
+
+
+def na_agreement(rows: list[dict]) -> dict:
+    """Counts over the rows where our 3D verdict (the peer's geometry) is decided:
+    agreements and disagreements with its CRA and its CRA-penalty where they decide, and
+    how often either side gives no decided answer."""
+    out: dict[str, Any] = {}
+    for key in ("cra", "cra_penalty", "cra_d0.1"):
+        agree = disagree = ours_open = peer_open = 0
+        for r in rows:
+            o = r["ours"].get("3d_cone", {}).get("verdict", "")
+            if key not in r["peer"] or o.startswith("not modelled"):
+                continue
+            p = r["peer"][key]["verdict"]
+            if not _decided(o):
+                ours_open += 1
+            elif not _decided(p):
+                peer_open += 1
+            elif o == p:
+                agree += 1
+            else:
+                disagree += 1
+        if agree + disagree + ours_open + peer_open:
+            out[key] = {"agree": agree, "disagree": disagree, "ours_undecided": ours_open,
+                        "peer_no_answer": peer_open}
+    return out
+
+
+def na_differences(row: dict) -> list[str]:
+    """Why our non-associative verdict and the peer's differ, from the run's data."""
+    o = row["ours"].get("3d_cone", {})
+    mine = o.get("verdict", "")
+    fr = row.get("friction", {})
+    fs, fn = fr.get("static", {}).get("f"), fr.get("na", {}).get("f")
+    mu = row["mu"]
+    out = []
+    if not _decided(mine):
+        out.append(f"ours is {mine}: {o.get('reason', '')}")
+    for key, p in row["peer"].items():
+        v = p["verdict"]
+        if v == mine or not _decided(mine):
+            continue
+        name = {"cra": "CRA", "cra_penalty": "CRA-penalty",
+                "cra_d0.1": "CRA (d_bnd 0.1, eps 0)"}[key]
+        if v == "no answer":
+            out.append(f"its {name} gave no answer ({p.get('message', '')[:80]})")
+            continue
+        tr = p.get("tension_ratio")
+        if key == "cra_penalty" and tr is not None and tr > RBE_TENSION_TOL:
+            out.append(f"its {name} state carries tension {tr:.2g} of its compression "
+                       "(penalised, not forbidden): inadmissible by the rule RBE's state "
+                       f"is read by ({RBE_TENSION_TOL:g})")
+            continue
+        if v == "admissible" and mine == "inadmissible":
+            why = [f"its {name} finds a state (any force state that some small "
+                   "displacement, bounded by d_bnd, makes complementary: a pinch no load "
+                   "causes is allowed), ours follows the one state reached from the "
+                   "elastic state"]
+            if fs is not None and fs <= mu:
+                why.append(f"a static state exists (f* = {fs:.4g} <= f = {mu:g})")
+            if fn is not None:
+                rel = "within" if fn <= mu * PYRAMID_EXCESS else "beyond"
+                why.append(f"ours needs f = {fn:.4g} without dilatancy, {fn / mu:.3g} "
+                           f"times the f = {mu:g} given: {rel} the {PYRAMID_EXCESS - 1:.1%}"
+                           " more friction its circumscribed 8-facet pyramid allows")
+            if o.get("violation"):
+                why.append(f"our state breaches the joint laws by {o['violation']:.3g}")
+            out.append("; ".join(why))
+        elif v == "inadmissible" and mine == "admissible":
+            extra = p.get("settings") or {}
+            d_bnd = extra.get("d_bnd", row.get("d_bnd", 1e-3))
+            eps = extra.get("eps", row.get("eps", 1e-4))
+            out.append(f"its {name} reports the problem infeasible where ours stands: its "
+                       f"displacements are bounded by d_bnd = {d_bnd:g} and a contact "
+                       f"carries force only where it closes to an overlap of eps = {eps:g}, "
+                       "so a state that needs larger settlements (or no overlap) is out of "
+                       "its reach"
+                       + (f"; with d_bnd 0.1 and eps 0 it answers "
+                          f"{row['peer']['cra_d0.1']['verdict']}"
+                          if "cra_d0.1" in row["peer"] and key != "cra_d0.1" else ""))
+    return out
+
+
+def _fval(fr: dict, key: str) -> Any:
+    """A friction of the non-associative table: the value, or the status and bracket."""
+    d = fr.get(key, {})
+    if d.get("f") is not None:
+        return float(d["f"])
+    b = d.get("bracket")
+    if b:
+        return f"{d.get('status')} [{b[0]:.4g}, {b[1]:.4g}]"
+    return d.get("status", "-")
+
+
+def na_markdown(na: dict) -> list[str]:
+    """The non-associative section of bench_peer.md."""
+    rows = na["rows"]
+    lines = ["### Non-associative friction: its CRA against our `flow=\"non-associative\"`",
+             ""]
+    thr = ", ".join(f"{k}={v}" for k, v in (na.get("threads") or {}).items())
+    lines += [f"One session ({na.get('started', '?')} to {na.get('finished', '?')}, load "
+              f"average {na.get('loadavg_start')} to {na.get('loadavg_end')}), the same "
+              f"thread settings ({thr}). Both sides answer at self-weight (load factor "
+              "0) with friction that does not dilate. Ours: `check(..., flow="
+              "\"non-associative\")`, the state reached from the elastic state by the "
+              "convex path's fixed-point iteration (2D and the 3D extrusion with the "
+              "exact cone; the peer's examples read from its prepared assembly as above), "
+              f"minimum of {na.get('repeats')} runs, block data to verdict; and, once, "
+              "the static f* and the non-associative friction f_na (`min_friction`, the "
+              "smallest f at which that state stands). Its CRA (Eq. 11) and CRA-penalty "
+              "(Eq. 14), once each, with the example's own d_bnd and eps (the solver's "
+              "defaults 1e-3 and 1e-4 on the arches and walls, where CRA also runs with "
+              "d_bnd 0.1, eps 0); a CRA-penalty state counts as admissible when its "
+              f"penalised tension is below {RBE_TENSION_TOL:g} of its compression, as "
+              "RBE's does.", ""]
+    head = ["structure", "f", "ours 2D", "ours 3D", "ours 3D s", "iterations", "f*",
+            "f_na", "CRA", "CRA s", "CRA-penalty (tension)", "CRA-penalty s",
+            "CRA d_bnd 0.1"]
+    body = []
+    for r in rows:
+        o, p = r["ours"], r["peer"]
+        fr = r.get("friction", {})
+        c3 = o.get("3d_cone", {})
+        pen = p.get("cra_penalty", {})
+        tr = pen.get("tension_ratio")
+        body.append([
+            r["name"], r["mu"], _v(o, "2d"),
+            c3.get("verdict", "-") if "total" in c3 else "not modelled",
+            _t(c3), c3.get("iterations", "-"), _fval(fr, "static"), _fval(fr, "na"),
+            _v(p, "cra"), _t(p.get("cra", {}).get("times", {})),
+            (pen["verdict"] + (f" ({tr:.2g})" if tr is not None else "")) if pen else "-",
+            _t(pen.get("times", {})), _v(p, "cra_d0.1")])
+    lines += [markdown_table(head, body), ""]
+    ag = na.get("agreement") or {}
+    if ag:
+        name = {"cra": "its CRA", "cra_penalty": "its CRA-penalty",
+                "cra_d0.1": "its CRA with d_bnd 0.1, eps 0"}
+        lines += ["Agreement with our 3D verdict where both decide: " + "; ".join(
+            f"{name[k]}: {a['agree']} agree, {a['disagree']} disagree"
+            + (f", {a['peer_no_answer']} without its answer" if a["peer_no_answer"] else "")
+            + (f", {a['ours_undecided']} where ours is undecided" if a["ours_undecided"]
+               else "")
+            for k, a in ag.items()) + ".", ""]
+    notes = [(r["name"], r.get("notes") or []) for r in rows]
+    notes = [(n, d) for n, d in notes if d]
+    if notes:
+        lines += ["Where the verdicts differ or one side gives none:", ""]
+        lines += [f"- {n}: " + "; ".join(d) + "." for n, d in notes]
+        lines += [""]
+    nm = [r["name"] for r in rows if "total" not in r["ours"].get("3d_cone", {})]
+    if nm:
+        lines += ["Not modelled on our side (faces not planar, as above), so not run on "
+                  "its side either: " + ", ".join(n.removeprefix("peer ") for n in nm)
+                  + ".", ""]
+    lines += ["The two answer different questions: its CRA asks whether some force state "
+              "and some small displacement field (bounded by d_bnd, contacts carrying "
+              "force only where they overlap by eps, friction opposing the slip) are "
+              "consistent; ours whether the one state reached from the elastic state, "
+              "with no pinch the loads do not cause, stands. Non-associative answers are "
+              "not unique, so where it finds a state ours does not reach, both can be "
+              "right; where its displacement bound or overlap leaves it no state, ours "
+              "may still stand."]
+    return lines
+
+
 def summary_line(row: dict) -> str:
     """One line per structure: verdicts and total times."""
     parts = [f"{row['name']:<28}"]
@@ -748,6 +1104,8 @@ def markdown(data: dict) -> str:
     rows, tg, hard = data["rows"], data.get("targets"), data.get("hard_cases") or []
     python = data["peer_python"] if data.get("peer_available") else None
     lines = ["## The peer: compas_cra", ""]
+    if not rows:  # the non-associative section alone
+        return "\n".join(lines + na_markdown(data.get("nonassoc") or {"rows": []}))
     thr = ", ".join(f"{k}={v}" for k, v in (data.get("threads") or {}).items())
     la0, la1 = data.get("loadavg_start"), data.get("loadavg_end")
     lines += [f"One session ({data.get('started', '?')} to {data.get('finished', '?')}), "
@@ -895,12 +1253,15 @@ def markdown(data: dict) -> str:
               f"{RBE_TENSION_TOL:g} of the total compression; its 8-facet pyramid "
               "circumscribes the Coulomb cone, ours (`pyramid=8`) is inscribed. Time limits "
               "stop peer runs that take too long (see bench_peer.json)."]
+    if data.get("nonassoc"):
+        lines += [""] + na_markdown(data["nonassoc"])
     return "\n".join(lines)
 
 
 def _write(data: dict, d: Path) -> None:
     (d / f"{NAME}.md").write_text(markdown(data).rstrip() + "\n")
-    chart(data["rows"], d / f"{NAME}.png")
+    if data["rows"]:
+        chart(data["rows"], d / f"{NAME}.png")
 
 
 def redraw(out: str | Path | None) -> dict:
@@ -908,6 +1269,12 @@ def redraw(out: str | Path | None) -> dict:
     d = out_dir(out)
     data = json.loads((d / f"{NAME}.json").read_text())
     data["targets"], data["hard_cases"] = targets(data["rows"]), hard_cases(data["rows"])
+    na = data.get("nonassoc")
+    if na:
+        for r in na["rows"]:
+            if r.get("peer"):
+                r["notes"] = na_differences(r)
+        na["agreement"] = na_agreement(na["rows"])
     (d / f"{NAME}.json").write_text(json.dumps(data, indent=1) + "\n")
     _write(data, d)
     return data
@@ -930,6 +1297,11 @@ def main(argv: Sequence[str] | None = None) -> dict:
                         help="leave out the peer's samples and examples")
     parser.add_argument("--redraw", action="store_true",
                         help="rewrite the tables and chart from the existing JSON")
+    parser.add_argument("--only", choices=("static", "nonassoc"), default=None,
+                        help="run one section: the static comparison, or non-associative "
+                        "friction (its CRA and CRA-penalty against our flow=\"non-"
+                        "associative\"); the other section's figures in bench_peer.json "
+                        "are kept")
     args = parser.parse_args(argv)
     if args.redraw:
         return redraw(args.out)
@@ -938,11 +1310,31 @@ def main(argv: Sequence[str] | None = None) -> dict:
     sizes = dict(TINY) if args.tiny else {
         "arches": ARCHES, "walls": WALLS, "hard": HARD_ARCHES,
         "examples": () if args.no_examples else PEER_EXAMPLES}
+    na_sizes = dict(NA_TINY) if args.tiny else {
+        **NA_SIZES, "examples": () if args.no_examples else PEER_EXAMPLES}
     python = peer_python(args.peer_python)
     if python is None:
         print("peer unavailable: our side only", file=sys.stderr)
     timeouts = {"rbe": args.rbe_timeout, "cra": args.cra_timeout,
                 "cra_big": args.big_cra_timeout}
+    d = out_dir(args.out)
+    earlier = (read_results(d, NAME) if (args.only and (d / f"{NAME}.json").exists())
+               else None)
+    if args.only == "nonassoc":
+        na = run_nonassoc(na_sizes, python, timeouts, args.repeats)
+        data = earlier or {"peer_available": python is not None, "peer_python": python,
+                           "peer_version": na["peer_version"], "rows": [],
+                           "targets": None, "hard_cases": []}
+        data["nonassoc"] = na
+        if earlier is None:
+            write_results(d, NAME, data, markdown(data))
+        else:
+            rewrite_results(d, NAME, data, markdown(data))
+        if args.out is None and not args.tiny:
+            import make_readme
+
+            make_readme.main([])
+        return data
     started, la0 = time.strftime("%Y-%m-%d %H:%M:%S %Z"), loadavg()
     rows = bench(sizes, python, timeouts, args.repeats)
     data = {"peer_available": python is not None, "peer_python": python,
@@ -956,7 +1348,10 @@ def main(argv: Sequence[str] | None = None) -> dict:
             "timeouts_s": timeouts, "rbe_tension_tol": RBE_TENSION_TOL,
             "rows": rows}
     data["targets"], data["hard_cases"] = targets(rows), hard_cases(rows)
-    d = out_dir(args.out)
+    if args.only is None:
+        data["nonassoc"] = run_nonassoc(na_sizes, python, timeouts, args.repeats)
+    elif earlier and earlier.get("nonassoc"):
+        data["nonassoc"] = earlier["nonassoc"]
     write_results(d, NAME, data, markdown(data))
     chart(rows, d / f"{NAME}.png")
     if args.out is None and not args.tiny:

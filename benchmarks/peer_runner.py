@@ -4,7 +4,7 @@ Run with the peer's Python (a separate environment with ``compas_cra`` installed
 a dependency of rigidblocks), one case and one method per process, so that the caller
 can stop a solve that runs too long:
 
-    /path/to/peer/python benchmarks/peer_runner.py CASE.json OUT.json rbe|cra|cra_penalty
+    /path/to/peer/python benchmarks/peer_runner.py CASE.json OUT.json rbe|cra|cra_penalty|export
 
 ``CASE.json``: ``{"name", "mu", "blocks": [{"id", "vertices": [[x, y, z], ...],
 "faces": [[i, j, k, ...], ...], "support": bool, "density": float}, ...],
@@ -33,7 +33,8 @@ whole assembly about the origin, as ``rotate_assembly``), ``"supports"``,
 solver's ``density`` for blocks without one), and ``"interfaces": null`` to keep the
 interfaces the sample file carries instead of detecting them. ``"export": PATH`` writes
 the prepared assembly (supports, densities, rotation; before its interfaces are
-detected) as COMPAS JSON, untimed, for the other tool to read. ``times`` also has
+detected) as COMPAS JSON, untimed, for the other tool to read; the method ``export``
+does only that (no interfaces, no solve; ``status`` "exported"). ``times`` also has
 ``setup`` and ``ipopt``: the solver's own problem set-up and IPOPT solve, as its timer
 prints them; ``cpu`` has the process CPU seconds of the same stages (``ipopt``: the
 IPOPT calls alone). Thread settings come from the environment (the caller sets them).
@@ -268,7 +269,12 @@ def main(argv: list[str]) -> int:
     with open(case_path) as fh:
         case = json.load(fh)
     try:
-        out = run(case, method)
+        if method == "export":
+            prepare(case)
+            out = {"method": method, "case": case.get("name"), "status": "exported",
+                   "times": {}, "joints": []}
+        else:
+            out = run(case, method)
     except Exception as exc:  # the peer's own error, reported rather than raised
         out = {"method": method, "case": case.get("name"), "status": "error",
                "message": f"{type(exc).__name__}: {exc}"[:300],

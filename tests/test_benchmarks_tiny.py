@@ -141,6 +141,71 @@ def test_bench_peer_model_notes():
     assert bench.model_notes(refused) == []
 
 
+def test_bench_peer_nonassoc_section_is_merged(tmp_path):
+    """``--only nonassoc`` adds the non-associative section to an earlier run's
+    bench_peer.json and keeps that run's static figures; ``--only static`` keeps the
+    section in turn. Our side alone (the peer disabled): a semicircular arch of t/R 0.15
+    under self-weight stands without dilatancy too (its joints need f = 0.354 < 0.6,
+    the static f* of its hinging thrust line: no joint slides, so the flow rule does not
+    matter), and a running-bond wall under self-weight needs no friction at all."""
+    import json
+
+    bench = load_peer_bench()
+    out = str(tmp_path)
+    first = bench.main(["--tiny", "--peer-python", "none", "--out", out, "--repeats", "1",
+                        "--only", "static"])
+    assert "nonassoc" not in first
+    data = bench.main(["--tiny", "--peer-python", "none", "--out", out, "--repeats", "1",
+                       "--only", "nonassoc"])
+    doc = json.loads((tmp_path / "bench_peer.json").read_text())
+    assert [r["name"] for r in doc["rows"]] == [r["name"] for r in first["rows"]]
+    assert doc["started"] == first["started"]
+    na = {r["name"]: r for r in data["nonassoc"]["rows"]}
+    assert set(na) == {"arch 10 v, t/R 0.15", "wall 10 blocks"}
+    for r in na.values():
+        assert {m: o["verdict"] for m, o in r["ours"].items()} == {
+            "2d": "admissible", "3d_cone": "admissible"}
+        assert r["peer"] == {} and r["notes"] == []
+    arch = na["arch 10 v, t/R 0.15"]["friction"]
+    assert arch["na"]["f"] == pytest.approx(arch["static"]["f"], rel=2e-5)
+    assert 0.3 < arch["na"]["f"] < 0.6
+    assert na["wall 10 blocks"]["friction"]["na"]["f"] == 0.0
+    md = (tmp_path / "bench_peer.md").read_text()
+    assert "Verdicts (self-weight)" in md and "### Non-associative friction" in md
+    again = bench.main(["--tiny", "--peer-python", "none", "--out", out, "--repeats", "1",
+                        "--only", "static"])
+    assert again["nonassoc"]["rows"] == json.loads(json.dumps(data["nonassoc"]["rows"]))
+
+
+def test_bench_peer_nonassoc_notes():
+    """The non-associative comparison's counts and explanations come from the run's
+    data: an admissible CRA against our inadmissible state names the friction our state
+    needs against the pyramid's 8.2% excess; an infeasible CRA against our admissible
+    state names its displacement bound; a CRA-penalty state with tension is read as
+    RBE's is."""
+    bench = load_peer_bench()
+    row = {"name": "x", "mu": 0.84, "d_bnd": 1e-3, "eps": 1e-4,
+           "ours": {"3d_cone": {"verdict": "inadmissible", "total": 0.1,
+                                "violation": 0.13}},
+           "friction": {"static": {"f": 0.5}, "na": {"f": 0.88}},
+           "peer": {"cra": {"verdict": "admissible", "settings": {}},
+                    "cra_penalty": {"verdict": "inadmissible", "tension_ratio": 0.7,
+                                    "settings": {}}}}
+    (note,) = bench.na_differences(row)
+    assert "f = 0.88 without dilatancy" in note and "within the 8.2%" in note
+    assert "f* = 0.5" in note
+    ok = {**row, "ours": {"3d_cone": {"verdict": "admissible", "total": 0.1}},
+          "peer": {"cra": {"verdict": "inadmissible", "settings": {}}}}
+    (note,) = bench.na_differences(ok)
+    assert "d_bnd = 0.001" in note
+    assert bench.na_agreement([row, ok]) == {
+        "cra": {"agree": 0, "disagree": 2, "ours_undecided": 0, "peer_no_answer": 0},
+        "cra_penalty": {"agree": 1, "disagree": 0, "ours_undecided": 0,
+                        "peer_no_answer": 0}}
+    assert bench.peer_na_verdict({"method": "cra_penalty", "status": "solved", "joints": [
+        {"fn": 1.0, "tension": 0.5}]}) == "inadmissible"
+
+
 def load_script(name):
     spec = importlib.util.spec_from_file_location(name, ROOT / "benchmarks" / f"{name}.py")
     mod = importlib.util.module_from_spec(spec)
