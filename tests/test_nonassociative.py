@@ -265,6 +265,71 @@ def test_algorithms_agree_on_examples(name):
         assert a.load_multiplier == pytest.approx(b.load_multiplier, rel=RTOL)
 
 
+def test_two_fixed_points_on_the_3x3_wall():
+    """The 3 x 3 running-bond wall at f = 0.8, lambda = 0.748 (between the convex path's
+    multiplier 0.7468 and the distortion path's 0.7492, docs/methods.md): the convex
+    iteration from the elastic state, undamped, settles on normal forces whose capped
+    problem breaches the laws (inadmissible), while the distortion iteration reaches an
+    admissible state. That state is in equilibrium, within the joint laws, and a fixed
+    point of the convex iteration too (the capped problem at its normal forces returns
+    it with no breach): both paths' conditions hold at it, so the convex verdict there is
+    its iteration's, not a proof that no such state exists. The convex iteration damped
+    to 1/4 from its first step reaches the same state."""
+    from rigidblocks.analyses.nonassociative import nonassociative_method
+    from rigidblocks.methods import open_method
+
+    scene = build("wall", courses=3, blocks_per_course=3, friction=0.8)
+    f, lam = 0.8, 0.748
+    cm = open_method(scene, "clarabel")
+    mask = flow_mask(scene, cm.contacts, NA)
+    cna = nonassociative_method(cm, mask)
+    rc = cna.fixed_point(f, lam)
+    assert rc.status == "inadmissible" and rc.converged
+    rd = nonassociative_method(open_method(scene, "distortion"), mask).fixed_point(f, lam)
+    assert rd.status == "admissible" and rd.converged
+    sysm, x = cm.system, rd.x
+    scale = float(np.abs(x).max())
+    assert np.abs(sysm.A @ x + sysm.dead + lam * sysm.live).max() <= 1e-9 * scale
+    st = rb.check(scene, load_factor=lam, flow=NA, method="distortion").state
+    assert st.normal.min() >= -1e-9 * scale
+    assert (np.abs(st.joint_shear) - f * st.joint_normal).max() <= 1e-9 * scale
+    nsl, fj = sysm.layout.normal, cm.f_joint(f)
+    cap = fj[cm.contacts.point_joint] * np.maximum(x[nsl], 0.0) / cm.scaling.force
+    xc, breach = cna._solve_capped(np.where(mask, 0.0, fj), lam, cap)
+    assert breach == 0.0
+    assert np.abs(xc[nsl] * cm.scaling.force - x[nsl]).max() <= 1e-6 * scale
+    # the two states differ: their normal forces by 2% of the largest force
+    assert np.abs(rc.x[nsl] - x[nsl]).max() > 1e-2 * scale
+    damped = nonassociative_method(cm, mask)
+    damped.damping, damped.max_iter = 0.25, 3000
+    rq = damped.fixed_point(f, lam)
+    assert rq.status == "admissible"
+    assert np.abs(rq.x[nsl] - x[nsl]).max() <= 1e-5 * scale
+
+
+def test_flat_arch_on_piers_distortion_tolerance():
+    """The flat arch with vertical joints on piers (examples/flat_arch_vertical.json),
+    self-weight: its non-associative friction is the demand of the least-energy state,
+    0.8100 at v1-pier_l (above it that state itself stands; below it a joint slides and
+    the iteration settles on a breach). The distortion iteration at its default
+    tolerance (1e-9 reference-force units) stalls within 100 x tol just above 0.81 and
+    the bisection ends undecided with a bracket that holds the convex answer; at
+    tol = 1e-10 it decides there and agrees with the convex path to 2e-5."""
+    scene = read_scene(EXAMPLES / "flat_arch_vertical.json")
+    demand = rb.check(scene, friction="infinite", load_factor=0.0).friction_demand[0]
+    cv = rb.min_friction(scene, load_factor=0.0, flow=NA, state=False)
+    assert cv.status == "stable"
+    assert cv.friction_factor == pytest.approx(demand, rel=RTOL)
+    assert cv.friction_factor == pytest.approx(0.81, rel=1e-4)
+    d = rb.min_friction(scene, load_factor=0.0, flow=NA, method="distortion", state=False)
+    assert d.status == "undecided" and d.friction_factor is None
+    assert d.bracket[0] < cv.friction_factor < d.bracket[1]
+    tight = rb.min_friction(scene, load_factor=0.0, flow=NA, method="distortion",
+                            state=False, settings={"tol": 1e-10})
+    assert tight.status == "stable"
+    assert tight.friction_factor == pytest.approx(cv.friction_factor, rel=RTOL)
+
+
 # -- friction demand and the CLI -----------------------------------------------------------
 def test_friction_demand_of_the_check():
     """At lambda = 0.2 the block's base carries T = 0.2 W over N = W: demand 0.2."""
