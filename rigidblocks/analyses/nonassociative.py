@@ -506,7 +506,6 @@ def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: flo
     interior-point duals (a mix of every optimal mechanism), as the associative
     analysis does."""
     from ..equilibrium import mechanism
-    from ..methods.vertex import vertex_dual
 
     c = cv.contacts
     pj = c.point_joint
@@ -524,23 +523,8 @@ def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: flo
                         f"capacities the multiplier would be {lam_cap:.6g}: no collapse "
                         "mechanism is given")
         return None, ()
-    eq = prob.rows["equilibrium"]
-    y_eq, got = res.y[eq], "blend"
-    if kind == "vertex":
-        with cv.timings.stage("mechanism"):
-            vd = vertex_dual(prob, res, eq, cv.system.dofs,
-                             time_limit=max(1.0, res.solve_time))
-        if vd is None:
-            na.notes.append("mechanism: the blend of the optimal face (no vertex could "
-                            "be found)")
-        else:
-            y_eq, got = vd[0][eq], vd[1]
-            work_at = float(prob.b @ vd[0])
-            if work_at > lam_cap * (1 + 1e-6) + 1e-9:
-                na.notes.append(f"mechanism: the one drawn (an extreme point next to the "
-                                f"optimal face) balances at lambda = {work_at:.6g}, "
-                                f"{work_at / lam_cap - 1:.1e} (relative) above the "
-                                "capped laws' multiplier")
+    y_eq, got = cv.mechanism_duals(prob, res, lam_cap, kind, "the capped laws' multiplier")
+    na.notes.extend(n for n in cv.notes if n.startswith("mechanism:") and n not in na.notes)
     mech = mechanism(cv.system, cv.scaling.row, y_eq, got)
     sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
     return mech, sliding

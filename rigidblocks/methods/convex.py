@@ -606,30 +606,38 @@ class ConvexMethod(Method):
             self.notes.append(f"largest admissible multiplier {lam:.6g}, but only with the "
                               "live load propping the structure up")
             return Limit("unstable")
-        eq = prob.rows["equilibrium"]
-        y_eq, kind = res.y[eq], "blend"
-        if mechanism_kind == "vertex":
-            self.progress.stage = "vertex mechanism"
-            with self.timings.stage("mechanism"):
-                # a vertex is worth at most the limit problem's own time again
-                vd = vertex_dual(prob, res, eq, self.system.dofs,
-                                 time_limit=max(1.0, res.solve_time))
-            if vd is None:
-                self.notes.append("mechanism: the blend of the optimal face (no vertex "
-                                  "could be found)")
-            else:
-                y_eq, kind = vd[0][eq], vd[1]
-                work_at = float(prob.b @ vd[0])
-                if work_at > lam * (1 + 1e-6) + 1e-9:
-                    self.notes.append(f"mechanism: the one drawn (an extreme point next "
-                                      f"to the optimal face) balances at lambda = "
-                                      f"{work_at:.6g}, {work_at / lam - 1:.1e} (relative) "
-                                      "above lambda*")
+        y_eq, kind = self.mechanism_duals(prob, res, lam, mechanism_kind, "lambda*")
         with self.timings.stage("state"):
             mech = mechanism(self.system, self.lscaling.row, y_eq, kind)
         sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
         return Limit("collapse", lam, lam, lam, governing=sliding, mechanism=mech,
                      at=Verdict(ADMISSIBLE, 0.0, (), (res, prob)))
+
+    def mechanism_duals(self, prob: Any, res: SolverResult, lam: float, kind: str,
+                        what: str) -> tuple[np.ndarray, str]:
+        """The equilibrium rows' duals of a solved limit problem ``prob`` (multiplier
+        ``lam``, named ``what`` in notes) to draw as its mechanism, and which they are:
+        with ``kind`` "vertex" one mechanism of the optimal face
+        (:func:`~rigidblocks.methods.vertex.vertex_dual`; the blend, with a note, where
+        none is found), with "blend" the interior-point duals."""
+        eq = prob.rows["equilibrium"]
+        if kind != "vertex":
+            return res.y[eq], "blend"
+        self.progress.stage = "vertex mechanism"
+        with self.timings.stage("mechanism"):
+            # a vertex is worth at most the limit problem's own time again
+            vd = vertex_dual(prob, res, eq, self.system.dofs,
+                             time_limit=max(1.0, res.solve_time))
+        if vd is None:
+            self.notes.append("mechanism: the blend of the optimal face (no vertex could "
+                              "be found)")
+            return res.y[eq], "blend"
+        work_at = float(prob.b @ vd[0])
+        if work_at > lam * (1 + 1e-6) + 1e-9:
+            self.notes.append(f"mechanism: the one drawn (an extreme point next to the "
+                              f"optimal face) balances at lambda = {work_at:.6g}, "
+                              f"{work_at / lam - 1:.1e} (relative) above {what}")
+        return vd[0][eq], vd[1]
 
     def _dead_admissible(self, f: float) -> bool | None:
         """Is lambda = 0 admissible? The admissible multipliers form an interval, which
