@@ -382,3 +382,40 @@ def test_friction_bracket_ends_where_the_solver_stops_resolving():
     assert r.bracket[0] <= lo and r.bracket[1] == r.friction_factor
     assert any("below what the solver certifies" in n for n in r.notes)
     assert r.n_solves <= 6
+
+
+def _unchecked_at(monkeypatch, spoil):
+    """Relaxations at the frictions ``spoil(f)`` picks come back without a checked
+    answer, as when the solver's answer fails its check near a degenerate f*."""
+    from rigidblocks.methods import convex
+
+    read = convex.ConvexMethod._read
+
+    def patched(self, prob, jr, res, f):
+        if spoil(f):
+            return convex.Relaxation(None, 0.0, res, jr, prob, convex.ADMISSIBLE_TOL, f,
+                                     unresolved="the answer fails its check (spoilt)")
+        return read(self, prob, jr, res, f)
+
+    monkeypatch.setattr(convex.ConvexMethod, "_read", patched)
+
+
+def test_friction_search_steps_past_a_trial_without_a_checked_answer(monkeypatch,
+                                                                     block_on_base):
+    """A b = 1, h = 2 block under a horizontal body force of 0.3 times its weight needs
+    f* = 0.3 (it slides; it would tip at b/h = 0.5). Newton's first step from f = 0
+    lands on 0.3, where the relaxation is made to come back without a checked answer:
+    the search steps up to a certified upper end and closes the bracket around the
+    unsolved trial, so f* is given within 1e-3 with the bracket and the reason in the
+    notes; where no trial has a checked answer, it is undecided, never a number."""
+    s = block_on_base(1.0, 2.0, 0.5)
+    _unchecked_at(monkeypatch, lambda f: abs(f - 0.3) < 1e-12)
+    r = min_friction(s, load_factor=0.3, state=False)
+    assert r.status == "stable"
+    assert 0.3 <= r.friction_factor <= 0.3 * (1 + 1e-3)
+    assert r.bracket[0] <= 0.3 <= r.bracket[1]
+    assert any("failing its check" in n for n in r.notes)
+    _unchecked_at(monkeypatch, lambda f: 0 < f < math.inf)
+    r = min_friction(s, load_factor=0.3, state=False)
+    assert r.status == "undecided" and r.friction_factor is None
+    assert any("spoilt" in n for n in r.notes)

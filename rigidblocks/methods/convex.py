@@ -81,6 +81,13 @@ NEAR_STOP = 1e-5
 #: about at the upper end is not probed just below the upper end where R is predicted
 #: below what the solver certifies (:func:`beyond_resolution`)
 NARROW = 1e-3
+#: a search for f* that ends with trials the solver could not decide gives a number only
+#: where they leave f* bracketed to this (relative) below the certified upper end
+WIDE = 1e-3
+#: in the search for f*, trials in a row whose relaxation has no checked answer (the
+#: solver failed, or its answer fails the check) before the search gives up: a failure
+#: where the solver failed, undecided where its answer failed the check
+MISSED_LIMIT = 4
 #: beginning of the reason of a verdict undecided for that reason
 FORCES_SPAN = "forces span"
 #: an admissible state at a limit whose forces exceed this many times the loads of the
@@ -396,6 +403,8 @@ class ConvexMethod(Method):
         near: float | None = None  # the largest trial left near the threshold (undecided)
         step_up = rtol  # relative step above a trial left at the threshold
         lower_primal = False  # a lower point rests on the relaxation's primal value
+        n_missed = 0  # trials in a row whose relaxation had no checked answer
+        missed_at: set[float] = set()  # trials whose relaxation had none
         for _ in range(100):
             if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
                 break
@@ -434,6 +443,10 @@ class ConvexMethod(Method):
             else:
                 trial = 0.5 * (lo + hi)
                 probe_below_hi = True
+            if trial in missed_at:  # the solver had no checked answer there before
+                if not math.isfinite(hi) or hi - lo <= WIDE * hi:
+                    break
+                trial = 0.5 * (lo + hi)
             try:
                 rx = self.relaxation(trial, lf, confirm=False)
                 if (not rx.decided and not rx.unresolved and rx.R is not None
@@ -447,22 +460,43 @@ class ConvexMethod(Method):
                     last = rx
                     continue
             except SolverFailure as exc:
-                # just below f* the relaxation can be too degenerate for the interior-point
-                # solver: probe four times further below the certified upper end
-                if not math.isfinite(hi) or trial < hi * (1.0 - 1e3 * rtol):
-                    raise
-                undecided = exc.status
-                forced = hi - 4.0 * (hi - trial)
-                if forced <= lo:
-                    break
+                failure, missed = exc, exc.status
+            else:
+                failure = None
+                missed = (f"{rx.res.raw_status}, failing its check" if rx.unresolved
+                          and not rx.unresolved.startswith(FORCES_SPAN) else "")
+            if missed:
+                # near f* the relaxation can be too degenerate for the interior-point
+                # solver (no answer, or none that passes its check): close below the
+                # certified upper end probe four times further below it; elsewhere step
+                # up from the trial (by its distance from the lower end, at least by a
+                # relative offset growing fourfold) towards a certified upper end
+                n_missed += 1
+                missed_at.add(trial)
+                if n_missed > MISSED_LIMIT:
+                    if failure is not None:
+                        raise failure
+                    self.notes.append(f"at f = {trial:.10g}: {rx.unresolved}")
+                    return Limit("undecided", None, lo, hi if math.isfinite(hi) else None)
+                undecided = missed
+                if math.isfinite(hi) and trial >= hi * (1.0 - 1e3 * rtol):
+                    forced = hi - 4.0 * (hi - trial)
+                    if forced <= lo:
+                        break
+                else:
+                    forced = max(trial * (1.0 + step_up), 2.0 * trial - lo)
+                    step_up *= 4.0
+                    if math.isfinite(hi):
+                        forced = min(forced, 0.5 * (trial + hi))
                 continue
+            n_missed = 0
             if not rx.decided:
                 if rx.unresolved.startswith(FORCES_SPAN) and math.isfinite(hi):
                     # below the certified upper end the states need forces beyond what
                     # can be resolved: f* is an infimum approached by unbounded forces
                     unresolved_below = trial
                     break
-                if rx.unresolved:  # no checked answer: nothing to go on
+                if rx.unresolved:  # forces beyond resolution, no upper end: nothing to go on
                     self.notes.append(f"at f = {trial:.10g}: {rx.unresolved}")
                     return Limit("undecided", None, lo, hi if math.isfinite(hi) else None)
                 # a verdict near the threshold that a tighter solve did not settle: f* is
@@ -505,6 +539,11 @@ class ConvexMethod(Method):
             self.notes.append(f"near f* some relaxations ended with status {undecided}{at}; "
                               f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
                               f"{(hi - lo) / hi:.1e})")
+            below = max(lo, near if near is not None else lo)
+            if not math.isfinite(hi) or hi - below > WIDE * hi:
+                self.notes.append(f"the bracket is wider than {WIDE:g} (relative): no "
+                                  "number is given")
+                return Limit("undecided", None, lo, hi if math.isfinite(hi) else None)
         if lower_primal and lo > 0:
             self.notes.append(f"the lower end of f*'s bracket ({lo:.10g}) rests on the "
                               "relaxation's value, far above the threshold but not "
