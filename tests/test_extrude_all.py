@@ -171,3 +171,19 @@ def test_glued_extruded_arch_is_not_decided_by_rounding(dx, dy):
     assert l3.status == l2.status == "collapse"
     assert _same(l3.load_multiplier, l2.load_multiplier)
     assert l3.state is not None
+
+
+def test_extrusion_keeps_the_scene_keys():
+    """The extruded scene keeps the plane scene's load factor and flow rule: a running-bond
+    wall generated with load factor 0 (self-weight only) stands in 3D as in 2D, and a
+    non-associative wall stays non-associative."""
+    from rigidblocks.generators.walls import running_bond_wall
+    from rigidblocks.scene.extrude import extrude
+
+    wall = running_bond_wall(3, 3)
+    assert wall.load_factor == 0.0
+    e = extrude(wall)
+    assert e.load_factor == 0.0
+    assert rb.check(wall, state=False).status == rb.check(e, state=False).status == "admissible"
+    na = extrude(replace(wall, flow="non-associative", load_factor=0.5))
+    assert (na.flow, na.load_factor) == ("non-associative", 0.5)

@@ -47,4 +47,4 @@ def extrude(scene: Scene, depth: float | None = None) -> Scene:
                  name=scene.name, units=scene.units, depth=None,
                  unit_weight=scene.unit_weight if scene.unit_weight is not None else None,
                  friction=scene.friction, live_body_force=v3(scene.live_body_force),
-                 flow=scene.flow, source=scene.source)
+                 load_factor=scene.load_factor, flow=scene.flow, source=scene.source)
