@@ -100,10 +100,15 @@ def vertex_dual(prob: ConicProblem, res: SolverResult, eq_rows: slice, dofs: int
         from scipy.optimize import linprog
 
         bounds = [(None, None)] * n_eq_k + [(0, None)] * (len(idx) - n_eq_k)
-        out = linprog(w, A_ub=b[idx][None, :],
-                      b_ub=[bound + BOUND_TOL * max(1.0, abs(bound))],
-                      A_eq=At, b_eq=rhs, bounds=bounds, method="highs-ds",
-                      options={"time_limit": time_limit})
+        lp = dict(A_ub=b[idx][None, :], b_ub=[bound + BOUND_TOL * max(1.0, abs(bound))],
+                  A_eq=At, b_eq=rhs, bounds=bounds, options={"time_limit": time_limit})
+        # where the active set taken at the interior point's tolerances leaves the
+        # restricted problem without a solution (large walls), HiGHS' interior-point
+        # method says so in a fraction of the simplex's time (1,009-block wall: 0.08 s
+        # against 0.7 s, when the simplex does not end in a solve error)
+        if linprog(w, method="highs-ipm", **lp).status == 2:
+            return None
+        out = linprog(w, method="highs-ds", **lp)
         if out.status != 0:
             return None
         yv = np.zeros(n_rows)
