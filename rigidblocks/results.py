@@ -211,6 +211,10 @@ class Result:
 DEMAND_TOL = 1e-7
 
 
+#: demands within this (relative) of the largest count as the same (see max_demand)
+DEMAND_TIE = 1e-7
+
+
 def max_demand(st: ForceState | None) -> tuple[float, int] | None:
     """The largest |T|/N over the joints of a force state and its joint (None without a
     state or joints).
@@ -227,7 +231,11 @@ def max_demand(st: ForceState | None) -> tuple[float, int] | None:
     with np.errstate(divide="ignore", invalid="ignore"):
         d = np.where(loaded, T / np.where(loaded, N, 1.0),
                      np.where(T > DEMAND_TOL * big, np.inf, 0.0))
-    k = int(np.argmax(d))
+    top = float(d.max())
+    # joints that need the same friction to round-off (symmetric structures): the first
+    # of them, so that the joint named does not flip with the solver's last digits
+    k = int(np.flatnonzero(d >= top * (1.0 - DEMAND_TIE))[0]) if np.isfinite(top) \
+        else int(np.argmax(d))
     return float(d[k]), k
 
 
