@@ -394,6 +394,54 @@ def summarise(cases: list[dict[str, Any]], tiny: bool) -> dict[str, Any]:
 
 
 # -- report ----------------------------------------------------------------------------------
+def where_time_goes(cases: list[dict[str, Any]], summary: dict[str, Any]) -> list[str]:
+    """At the largest 2D wall measured: each analysis' stages as shares of its total,
+    its interior-point iterations and seconds per iteration, against the floor's; the
+    exponent of the seconds per iteration of the max-load solve; and what halving the
+    time would take (from these figures only)."""
+    rows = [r for r in summary["rows"] if r["dim"] == 2]
+    if not rows:
+        return []
+    top = max(r["blocks"] for r in rows)
+    at = [r for r in rows if r["blocks"] == top]
+    ours = {c["analysis"]: c for c in cases if c["kind"] == "ours" and "error" not in c
+            and c["dim"] == 2 and c["blocks"] == top}
+    bare = next((c for c in cases if c["kind"] == "bare" and "error" not in c
+                 and c["dim"] == 2 and c["blocks"] == top), None)
+    body = []
+    for r in at:
+        c = ours[r["analysis"]]
+        it = c.get("iterations") or 0
+        sh = {k: v / r["total"] for k, v in r["seconds"].items()}
+        body.append([r["analysis"], r["total"], *[sh[k] for k in STAGES], r["n_solves"], it,
+                     r["seconds"]["solve"] / it if it else "-", round(r["peak_mib"])])
+    if bare is not None:
+        body.append(["floor (one bare solve)", bare["solve"], *["-"] * len(STAGES), 1,
+                     bare["iterations"], bare["solve"] / bare["iterations"],
+                     round(bare["peak_mib"])])
+    # seconds per iteration of the max-load analysis against size
+    ml = sorted((c for c in cases if c["kind"] == "ours" and "error" not in c
+                 and c["dim"] == 2 and c.get("analysis") == "max_load_multiplier"
+                 and c.get("iterations")), key=lambda c: c["blocks"])
+    p_it = fit_exponent([c["blocks"] for c in ml],
+                        [c["seconds"]["solve"] / c["iterations"] for c in ml], lo=1_000)
+    out = [f"### Where the time goes at {top:,} blocks (2D)", "",
+           "Shares of each analysis' total; iterations: interior-point iterations of all "
+           "its solves; s/it: solve seconds per iteration.", "",
+           markdown_table(["analysis", "total s", *STAGES, "solves", "iterations", "s/it",
+                           "peak MiB"], body), ""]
+    if p_it is not None:
+        out += [f"Seconds per interior-point iteration of the max-load analysis grow as "
+                f"blocks^{p_it:.2f} (1,000 blocks and up): the KKT factorisation of each "
+                "iteration. Halving a solve means halving its iterations (the verdicts' "
+                "tolerance 1e-10 costs more iterations than the floor's default 1e-8, see "
+                "the floor table) or the cost of each (the factorisation's fill); every "
+                "other stage together is the `read` to `build` and `results` shares "
+                "above.", ""]
+    return out
+
+
+
 def markdown(cases: list[dict[str, Any]], summary: dict[str, Any],
              extra: dict[str, Any]) -> str:
     """The README section."""
@@ -470,6 +518,7 @@ def markdown(cases: list[dict[str, Any]], summary: dict[str, Any],
     out += ["### Scaling exponents (2D, time ~ blocks^p, 1,000 to 50,000 blocks)", "",
             markdown_table(["quantity", "p"],
                            [[k, v if v is not None else "-"] for k, v in ex.items()]), ""]
+    out += where_time_goes(cases, summary)
     tg = summary["targets"]
     out += ["### Targets (2D wall, 5,000 blocks unless stated)", "", markdown_table(
         ["target", "blocks", "measured", "limit", "met"],
