@@ -79,6 +79,61 @@ def shelf():
     return scene_from_dict(doc), 3.5088692183768677e-05
 
 
+def test_h_static_infimum_and_no_nonassociative_friction():
+    """16 H. Static: the block hangs on two vertical joints by friction alone, T = W/2
+    on each; with a pinch N (a normal force no load causes) f N >= W/2 holds for any
+    f > 0, so f* = 0 is an infimum approached with ever larger forces. Non-associative:
+    the loads cause no normal force on vertical joints (X0 and every state after it have
+    N = 0 there: no horizontal load), so f N = 0 whatever f and no friction makes it
+    stand: "unstable", never a friction (the search found 6283 before, on normal forces
+    of 2e-5 W the state problems leave at the bound N = 0)."""
+    sc = sample_h()
+    st = rb.min_friction(sc, load_factor=0.0, state=False)
+    assert st.status == "stable" and st.friction_factor < 1e-5
+    assert any("infimum" in n for n in st.notes)
+    na = rb.min_friction(sc, load_factor=0.0, state=False, flow=NA)
+    assert na.status == "unstable" and na.friction_factor is None
+    assert any("does not depend on f" in n and "pinch" in n for n in na.notes)
+    # at a large friction the state stands only on round-off: not admissible
+    big = rb.check(sc, friction=8388.0, load_factor=0.0, state=False, flow=NA)
+    assert big.status != "admissible"
+    assert any("below the solver's resolution" in n for n in big.notes)
+
+
+def test_a_inverted_wedge_falls_without_dilatancy():
+    """16 A. Static (hand derivation): on each face, normal N pushing the block down
+    (0.5 N) and friction T <= f N holding it up (cos 30 T): 2 (cos 30 T - 0.5 N) = W
+    needs N (f cos 30 - 0.5) >= W/2, so f* = tan 30 deg, an infimum (N grows without
+    bound as f -> f*). Non-associative: the least-energy state would need tension on both
+    faces; with none, N = 0 there and the capped laws carry nothing whatever f (a drop
+    of the block opens both joints): "unstable", with the same breach at every f."""
+    sc = sample_a()
+    st = rb.min_friction(sc, load_factor=0.0, state=False)
+    assert st.status == "stable"
+    assert st.friction_factor == pytest.approx(math.tan(math.radians(30)), rel=1e-5)
+    na = rb.min_friction(sc, load_factor=0.0, state=False, flow=NA)
+    assert na.status == "unstable"
+    assert any("does not depend on f" in n for n in na.notes)
+    assert rb.check(sc, friction=100.0, load_factor=0.0, flow=NA).status == "inadmissible"
+
+
+def test_wedge_c_topples_without_dilatancy():
+    """05 wedge type-c. Static: the contact forces of both faces push the wedge out of
+    the notch (0.866 N each); friction along the faces holds it in (0.5 T), so
+    f* = tan 60 deg (both faces at their limit). Non-associative: the weight acts
+    outside the lower face, so the wedge is held by friction at its tip on the upper
+    face; the rotation about the lower face's outer edge opens that contact (opening
+    0.577 per unit of slip), and without dilatancy the opening contact carries nothing:
+    the least-energy state has N = 0 on the upper face at every f, "unstable"."""
+    sc = sample_wedge_c()
+    st = rb.min_friction(sc, load_factor=0.0, state=False)
+    assert st.status == "stable"
+    assert st.friction_factor == pytest.approx(S3, rel=1e-5)
+    na = rb.min_friction(sc, load_factor=0.0, state=False, flow=NA)
+    assert na.status == "unstable"
+    assert any("does not depend on f" in n for n in na.notes)
+
+
 def test_shelf_min_friction_answers_with_both_back_ends():
     """07 shelf. f* = 0.87160 (an infimum: the forces grow without bound towards it):
     Clarabel on the friction cones at rtol 1e-9 (its relaxation fails just below f*,
