@@ -137,7 +137,7 @@ def test_wedge_c_topples_without_dilatancy():
 def test_shelf_min_friction_answers_with_both_back_ends():
     """07 shelf. f* = 0.87160 (an infimum: the forces grow without bound towards it):
     Clarabel on the friction cones at rtol 1e-9 (its relaxation fails just below f*,
-    status AlmostSolved; the search used to raise) gives a certified bracket that holds
+    status AlmostSolved; the search steps past it) gives a certified bracket that holds
     HiGHS's f* on the 8-sided inscribed pyramid (the governing slips lie along a
     pyramid edge, so both models have the same f*; a different back end and model)."""
     sc, tol = shelf()
