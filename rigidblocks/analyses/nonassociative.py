@@ -68,7 +68,7 @@ from ..problems.formulation import build_energy_qp, build_max_load, build_relaxa
 from ..results import CheckResult, ForceState, FrictionResult, LoadResult
 from ..scene.model import NON_ASSOCIATIVE, Scene, flow_value, friction_label, friction_value
 from ..solvers import OPTIMAL
-from .search import FRICTION_CEILING, UNBOUNDED_AT, bisect
+from .search import UNBOUNDED_AT, bisect
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
 FIXED_POINT_TOL = 1e-6
@@ -82,6 +82,21 @@ MIN_DAMPING = 1.0 / 64
 NA_RTOL = 1e-5
 #: the first trial of the multiplier lies this far (relative) below the associative one
 TOP_RTOL = 1e-6
+#: normal forces below this fraction of the largest force are not resolved: the state
+#: problems are quadratic programs solved by an interior-point method at its default
+#: tolerances (duality gap 1e-8), which leaves a force at its bound of zero off it by
+#: about the square root of the gap (2e-5 of the largest force on the joints of the
+#: peer's "H" sample, whose normal forces are zero); an admissible verdict whose shear
+#: capacity f N rests on such forces is round-off, not a verdict
+N_RESOLUTION = 1e-4
+#: the non-associative friction search goes no higher: above 1 / N_RESOLUTION the caps
+#: f N of normal forces at the solver's resolution reach the largest force, and no
+#: verdict there is resolved
+NA_FRICTION_CEILING = 1.0 / N_RESOLUTION
+#: the reason of an undecided verdict for that reason (its beginning)
+UNRESOLVED_N = "the shear is carried on normal forces"
+#: undecided trials in a row after which the friction search stops bracketing upwards
+UNDECIDED_RUN = 3
 #: the reason of a distortion run that found an admissible iterate but did not settle
 _UNSETTLED = "admissible; the iteration budget"
 
@@ -242,6 +257,26 @@ class ConvexNonAssociative(NonAssociative):
         x = energy(R + STATE_SLACK)
         return (rres.z[rprob.cols["x"]] if x is None else x), R
 
+    def _unresolved_breach(self, f_eff: np.ndarray, lf: float, f_pt: np.ndarray,
+                           N: np.ndarray, scale: float) -> float | None:
+        """The breach of the capped laws when the caps f N of the contact points whose
+        normal force N is below N_RESOLUTION x ``scale`` (not resolved) are zero; None
+        where there are none or the breach is within that resolution."""
+        low = (f_pt > 0) & (N > 0) & (N <= N_RESOLUTION * scale)
+        if not low.any():
+            return None
+        cap = np.where(low, 0.0, f_pt * N)
+        rprob, _ = build_relaxation(self.system, self.cv.scaling, f_eff, lf, self.cv.pyramid,
+                                    cap=cap)
+        rres = self.cv._run(rprob, "relaxation", tight=True)
+        if rres.status != OPTIMAL:
+            return None
+        R0 = max(float(rres.z[rprob.cols["r"]][0]), 0.0)
+        # a breach within the resolution is what removing caps of at most f x the
+        # resolution does to any state near its threshold: only a larger one says the
+        # state rests on those forces
+        return R0 if R0 > N_RESOLUTION * scale else None
+
     def fixed_point(self, f: float, load_factor: float) -> FixedPoint:
         t0 = time.perf_counter()
         cv, sysm = self.cv, self.system
@@ -283,6 +318,14 @@ class ConvexNonAssociative(NonAssociative):
             hist.append(change)
             if change <= self.tol:
                 if R <= ADMISSIBLE_TOL * scale:
+                    R0 = self._unresolved_breach(f_eff, load_factor, f_pt, N, scale)
+                    if R0 is not None:
+                        return FixedPoint(UNDECIDED, x * F, k, True, R0 * F,
+                                          f"{UNRESOLVED_N} below the solver's resolution "
+                                          f"({N_RESOLUTION:g} of the largest force): with "
+                                          f"them zero the joints breach their laws by "
+                                          f"{R0 * F:.3g}; the state stands on round-off",
+                                          hist, time.perf_counter() - t0)
                     return FixedPoint(ADMISSIBLE, x * F, k, True, 0.0,
                                       f"fixed point after {k} convex solves (change "
                                       f"{change:.2g})", hist, time.perf_counter() - t0)
@@ -551,6 +594,31 @@ def _frictionless_bound(cv: ConvexMethod, marked: np.ndarray, f: float) -> float
     return lam if lam > ADMISSIBLE_TOL else 0.0  # round-off of a zero bound
 
 
+def _same(breach: list[tuple[float, float]]) -> bool:
+    """Do the breaches (f, R) of the trials agree (to 1e-3 relative): R independent
+    of f?"""
+    r = [b for _, b in breach]
+    return math.isfinite(max(r)) and max(r) - min(r) <= 1e-3 * max(abs(max(r)), 1e-300)
+
+
+def _no_friction_note(breach: list[tuple[float, float]], fs: float) -> str:
+    """Why no friction makes the state reached from the elastic state stand, from the
+    breaches of the trials (f, R) of the upward search."""
+    (f0, r0), (f1, r1) = breach[0], breach[-1]
+    text = (f"no friction up to {NA_FRICTION_CEILING:g} (above it f times the solver's "
+            f"resolution of the normal forces reaches the loads) makes the state reached "
+            f"from the elastic state stand: it breaches the joint laws by {r0:.4g} at f = {f0:.6g} "
+            f"and by {r1:.4g} at f = {f1:.6g}")
+    if _same(breach):
+        text += (" (the breach does not depend on f: the joints that must carry the shear "
+                 "have no normal force in that state, as the loads cause none there, so "
+                 "their capacity f N is zero whatever f)")
+    return text + (f". The static f* = {fs:.6g} admits a state only with a normal force "
+                   "the loads do not cause (a pinch, a prestress) or with a slip that "
+                   "opens the joint (dilatancy): without either the structure does not "
+                   "stand, at any friction")
+
+
 def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
                                 method: str = "clarabel", *, flow: str | None = None,
                                 state: bool = True, rtol: float = NA_RTOL,
@@ -603,6 +671,8 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
         na.notes.append("the non-associative friction equals the static f*")
         return out("stable", first, v, fs, first, True)
     bad, good, best = first, max(2.0 * fs, 1e-3), None
+    breach = [(first, v.violation)] if ok is False else []
+    unsettled: list[float] = []
     while True:
         ok, v = decide(good)
         if ok is True:
@@ -610,12 +680,33 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
             break
         if ok is False:
             bad = good
+            breach.append((good, v.violation))
+            unsettled = []
+        elif (v.notes and v.notes[0].startswith(UNRESOLVED_N) and len(breach) > 1
+              and _same(breach + [(good, v.violation)])):
+            # the state stands only on unresolved normal forces, and with them zero it
+            # breaches the laws by what every trial below did at every f: the same state
+            bad = good
+            breach.append((good, v.violation))
         else:
-            na.notes.append(f"the iteration did not settle at f = {good:.9g}")
+            unsettled.append(good)
+            why = v.notes[0] if v.notes else "the iteration did not settle"
+            if why.startswith(UNRESOLVED_N) or len(unsettled) >= UNDECIDED_RUN:
+                # larger f only raises the caps f N on the same normal forces: the
+                # search cannot certify anything further up
+                at = ", ".join(f"{u:.6g}" for u in unsettled)
+                na.notes.append(f"undecided at f = {at} ({why}); f = {bad:.9g} is not "
+                                "enough (inadmissible): the non-associative friction, if "
+                                "any, lies above it and is not resolved")
+                return out(UNDECIDED, lower=bad, converged=False)
         good *= 2.0
-        if good > FRICTION_CEILING:
-            na.notes.append(f"no friction up to {FRICTION_CEILING:g} is found standing")
-            return out("unstable" if bad >= good / 2 else UNDECIDED, converged=False)
+        if good > NA_FRICTION_CEILING:
+            if bad < good / 2:
+                na.notes.append(f"no friction up to {NA_FRICTION_CEILING:g} is found "
+                                "standing")
+                return out(UNDECIDED, lower=bad, converged=False)
+            na.notes.append(_no_friction_note(breach, fs))
+            return out("unstable", converged=True)
     br = bisect(decide, bad, good, rtol)
     best = br.good_data or best
     if br.undecided_at is not None:
