@@ -185,7 +185,7 @@ def test_min_friction_where_the_relaxation_below_f_star_is_degenerate():
     from rigidblocks.generators.walls import running_bond_wall
     from rigidblocks.scene.extrude import extrude
 
-    r = rb.min_friction(extrude(running_bond_wall(10, 10)), rtol=1e-6)
+    r = rb.min_friction(extrude(running_bond_wall(10, 10)), load_factor=1.0, rtol=1e-6)
     assert r.status == "stable"
     assert r.friction_factor == pytest.approx(1.0, rel=1e-6)
     assert r.lower <= 1.0 <= r.upper * (1 + 1e-9)

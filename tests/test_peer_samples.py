@@ -1,9 +1,8 @@
 """Small samples of the peer tool compas_cra (0.8.0) that benchmarks/bench_peer.py
 compares against (``--only nonassoc``), written here as scenes of our own so that the
 tests need neither the peer nor COMPAS: "16 H" and "16 A" (its samples H.json and
-A.json: one block between two fixed blocks), "05 wedge type-c" (type-c.json, rotated
-90 degrees about y as in its example) and "07 shelf" (shelf.json, the COMPAS file of its
-prepared assembly read by rigidblocks.compas, stored in tests/data).
+A.json: one block between two fixed blocks) and "05 wedge type-c" (type-c.json, rotated
+90 degrees about y as in its example).
 
 The 2D samples are prisms of depth 1 along y of the polygons in (x, z) below, unit
 weight 1, friction 0.84 as in the peer's examples.
@@ -11,15 +10,12 @@ weight 1, friction 0.84 as in the peer's examples.
 
 from __future__ import annotations
 
-import json
 import math
 
 import pytest
-from conftest import ROOT
 
 import rigidblocks as rb
 from rigidblocks.generators.solids import make_scene3d, prism, solid
-from rigidblocks.io.scene_file import scene_from_dict
 
 NA = "non-associative"
 S3 = math.sqrt(3.0)
@@ -70,13 +66,6 @@ def sample_wedge_c():
         "B": [(0.5, 0.0), (a, -1.0), (r, -1.0), (r, 1.0), (a, 1.0)],
         "lower": [(0.0, -2.0), (a, -2.0), (a, -1.0), (0.5, 0.0), (0.0, 0.0)]},
         {"upper", "lower"})
-
-
-def shelf():
-    """compas_cra's shelf.json as bench_peer prepares it (mu 0.9), with its contact
-    tolerance (its tmax 1e-2 over the scene size)."""
-    doc = json.loads((ROOT / "tests" / "data" / "compas_cra_shelf.json").read_text())
-    return scene_from_dict(doc), 3.5088692183768677e-05
 
 
 def test_h_static_infimum_and_no_nonassociative_friction():
@@ -132,22 +121,3 @@ def test_wedge_c_topples_without_dilatancy():
     na = rb.min_friction(sc, load_factor=0.0, state=False, flow=NA)
     assert na.status == "unstable"
     assert any("does not depend on f" in n for n in na.notes)
-
-
-def test_shelf_min_friction_answers_with_both_back_ends():
-    """07 shelf. f* = 0.87160 (an infimum: the forces grow without bound towards it):
-    Clarabel on the friction cones at rtol 1e-9 (its relaxation fails just below f*,
-    status AlmostSolved; the search steps past it) gives a certified bracket that holds
-    HiGHS's f* on the 8-sided inscribed pyramid (the governing slips lie along a
-    pyramid edge, so both models have the same f*; a different back end and model)."""
-    sc, tol = shelf()
-    cone = rb.min_friction(sc, load_factor=0.0, state=False, contact_tol=tol, rtol=1e-9)
-    assert cone.status == "stable"
-    lo, hi = cone.bracket
-    assert hi - lo <= 1e-4 * hi
-    lp = rb.min_friction(sc, load_factor=0.0, state=False, contact_tol=tol,
-                         solver="highs", pyramid=8)
-    assert lp.status == "stable"
-    assert lo - 1e-6 <= lp.friction_factor <= hi + 1e-6
-    assert cone.friction_factor == pytest.approx(0.87160, abs=2e-5)
-

@@ -85,8 +85,9 @@ NARROW = 1e-3
 #: where they leave f* bracketed to this (relative) below the certified upper end
 WIDE = 1e-3
 #: in the search for f*, trials in a row whose relaxation has no checked answer (the
-#: solver failed, or its answer fails the check) before the search gives up: a failure
-#: where the solver failed, undecided where its answer failed the check
+#: solver failed, or its answer fails the check) before the search gives up: undecided
+#: with the bracket, or a failure where the solver failed before any upper end was
+#: certified
 MISSED_LIMIT = 4
 #: beginning of the reason of a verdict undecided for that reason
 FORCES_SPAN = "forces span"
@@ -474,9 +475,12 @@ class ConvexMethod(Method):
                 n_missed += 1
                 missed_at.add(trial)
                 if n_missed > MISSED_LIMIT:
-                    if failure is not None:
+                    if failure is not None and not math.isfinite(hi):
                         raise failure
-                    self.notes.append(f"at f = {trial:.10g}: {rx.unresolved}")
+                    why = rx.unresolved if failure is None else (
+                        f"{self.solver} ended with status {failure.status}")
+                    self.notes.append(f"at f = {trial:.10g}: {why}; f* is bracketed in "
+                                      f"[{lo:.10g}, {hi:.10g}]")
                     return Limit("undecided", None, lo, hi if math.isfinite(hi) else None)
                 undecided = missed
                 if math.isfinite(hi) and trial >= hi * (1.0 - 1e3 * rtol):
