@@ -215,7 +215,8 @@ def run_case(spec: dict[str, Any]) -> dict[str, Any]:
         out["seconds"] = {s: t.get(s, 0.0) for s in STAGES}
         out["total"] = total
         out.update(status=res.status, n_solves=res.n_solves, iterations=res.iterations,
-                   answer=_answer(res))
+                   answer=_answer(res), notes=list(res.notes),
+                   bracket=list(getattr(res, "bracket", None) or []))
         if a.startswith("min_friction") and out["answer"]:
             # the floor at the answer, same process: the plain max-load problem at f*
             # (its lambda* is the load factor, up to the solver's accuracy)
