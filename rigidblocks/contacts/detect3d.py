@@ -69,12 +69,8 @@ def _regions(scene: Scene, shapes: list, pending: list[tuple], eps: float, add) 
         rings_b.append([(scene.blocks[j].points[shapes[j].faces[f]] - o) @ frame for f in fb])
 
     def united(rings: list[list[np.ndarray]]) -> np.ndarray:
-        flat = [r for rs in rings for r in rs]
         owner = np.repeat(np.arange(len(rings)), [len(rs) for rs in rings])
-        counts = np.array([len(r) for r in flat])
-        lr = shapely.linearrings(np.concatenate(flat), indices=np.repeat(
-            np.arange(len(flat)), counts))
-        faces = shapely.polygons(lr)
+        faces = _polygons([r for rs in rings for r in rs])
         out = np.empty(len(rings), dtype=object)
         first = np.concatenate([[0], np.cumsum([len(rs) for rs in rings])[:-1]])
         out[:] = faces[first]
@@ -100,24 +96,32 @@ def _regions(scene: Scene, shapes: list, pending: list[tuple], eps: float, add) 
     hull = shapely.simplify(shapely.convex_hull(region), eps * 0.5)
     poly = shapely.get_type_id(hull) == 3
     live, hull, area = live[poly], hull[poly], area[poly]
-    coords, idx = shapely.get_coordinates(shapely.get_exterior_ring(hull), return_index=True)
-    starts = np.concatenate([[0], np.cumsum(np.bincount(idx, minlength=len(hull)))])
-    for k, g in enumerate(live):
-        ring = coords[starts[k]:starts[k + 1] - 1]
-        if len(ring) < 3:
-            continue
+    for k, g, ring in _exteriors(hull, live):
         key, i, j, n = pending[g][:4]
         t1, t2, o = frames[g]
         add(key, i, j, n, t1, t2, o, ring, float(area[k]))
 
 
-def _rings(rings: list[np.ndarray]):
+def _polygons(rings: list[np.ndarray]):
     """Shapely polygons of 2D rings, built in one call."""
     import shapely
 
     counts = [len(r) for r in rings]
     return shapely.polygons(shapely.linearrings(
         np.concatenate(rings), indices=np.repeat(np.arange(len(rings)), counts)))
+
+
+def _exteriors(polys, which: np.ndarray):
+    """(k, which[k], exterior ring without its closing vertex) of each polygon whose
+    ring has at least three vertices."""
+    import shapely
+
+    coords, idx = shapely.get_coordinates(shapely.get_exterior_ring(polys), return_index=True)
+    starts = np.concatenate([[0], np.cumsum(np.bincount(idx, minlength=len(polys)))])
+    for k, g in enumerate(which):
+        ring = coords[starts[k]:starts[k + 1] - 1]
+        if len(ring) >= 3:
+            yield k, g, ring
 
 
 def _clip_faces(faces: list[tuple], eps: float, add) -> None:
@@ -129,19 +133,15 @@ def _clip_faces(faces: list[tuple], eps: float, add) -> None:
     """
     import shapely
 
-    inter = shapely.intersection(_rings([f[7] for f in faces]), _rings([f[8] for f in faces]))
+    inter = shapely.intersection(_polygons([f[7] for f in faces]),
+                                 _polygons([f[8] for f in faces]))
     ok = np.flatnonzero((shapely.get_type_id(inter) == 3) & ~shapely.is_empty(inter)
                         & (shapely.area(inter) > eps * eps))
     if not len(ok):
         return
     poly = shapely.simplify(inter[ok], eps * 0.5)
     area = shapely.area(poly)
-    coords, idx = shapely.get_coordinates(shapely.get_exterior_ring(poly), return_index=True)
-    starts = np.concatenate([[0], np.cumsum(np.bincount(idx, minlength=len(poly)))])
-    for k, g in enumerate(ok):
-        ring = coords[starts[k]:starts[k + 1] - 1]
-        if len(ring) < 3:
-            continue
+    for k, g, ring in _exteriors(poly, ok):
         key, i, j, n, t1, t2, o = faces[g][:7]
         add(key, i, j, n, t1, t2, o, ring, float(area[k]))
 
