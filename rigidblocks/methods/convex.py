@@ -406,6 +406,22 @@ class ConvexMethod(Method):
         lower_primal = False  # a lower point rests on the relaxation's primal value
         n_missed = 0  # trials in a row whose relaxation had no checked answer
         missed_at: set[float] = set()  # trials whose relaxation had none
+
+        def past(trial: float, up: float) -> float | None:
+            """The next trial after one the solver left undecided (near the threshold, or
+            without a checked answer): close below the certified upper end, four times
+            further below it (None where that is below the lower end); elsewhere up to
+            ``up``, at least by a relative offset that grows fourfold at every such trial,
+            never past the midpoint to a certified upper end: a few solves reach a
+            certified point."""
+            nonlocal step_up
+            if math.isfinite(hi) and trial >= hi * (1.0 - 1e3 * rtol):
+                below = hi - 4.0 * (hi - trial)
+                return below if below > lo else None
+            nxt = max(trial * (1.0 + step_up), up)
+            step_up *= 4.0
+            return min(nxt, 0.5 * (trial + hi)) if math.isfinite(hi) else nxt
+
         for _ in range(100):
             if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
                 break
@@ -468,10 +484,8 @@ class ConvexMethod(Method):
                           and not rx.unresolved.startswith(FORCES_SPAN) else "")
             if missed:
                 # near f* the relaxation can be too degenerate for the interior-point
-                # solver (no answer, or none that passes its check): close below the
-                # certified upper end probe four times further below it; elsewhere step
-                # up from the trial (by its distance from the lower end, at least by a
-                # relative offset growing fourfold) towards a certified upper end
+                # solver (no answer, or none that passes its check): step past the trial
+                # (up by its distance from the lower end) towards a certified upper end
                 n_missed += 1
                 missed_at.add(trial)
                 if n_missed > MISSED_LIMIT:
@@ -483,15 +497,9 @@ class ConvexMethod(Method):
                                       f"[{lo:.10g}, {hi:.10g}]")
                     return Limit("undecided", None, lo, hi if math.isfinite(hi) else None)
                 undecided = missed
-                if math.isfinite(hi) and trial >= hi * (1.0 - 1e3 * rtol):
-                    forced = hi - 4.0 * (hi - trial)
-                    if forced <= lo:
-                        break
-                else:
-                    forced = max(trial * (1.0 + step_up), 2.0 * trial - lo)
-                    step_up *= 4.0
-                    if math.isfinite(hi):
-                        forced = min(forced, 0.5 * (trial + hi))
+                forced = past(trial, 2.0 * trial - lo)
+                if forced is None:
+                    break
                 continue
             n_missed = 0
             if not rx.decided:
@@ -508,22 +516,11 @@ class ConvexMethod(Method):
                 # end) probe further below, as for a failed solve
                 undecided = "undecided (near the threshold)"
                 near = trial if near is None else max(near, trial)
-                if math.isfinite(hi) and trial >= hi * (1.0 - 1e3 * rtol):
-                    forced = hi - 4.0 * (hi - trial)
-                    if forced <= lo:
-                        break
-                else:
-                    # step up from the trial by twice its Newton step (R there is at most
-                    # the value read), at least by a relative offset that grows fourfold
-                    # at every further trial left at the threshold (never past the
-                    # midpoint to a certified upper end): a few solves reach a certified
-                    # point
-                    forced = trial * (1.0 + step_up)
-                    if rx.slope > 0:
-                        forced = max(forced, trial + 2.0 * rx.R / rx.slope)
-                    if math.isfinite(hi):
-                        forced = min(forced, 0.5 * (trial + hi))
-                    step_up *= 4.0
+                # above it, by twice its Newton step (R there is at most the value read)
+                forced = past(trial, trial + 2.0 * rx.R / rx.slope if rx.slope > 0
+                              else trial)
+                if forced is None:
+                    break
                 continue
             if rx.R is None:
                 raise SolverFailure("relaxation problem lost its solution", self.solver,
