@@ -154,6 +154,39 @@ def test_options_that_do_not_apply_to_a_method_are_errors():
     assert rb.min_friction(scene, method="highs").solver == "highs"
 
 
+
+def test_numbers_given_by_the_user_are_checked_by_one_helper():
+    """finite_number serves the analyses, the generators and the CLI: each keeps its
+    wording and its rule on bools (float() takes them, running_bond_wall does not)."""
+    import argparse
+
+    import numpy as np
+
+    from rigidblocks.cli.options import finite_float
+    from rigidblocks.errors import finite_number
+    from rigidblocks.generators.arches import arch
+    from rigidblocks.generators.walls import running_bond_wall
+
+    scene = rb.read_scene(Path(__file__).parents[1] / "examples" / "reference.json")
+    for value, words in (("x", "load factor must be a number, got 'x'"),
+                         (float("inf"), "load factor must be a finite number, got inf")):
+        with pytest.raises(InputError, match=words):
+            rb.check(scene, load_factor=value)
+    with pytest.raises(InputError, match="arch: radius must be a finite number, got nan"):
+        arch(radius=float("nan"))
+    assert arch(radius=True).name == arch(radius=1.0).name
+    with pytest.raises(InputError, match="running_bond_wall: friction must be an int or "
+                                         "float, got True"):
+        running_bond_wall(2, 2, friction=True)
+    with pytest.raises(InputError, match="running_bond_wall: depth must be > 0, got 0"):
+        running_bond_wall(2, 2, depth=0)
+    assert running_bond_wall(2, 2, depth=np.float64(0.5)).depth == 0.5
+    with pytest.raises(argparse.ArgumentTypeError, match="not a finite number: '1e999'"):
+        finite_float("1e999")
+    with pytest.raises(InputError, match="must be a finite number"):
+        finite_number(10**400)
+    assert finite_number(True) == 1.0 and finite_number("2.5") == 2.5
+
 def test_old_names_still_work_and_warn():
     with pytest.warns(DeprecationWarning):
         from rigidblocks.problems import check

@@ -14,7 +14,7 @@ import math
 from dataclasses import replace
 from typing import Any
 
-from ..errors import InputError
+from ..errors import InputError, finite_number
 from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_method
 from ..methods.convex import FRICTION_RTOL
 from ..results import CheckResult, FrictionResult, LoadResult
@@ -45,13 +45,7 @@ def _load_factor(scene: Scene, value: Any) -> float:
     """The load factor asked for, or the scene's (``load_factor`` key, default 1)."""
     if value is None:
         return scene.effective_load_factor
-    try:
-        lf = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"load factor must be a number, got {value!r}") from None
-    if not math.isfinite(lf):
-        raise InputError(f"load factor must be a finite number, got {value!r}")
-    return lf
+    return finite_number(value, "load factor")
 
 
 def _bracket(lim: Limit) -> tuple[float, float] | None:

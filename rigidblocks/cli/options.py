@@ -11,20 +11,15 @@
 from __future__ import annotations
 
 import argparse
-import math
 
+from ..errors import finite_number
 from ..io.paths import output_path
 
 
 def finite_float(text: str) -> float:
     """argparse type: a finite number (``inf``, ``nan`` and non-numbers refused)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"not a finite number: {text!r}")
-    return value
+    return finite_number(text, message="not {kind}: {value!r}",
+                         error=argparse.ArgumentTypeError)
 
 
 def use_finite_floats(parser: argparse.ArgumentParser) -> None:

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, finite_number
 from ..io.scene_file import scene_from_dict
 from ..scene.model import Scene, friction_label
 
@@ -66,13 +66,7 @@ def friction_param(value: Any, gen: str) -> float | str:
 
 
 def _num(name: str, value: Any, gen: str) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{gen}: {name} must be a number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise InputError(f"{gen}: {name} must be finite, got {value!r}")
-    return v
+    return finite_number(value, f"{gen}: {name}")
 
 
 def make_scene(name: str, blocks: list[dict], *, unit_weight: float, friction: Any,

@@ -11,12 +11,11 @@ coefficient times the load multiplier). Units are m and kN.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, finite_number
 from ..scene.model import Block, Scene, Units
 
 FOUNDATION_ID = "foundation"
@@ -27,11 +26,16 @@ def block_id(course: int, index: int) -> str:
     return f"c{course}b{index}"
 
 
+def _finite(name: str, value: float) -> float:
+    """An int or float (not a bool) that is finite."""
+    return finite_number(value, f"running_bond_wall: {name}", strict=True)
+
+
 def _positive(name: str, value: float) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float) or not (
-            math.isfinite(value) and value > 0):
-        raise InputError(f"running_bond_wall: {name} must be a finite number > 0, got {value!r}")
-    return float(value)
+    v = _finite(name, value)
+    if not v > 0:
+        raise InputError(f"running_bond_wall: {name} must be > 0, got {value!r}")
+    return v
 
 
 def _count(name: str, value: int, minimum: int = 1) -> int:
@@ -94,8 +98,7 @@ def running_bond_wall(courses: int = 10, blocks_per_course: int = 10, block_leng
     depth = _positive("depth", depth)
     for name, v in (("unit_weight", unit_weight), ("friction", friction),
                     ("horizontal_load", horizontal_load)):
-        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
-            raise InputError(f"running_bond_wall: {name} must be a finite number, got {v!r}")
+        _finite(name, v)
     if unit_weight < 0 or friction < 0:
         bad = "unit_weight" if unit_weight < 0 else "friction"
         raise InputError(f"running_bond_wall: {bad} must be >= 0, "
