@@ -136,6 +136,56 @@ def test_an_answer_failing_its_check_is_solved_again(monkeypatch, block_on_base)
     assert r.status == "undecided" and r.load_multiplier is None
 
 
+def test_tight_tolerances_out_of_reach_go_on_at_1e_9(monkeypatch, block_on_base):
+    """Where Clarabel cannot reach the tight tolerances (1e-10; the relaxations of a
+    20,093-block wall), the retries go on at 1e-9 before its defaults, and the
+    analysis's later tight solves start there: the b = 1, h = 2 block under 0.3 times
+    its weight still needs f* = 0.3 (it slides; it would tip at b/h = 0.5) and slides
+    at lambda* = f = 0.4, 1e-10 is tried once, and the result says so."""
+    asked = []
+
+    def no_tight(problem, solver="clarabel", **settings):
+        asked.append(settings.get("tol_feas"))
+        if settings.get("tol_feas") == 1e-10:
+            return SolverResult("failure", None, None, math.nan, solver,
+                                "InsufficientProgress")
+        return policy_solve(problem, solver, **settings)
+
+    policy_solve = policy.solve
+    monkeypatch.setattr(policy, "solve", no_tight)
+    s = block_on_base(1.0, 2.0, 0.4)
+    fr = min_friction(s, load_factor=0.3, state=False)
+    assert fr.friction_factor == pytest.approx(0.3, rel=1e-6)
+    assert asked[:3] == [1e-10, 1e-10, 1e-9]  # tight, refined, then 1e-9
+    assert asked.count(1e-10) == 2 and None not in asked
+    assert any("ran at 1e-9" in n for n in fr.notes)
+    r = max_load_multiplier(s, state=False)
+    assert r.load_multiplier == pytest.approx(0.4, rel=1e-6)
+
+
+def test_friction_trial_failing_its_check_decides_by_itself(monkeypatch, block_on_base):
+    """A trial of the f* search whose answer fails the residual check (its duals spoilt
+    by 1e-3) is still read where it decides by itself: at f = 1 (f* = 0.3, see above)
+    its state is admissible, at f = 0.1 its dual bound stays above the threshold
+    (R = 0.2 of the block's weight, relative to it); a plain relaxation with the same
+    answer is undecided."""
+    solve = policy.solve
+
+    def spoilt(problem, solver="clarabel", **settings):
+        res = solve(problem, solver, **settings)
+        if res.y is None:
+            return res
+        return SolverResult(res.status, res.z, res.y * (1 + 1e-3), res.objective,
+                            res.solver, res.raw_status)
+
+    monkeypatch.setattr(policy, "solve", spoilt)
+    m = open_method(block_on_base(1.0, 2.0, 0.4))
+    for f, decided in ((1.0, "zero"), (0.1, "positive")):
+        rx = m.relaxation(f, 0.3, confirm=False, self_certified=True)
+        assert rx.res.verified is False and getattr(rx, decided)
+        assert not m.relaxation(f, 0.3, confirm=False).decided
+
+
 def test_osqp_at_its_defaults_is_checked():
     """The flat arch with vertical joints needs f* = 0.4714045 under its own weight
     (Clarabel, HiGHS). OSQP at its defaults answered relaxations loosely enough to
@@ -391,11 +441,11 @@ def _unchecked_at(monkeypatch, spoil):
 
     read = convex.ConvexMethod._read
 
-    def patched(self, prob, jr, res, f):
+    def patched(self, prob, jr, res, f, *rest):
         if spoil(f):
             return convex.Relaxation(None, 0.0, res, jr, prob, convex.ADMISSIBLE_TOL, f,
                                      unresolved="the answer fails its check (spoilt)")
-        return read(self, prob, jr, res, f)
+        return read(self, prob, jr, res, f, *rest)
 
     monkeypatch.setattr(convex.ConvexMethod, "_read", patched)
 

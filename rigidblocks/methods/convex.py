@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -152,6 +152,7 @@ class ConvexMethod(Method):
                              progress=self.progress)
         self.solver = self.runner.solver
         self._rejected_noted = False
+        self._near_noted = False
         self._coarse_noted = False
         with timings.stage("build"):
             #: the scaling of the relaxations (verdicts, f*) and their states: block by
@@ -199,6 +200,11 @@ class ConvexMethod(Method):
             n = len(self.runner.rejected)
             res = (self.runner.confirm(problem, what) if confirm
                    else self.runner.run(problem, what, tight))
+            if self.runner.out_of_reach and not self._near_noted:
+                self._near_noted = True
+                self.notes.append(f"the tight solver tolerances (1e-10) were out of "
+                                  f"{self.solver}'s reach on this scene: its later solves "
+                                  "ran at 1e-9")
             if len(self.runner.rejected) > n and not self._rejected_noted:
                 self._rejected_noted = True
                 self.notes.append(f"answers of {self.solver} that failed their check against "
@@ -228,15 +234,21 @@ class ConvexMethod(Method):
             prob = prob.with_parameter("f", f)
         return prob, jr
 
-    def relaxation(self, f: float, load_factor: float, confirm: bool = True) -> Relaxation:
+    def relaxation(self, f: float, load_factor: float, confirm: bool = True,
+                   self_certified: bool = False) -> Relaxation:
         """R(f) and dR/df (from the duals of the friction rows of the uniform joints).
 
         The back end's answer is checked by the solver policy; with ``confirm``, a
         verdict it leaves near the threshold (the state's own breach above ``tol`` but
         the dual bound below it) is confirmed by a tighter solve
-        (:meth:`~rigidblocks.solvers.Runner.confirm`) before it is called undecided."""
+        (:meth:`~rigidblocks.solvers.Runner.confirm`) before it is called undecided.
+        With ``self_certified`` an answer that fails the policy's check is still read
+        where it decides by itself: its state is admissible (breach and residual
+        computed here) or its dual bound, which carries its dual residual, is above
+        the threshold."""
         prob, jr = self._relaxation_problem(f, load_factor)
-        rx = self._read(prob, jr, self._run(prob, "relaxation", tight=True), f)
+        rx = self._read(prob, jr, self._run(prob, "relaxation", tight=True), f,
+                        self_certified)
         return self._confirmed(rx) if confirm else rx
 
     def _confirmed(self, rx: Relaxation) -> Relaxation:
@@ -247,12 +259,19 @@ class ConvexMethod(Method):
                            rx.f)
         return again if again.decided or not rx.unresolved else rx
 
-    def _read(self, prob: Any, jr: Any, res: SolverResult, f: float) -> Relaxation:
-        """The relaxation's numbers from one checked solve (see :class:`Relaxation`)."""
+    def _read(self, prob: Any, jr: Any, res: SolverResult, f: float,
+              self_certified: bool = False) -> Relaxation:
+        """The relaxation's numbers from one checked solve (see :class:`Relaxation`);
+        with ``self_certified``, from an answer that failed its check where they decide
+        by themselves (:meth:`relaxation`)."""
         if res.verified is False:
             why = (f"the {res.solver} answer ({res.status}) fails its check against the "
                    f"problem: {describe(res.residuals)}")
-            return Relaxation(None, 0.0, res, jr, prob, ADMISSIBLE_TOL, f, unresolved=why)
+            failed = Relaxation(None, 0.0, res, jr, prob, ADMISSIBLE_TOL, f, unresolved=why)
+            if not self_certified or res.status != OPTIMAL:
+                return failed
+            rx = self._read(prob, jr, replace(res, verified=None), f)
+            return replace(rx, res=res) if rx.zero or rx.positive else failed
         if res.status != OPTIMAL:
             return Relaxation(None, 0.0, res, jr, prob, ADMISSIBLE_TOL, f)
         z, y = res.z, res.y
@@ -465,7 +484,7 @@ class ConvexMethod(Method):
                     break
                 trial = 0.5 * (lo + hi)
             try:
-                rx = self.relaxation(trial, lf, confirm=False)
+                rx = self.relaxation(trial, lf, confirm=False, self_certified=True)
                 if (not rx.decided and not rx.unresolved and rx.R is not None
                         and rx.R > CLEARLY * rx.tol):
                     # the relaxation's own value is far above the threshold, though its
