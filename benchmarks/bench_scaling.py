@@ -51,7 +51,7 @@ import scipy.sparse as sp
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from bench_foundation import wall_shape  # noqa: E402
-from common import markdown_table, out_dir, write_results  # noqa: E402
+from common import load_average, markdown_table, out_dir, write_results  # noqa: E402
 
 NAME = "bench_scaling"
 STAGES = ("read", "contacts", "assembly", "build", "solve", "results")
@@ -276,16 +276,24 @@ def non_solver_stages(path: str) -> dict[str, float]:
 
 
 def run_isolated(spec: dict[str, Any], timeout: float) -> dict[str, Any]:
-    """:func:`run_case` in a fresh interpreter (peak memory of that case alone)."""
+    """:func:`run_case` in a fresh interpreter (peak memory of that case alone), with
+    when it ran (UTC) and the machine's 1-minute load average at its start and end."""
+    when = {"utc": time.strftime("%Y-%m-%d %H:%M", time.gmtime()),
+            "load": [round(load_average(), 2)]}
+
+    def done(res: dict[str, Any]) -> dict[str, Any]:
+        return {**res, "measured": {**when, "load": [*when["load"],
+                                                     round(load_average(), 2)]}}
+
     try:
         proc = subprocess.run([sys.executable, __file__, "--case", json.dumps(spec)],
                               capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
-        return {**spec, "error": f"timeout after {timeout:.0f} s"}
+        return done({**spec, "error": f"timeout after {timeout:.0f} s"})
     if proc.returncode != 0:
-        return {**spec, "error": proc.stderr.strip().splitlines()[-1] if proc.stderr
-                else f"exit {proc.returncode}"}
-    return json.loads(proc.stdout.strip().splitlines()[-1])
+        return done({**spec, "error": proc.stderr.strip().splitlines()[-1] if proc.stderr
+                     else f"exit {proc.returncode}"})
+    return done(json.loads(proc.stdout.strip().splitlines()[-1]))
 
 
 # -- analysis of the figures ----------------------------------------------------------------
@@ -476,6 +484,21 @@ def markdown(cases: list[dict[str, Any]], summary: dict[str, Any],
         out.append("Not measured: " + "; ".join(
             [f"{c['kind']} {c.get('analysis', '')} {c['dim']}D {c['target']}: {c['error']}"
              for c in errs] + skipped) + ".")
+        out.append("")
+    rec = [c for c in cases if "measured" in c]
+    if rec:
+        utc = sorted(c["measured"]["utc"] for c in rec)
+        load = [x for c in rec for x in c["measured"]["load"]]
+        if len(rec) == len(cases):
+            out.append(f"Run from {utc[0]} to {utc[-1]} UTC, 1-minute load average "
+                       f"{min(load):g} to {max(load):g}.")
+        else:
+            out.append("Cases whose time was recorded (UTC; 1-minute load average at their "
+                       "start and end): " + "; ".join(
+                           f"{c['kind']} {c.get('analysis', '')} {c['dim']}D "
+                           f"{c['target']}: {c['measured']['utc']}, load "
+                           f"{c['measured']['load'][0]:g} to {c['measured']['load'][-1]:g}"
+                           for c in rec) + "; the others ran earlier, in one run.")
         out.append("")
     mf = [r for r in sorted(summary["rows"], key=lambda r: (r["dim"], r["blocks"]))
           if r["analysis"].startswith("min_friction") and "ratio_at_answer" in r]
