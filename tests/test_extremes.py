@@ -163,6 +163,29 @@ def test_tight_tolerances_out_of_reach_go_on_at_1e_9(monkeypatch, block_on_base)
     assert r.load_multiplier == pytest.approx(0.4, rel=1e-6)
 
 
+def test_a_stalled_force_state_qp_is_solved_once(monkeypatch, block_on_base):
+    """Where the least-energy QP stalls (the 5,006-block wall at f*: AlmostSolved after
+    200 iterations, and again with refined settings), it is not retried: the state of
+    the solved limit problem serves, and the result says so. The b = 1, h = 2 block
+    under 0.3 times its weight: f* = 0.3, the state carries that shear on its base."""
+    qp = []
+
+    def stalled(problem, solver="clarabel", **settings):
+        if problem.P is not None:
+            qp.append(settings)
+            return SolverResult("failure", None, None, math.nan, solver, "AlmostSolved")
+        return policy_solve(problem, solver, **settings)
+
+    policy_solve = policy.solve
+    monkeypatch.setattr(policy, "solve", stalled)
+    fr = min_friction(block_on_base(1.0, 2.0, 0.4), load_factor=0.3)
+    assert fr.friction_factor == pytest.approx(0.3, rel=1e-6) and len(qp) == 1
+    assert fr.state is not None and fr.state.method == "solution of the limit problem"
+    assert any("least-energy QP ended with status AlmostSolved" in n for n in fr.notes)
+    assert float(np.sum(np.abs(fr.state.joint_shear))) == pytest.approx(0.3 * 2.0,
+                                                                          rel=1e-6)
+
+
 def test_friction_trial_failing_its_check_decides_by_itself(monkeypatch, block_on_base):
     """A trial of the f* search whose answer fails the residual check (its duals spoilt
     by 1e-3) is still read where it decides by itself: at f = 1 (f* = 0.3, see above)

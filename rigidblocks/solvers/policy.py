@@ -137,17 +137,20 @@ class Runner:
         return res
 
     def run(self, problem: ConicProblem, what: str, tight: bool = False,
-            verify: bool = True) -> SolverResult:
+            verify: bool = True, refine: bool = True) -> SolverResult:
         """Solve ``problem`` (named ``what`` in errors): optimal, infeasible or unbounded;
         anything else raises :class:`SolverFailure` with the back end's status. With
         ``verify`` the answer is checked (module docstring): a failed check is solved
-        again by :data:`FALLBACK`, and what still fails comes back ``verified=False``."""
+        again by :data:`FALLBACK`, and what still fails comes back ``verified=False``.
+        Without ``refine``, a solve that ends short of optimal is not retried with
+        :data:`REFINE_SETTINGS` (where the caller has an answer of its own to fall back
+        on)."""
         if self.progress is not None:
             self.progress.stage = f"{what} problem"
         check = verify and self.verify
         res = None
         try:
-            res = self._run(problem, what, tight, self.solver, self.settings)
+            res = self._run(problem, what, tight, self.solver, self.settings, refine)
         except SolverFailure as exc:
             if not check or self.solver == FALLBACK:
                 raise
@@ -161,7 +164,7 @@ class Runner:
                 return res
             rejected = f"{res.solver} {res.status}: {describe(res.residuals)}"
         try:
-            again = verified(problem, self._run(problem, what, True, FALLBACK, {}))
+            again = verified(problem, self._run(problem, what, True, FALLBACK, {}, refine))
         except SolverFailure:
             if res is None:
                 raise
@@ -178,7 +181,7 @@ class Runner:
         return verified(problem, res)
 
     def _run(self, problem: ConicProblem, what: str, tight: bool, solver: str,
-             base: dict) -> SolverResult:
+             base: dict, retry: bool = True) -> SolverResult:
         if problem.P is not None and solver in LP_ONLY:
             solver, base = FALLBACK, {}
         settings = base
@@ -189,7 +192,8 @@ class Runner:
                 settings, near = {**near, **base}, None
         res = self._solve(problem, solver, settings)
         refine = REFINE_SETTINGS.get(solver, {})
-        if res.status not in _DONE and refine and not refine.keys() & settings.keys():
+        if (res.status not in _DONE and retry and refine
+                and not refine.keys() & settings.keys()):
             res = self._solve(problem, solver, {**settings, **refine})
         if res.status not in _DONE and near:
             self.out_of_reach.add(solver)
