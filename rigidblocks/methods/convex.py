@@ -123,7 +123,8 @@ class Relaxation:
     res: SolverResult
     jr: Any
     prob: Any
-    tol: float  # R <= tol counts as zero (ADMISSIBLE_TOL x the largest scaled force)
+    tol: float  # R <= tol counts as zero (ADMISSIBLE_TOL, or NEAR_ADMISSIBLE_TOL at 1e-9
+    # solves, x the largest scaled force)
     f: float = math.nan
     low: float = math.inf
     residual: float = 0.0
