@@ -209,8 +209,11 @@ class ConvexMethod(Method):
                    else self.runner.run(problem, what, tight, refine=refine))
             if self.runner.out_of_reach and not self._near_noted:
                 self._near_noted = True
+                # the back end that went on at 1e-9 (the fallback's, where another
+                # back end's answers were solved again by it), not necessarily self.solver
+                gone = ", ".join(sorted(self.runner.out_of_reach))
                 self.notes.append(f"the tight solver tolerances (1e-10) were out of "
-                                  f"{self.solver}'s reach on this scene: its later solves "
+                                  f"{gone}'s reach on this scene: its later solves "
                                   "ran at 1e-9, and their verdicts compare the breach of "
                                   f"the joint laws with {NEAR_ADMISSIBLE_TOL:g} of the "
                                   "largest force")
