@@ -19,7 +19,7 @@ from rigidblocks.generators.walls import running_bond_wall
 from rigidblocks.io import read_scene, scene_from_dict
 from rigidblocks.methods import open_method
 from rigidblocks.solvers import policy
-from rigidblocks.solvers.base import SolverResult
+from rigidblocks.solvers.base import SolverResult, normalised
 
 
 def small_on_big(w: float, h: float, x0: float = 0.0, live: bool = True):
@@ -193,19 +193,19 @@ def test_a_stalled_force_state_qp_is_solved_once(monkeypatch, block_on_base):
 
 
 def test_friction_trial_failing_its_check_decides_by_itself(monkeypatch, block_on_base):
-    """A trial of the f* search whose answer fails the residual check (its duals spoilt
-    by 1e-3) is still read where it decides by itself: at f = 1 (f* = 0.3, see above)
-    its state is admissible, at f = 0.1 its dual bound stays above the threshold
-    (R = 0.2 of the block's weight, relative to it); a plain relaxation with the same
-    answer is undecided."""
+    """A trial of the f* search whose answer fails the residual check (1e-3 added to
+    each of its duals: more than a scale, which the check undoes) is still read where it
+    decides by itself: at f = 1 (f* = 0.3, see above) its state is admissible, at
+    f = 0.1 its dual bound stays above the threshold (R = 0.2 of the block's weight,
+    relative to it); a plain relaxation with the same answer is undecided."""
     solve = policy.solve
 
     def spoilt(problem, solver="clarabel", **settings):
         res = solve(problem, solver, **settings)
         if res.y is None:
             return res
-        return SolverResult(res.status, res.z, res.y * (1 + 1e-3), res.objective,
-                            res.solver, res.raw_status)
+        return SolverResult(res.status, res.z, res.y + 1e-3, res.objective, res.solver,
+                            res.raw_status)
 
     monkeypatch.setattr(policy, "solve", spoilt)
     m = open_method(block_on_base(1.0, 2.0, 0.4))
@@ -213,6 +213,38 @@ def test_friction_trial_failing_its_check_decides_by_itself(monkeypatch, block_o
         rx = m.relaxation(f, 0.3, confirm=False, self_certified=True)
         assert rx.res.verified is False and getattr(rx, decided)
         assert not m.relaxation(f, 0.3, confirm=False).decided
+
+
+def test_duals_off_by_a_scale_are_normalised_not_rejected(monkeypatch, block_on_base):
+    """An answer whose duals are right but for their scale (x (1 + 1e-3): the dual
+    residual of the relaxation variable 1e-3, as an interior-point solver leaves it at
+    5e-6 on a 1,000-block wall near f*) passes the check once normalised: the verdicts
+    at f = 1 (admissible) and f = 0.1 (R = 0.2, certified by the dual bound) are those
+    of the clean answer, and the residual before normalisation is kept. A problem with
+    more than one variable in its objective is not normalised."""
+    m = open_method(block_on_base(1.0, 2.0, 0.4))
+    clean = {f: m.relaxation(f, 0.3, confirm=False) for f in (1.0, 0.1)}
+    solve = policy.solve
+
+    def scaled(problem, solver="clarabel", **settings):
+        res = solve(problem, solver, **settings)
+        if res.y is None:
+            return res
+        return SolverResult(res.status, res.z, res.y * (1 + 1e-3), res.objective,
+                            res.solver, res.raw_status)
+
+    monkeypatch.setattr(policy, "solve", scaled)
+    m = open_method(block_on_base(1.0, 2.0, 0.4))
+    for f, decided in ((1.0, "zero"), (0.1, "positive")):
+        rx = m.relaxation(f, 0.3, confirm=False)
+        assert rx.res.verified is True and getattr(rx, decided)
+        assert rx.res.residuals["normalised"] > 1e-4
+        assert rx.res.residuals["dual"] < 1e-9
+        assert rx.R == pytest.approx(clean[f].R, abs=1e-9)
+        assert rx.low == pytest.approx(clean[f].low, rel=1e-6, abs=1e-9)
+    prob, _ = m._relaxation_problem(0.1, 0.3)
+    two = type(prob)(**{**prob.__dict__, "c": prob.c + 1.0})
+    assert normalised(two, scaled(prob)) is None
 
 
 def test_osqp_at_its_defaults_is_checked():

@@ -18,6 +18,7 @@ Duals ``y`` follow the sign convention of the KKT condition ``P z + c + A' y = 0
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -108,6 +109,34 @@ def _cone_breach(problem: ConicProblem, s: np.ndarray) -> float:
                 out = max(out, float(np.linalg.norm(q[1:]) - q[0]))
                 pos += k
     return out
+
+
+def normalised(problem: ConicProblem, res: SolverResult) -> SolverResult | None:
+    """The optimal answer of a linear problem whose objective is one variable (min r,
+    max lambda) with its duals scaled so that the dual residual of that variable is
+    exact; None where the problem or answer is not of that kind.
+
+    The dual of such a problem carries one normalisation (the multipliers of the rows
+    that hold the variable sum to its cost). An interior-point solver can miss it by
+    far more than the rest of its dual residual: Clarabel at 1e-8 on the relaxation of a
+    1,000-block wall near f*, 5.4e-6 on the relaxation variable against 6.6e-8 on any
+    force. Scaling the duals by a positive factor keeps them in the dual cone and
+    scales every other residual and the dual objective by the same factor.
+    """
+    if (res.status != OPTIMAL or res.z is None or res.y is None
+            or (problem.P is not None and problem.P.nnz)):
+        return None
+    k = np.flatnonzero(problem.c)
+    if len(k) != 1:
+        return None
+    k = int(k[0])
+    A = problem.A if problem.A.format == "csc" else problem.A.tocsc()
+    lo, hi = A.indptr[k], A.indptr[k + 1]
+    held = float(A.data[lo:hi] @ res.y[A.indices[lo:hi]])
+    scale = -float(problem.c[k]) / held if held else 0.0
+    if not (math.isfinite(scale) and scale > 0):
+        return None
+    return replace(res, y=res.y * scale)
 
 
 def residuals(problem: ConicProblem, res: SolverResult) -> dict:

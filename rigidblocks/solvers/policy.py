@@ -30,7 +30,15 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 from ..errors import InputError, SolverFailure
-from .base import INFEASIBLE, OPTIMAL, UNBOUNDED, ConicProblem, SolverResult, residuals
+from .base import (
+    INFEASIBLE,
+    OPTIMAL,
+    UNBOUNDED,
+    ConicProblem,
+    SolverResult,
+    normalised,
+    residuals,
+)
 from .registry import SOLVERS, solve
 
 #: tolerances of the verdict-deciding solves (the relaxations, the max-load LP)
@@ -212,10 +220,19 @@ def verified(problem: ConicProblem, res: SolverResult) -> SolverResult:
     """``res`` with its residuals and whether they pass :data:`VERIFY_TOL`: an optimal
     answer by its primal and dual residuals and gap, an infeasible one by its
     certificate; an unbounded one, or one without what it takes to check it, fails
-    unless Clarabel gave it (its statuses come with their own certificate tests)."""
+    unless Clarabel gave it (its statuses come with their own certificate tests). An
+    optimal answer that fails with its duals as given passes with them normalised
+    (:func:`~rigidblocks.solvers.base.normalised`) where they then pass: that answer
+    is returned, with the dual residual before normalisation as ``normalised``."""
     r = residuals(problem, res)
     if res.status == OPTIMAL and r:
         ok = max(r["primal"], r["dual"], r["gap"]) <= VERIFY_TOL
+        scaled = None if ok else normalised(problem, res)
+        if scaled is not None:
+            rs = residuals(problem, scaled)
+            if max(rs["primal"], rs["dual"], rs["gap"]) <= VERIFY_TOL:
+                return replace(scaled, residuals={**rs, "normalised": r["dual"]},
+                               verified=True)
     elif res.status == INFEASIBLE and r:
         ok = r["certificate"] <= VERIFY_TOL and r["margin"] > CERT_MARGIN
     else:
