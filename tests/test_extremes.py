@@ -159,6 +159,23 @@ def test_tight_tolerances_out_of_reach_go_on_at_1e_9(monkeypatch, block_on_base)
     assert asked[:3] == [1e-10, 1e-10, 1e-9]  # tight, refined, then 1e-9
     assert asked.count(1e-10) == 2 and None not in asked
     assert any("ran at 1e-9" in n for n in fr.notes)
+    # a failure after many iterations (a large problem) goes to 1e-9 without the
+    # refined retry, which would cost as many again
+    asked.clear()
+    long = policy.REFINE_WITHIN
+
+    def no_tight_long(problem, solver="clarabel", **settings):
+        asked.append(settings.get("tol_feas"))
+        if settings.get("tol_feas") == 1e-10:
+            return SolverResult("failure", None, None, math.nan, solver, "AlmostSolved",
+                                iterations=long)
+        return policy_solve(problem, solver, **settings)
+
+    monkeypatch.setattr(policy, "solve", no_tight_long)
+    assert min_friction(s, load_factor=0.3, state=False).friction_factor == \
+        pytest.approx(0.3, rel=1e-6)
+    assert asked[:2] == [1e-10, 1e-9] and asked.count(1e-10) == 1
+    monkeypatch.setattr(policy, "solve", no_tight)
     r = max_load_multiplier(s, state=False)
     assert r.load_multiplier == pytest.approx(0.4, rel=1e-6)
     # verdicts then compare with 1e-8 of the largest force: ten times the solver's 1e-9

@@ -10,7 +10,8 @@ back end is driven to that answer is decided here, in one place:
   of the largest force, so their solves run at :data:`TIGHT_SETTINGS` (tolerance 1e-10)
   where a back end's defaults are looser;
 * **retries**: a solve that ends short of optimal is retried once with
-  :data:`REFINE_SETTINGS` (stronger regularisation, refined KKT solves), then, if the
+  :data:`REFINE_SETTINGS` (stronger regularisation, refined KKT solves; not after
+  :data:`REFINE_WITHIN` iterations or more), then, if the
   tight tolerances were out of reach, at :data:`NEAR_TIGHT_SETTINGS` (where later tight
   solves of the same runner start) and at the back end's defaults;
 * **verification**: every answer is checked against the problem itself before it is
@@ -64,6 +65,13 @@ NEAR_TIGHT_SETTINGS = {"clarabel": {"tol_gap_abs": 1e-9, "tol_gap_rel": 1e-9,
 REFINE_SETTINGS = {"clarabel": {"static_regularization_constant": 1e-7,
                                 "iterative_refinement_reltol": 1e-14,
                                 "iterative_refinement_abstol": 1e-14}}
+#: a solve that ended short of optimal after this many iterations is not retried with
+#: REFINE_SETTINGS: the retries that settle a rounding follow failures within a few
+#: dozen iterations (the glued stocky arch: AlmostSolved after 12, Solved after 14 with
+#: them), while at scale a failure after 109-152 iterations at 1e-10 was followed by a
+#: refined retry that also failed, after 200 (the extruded 5,006-block wall, 204 s; the
+#: 20,093-block wall, 229 s), before the 1e-9 solve that answered
+REFINE_WITHIN = 100
 #: settings of a confirming solve (a verdict near its threshold): Clarabel two orders
 #: tighter than RELAX_SETTINGS, with refined KKT solves
 CONFIRM_SETTINGS = {"tol_gap_abs": 1e-12, "tol_gap_rel": 1e-12, "tol_feas": 1e-12,
@@ -200,7 +208,7 @@ class Runner:
                 settings, near = {**near, **base}, None
         res = self._solve(problem, solver, settings)
         refine = REFINE_SETTINGS.get(solver, {})
-        if (res.status not in _DONE and retry and refine
+        if (res.status not in _DONE and retry and refine and res.iterations < REFINE_WITHIN
                 and not refine.keys() & settings.keys()):
             res = self._solve(problem, solver, {**settings, **refine})
         if res.status not in _DONE and near:
@@ -251,5 +259,5 @@ def describe(r: dict) -> str:
 
 
 __all__ = ["CERT_MARGIN", "CONFIRM_SETTINGS", "FALLBACK", "LP_ONLY", "REFINE_SETTINGS",
-           "RELAX_SETTINGS", "TIGHT_SETTINGS", "VERIFY_TOL", "Runner", "check_solver",
-           "describe", "verified"]
+           "REFINE_WITHIN", "RELAX_SETTINGS", "TIGHT_SETTINGS", "VERIFY_TOL", "Runner",
+           "check_solver", "describe", "verified"]
