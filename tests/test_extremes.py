@@ -512,15 +512,18 @@ def test_friction_bracket_ends_where_the_solver_stops_resolving():
     assert r.n_solves <= 6
 
 
-def _unchecked_at(monkeypatch, spoil):
+def _unchecked_at(monkeypatch, spoil, spoilt=None):
     """Relaxations at the frictions ``spoil(f)`` picks come back without a checked
-    answer, as when the solver's answer fails its check near a degenerate f*."""
+    answer, as when the solver's answer fails its check near a degenerate f*; each such
+    f is appended to the list ``spoilt``."""
     from rigidblocks.methods import convex
 
     read = convex.ConvexMethod._read
 
     def patched(self, prob, jr, res, f, *rest):
         if spoil(f):
+            if spoilt is not None:
+                spoilt.append(f)
             return convex.Relaxation(None, 0.0, res, jr, prob, convex.ADMISSIBLE_TOL, f,
                                      unresolved="the answer fails its check (spoilt)")
         return read(self, prob, jr, res, f, *rest)
@@ -535,10 +538,14 @@ def test_friction_search_steps_past_a_trial_without_a_checked_answer(monkeypatch
     lands on 0.3, where the relaxation is made to come back without a checked answer:
     the search steps up to a certified upper end and closes the bracket around the
     unsolved trial, so f* is given within 1e-3 with the bracket and the reason in the
-    notes; where no trial has a checked answer, it is undecided, never a number."""
+    notes, and the unsolved trial is not solved again (Newton's step from f = 0 and the
+    midpoint of the bracket [0, 0.6] both land on it again); where no trial has a
+    checked answer, it is undecided, never a number."""
     s = block_on_base(1.0, 2.0, 0.5)
-    _unchecked_at(monkeypatch, lambda f: abs(f - 0.3) < 1e-12)
+    spoilt: list[float] = []
+    _unchecked_at(monkeypatch, lambda f: abs(f - 0.3) < 1e-12, spoilt)
     r = min_friction(s, load_factor=0.3, state=False)
+    assert len(spoilt) == 1
     assert r.status == "stable"
     assert 0.3 <= r.friction_factor <= 0.3 * (1 + 1e-3)
     assert r.bracket[0] <= 0.3 <= r.bracket[1]

@@ -497,10 +497,16 @@ class ConvexMethod(Method):
             else:
                 trial = 0.5 * (lo + hi)
                 probe_below_hi = True
-            if trial in missed_at:  # the solver had no checked answer there before
+            if _among(trial, missed_at):  # the solver had no checked answer there before
                 if not math.isfinite(hi) or hi - lo <= WIDE * hi:
                     break
                 trial = 0.5 * (lo + hi)
+                if _among(trial, missed_at):
+                    # the midpoint is that trial (a step past it to twice its distance
+                    # from the lower end certified an upper end there): on towards the
+                    # upper end (20,093-block wall: one 1e-9 relaxation stalled twice at
+                    # the same f, 318 s each)
+                    trial = 0.5 * (trial + hi)
             try:
                 rx = self.relaxation(trial, lf, confirm=False, self_certified=True)
                 if (not rx.decided and not rx.unresolved and rx.R is not None
@@ -748,6 +754,12 @@ def beyond_resolution(rx: Relaxation, value: float) -> bool:
     bound fell short of ``rx.R`` by more than that at the nearby lower point ``rx``) nor
     taken as a lower point on its value (:data:`CLEARLY`)."""
     return value < CLEARLY * rx.tol and value < rx.R - rx.low
+
+
+def _among(f: float, trials: set[float]) -> bool:
+    """Whether ``f`` is one of ``trials``, to round-off (a Newton step or a midpoint
+    computed again from the same bracket)."""
+    return any(abs(f - t) <= 1e-12 * max(abs(t), 1.0) for t in trials)
 
 
 def _root_step(R: float, s: float, f: float, prev: tuple[float, float] | None) -> float:
