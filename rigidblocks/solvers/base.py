@@ -112,16 +112,17 @@ def _cone_breach(problem: ConicProblem, s: np.ndarray) -> float:
 
 
 def normalised(problem: ConicProblem, res: SolverResult) -> SolverResult | None:
-    """The optimal answer of a linear problem whose objective is one variable (min r,
-    max lambda) with its duals scaled so that the dual residual of that variable is
-    exact; None where the problem or answer is not of that kind.
+    """The optimal answer of a problem whose objective is one variable (min r, max
+    lambda; no quadratic term) with its duals scaled so that the dual residual of that
+    variable is exact; None where the problem or answer is not of that kind.
 
     The dual of such a problem carries one normalisation (the multipliers of the rows
     that hold the variable sum to its cost). An interior-point solver can miss it by
-    far more than the rest of its dual residual: Clarabel at 1e-8 on the relaxation of a
-    1,000-block wall near f*, 5.4e-6 on the relaxation variable against 6.6e-8 on any
-    force. Scaling the duals by a positive factor keeps them in the dual cone and
-    scales every other residual and the dual objective by the same factor.
+    far more than the rest of its dual residual: Clarabel at 1e-8 on the relaxation of
+    the 1,000-block wall near f*, 5.4e-6 on the relaxation variable against 6.6e-8 on
+    any force (extruded: 1.0e-5 against 2.6e-8). Scaling the duals by a positive factor
+    keeps them in the dual cone (nonnegative orthant or second-order cones) and scales
+    every other residual and the dual objective by the same factor.
     """
     if (res.status != OPTIMAL or res.z is None or res.y is None
             or (problem.P is not None and problem.P.nnz)):
