@@ -8,6 +8,7 @@ Every case is worked out by hand in its docstring.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -262,6 +263,36 @@ def test_duals_off_by_a_scale_are_normalised_not_rejected(monkeypatch, block_on_
     prob, _ = m._relaxation_problem(0.1, 0.3)
     two = type(prob)(**{**prob.__dict__, "c": prob.c + 1.0})
     assert normalised(two, scaled(prob)) is None
+
+
+def test_a_relaxation_value_within_its_spread_is_no_lower_point(monkeypatch,
+                                                                block_on_base):
+    """The f* search takes a relaxation's value far above the threshold for a lower
+    point even where the dual bound cannot certify it, but not where the duals'
+    residual could account for that value (its spread, sum |d_j z_j| on the state): on
+    the extruded 5,006-block wall at 1e-9, R = 8.4e-4 = 51 thresholds where the plane
+    wall's state of R = 0 exists, with a spread of 6.0e-3. Here the b = 1, h = 2 block
+    under 0.3 times its weight (f* = 0.3, see above) has its relaxations on
+    [0.3, 0.45] spoilt so: 100 thresholds, no dual bound, a spread of 1. The bracket
+    given still holds f* = 0.3 (taking them as lower points would bracket f* at 0.45),
+    they are read as trials that decide nothing, and the search ends undecided with the
+    bracket and the reason."""
+    from rigidblocks.methods import convex
+
+    read = convex.ConvexMethod._read
+
+    def patched(self, prob, jr, res, f, *rest):
+        rx = read(self, prob, jr, res, f, *rest)
+        if 0.3 - 1e-9 <= f <= 0.45 and rx.R is not None:
+            return replace(rx, R=100 * rx.tol, low=-1.0, spread=1.0)
+        return rx
+
+    monkeypatch.setattr(convex.ConvexMethod, "_read", patched)
+    r = min_friction(block_on_base(1.0, 2.0, 0.5), load_factor=0.3, state=False)
+    assert r.bracket[0] is not None and r.bracket[0] <= 0.3 < 0.45 < r.bracket[1]
+    assert r.status == "undecided" and r.friction_factor is None
+    assert any("its duals' residual could account for" in n for n in r.notes)
+    assert not any("rests on the relaxation's value" in n for n in r.notes)
 
 
 def test_osqp_at_its_defaults_is_checked():

@@ -77,8 +77,9 @@ STATE_SLACK = 1e-9
 #: verdict says how coarsely it resolves the lightest blocks
 RESOLVE_LIMIT = 1e-3
 RESOLVE_NOTE = 1e-5
-#: in the search for f*, a relaxation whose value exceeds this many times the threshold
-#: is a lower point even where its dual bound cannot certify it
+#: in the search for f*, a relaxation whose value exceeds this many times the threshold,
+#: and the work of its dual residual on its own state (:attr:`Relaxation.spread`), is a
+#: lower point even where its dual bound cannot certify it
 CLEARLY = 10.0
 #: the search for f* ends when a trial left at the threshold lies within this (relative)
 #: of the certified upper end: closer, R(f) is below what the solver resolves
@@ -130,6 +131,11 @@ class Relaxation:
     residual: float = 0.0
     #: why the verdict cannot be decided ("" when it can)
     unresolved: str = ""
+    #: how far the value may lie from the optimum by the duals' residual d: sum |d_j z_j|
+    #: on the state z (an estimate: the optimal state is not known). On the extruded
+    #: 5,006-block wall at 1e-9, R = 8.4e-4 (51 times the threshold) where a state of
+    #: R = 0 exists (the plane wall's at f = 1.2497654), with a spread of 6.0e-3
+    spread: float = 0.0
 
     @property
     def zero(self) -> bool:
@@ -315,7 +321,9 @@ class ConvexMethod(Method):
         uni = self.uniform[jr.fric_joint]
         nsum = jr.fric_nsum @ z
         slope = float(np.sum(y[head][uni] * nsum[uni]))
-        return Relaxation(R, slope, res, jr, prob, near * tol, f, low, residual, unresolved)
+        spread = float(np.abs(dres) @ np.abs(z))
+        return Relaxation(R, slope, res, jr, prob, near * tol, f, low, residual, unresolved,
+                          spread)
 
     def _violation_force(self, rx: Relaxation) -> float:
         """The largest breach of the joint laws by the relaxation's state, force units."""
@@ -442,7 +450,7 @@ class ConvexMethod(Method):
         step_up = rtol  # relative step above a trial left at the threshold
         lower_primal = False  # a lower point rests on the relaxation's primal value
         n_missed = 0  # trials in a row whose relaxation had no checked answer
-        missed_at: set[float] = set()  # trials whose relaxation had none
+        missed_at: set[float] = set()  # trials whose relaxation had none or was undecided
 
         def past(trial: float, up: float) -> float | None:
             """The next trial after one the solver left undecided (near the threshold, or
@@ -497,7 +505,7 @@ class ConvexMethod(Method):
             else:
                 trial = 0.5 * (lo + hi)
                 probe_below_hi = True
-            if _among(trial, missed_at):  # the solver had no checked answer there before
+            if _among(trial, missed_at):  # the solver decided nothing there before
                 if not math.isfinite(hi) or hi - lo <= WIDE * hi:
                     break
                 trial = 0.5 * (lo + hi)
@@ -507,24 +515,35 @@ class ConvexMethod(Method):
                     # upper end (20,093-block wall: one 1e-9 relaxation stalled twice at
                     # the same f, 318 s each)
                     trial = 0.5 * (trial + hi)
+                    if _among(trial, missed_at):
+                        break  # nothing new to try: the bracket stands
+            uncertain = ""  # a value far above the threshold that decides nothing
             try:
                 rx = self.relaxation(trial, lf, confirm=False, self_certified=True)
                 if (not rx.decided and not rx.unresolved and rx.R is not None
                         and rx.R > CLEARLY * rx.tol):
-                    # the relaxation's own value is far above the threshold, though its
-                    # dual bound is too weak to certify it: a lower point for the search
-                    # (f* is reported at the certified upper end either way)
-                    lower_primal = True
-                    prev = (lo, s_lo)
-                    lo, R_lo, s_lo = trial, rx.R, rx.slope
-                    last = rx
-                    continue
+                    if rx.R > rx.spread:
+                        # the relaxation's own value is far above the threshold and
+                        # above what its duals' residual could account for, though its
+                        # dual bound is too weak to certify it: a lower point for the
+                        # search (f* is reported at the certified upper end either way)
+                        lower_primal = True
+                        prev = (lo, s_lo)
+                        lo, R_lo, s_lo = trial, rx.R, rx.slope
+                        last = rx
+                        continue
+                    # within that spread the value may be that of an admissible state's
+                    # neighbourhood: it decides nothing, as an answer that fails its check
+                    uncertain = (f"the relaxation's value {rx.R:.1e} is within the "
+                                 f"{rx.spread:.1e} its duals' residual could account for")
             except SolverFailure as exc:
                 failure, missed = exc, exc.status
             else:
                 failure = None
-                missed = (f"{rx.res.raw_status}, failing its check" if rx.unresolved
-                          and not rx.unresolved.startswith(FORCES_SPAN) else "")
+                missed = (f"{rx.res.raw_status}, its value within its duals' spread"
+                          if uncertain else f"{rx.res.raw_status}, failing its check"
+                          if rx.unresolved and not rx.unresolved.startswith(FORCES_SPAN)
+                          else "")
             if missed:
                 # near f* the relaxation can be too degenerate for the interior-point
                 # solver (no answer, or none that passes its check): step past the trial
@@ -534,7 +553,7 @@ class ConvexMethod(Method):
                 if n_missed > MISSED_LIMIT:
                     if failure is not None and not math.isfinite(hi):
                         raise failure
-                    why = rx.unresolved if failure is None else (
+                    why = (uncertain or rx.unresolved) if failure is None else (
                         f"{self.solver} ended with status {failure.status}")
                     self.notes.append(f"at f = {trial:.10g}: {why}; f* is bracketed in "
                                       f"[{lo:.10g}, {hi:.10g}]")
@@ -559,6 +578,7 @@ class ConvexMethod(Method):
                 # end) probe further below, as for a failed solve
                 undecided = "undecided (near the threshold)"
                 near = trial if near is None else max(near, trial)
+                missed_at.add(trial)
                 # above it, by twice its Newton step (R there is at most the value read)
                 forced = past(trial, trial + 2.0 * rx.R / rx.slope if rx.slope > 0
                               else trial)
@@ -752,8 +772,8 @@ def near_threshold(rx: Relaxation) -> str:
 def beyond_resolution(rx: Relaxation, value: float) -> bool:
     """Whether a relaxation of about ``value`` can be neither certified positive (the dual
     bound fell short of ``rx.R`` by more than that at the nearby lower point ``rx``) nor
-    taken as a lower point on its value (:data:`CLEARLY`)."""
-    return value < CLEARLY * rx.tol and value < rx.R - rx.low
+    taken as a lower point on its value (:data:`CLEARLY`, and the spread of ``rx``)."""
+    return value < max(CLEARLY * rx.tol, rx.spread) and value < rx.R - rx.low
 
 
 def _among(f: float, trials: set[float]) -> bool:
