@@ -508,15 +508,15 @@ class ConvexMethod(Method):
             if _among(trial, missed_at):  # the solver decided nothing there before
                 if not math.isfinite(hi) or hi - lo <= WIDE * hi:
                     break
-                trial = 0.5 * (lo + hi)
-                if _among(trial, missed_at):
-                    # the midpoint is that trial (a step past it to twice its distance
-                    # from the lower end certified an upper end there): on towards the
-                    # upper end (20,093-block wall: one 1e-9 relaxation stalled twice at
-                    # the same f, 318 s each)
-                    trial = 0.5 * (trial + hi)
-                    if _among(trial, missed_at):
-                        break  # nothing new to try: the bracket stands
+                # the midpoint, or where that is the same trial (a step past it to twice
+                # its distance from the lower end certified an upper end there) halfway
+                # on to the upper end (20,093-block wall: one 1e-9 relaxation stalled
+                # twice at the same f, 318 s each); neither new: the bracket stands
+                mid = 0.5 * (lo + hi)
+                trial = next((t for t in (mid, 0.5 * (mid + hi))
+                              if not _among(t, missed_at)), None)
+                if trial is None:
+                    break
             uncertain = ""  # a value far above the threshold that decides nothing
             try:
                 rx = self.relaxation(trial, lf, confirm=False, self_certified=True)
@@ -539,11 +539,11 @@ class ConvexMethod(Method):
             except SolverFailure as exc:
                 failure, missed = exc, exc.status
             else:
-                failure = None
-                missed = (f"{rx.res.raw_status}, its value within its duals' spread"
-                          if uncertain else f"{rx.res.raw_status}, failing its check"
-                          if rx.unresolved and not rx.unresolved.startswith(FORCES_SPAN)
-                          else "")
+                failure, missed = None, ""
+                if uncertain:
+                    missed = f"{rx.res.raw_status}, its value within its duals' spread"
+                elif rx.unresolved and not rx.unresolved.startswith(FORCES_SPAN):
+                    missed = f"{rx.res.raw_status}, failing its check"
             if missed:
                 # near f* the relaxation can be too degenerate for the interior-point
                 # solver (no answer, or none that passes its check): step past the trial

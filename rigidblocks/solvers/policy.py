@@ -232,13 +232,16 @@ def verified(problem: ConicProblem, res: SolverResult) -> SolverResult:
     optimal answer that fails with its duals as given passes with them normalised
     (:func:`~rigidblocks.solvers.base.normalised`) where they then pass: that answer
     is returned, with the dual residual before normalisation as ``normalised``."""
+    def passes(r: dict) -> bool:
+        return max(r["primal"], r["dual"], r["gap"]) <= VERIFY_TOL
+
     r = residuals(problem, res)
     if res.status == OPTIMAL and r:
-        ok = max(r["primal"], r["dual"], r["gap"]) <= VERIFY_TOL
+        ok = passes(r)
         scaled = None if ok else normalised(problem, res)
         if scaled is not None:
             rs = residuals(problem, scaled)
-            if max(rs["primal"], rs["dual"], rs["gap"]) <= VERIFY_TOL:
+            if passes(rs):
                 return replace(scaled, residuals={**rs, "normalised": r["dual"]},
                                verified=True)
     elif res.status == INFEASIBLE and r:
