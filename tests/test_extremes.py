@@ -144,15 +144,19 @@ def test_tight_tolerances_out_of_reach_go_on_at_1e_9(monkeypatch, block_on_base)
     its weight still needs f* = 0.3 (it slides; it would tip at b/h = 0.5) and slides
     at lambda* = f = 0.4, 1e-10 is tried once, and the result says so."""
     asked = []
-
-    def no_tight(problem, solver="clarabel", **settings):
-        asked.append(settings.get("tol_feas"))
-        if settings.get("tol_feas") == 1e-10:
-            return SolverResult("failure", None, None, math.nan, solver,
-                                "InsufficientProgress")
-        return policy_solve(problem, solver, **settings)
-
     policy_solve = policy.solve
+
+    def refusing_tight(status: str, iterations: int = 0):
+        """A back end that fails at 1e-10 after ``iterations`` and records the asks."""
+        def solve(problem, solver="clarabel", **settings):
+            asked.append(settings.get("tol_feas"))
+            if settings.get("tol_feas") == 1e-10:
+                return SolverResult("failure", None, None, math.nan, solver, status,
+                                    iterations=iterations)
+            return policy_solve(problem, solver, **settings)
+        return solve
+
+    no_tight = refusing_tight("InsufficientProgress")
     monkeypatch.setattr(policy, "solve", no_tight)
     s = block_on_base(1.0, 2.0, 0.4)
     fr = min_friction(s, load_factor=0.3, state=False)
@@ -163,16 +167,8 @@ def test_tight_tolerances_out_of_reach_go_on_at_1e_9(monkeypatch, block_on_base)
     # a failure after many iterations (a large problem) goes to 1e-9 without the
     # refined retry, which would cost as many again
     asked.clear()
-    long = policy.REFINE_WITHIN
-
-    def no_tight_long(problem, solver="clarabel", **settings):
-        asked.append(settings.get("tol_feas"))
-        if settings.get("tol_feas") == 1e-10:
-            return SolverResult("failure", None, None, math.nan, solver, "AlmostSolved",
-                                iterations=long)
-        return policy_solve(problem, solver, **settings)
-
-    monkeypatch.setattr(policy, "solve", no_tight_long)
+    monkeypatch.setattr(policy, "solve",
+                        refusing_tight("AlmostSolved", policy.REFINE_WITHIN))
     assert min_friction(s, load_factor=0.3, state=False).friction_factor == \
         pytest.approx(0.3, rel=1e-6)
     assert asked[:2] == [1e-10, 1e-9] and asked.count(1e-10) == 1
@@ -210,22 +206,27 @@ def test_a_stalled_force_state_qp_is_solved_once(monkeypatch, block_on_base):
                                                                           rel=1e-6)
 
 
+def _duals_changed(change):
+    """The policy's back end with ``change(y)`` applied to the duals of every answer."""
+    solve = policy.solve
+
+    def changed(problem, solver="clarabel", **settings):
+        res = solve(problem, solver, **settings)
+        if res.y is None:
+            return res
+        return SolverResult(res.status, res.z, change(res.y), res.objective, res.solver,
+                            res.raw_status)
+
+    return changed
+
+
 def test_friction_trial_failing_its_check_decides_by_itself(monkeypatch, block_on_base):
     """A trial of the f* search whose answer fails the residual check (1e-3 added to
     each of its duals: more than a scale, which the check undoes) is still read where it
     decides by itself: at f = 1 (f* = 0.3, see above) its state is admissible, at
     f = 0.1 its dual bound stays above the threshold (R = 0.2 of the block's weight,
     relative to it); a plain relaxation with the same answer is undecided."""
-    solve = policy.solve
-
-    def spoilt(problem, solver="clarabel", **settings):
-        res = solve(problem, solver, **settings)
-        if res.y is None:
-            return res
-        return SolverResult(res.status, res.z, res.y + 1e-3, res.objective, res.solver,
-                            res.raw_status)
-
-    monkeypatch.setattr(policy, "solve", spoilt)
+    monkeypatch.setattr(policy, "solve", _duals_changed(lambda y: y + 1e-3))
     m = open_method(block_on_base(1.0, 2.0, 0.4))
     for f, decided in ((1.0, "zero"), (0.1, "positive")):
         rx = m.relaxation(f, 0.3, confirm=False, self_certified=True)
@@ -242,15 +243,7 @@ def test_duals_off_by_a_scale_are_normalised_not_rejected(monkeypatch, block_on_
     more than one variable in its objective is not normalised."""
     m = open_method(block_on_base(1.0, 2.0, 0.4))
     clean = {f: m.relaxation(f, 0.3, confirm=False) for f in (1.0, 0.1)}
-    solve = policy.solve
-
-    def scaled(problem, solver="clarabel", **settings):
-        res = solve(problem, solver, **settings)
-        if res.y is None:
-            return res
-        return SolverResult(res.status, res.z, res.y * (1 + 1e-3), res.objective,
-                            res.solver, res.raw_status)
-
+    scaled = _duals_changed(lambda y: y * (1 + 1e-3))
     monkeypatch.setattr(policy, "solve", scaled)
     m = open_method(block_on_base(1.0, 2.0, 0.4))
     for f, decided in ((1.0, "zero"), (0.1, "positive")):
