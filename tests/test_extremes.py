@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -21,6 +22,12 @@ from rigidblocks.io import read_scene, scene_from_dict
 from rigidblocks.methods import open_method
 from rigidblocks.solvers import policy
 from rigidblocks.solvers.base import SolverResult, normalised
+from rigidblocks.solvers.clarabel_backend import (
+    STALL_WINDOW,
+    _distance,
+    _Stall,
+    solve_clarabel,
+)
 
 
 def small_on_big(w: float, h: float, x0: float = 0.0, live: bool = True):
@@ -181,6 +188,89 @@ def test_tight_tolerances_out_of_reach_go_on_at_1e_9(monkeypatch, block_on_base)
     before = m.relaxation(1.0, 0.3).tol
     m.runner.out_of_reach.add("clarabel")
     assert m.relaxation(1.0, 0.3).tol == pytest.approx(10 * before)
+
+
+def _info(iterations, res, gap=None, ktratio=0.0):
+    """What Clarabel's termination callback is given, with both residuals ``res``."""
+    gap = res if gap is None else gap
+    return SimpleNamespace(iterations=iterations, res_primal=res, res_dual=res,
+                           gap_abs=gap, gap_rel=gap, ktratio=ktratio)
+
+
+def test_a_stalled_solve_stops_where_it_meets_a_fallback():
+    """The termination callback of a 1e-10 solve given 1e-9 and 1e-8 as fallbacks: the
+    20,093-block relaxation at f = 1 met 1e-9 after 88 iterations, came within 2.8 of
+    1e-10 after 104 and no closer up to its limit of 200."""
+    own, nine, eight = (1e-10,) * 3, (1e-9,) * 3, (1e-8,) * 3
+    # residuals halving every iteration: it converges, never stopped
+    stall = _Stall(own, [nine, eight])
+    assert not any(stall(_info(k, 1e-3 * 0.5 ** k)) for k in range(30))
+    # stuck at 2.8e-10 from iteration 68: it stops within STALL_WINDOW iterations of
+    # that, with the 1e-9 answer
+    stall = _Stall(own, [nine, eight])
+    stop = next(k for k in range(200) if stall(_info(k, max(1e-3 * 0.8 ** k, 2.8e-10))))
+    assert 68 < stop <= 68 + STALL_WINDOW and stall.met == 0
+    # stuck where only 1e-8 is met: the 1e-8 answer
+    stall = _Stall(own, [nine, eight])
+    assert [k for k in range(60) if stall(_info(k, 5e-9))][0] == STALL_WINDOW
+    assert stall.met == 1
+    # stuck where no fallback is met, or on the way to an infeasibility certificate
+    # (kappa/tau above 1): it runs on to the back end's own end
+    for info in (_info(0, 2e-8), _info(0, 1e-12, ktratio=10.0)):
+        stall = _Stall(own, [nine, eight])
+        assert not any(stall(replace_info(info, k)) for k in range(100))
+        assert stall.met is None
+    # the gap counts by the closer of its absolute and relative forms, as in Clarabel
+    assert _distance(SimpleNamespace(res_primal=0, res_dual=0, gap_abs=1.0, gap_rel=5e-11,
+                                     ktratio=0.0), own) == pytest.approx(0.5)
+
+
+def test_a_stalled_clarabel_solve_answers_at_its_fallback():
+    """A real stall: the relaxation of a 20 x 20 running-bond wall at f = 1 under its
+    live load, asked of Clarabel at 1e-12, ends AlmostSolved after about 100
+    iterations. Given 1e-9 and its defaults (1e-8) as the settings that would follow,
+    it stops once stalled with an answer that meets 1e-9 and passes the policy's check;
+    given only its defaults ({}: whole settings, not changes to the 1e-12 ones), with
+    one that meets 1e-8."""
+    m = open_method(running_bond_wall(20, 20))
+    prob, _ = m._relaxation_problem(1.0, 1.0)
+    tight = {"tol_feas": 1e-12, "tol_gap_abs": 1e-12, "tol_gap_rel": 1e-12}
+    alone = solve_clarabel(prob, **tight)
+    assert alone.status == "failure" and alone.iterations >= 100
+    nine = {"tol_feas": 1e-9, "tol_gap_abs": 1e-9, "tol_gap_rel": 1e-9}
+    res = solve_clarabel(prob, fallbacks=(nine, {}), **tight)
+    assert res.status == "optimal" and res.fallback == 0 and "1e-09" in res.raw_status
+    assert res.iterations <= alone.iterations // 2
+    assert policy.verified(prob, res).verified
+    res = solve_clarabel(prob, fallbacks=({},), **tight)
+    assert res.fallback == 0 and "1e-08" in res.raw_status
+
+
+def replace_info(info, iterations):
+    return SimpleNamespace(**{**vars(info), "iterations": iterations})
+
+
+def test_a_solve_settled_at_a_fallback_is_not_solved_again(monkeypatch, block_on_base):
+    """A back end that stops short of 1e-10 with an answer meeting the 1e-9 it was given
+    as a fallback (solved here at 1e-9): the policy takes that answer, with no further
+    solve, and later tight solves start at 1e-9, as where 1e-10 failed outright. The
+    b = 1, h = 2 block under 0.3 of its weight needs f* = 0.3 (it slides)."""
+    asked = []
+    policy_solve = policy.solve
+
+    def settling(problem, solver="clarabel", fallbacks=(), **settings):
+        asked.append(settings.get("tol_feas"))
+        if settings.get("tol_feas") == 1e-10:
+            assert fallbacks and fallbacks[0]["tol_feas"] == 1e-9 and fallbacks[1] == {}
+            return replace(policy_solve(problem, solver, **fallbacks[0]), fallback=0,
+                           raw_status="Solved to tolerance 1e-09")
+        return policy_solve(problem, solver, fallbacks=fallbacks, **settings)
+
+    monkeypatch.setattr(policy, "solve", settling)
+    fr = min_friction(block_on_base(1.0, 2.0, 0.4), load_factor=0.3, state=False)
+    assert fr.friction_factor == pytest.approx(0.3, rel=1e-6)
+    assert asked[0] == 1e-10 and set(asked[1:]) == {1e-9}
+    assert any("ran at 1e-9" in n for n in fr.notes)
 
 
 def test_a_stalled_force_state_qp_is_solved_once(monkeypatch, block_on_base):

@@ -85,6 +85,10 @@ class SolverResult:
     #: whether they passed the check of the solver policy (None: not checked)
     residuals: dict = field(default_factory=dict)
     verified: bool | None = None
+    #: where the solve stopped short of its own tolerances with an answer that meets
+    #: those of a looser fallback (the index into the fallbacks it was given); None
+    #: otherwise (see :mod:`~rigidblocks.solvers.clarabel_backend`)
+    fallback: int | None = None
 
     @property
     def ok(self) -> bool:

@@ -13,7 +13,10 @@ back end is driven to that answer is decided here, in one place:
   :data:`REFINE_SETTINGS` (stronger regularisation, refined KKT solves; not after
   :data:`REFINE_WITHIN` iterations or more), then, if the
   tight tolerances were out of reach, at :data:`NEAR_TIGHT_SETTINGS` (where later tight
-  solves of the same runner start) and at the back end's defaults;
+  solves of the same runner start) and at the back end's defaults. Clarabel is given
+  those later settings with the first solve: where its iteration stalls with an iterate
+  that meets one of them, it stops and answers as that solve would have
+  (:mod:`~rigidblocks.solvers.clarabel_backend`), and the retries are not needed;
 * **verification**: every answer is checked against the problem itself before it is
   passed on (:func:`~rigidblocks.solvers.base.residuals`: an optimal answer's primal and
   dual residuals and duality gap, an infeasibility certificate's residual and margin)
@@ -140,9 +143,10 @@ class Runner:
         return sorted(k for k, v in self.settings.items()
                       if k.startswith("tol") and isinstance(v, int | float) and v > LOOSE_TOL)
 
-    def _solve(self, problem: ConicProblem, solver: str, settings: dict) -> SolverResult:
+    def _solve(self, problem: ConicProblem, solver: str, settings: dict,
+               fallbacks: tuple[dict, ...] = ()) -> SolverResult:
         t0 = time.perf_counter()
-        res = solve(problem, solver, **settings)
+        res = solve(problem, solver, fallbacks=fallbacks, **settings)
         self.wall_time += time.perf_counter() - t0
         self.n_solves += 1
         self.solve_time += res.solve_time
@@ -206,14 +210,20 @@ class Runner:
             settings = {**TIGHT_SETTINGS[solver], **base}
             if near and solver in self.out_of_reach:
                 settings, near = {**near, **base}, None
-        res = self._solve(problem, solver, settings)
+        # the solves that follow where these settings are out of reach, given to the
+        # back end: Clarabel stops where it stalls with an iterate that meets one of them
+        later = (({**near, **base},) if near else ()) + ((base,) if settings is not base
+                                                         else ())
+        res = self._solve(problem, solver, settings, later)
+        if res.fallback is not None and near:
+            self.out_of_reach.add(solver)
         refine = REFINE_SETTINGS.get(solver, {})
         if (res.status not in _DONE and retry and refine and res.iterations < REFINE_WITHIN
                 and not refine.keys() & settings.keys()):
             res = self._solve(problem, solver, {**settings, **refine})
         if res.status not in _DONE and near:
             self.out_of_reach.add(solver)
-            res = self._solve(problem, solver, {**near, **base})
+            res = self._solve(problem, solver, {**near, **base}, later[1:])
         if res.status not in _DONE and settings is not base:
             # the tight tolerances were out of reach: the back end's defaults decide
             res = self._solve(problem, solver, base)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from ..errors import InputError
 from .base import ConicProblem, SolverResult
 
@@ -9,18 +11,22 @@ from .base import ConicProblem, SolverResult
 SOLVERS = ("clarabel", "highs", "osqp", "scs", "ecos")
 
 
-def solve(problem: ConicProblem, solver: str = "clarabel", **settings) -> SolverResult:
+def solve(problem: ConicProblem, solver: str = "clarabel", fallbacks: Sequence[dict] = (),
+          **settings) -> SolverResult:
     """Solve a standard-form problem with the named back end.
 
     Names: ``clarabel`` (native, default), ``highs`` (scipy's HiGHS, LPs), ``osqp``
     (QPs and LPs with linear constraints), ``scs`` / ``ecos`` (through cvxpy), or
-    ``cvxpy-NAME`` for any solver cvxpy has installed.
+    ``cvxpy-NAME`` for any solver cvxpy has installed. ``fallbacks``: looser settings
+    the caller would solve again at, where the solve may stop once it stalls
+    (:mod:`~rigidblocks.solvers.clarabel_backend`; the other back ends run to their
+    own end).
     """
     name = solver.lower()
     if name == "clarabel":
         from .clarabel_backend import solve_clarabel
 
-        return solve_clarabel(problem, **settings)
+        return solve_clarabel(problem, fallbacks=fallbacks, **settings)
     if name == "highs":
         from .highs_backend import solve_highs
 
