@@ -324,6 +324,61 @@ def test_friction_trial_failing_its_check_decides_by_itself(monkeypatch, block_o
         assert not m.relaxation(f, 0.3, confirm=False).decided
 
 
+def _cone_duals_raised(by):
+    """The policy's back end with ``by`` added to the duals of the inequality rows whose
+    right-hand side is 0: the duals stay in their cone and the dual objective -b'y is
+    unchanged, so only the dual residual fails the check."""
+    def change(problem, y):
+        y = y.copy()
+        rows = problem.b == 0
+        rows[:problem.n_eq] = False
+        y[rows] += by
+        return y
+
+    solve = policy.solve
+
+    def raised(problem, solver="clarabel", **settings):
+        res = solve(problem, solver, **settings)
+        if res.y is None:
+            return res
+        return replace(res, y=change(problem, res.y))
+
+    return raised
+
+
+def test_friction_trial_failing_on_its_duals_alone_steers_by_value(monkeypatch,
+                                                                  block_on_base):
+    """A trial of the f* search whose answer fails the check on its dual residual alone
+    (state and gap pass) is read by its value where that exceeds what the residual could
+    account for (its spread), like a checked answer whose dual bound is too weak: the
+    20,093-block wall at f = 1.2573 left R = 0.570 with a spread of 0.120 and a dual
+    residual of 6.3e-5. The b = 1, h = 2 block under 0.3 of its weight (f* = 0.3) at
+    f = 0.1 has R = 0.2 of its weight; 0.03 added to its cone rows' duals leaves the dual
+    bound below 0 and a spread of 0.066: a lower point by value; 0.1 added, a spread of
+    0.22: nothing. A state that misses equilibrium is never read by value."""
+    monkeypatch.setattr(policy, "solve", _cone_duals_raised(0.03))
+    m = open_method(block_on_base(1.0, 2.0, 0.4))
+    rx = m.relaxation(0.1, 0.3, confirm=False, self_certified=True)
+    r = rx.res.residuals
+    assert rx.res.verified is False and r["dual"] > 1e-2
+    assert max(r["primal"], r["gap"]) < 1e-9
+    assert not rx.positive and rx.by_value
+    assert rx.R == pytest.approx(0.2, rel=1e-6) and rx.spread == pytest.approx(0.066, rel=1e-3)
+    assert not m.relaxation(0.1, 0.3, confirm=False).decided  # a plain verdict: undecided
+    monkeypatch.undo()
+    monkeypatch.setattr(policy, "solve", _cone_duals_raised(0.1))
+    rx = open_method(block_on_base(1.0, 2.0, 0.4)).relaxation(0.1, 0.3, confirm=False,
+                                                              self_certified=True)
+    assert rx.unresolved and not rx.by_value
+    monkeypatch.undo()
+    spoilt, state = _sloppy(_cone_duals_raised(0.03))
+    state["everyone"] = True
+    monkeypatch.setattr(policy, "solve", spoilt)
+    rx = open_method(block_on_base(1.0, 2.0, 0.4)).relaxation(0.1, 0.3, confirm=False,
+                                                              self_certified=True)
+    assert rx.res.residuals["primal"] > 1e-6 and rx.unresolved and not rx.by_value
+
+
 def test_duals_off_by_a_scale_are_normalised_not_rejected(monkeypatch, block_on_base):
     """An answer whose duals are right but for their scale (x (1 + 1e-3): the dual
     residual of the relaxation variable 1e-3, as an interior-point solver leaves it at
