@@ -231,7 +231,8 @@ def test_a_stalled_clarabel_solve_answers_at_its_fallback():
     iterations. Given 1e-9 and its defaults (1e-8) as the settings that would follow,
     it stops once stalled with an answer that meets 1e-9 and passes the policy's check;
     given only its defaults ({}: whole settings, not changes to the 1e-12 ones), with
-    one that meets 1e-8."""
+    one that meets 1e-8; and where it ends short by itself, with its last iterate where
+    that meets them."""
     m = open_method(running_bond_wall(20, 20))
     prob, _ = m._relaxation_problem(1.0, 1.0)
     tight = {"tol_feas": 1e-12, "tol_gap_abs": 1e-12, "tol_gap_rel": 1e-12}
@@ -243,18 +244,28 @@ def test_a_stalled_clarabel_solve_answers_at_its_fallback():
     assert res.iterations <= alone.iterations // 2
     assert policy.verified(prob, res).verified
     res = solve_clarabel(prob, fallbacks=({},), **tight)
-    assert res.fallback == 0 and "1e-08" in res.raw_status
+    assert res.fallback == 0 and "1e-08" in res.raw_status and "stalled" in res.raw_status
+    # ended short by itself (its iteration limit: AlmostSolved, Clarabel's reduced
+    # tolerances met) with an iterate that meets 1e-8
+    res = solve_clarabel(prob, fallbacks=({},), **tight, max_iter=40)
+    assert res.fallback == 0 and res.iterations == 40 and "AlmostSolved" in res.raw_status
+    assert policy.verified(prob, res).verified
 
 
 def replace_info(info, iterations):
     return SimpleNamespace(**{**vars(info), "iterations": iterations})
 
 
-def test_a_solve_settled_at_a_fallback_is_not_solved_again(monkeypatch, block_on_base):
+@pytest.mark.parametrize("status, iterations, asks", [
+    ("optimal", 120, 1), ("failure", 150, 1), ("failure", 12, 2)])
+def test_a_solve_settled_at_a_fallback_is_not_solved_again(monkeypatch, block_on_base,
+                                                            status, iterations, asks):
     """A back end that stops short of 1e-10 with an answer meeting the 1e-9 it was given
-    as a fallback (solved here at 1e-9): the policy takes that answer, with no further
-    solve, and later tight solves start at 1e-9, as where 1e-10 failed outright. The
-    b = 1, h = 2 block under 0.3 of its weight needs f* = 0.3 (it slides)."""
+    as a fallback (solved here at 1e-9): stalled ("optimal"), or ended by itself with a
+    last iterate that meets it ("failure"). The policy takes that answer with no further
+    solve (after a failure within REFINE_WITHIN iterations, after the refined retry,
+    which fails the same way), and later tight solves start at 1e-9, as where 1e-10
+    failed outright. The b = 1, h = 2 block under 0.3 of its weight needs f* = 0.3."""
     asked = []
     policy_solve = policy.solve
 
@@ -262,14 +273,14 @@ def test_a_solve_settled_at_a_fallback_is_not_solved_again(monkeypatch, block_on
         asked.append(settings.get("tol_feas"))
         if settings.get("tol_feas") == 1e-10:
             assert fallbacks and fallbacks[0]["tol_feas"] == 1e-9 and fallbacks[1] == {}
-            return replace(policy_solve(problem, solver, **fallbacks[0]), fallback=0,
-                           raw_status="Solved to tolerance 1e-09")
+            return replace(policy_solve(problem, solver, **fallbacks[0]), status=status,
+                           fallback=0, iterations=iterations, raw_status="short of 1e-10")
         return policy_solve(problem, solver, fallbacks=fallbacks, **settings)
 
     monkeypatch.setattr(policy, "solve", settling)
     fr = min_friction(block_on_base(1.0, 2.0, 0.4), load_factor=0.3, state=False)
     assert fr.friction_factor == pytest.approx(0.3, rel=1e-6)
-    assert asked[0] == 1e-10 and set(asked[1:]) == {1e-9}
+    assert asked[:asks] == [1e-10] * asks and set(asked[asks:]) == {1e-9}
     assert any("ran at 1e-9" in n for n in fr.notes)
 
 

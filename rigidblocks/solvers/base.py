@@ -86,8 +86,9 @@ class SolverResult:
     residuals: dict = field(default_factory=dict)
     verified: bool | None = None
     #: where the solve stopped short of its own tolerances with an answer that meets
-    #: those of a looser fallback (the index into the fallbacks it was given); None
-    #: otherwise (see :mod:`~rigidblocks.solvers.clarabel_backend`)
+    #: those of a looser fallback (the index into the fallbacks it was given), or failed
+    #: with a last iterate that does (then carried in ``z`` and ``y``); None otherwise
+    #: (see :mod:`~rigidblocks.solvers.clarabel_backend`)
     fallback: int | None = None
 
     @property

@@ -9,7 +9,9 @@ again at if its own are out of reach). Clarabel's iterates do not depend on its
 tolerances, only where it stops does; so a solve whose iteration stalls short of its own
 tolerances, with an iterate that already meets a fallback's, stops there
 (:class:`_Stall`) and returns the answer the fallback solve would have gone through,
-instead of iterating on to its limit and being solved again.
+instead of iterating on to its limit and being solved again. A solve that ends short of
+its tolerances by itself is a failure, but one that carries its last iterate where that
+meets a fallback's tolerances.
 """
 
 from __future__ import annotations
@@ -82,17 +84,19 @@ class _Stall:
         self.best, self.best_at = math.inf, 0
         self.met: int | None = None
 
+    def meets(self, info) -> int | None:
+        """The first fallback whose tolerances the iterate meets, or None."""
+        return next((i for i, tol in enumerate(self.fallbacks)
+                     if _distance(info, tol) < 1.0), None)
+
     def __call__(self, info) -> bool:
         d = _distance(info, self.own)
         if d <= 0.5 * self.best:
             self.best, self.best_at = d, info.iterations
         if info.iterations - self.best_at < STALL_WINDOW:
             return False
-        for i, tol in enumerate(self.fallbacks):
-            if _distance(info, tol) < 1.0:
-                self.met = i
-                return True
-        return False
+        self.met = self.meets(info)
+        return self.met is not None
 
 
 def cones(problem: ConicProblem) -> list:
@@ -114,7 +118,7 @@ def solve_clarabel(problem: ConicProblem, fallbacks: Sequence[dict] = (),
     ``fallbacks``: the settings (whole, not changes to these) of the solves the caller
     would try next, in that order, where the iteration may stop once it stalls (module
     docstring); the result's ``fallback`` is then the index of the one whose tolerances
-    its answer meets."""
+    its answer meets (of a failure: its last iterate, which it then carries)."""
     import clarabel
 
     n = problem.n
@@ -137,14 +141,22 @@ def solve_clarabel(problem: ConicProblem, fallbacks: Sequence[dict] = (),
     elapsed = time.perf_counter() - t0
     raw = str(sol.status).split(".")[-1]
     status = _STATUS.get(raw, FAILURE)
-    fallback = stall.met if stall is not None and raw == "CallbackTerminated" else None
-    if fallback is not None:
+    fallback = None
+    if stall is not None and raw == "CallbackTerminated":
+        fallback = stall.met
         status = OPTIMAL
         met = clarabel_settings(**fallbacks[fallback])
-        raw = (f"Solved to tolerance {met.tol_feas:.0e} (stalled short of "
-               f"{own.tol_feas:.0e})")
-    z = np.asarray(sol.x) if status == OPTIMAL else None
-    y = np.asarray(sol.z) if status in (OPTIMAL, INFEASIBLE) else None
+        raw = f"Solved to tolerance {met.tol_feas:.0e} (stalled short of {own.tol_feas:.0e})"
+    elif stall is not None and status == FAILURE:
+        # ended short of its own tolerances by itself (Clarabel's AlmostSolved, an
+        # iteration limit): still a failure, with its last iterate where that meets a
+        # fallback's tolerances (the caller decides whether to take it)
+        fallback = stall.meets(solver.get_info())
+        if fallback is not None:
+            met = clarabel_settings(**fallbacks[fallback])
+            raw = f"{raw} (its last iterate meets tolerance {met.tol_feas:.0e})"
+    z = np.asarray(sol.x) if status == OPTIMAL or fallback is not None else None
+    y = np.asarray(sol.z) if status in (OPTIMAL, INFEASIBLE) or fallback is not None else None
     return SolverResult(status=status, z=z, y=y, objective=float(sol.obj_val),
                         solver="clarabel", raw_status=raw, iterations=int(sol.iterations),
                         solve_time=elapsed, fallback=fallback)

@@ -215,15 +215,17 @@ class Runner:
         later = (({**near, **base},) if near else ()) + ((base,) if settings is not base
                                                          else ())
         res = self._solve(problem, solver, settings, later)
-        if res.fallback is not None and near:
-            self.out_of_reach.add(solver)
         refine = REFINE_SETTINGS.get(solver, {})
         if (res.status not in _DONE and retry and refine and res.iterations < REFINE_WITHIN
                 and not refine.keys() & settings.keys()):
-            res = self._solve(problem, solver, {**settings, **refine})
+            again = self._solve(problem, solver, {**settings, **refine}, later)
+            res = again if again.status in _DONE or res.fallback is None else res
+        res = _settled(res)
+        if res.fallback is not None and near:
+            self.out_of_reach.add(solver)
         if res.status not in _DONE and near:
             self.out_of_reach.add(solver)
-            res = self._solve(problem, solver, {**near, **base}, later[1:])
+            res = _settled(self._solve(problem, solver, {**near, **base}, later[1:]))
         if res.status not in _DONE and settings is not base:
             # the tight tolerances were out of reach: the back end's defaults decide
             res = self._solve(problem, solver, base)
@@ -232,6 +234,14 @@ class Runner:
                                 f"{self.source or 'the scene'}: status {res.raw_status}",
                                 res.solver, res.raw_status)
         return res
+
+
+def _settled(res: SolverResult) -> SolverResult:
+    """A failure whose last iterate meets the tolerances of a later solve (its
+    ``fallback``) taken as that solve's answer, without the solve; anything else as is."""
+    if res.status in _DONE or res.fallback is None:
+        return res
+    return replace(res, status=OPTIMAL)
 
 
 def verified(problem: ConicProblem, res: SolverResult) -> SolverResult:
