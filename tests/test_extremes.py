@@ -197,59 +197,54 @@ def _info(iterations, res, gap=None, ktratio=0.0):
                            gap_abs=gap, gap_rel=gap, ktratio=ktratio)
 
 
-def test_a_stalled_solve_stops_where_it_meets_a_fallback():
-    """The termination callback of a 1e-10 solve given 1e-9 and 1e-8 as fallbacks: the
+def test_a_stalled_solve_stops_where_it_meets_the_next_solves_tolerances():
+    """The termination callback of a 1e-10 solve whose next solve would be at 1e-9: the
     20,093-block relaxation at f = 1 met 1e-9 after 88 iterations, came within 2.8 of
     1e-10 after 104 and no closer up to its limit of 200."""
-    own, nine, eight = (1e-10,) * 3, (1e-9,) * 3, (1e-8,) * 3
+    own, nine = (1e-10,) * 3, (1e-9,) * 3
     # residuals halving every iteration: it converges, never stopped
-    stall = _Stall(own, [nine, eight])
+    stall = _Stall(own, nine)
     assert not any(stall(_info(k, 1e-3 * 0.5 ** k)) for k in range(30))
-    # stuck at 2.8e-10 from iteration 68: it stops within STALL_WINDOW iterations of
-    # that, with the 1e-9 answer
-    stall = _Stall(own, [nine, eight])
+    # stuck at 2.8e-10 from iteration 68: it stops within STALL_WINDOW iterations of that
+    stall = _Stall(own, nine)
     stop = next(k for k in range(200) if stall(_info(k, max(1e-3 * 0.8 ** k, 2.8e-10))))
-    assert 68 < stop <= 68 + STALL_WINDOW and stall.met == 0
-    # stuck where only 1e-8 is met: the 1e-8 answer
-    stall = _Stall(own, [nine, eight])
-    assert [k for k in range(60) if stall(_info(k, 5e-9))][0] == STALL_WINDOW
-    assert stall.met == 1
-    # stuck where no fallback is met, or on the way to an infeasibility certificate
-    # (kappa/tau above 1): it runs on to the back end's own end
-    for info in (_info(0, 2e-8), _info(0, 1e-12, ktratio=10.0)):
-        stall = _Stall(own, [nine, eight])
+    assert 68 < stop <= 68 + STALL_WINDOW and stall.stopped
+    # stuck where only looser tolerances are met (5e-9), or on the way to an
+    # infeasibility certificate (kappa/tau above 1): it runs on to its own end
+    for info in (_info(0, 5e-9), _info(0, 1e-12, ktratio=10.0)):
+        stall = _Stall(own, nine)
         assert not any(stall(replace_info(info, k)) for k in range(100))
-        assert stall.met is None
+        assert not stall.stopped
     # the gap counts by the closer of its absolute and relative forms, as in Clarabel
     assert _distance(SimpleNamespace(res_primal=0, res_dual=0, gap_abs=1.0, gap_rel=5e-11,
                                      ktratio=0.0), own) == pytest.approx(0.5)
 
 
-def test_a_stalled_clarabel_solve_answers_at_its_fallback():
+def test_a_stalled_clarabel_solve_answers_at_the_next_solves_tolerances():
     """A real stall: the relaxation of a 20 x 20 running-bond wall at f = 1 under its
     live load, asked of Clarabel at 1e-12, ends AlmostSolved after about 100
-    iterations. Given 1e-9 and its defaults (1e-8) as the settings that would follow,
-    it stops once stalled with an answer that meets 1e-9 and passes the policy's check;
-    given only its defaults ({}: whole settings, not changes to the 1e-12 ones), with
-    one that meets 1e-8; and where it ends short by itself, with its last iterate where
-    that meets them."""
+    iterations. Given 1e-9 as the next solve's settings, it stops once stalled with an
+    answer that meets 1e-9 and passes the policy's check; given Clarabel's defaults
+    ({}: whole settings, not changes to the 1e-12 ones), with one that meets 1e-8; where
+    it ends short by itself, it carries its last iterate where that meets them."""
     m = open_method(running_bond_wall(20, 20))
     prob, _ = m._relaxation_problem(1.0, 1.0)
     tight = {"tol_feas": 1e-12, "tol_gap_abs": 1e-12, "tol_gap_rel": 1e-12}
     alone = solve_clarabel(prob, **tight)
-    assert alone.status == "failure" and alone.iterations >= 100
+    assert alone.status == "failure" and alone.iterations >= 100 and not alone.next_met
     nine = {"tol_feas": 1e-9, "tol_gap_abs": 1e-9, "tol_gap_rel": 1e-9}
-    res = solve_clarabel(prob, fallbacks=(nine, {}), **tight)
-    assert res.status == "optimal" and res.fallback == 0 and "1e-09" in res.raw_status
+    res = solve_clarabel(prob, after=nine, **tight)
+    assert res.status == "optimal" and res.next_met and "1e-09" in res.raw_status
     assert res.iterations <= alone.iterations // 2
     assert policy.verified(prob, res).verified
-    res = solve_clarabel(prob, fallbacks=({},), **tight)
-    assert res.fallback == 0 and "1e-08" in res.raw_status and "stalled" in res.raw_status
+    res = solve_clarabel(prob, after={}, **tight)
+    assert res.next_met and "1e-08" in res.raw_status and "stalled" in res.raw_status
     # ended short by itself (its iteration limit: AlmostSolved, Clarabel's reduced
-    # tolerances met) with an iterate that meets 1e-8
-    res = solve_clarabel(prob, fallbacks=({},), **tight, max_iter=40)
-    assert res.fallback == 0 and res.iterations == 40 and "AlmostSolved" in res.raw_status
-    assert policy.verified(prob, res).verified
+    # tolerances met) with a last iterate that meets 1e-8: a failure that carries it
+    res = solve_clarabel(prob, after={}, **tight, max_iter=40)
+    assert res.status == "failure" and res.next_met and res.iterations == 40
+    assert "AlmostSolved" in res.raw_status
+    assert policy.verified(prob, replace(res, status="optimal")).verified
 
 
 def replace_info(info, iterations):
@@ -260,8 +255,8 @@ def replace_info(info, iterations):
     ("optimal", 120, 1), ("failure", 150, 1), ("failure", 12, 2)])
 def test_a_solve_settled_at_a_fallback_is_not_solved_again(monkeypatch, block_on_base,
                                                             status, iterations, asks):
-    """A back end that stops short of 1e-10 with an answer meeting the 1e-9 it was given
-    as a fallback (solved here at 1e-9): stalled ("optimal"), or ended by itself with a
+    """A back end that stops short of 1e-10 with an answer meeting the 1e-9 of the next
+    solve it was given (solved here at 1e-9): stalled ("optimal"), or ended by itself with a
     last iterate that meets it ("failure"). The policy takes that answer with no further
     solve (after a failure within REFINE_WITHIN iterations, after the refined retry,
     which fails the same way), and later tight solves start at 1e-9, as where 1e-10
@@ -269,13 +264,15 @@ def test_a_solve_settled_at_a_fallback_is_not_solved_again(monkeypatch, block_on
     asked = []
     policy_solve = policy.solve
 
-    def settling(problem, solver="clarabel", fallbacks=(), **settings):
+    def settling(problem, solver="clarabel", after=None, **settings):
         asked.append(settings.get("tol_feas"))
         if settings.get("tol_feas") == 1e-10:
-            assert fallbacks and fallbacks[0]["tol_feas"] == 1e-9 and fallbacks[1] == {}
-            return replace(policy_solve(problem, solver, **fallbacks[0]), status=status,
-                           fallback=0, iterations=iterations, raw_status="short of 1e-10")
-        return policy_solve(problem, solver, fallbacks=fallbacks, **settings)
+            assert after["tol_feas"] == 1e-9
+            return replace(policy_solve(problem, solver, **after), status=status,
+                           next_met=True, iterations=iterations, raw_status="short of 1e-10")
+        # the 1e-9 solves that follow are given Clarabel's defaults as the next
+        assert settings.get("tol_feas") != 1e-9 or after == {}
+        return policy_solve(problem, solver, after=after, **settings)
 
     monkeypatch.setattr(policy, "solve", settling)
     fr = min_friction(block_on_base(1.0, 2.0, 0.4), load_factor=0.3, state=False)

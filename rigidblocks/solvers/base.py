@@ -85,11 +85,11 @@ class SolverResult:
     #: whether they passed the check of the solver policy (None: not checked)
     residuals: dict = field(default_factory=dict)
     verified: bool | None = None
-    #: where the solve stopped short of its own tolerances with an answer that meets
-    #: those of a looser fallback (the index into the fallbacks it was given), or failed
-    #: with a last iterate that does (then carried in ``z`` and ``y``); None otherwise
-    #: (see :mod:`~rigidblocks.solvers.clarabel_backend`)
-    fallback: int | None = None
+    #: the solve stopped short of its own tolerances with an answer that meets those of
+    #: the next solve it was given (stalled: an optimal answer), or failed with a last
+    #: iterate that does, then carried in ``z`` and ``y`` (see
+    #: :mod:`~rigidblocks.solvers.clarabel_backend`)
+    next_met: bool = False
 
     @property
     def ok(self) -> bool:

@@ -14,9 +14,9 @@ back end is driven to that answer is decided here, in one place:
   :data:`REFINE_WITHIN` iterations or more), then, if the
   tight tolerances were out of reach, at :data:`NEAR_TIGHT_SETTINGS` (where later tight
   solves of the same runner start) and at the back end's defaults. Clarabel is given
-  those later settings with the first solve: where its iteration stalls with an iterate
-  that meets one of them, it stops and answers as that solve would have
-  (:mod:`~rigidblocks.solvers.clarabel_backend`), and the retries are not needed;
+  the next of those settings with each solve: where its iteration stalls, or ends, with
+  an iterate that meets their tolerances, that is the next solve's answer
+  (:mod:`~rigidblocks.solvers.clarabel_backend`), and that solve is not needed;
 * **verification**: every answer is checked against the problem itself before it is
   passed on (:func:`~rigidblocks.solvers.base.residuals`: an optimal answer's primal and
   dual residuals and duality gap, an infeasibility certificate's residual and margin)
@@ -144,9 +144,9 @@ class Runner:
                       if k.startswith("tol") and isinstance(v, int | float) and v > LOOSE_TOL)
 
     def _solve(self, problem: ConicProblem, solver: str, settings: dict,
-               fallbacks: tuple[dict, ...] = ()) -> SolverResult:
+               after: dict | None = None) -> SolverResult:
         t0 = time.perf_counter()
-        res = solve(problem, solver, fallbacks=fallbacks, **settings)
+        res = solve(problem, solver, after=after, **settings)
         self.wall_time += time.perf_counter() - t0
         self.n_solves += 1
         self.solve_time += res.solve_time
@@ -210,22 +210,22 @@ class Runner:
             settings = {**TIGHT_SETTINGS[solver], **base}
             if near and solver in self.out_of_reach:
                 settings, near = {**near, **base}, None
-        # the solves that follow where these settings are out of reach, given to the
-        # back end: Clarabel stops where it stalls with an iterate that meets one of them
-        later = (({**near, **base},) if near else ()) + ((base,) if settings is not base
-                                                         else ())
-        res = self._solve(problem, solver, settings, later)
+        # the solve that follows where these settings are out of reach, given to the back
+        # end: Clarabel stops where it stalls with an iterate that meets its tolerances
+        after = {**near, **base} if near else base if settings is not base else None
+        res = self._solve(problem, solver, settings, after)
         refine = REFINE_SETTINGS.get(solver, {})
         if (res.status not in _DONE and retry and refine and res.iterations < REFINE_WITHIN
                 and not refine.keys() & settings.keys()):
-            again = self._solve(problem, solver, {**settings, **refine}, later)
-            res = again if again.status in _DONE or res.fallback is None else res
+            again = self._solve(problem, solver, {**settings, **refine}, after)
+            res = again if again.status in _DONE or not res.next_met else res
         res = _settled(res)
-        if res.fallback is not None and near:
+        if res.next_met and near:
             self.out_of_reach.add(solver)
         if res.status not in _DONE and near:
             self.out_of_reach.add(solver)
-            res = _settled(self._solve(problem, solver, {**near, **base}, later[1:]))
+            res = _settled(self._solve(problem, solver, {**near, **base},
+                                       base if settings is not base else None))
         if res.status not in _DONE and settings is not base:
             # the tight tolerances were out of reach: the back end's defaults decide
             res = self._solve(problem, solver, base)
@@ -237,9 +237,10 @@ class Runner:
 
 
 def _settled(res: SolverResult) -> SolverResult:
-    """A failure whose last iterate meets the tolerances of a later solve (its
-    ``fallback``) taken as that solve's answer, without the solve; anything else as is."""
-    if res.status in _DONE or res.fallback is None:
+    """A failure whose last iterate meets the tolerances of the next solve
+    (``next_met``) taken as that solve's answer, without the solve; anything else as
+    is."""
+    if res.status in _DONE or not res.next_met:
         return res
     return replace(res, status=OPTIMAL)
 

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 from ..errors import InputError
 from .base import ConicProblem, SolverResult
 
@@ -11,14 +9,14 @@ from .base import ConicProblem, SolverResult
 SOLVERS = ("clarabel", "highs", "osqp", "scs", "ecos")
 
 
-def solve(problem: ConicProblem, solver: str = "clarabel", fallbacks: Sequence[dict] = (),
+def solve(problem: ConicProblem, solver: str = "clarabel", after: dict | None = None,
           **settings) -> SolverResult:
     """Solve a standard-form problem with the named back end.
 
     Names: ``clarabel`` (native, default), ``highs`` (scipy's HiGHS, LPs), ``osqp``
     (QPs and LPs with linear constraints), ``scs`` / ``ecos`` (through cvxpy), or
-    ``cvxpy-NAME`` for any solver cvxpy has installed. ``fallbacks``: looser settings
-    the caller would solve again at, where the solve may stop once it stalls
+    ``cvxpy-NAME`` for any solver cvxpy has installed. ``after``: the settings of
+    the solve the caller would try next, where the solve may stop once it stalls
     (:mod:`~rigidblocks.solvers.clarabel_backend`; the other back ends run to their
     own end).
     """
@@ -26,7 +24,7 @@ def solve(problem: ConicProblem, solver: str = "clarabel", fallbacks: Sequence[d
     if name == "clarabel":
         from .clarabel_backend import solve_clarabel
 
-        return solve_clarabel(problem, fallbacks=fallbacks, **settings)
+        return solve_clarabel(problem, after=after, **settings)
     if name == "highs":
         from .highs_backend import solve_highs
 
