@@ -259,14 +259,17 @@ def test_a_solve_settled_at_a_fallback_is_not_solved_again(monkeypatch, block_on
     solve it was given (solved here at 1e-9): stalled ("optimal"), or ended by itself with a
     last iterate that meets it ("failure"). The policy takes that answer with no further
     solve (after a failure within REFINE_WITHIN iterations, after the refined retry,
-    which fails the same way), and later tight solves start at 1e-9, as where 1e-10
-    failed outright. The b = 1, h = 2 block under 0.3 of its weight needs f* = 0.3."""
+    which fails outright), and later tight solves start at 1e-9, as where 1e-10 failed
+    outright. The b = 1, h = 2 block under 0.3 of its weight needs f* = 0.3."""
     asked = []
     policy_solve = policy.solve
 
     def settling(problem, solver="clarabel", after=None, **settings):
         asked.append(settings.get("tol_feas"))
         if settings.get("tol_feas") == 1e-10:
+            if after is None:  # the refined retry: not given the next solve; it fails
+                return SolverResult("failure", None, None, math.nan, solver, "AlmostSolved",
+                                    iterations=iterations)
             assert after["tol_feas"] == 1e-9
             return replace(policy_solve(problem, solver, **after), status=status,
                            next_met=True, iterations=iterations, raw_status="short of 1e-10")
