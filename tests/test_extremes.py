@@ -361,27 +361,36 @@ def test_friction_trial_failing_on_its_duals_alone_steers_by_value(monkeypatch,
                                                                   block_on_base):
     """A trial of the f* search whose answer fails the check on its dual residual alone
     (state and gap pass) is read by its value where that exceeds what the residual could
-    account for (its spread), like a checked answer whose dual bound is too weak: the
-    20,093-block wall at f = 1.2573 left R = 0.570 with a spread of 0.120 and a dual
-    residual of 6.3e-5. The b = 1, h = 2 block under 0.3 of its weight (f* = 0.3) at
-    f = 0.1 has R = 0.2 of its weight; 0.03 added to its cone rows' duals leaves the dual
-    bound below 0 and a spread of 0.066: a lower point by value; 0.1 added, a spread of
-    0.22: nothing. A state that misses equilibrium is never read by value."""
-    monkeypatch.setattr(policy, "solve", _cone_duals_raised(0.03))
-    m = open_method(block_on_base(1.0, 2.0, 0.4))
-    rx = m.relaxation(0.1, 0.3, confirm=False, self_certified=True)
+    account for (SPREAD_MARGIN = 4 times its spread), like a checked answer whose dual
+    bound is too weak: the 20,093-block wall at f = 1.2573 left R = 0.570 with a spread
+    of 0.120 and a dual residual of 6.3e-5. The b = 1, h = 2 block under 0.3 of its
+    weight (f* = 0.3) at f = 0.1 has R = 0.2 of its weight; 0.03 added to its cone rows'
+    duals leaves the dual bound below 0 and a spread of 0.066: R is 3 times that, not a
+    lower point (with a margin of 2 it would be); 0.1 added, a spread of 0.22: nothing
+    either way. A state that misses equilibrium is never read by value."""
+    from rigidblocks.methods import convex
+
+    clean = policy.solve
+
+    def read(by):
+        monkeypatch.setattr(policy, "solve", clean)
+        monkeypatch.setattr(policy, "solve", _cone_duals_raised(by))
+        m = open_method(block_on_base(1.0, 2.0, 0.4))
+        return m, m.relaxation(0.1, 0.3, confirm=False, self_certified=True)
+
+    m, rx = read(0.03)
     r = rx.res.residuals
     assert rx.res.verified is False and r["dual"] > 1e-2
     assert max(r["primal"], r["gap"]) < 1e-9
-    assert not rx.positive and rx.by_value
+    assert rx.unresolved and not rx.by_value  # 3 times its spread
+    monkeypatch.setattr(convex, "SPREAD_MARGIN", 2.0)
+    m, rx = read(0.03)
+    assert not rx.positive and rx.by_value and not rx.unresolved
     assert rx.R == pytest.approx(0.2, rel=1e-6) and rx.spread == pytest.approx(0.066, rel=1e-3)
     assert not m.relaxation(0.1, 0.3, confirm=False).decided  # a plain verdict: undecided
-    monkeypatch.undo()
-    monkeypatch.setattr(policy, "solve", _cone_duals_raised(0.1))
-    rx = open_method(block_on_base(1.0, 2.0, 0.4)).relaxation(0.1, 0.3, confirm=False,
-                                                              self_certified=True)
+    m, rx = read(0.1)
     assert rx.unresolved and not rx.by_value
-    monkeypatch.undo()
+    monkeypatch.setattr(policy, "solve", clean)
     spoilt, state = _sloppy(_cone_duals_raised(0.03))
     state["everyone"] = True
     monkeypatch.setattr(policy, "solve", spoilt)
