@@ -211,9 +211,9 @@ def test_a_stalled_solve_stops_where_it_meets_the_next_solves_tolerances():
     assert 68 < stop <= 68 + STALL_WINDOW and stall.stopped
     # stuck where only looser tolerances are met (5e-9), or on the way to an
     # infeasibility certificate (kappa/tau above 1): it runs on to its own end
-    for info in (_info(0, 5e-9), _info(0, 1e-12, ktratio=10.0)):
+    for res, ktratio in ((5e-9, 0.0), (1e-12, 10.0)):
         stall = _Stall(own, nine)
-        assert not any(stall(replace_info(info, k)) for k in range(100))
+        assert not any(stall(_info(k, res, ktratio=ktratio)) for k in range(100))
         assert not stall.stopped
     # the gap counts by the closer of its absolute and relative forms, as in Clarabel
     assert _distance(SimpleNamespace(res_primal=0, res_dual=0, gap_abs=1.0, gap_rel=5e-11,
@@ -247,14 +247,10 @@ def test_a_stalled_clarabel_solve_answers_at_the_next_solves_tolerances():
     assert policy.verified(prob, replace(res, status="optimal")).verified
 
 
-def replace_info(info, iterations):
-    return SimpleNamespace(**{**vars(info), "iterations": iterations})
-
-
 @pytest.mark.parametrize("status, iterations, asks", [
     ("optimal", 120, 1), ("failure", 150, 1), ("failure", 12, 2)])
-def test_a_solve_settled_at_a_fallback_is_not_solved_again(monkeypatch, block_on_base,
-                                                            status, iterations, asks):
+def test_a_solve_settled_at_the_next_solves_tolerances_is_not_solved_again(
+        monkeypatch, block_on_base, status, iterations, asks):
     """A back end that stops short of 1e-10 with an answer meeting the 1e-9 of the next
     solve it was given (solved here at 1e-9): stalled ("optimal"), or ended by itself with a
     last iterate that meets it ("failure"). The policy takes that answer with no further

@@ -228,8 +228,8 @@ class Runner:
             self.out_of_reach.add(solver)
         if res.status not in _DONE and near:
             self.out_of_reach.add(solver)
-            res = _settled(self._solve(problem, solver, {**near, **base},
-                                       base if settings is not base else None))
+            # near is set only with tight settings: the defaults' solve follows it
+            res = _settled(self._solve(problem, solver, {**near, **base}, base))
         if res.status not in _DONE and settings is not base:
             # the tight tolerances were out of reach: the back end's defaults decide
             res = self._solve(problem, solver, base)
