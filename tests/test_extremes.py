@@ -739,3 +739,48 @@ def test_friction_search_steps_past_a_trial_without_a_checked_answer(monkeypatch
     r = min_friction(s, load_factor=0.3, state=False)
     assert r.status == "undecided" and r.friction_factor is None
     assert any("spoilt" in n for n in r.notes)
+
+
+def test_a_trial_left_at_the_threshold_bounds_nothing(monkeypatch, block_on_base):
+    """A trial the solver leaves at the threshold (its state's breach above the
+    threshold, its dual bound below) does not bracket f* from below: R may be zero there
+    with a state the solver cannot certify. On the extruded 5,006-block wall one such
+    trial at f = 1.2502445, 7.8e-4 below the certified upper end 1.2512172, made that
+    upper end the reported f* where the plane wall certifies f* <= 1.2497654. Here the
+    b = 1, h = 2 block under 0.3 times its weight (f* = 0.3: it slides) has its
+    relaxations on [0.3, 0.3015] left so (twice the threshold, no dual bound): no f is
+    reported, and the bracket holds f* = 0.3."""
+    from rigidblocks.methods import convex
+
+    read = convex.ConvexMethod._read
+    top = 0.3015
+
+    def patched(self, prob, jr, res, f, *rest):
+        rx = read(self, prob, jr, res, f, *rest)
+        if 0.3 - 1e-9 <= f <= top and rx.R is not None:
+            return replace(rx, R=2 * rx.tol, low=-1.0, spread=0.0)
+        return rx
+
+    monkeypatch.setattr(convex.ConvexMethod, "_read", patched)
+    r = min_friction(block_on_base(1.0, 2.0, 0.5), load_factor=0.3, state=False)
+    assert r.status == "undecided" and r.friction_factor is None
+    assert r.bracket[0] <= 0.3 < top < r.bracket[1] < 0.31
+    assert any("the bracket is wider than" in n for n in r.notes)
+
+
+def test_the_probe_below_the_upper_end_lands_where_the_solver_resolves():
+    """Where the lower end's Newton step lands at the certified upper end (R about
+    linear across the bracket), the probe below that end goes where R is twice what is
+    taken as a lower point on its value, not to the end's round-off distance, where it
+    ends near the threshold. The bundled Arpino gate: R falls linearly with slope 1.65
+    (0.0042745 at f = 0.0879295, 0.0021373 at 0.0892243, both certified), and its f*
+    is bracketed to 1.4e-6 by a certified lower point instead of to 1.4e-2 with a
+    trial left at the threshold. The bracket holds the simplex solver's (HiGHS, a
+    vertex of the LP: [0.0905191183, 0.0905191262])."""
+    scene = read_scene(EXAMPLES / "arpino_gate.json")
+    r = min_friction(scene, state=False)
+    simplex = min_friction(scene, state=False, solver="highs")
+    assert r.status == simplex.status == "stable"
+    lo, hi = r.bracket
+    assert r.friction_factor == hi and (hi - lo) / hi < 1e-5
+    assert lo <= simplex.bracket[0] <= simplex.bracket[1] <= hi

@@ -89,7 +89,8 @@ CLEARLY = 10.0
 #: it on the plane wall
 SPREAD_MARGIN = 4.0
 #: the search for f* ends when a trial left at the threshold lies within this (relative)
-#: of the certified upper end: closer, R(f) is below what the solver resolves
+#: of the certified upper end and the bracket is narrower than :data:`WIDE`: closer,
+#: R(f) is below what the solver resolves
 NEAR_STOP = 1e-5
 #: a bracket of f* narrower than this (relative) whose lower end's Newton step lands
 #: about at the upper end is not probed just below the upper end where R is predicted
@@ -496,7 +497,8 @@ class ConvexMethod(Method):
         for _ in range(100):
             if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
                 break
-            if near is not None and math.isfinite(hi) and hi - near <= NEAR_STOP * hi:
+            if (near is not None and math.isfinite(hi) and hi - near <= NEAR_STOP * hi
+                    and hi - lo <= WIDE * hi):
                 # certified just above a trial at the threshold, where the solver's
                 # resolution ends: f* is there (the bracket goes into the notes)
                 break
@@ -528,6 +530,17 @@ class ConvexMethod(Method):
                         f"bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
                         f"{(hi - lo) / hi:.1e}), reported at the upper end")
                     break
+                if last is not None and newton <= 2 * hi - lo:
+                    # with that slope, where R is twice what is taken as a lower point on
+                    # its value: a probe at the upper end's round-off distance ends near
+                    # the threshold, or certifies a zero that moves the upper end by that
+                    # distance only, and the dual bound is weaker near f* than at the
+                    # lower end (Arpino gate: R = 1.65 (0.0905192 - f), and at
+                    # 0.0905191 - 2.5e-8, R = 4.1e-8 with a dual bound of -7.0e-8)
+                    trial = min(trial, hi - 2.0 * by_value_from(last) / s_lo)
+                    if trial <= 0.5 * (lo + hi):
+                        trial = 0.5 * (lo + hi)
+                        probe_below_hi = True
             else:
                 trial = 0.5 * (lo + hi)
                 probe_below_hi = True
@@ -629,8 +642,10 @@ class ConvexMethod(Method):
             self.notes.append(f"near f* some relaxations ended with status {undecided}{at}; "
                               f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
                               f"{(hi - lo) / hi:.1e})")
-            below = max(lo, near if near is not None else lo)
-            if not math.isfinite(hi) or hi - below > WIDE * hi:
+            # a trial left at the threshold bounds nothing: R may be zero there with a
+            # state the solver cannot certify (extruded 5,006-block wall: one at
+            # f = 1.2502445, where the plane wall certifies f* <= 1.2497654)
+            if not math.isfinite(hi) or hi - lo > WIDE * hi:
                 self.notes.append(f"the bracket is wider than {WIDE:g} (relative): no "
                                   "number is given")
                 return Limit("undecided", None, lo, hi if math.isfinite(hi) else None)
@@ -795,12 +810,18 @@ def near_threshold(rx: Relaxation) -> str:
             "scale): undecided")
 
 
+def by_value_from(rx: Relaxation) -> float:
+    """The smallest relaxation value taken as a lower point on its value near the lower
+    point ``rx`` (:data:`CLEARLY` times its threshold, :data:`SPREAD_MARGIN` times its
+    spread)."""
+    return max(CLEARLY * rx.tol, SPREAD_MARGIN * rx.spread)
+
+
 def beyond_resolution(rx: Relaxation, value: float) -> bool:
     """Whether a relaxation of about ``value`` can be neither certified positive (the dual
     bound fell short of ``rx.R`` by more than that at the nearby lower point ``rx``) nor
-    taken as a lower point on its value (:data:`CLEARLY`, and :data:`SPREAD_MARGIN` times
-    the spread of ``rx``)."""
-    return value < max(CLEARLY * rx.tol, SPREAD_MARGIN * rx.spread) and value < rx.R - rx.low
+    taken as a lower point on its value (:func:`by_value_from`)."""
+    return value < by_value_from(rx) and value < rx.R - rx.low
 
 
 def _among(f: float, trials: set[float]) -> bool:
