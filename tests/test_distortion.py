@@ -452,3 +452,24 @@ def test_undecided_analyses_give_status_and_reason_never_a_number():
     assert m.status == "undecided" and m.load_multiplier is None and m.state is None
     assert any("could not decide" in n for n in m.notes)
     assert m.to_dict()["load_multiplier"] is None and f.to_dict()["friction_factor"] is None
+
+
+def test_energy_scaled_by_a_reference_state_keeps_the_minimiser():
+    """The least-energy QP with its energy scaled by a reference state (at most one unit
+    per force component there: unscaled, Clarabel stalls on a 5,006-block wall at f*)
+    has the same minimiser: the C-metric projection the distortion iteration converges
+    to, on a 10 x 10 running-bond wall under 0.2 of its weight sideways at f = 0.8
+    (both to 2.6e-10 of the largest force at tolerances 1e-12)."""
+    from rigidblocks.generators.walls import running_bond_wall
+
+    ds = solver_of(running_bond_wall(10, 10))
+    fj = np.full(ds.m, 0.8)
+    run = ds.run(ds.laws(fj), 0.2, tol=1e-10)
+    assert run.status == "admissible"
+    plain = build_energy_qp(ds.system, ds.scaling, fj, 0.2)
+    scaled = build_energy_qp(ds.system, ds.scaling, fj, 0.2, reference=3.0 * run.x)
+    assert scaled.P.diagonal().max() < 0.2 * plain.P.diagonal().max()
+    for prob in (plain, scaled):
+        qp = solve(prob, "clarabel", tol_gap_abs=1e-12, tol_gap_rel=1e-12, tol_feas=1e-12)
+        xq = qp.z[prob.cols["x"]]
+        assert np.abs(run.x - xq).max() <= 1e-8 * np.abs(xq).max()

@@ -414,7 +414,7 @@ class ConvexMethod(Method):
             scaling = self.lscaling
         with self.timings.stage("build"):
             prob = build_energy_qp(self.system, scaling, self.f_joint(f), load_factor,
-                                   relax, self.pyramid)
+                                   relax, self.pyramid, reference=limit.z[limit_x])
         try:
             # solved once: where the interior-point iteration stalls near a limit, a
             # retry with other settings stalls too (5,006-block wall at f*: AlmostSolved
@@ -679,7 +679,8 @@ class ConvexMethod(Method):
             return big
         with self.timings.stage("build"):
             prob = build_energy_qp(self.system, self.vscaling, self.f_joint(f), load_factor,
-                                   rx.R + STATE_SLACK, self.pyramid)
+                                   rx.R + STATE_SLACK, self.pyramid,
+                                   reference=rx.res.z[rx.prob.cols["x"]])
         try:
             res = self._run(prob, "force-state")
         except SolverFailure:
