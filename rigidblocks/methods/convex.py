@@ -102,7 +102,8 @@ WIDE = 1e-3
 #: in the search for f*, trials in a row whose relaxation has no checked answer (the
 #: solver failed, or its answer fails the check) before the search gives up: undecided
 #: with the bracket, or a failure where the solver failed before any upper end was
-#: certified
+#: certified; and half the number of trials left at the threshold (in all) after which
+#: it ends with the bracket it has
 MISSED_LIMIT = 4
 #: beginning of the reason of a verdict undecided for that reason
 FORCES_SPAN = "forces span"
@@ -474,6 +475,7 @@ class ConvexMethod(Method):
         undecided = ""  # the solver's status where it could not decide near f*
         unresolved_below: float | None = None  # a trial whose forces are beyond resolution
         near: float | None = None  # the largest trial left near the threshold (undecided)
+        at_threshold: list[float] = []  # every trial left near the threshold
         step_up = rtol  # relative step above a trial left at the threshold
         lower_primal = False  # a lower point rests on the relaxation's primal value
         n_missed = 0  # trials in a row whose relaxation had no checked answer
@@ -497,12 +499,30 @@ class ConvexMethod(Method):
         for _ in range(100):
             if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
                 break
-            if (near is not None and math.isfinite(hi) and hi - near <= NEAR_STOP * hi
-                    and hi - lo <= WIDE * hi):
-                # certified just above a trial at the threshold, where the solver's
-                # resolution ends: f* is there (the bracket goes into the notes)
-                break
             newton = lo + _root_step(R_lo, s_lo, lo, prev) if s_lo > 0 else math.inf
+            inside = [t for t in at_threshold if lo < t < hi]
+            if inside and math.isfinite(hi) and hi - max(inside) <= NEAR_STOP * hi:
+                # certified just above a trial at the threshold, where the solver's
+                # resolution ends: f* is there if the lower end is close (the bracket
+                # goes into the notes)
+                if hi - lo <= WIDE * hi:
+                    break
+            if inside and math.isfinite(hi) and hi - max(inside) <= 0.5 * WIDE * hi \
+                    and hi - lo > WIDE * hi:
+                # the upper end is certified close above such a trial (within half the
+                # width that gives a number), but it bounds
+                # nothing from below (R may be zero there with a state the solver cannot
+                # certify): the search goes on below the lowest one, and ends where that
+                # is about the lower end (undecided: the rest of the bracket holds only
+                # trials at the threshold)
+                below = min(inside)
+                if below - lo <= WIDE * hi:
+                    break
+                forced = 0.5 * (lo + below)
+                if lo < newton < below * (1.0 - 0.5 * rtol):
+                    forced = newton
+                elif last is not None and s_lo > 0:  # as below a certified upper end
+                    forced = max(forced, below - 2.0 * by_value_from(last) / s_lo)
             if forced is not None:
                 trial, forced = forced, None
             elif math.isinf(hi):
@@ -617,7 +637,10 @@ class ConvexMethod(Method):
                 # end) probe further below, as for a failed solve
                 undecided = "undecided (near the threshold)"
                 near = trial if near is None else max(near, trial)
+                at_threshold.append(trial)
                 missed_at.add(trial)
+                if len(at_threshold) > 2 * MISSED_LIMIT:
+                    break
                 # above it, by twice its Newton step (R there is at most the value read)
                 forced = past(trial, trial + 2.0 * rx.R / rx.slope if rx.slope > 0
                               else trial)
