@@ -772,6 +772,7 @@ def test_a_trial_left_at_the_threshold_bounds_nothing(monkeypatch, block_on_base
     else:
         assert r.status == "undecided" and r.friction_factor is None
         assert any("the bracket is wider than" in n for n in r.notes)
+        assert not any("which is reported" in n for n in r.notes)
 
 
 def test_the_probe_below_the_upper_end_lands_where_the_solver_resolves():

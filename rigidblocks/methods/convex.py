@@ -474,7 +474,6 @@ class ConvexMethod(Method):
         forced: float | None = None  # the next trial, after a relaxation the solver missed
         undecided = ""  # the solver's status where it could not decide near f*
         unresolved_below: float | None = None  # a trial whose forces are beyond resolution
-        near: float | None = None  # the largest trial left near the threshold (undecided)
         at_threshold: list[float] = []  # every trial left near the threshold
         step_up = rtol  # relative step above a trial left at the threshold
         lower_primal = False  # a lower point rests on the relaxation's primal value
@@ -510,11 +509,10 @@ class ConvexMethod(Method):
             if inside and math.isfinite(hi) and hi - max(inside) <= 0.5 * WIDE * hi \
                     and hi - lo > WIDE * hi:
                 # the upper end is certified close above such a trial (within half the
-                # width that gives a number), but it bounds
-                # nothing from below (R may be zero there with a state the solver cannot
-                # certify): the search goes on below the lowest one, and ends where that
-                # is about the lower end (undecided: the rest of the bracket holds only
-                # trials at the threshold)
+                # width that gives a number), but it bounds nothing from below (R may be
+                # zero there with a state the solver cannot certify): the search goes on
+                # below the lowest one, and ends where that is about the lower end
+                # (undecided: the rest of the bracket holds only trials at the threshold)
                 below = min(inside)
                 if below - lo <= WIDE * hi:
                     break
@@ -636,7 +634,6 @@ class ConvexMethod(Method):
                 # about there; certify just above it, or (close below the certified upper
                 # end) probe further below, as for a failed solve
                 undecided = "undecided (near the threshold)"
-                near = trial if near is None else max(near, trial)
                 at_threshold.append(trial)
                 missed_at.add(trial)
                 if len(at_threshold) > 2 * MISSED_LIMIT:
@@ -660,15 +657,20 @@ class ConvexMethod(Method):
             raise SolverFailure("minimum friction did not converge in 100 solves",
                                 self.solver, "iteration limit")
         if undecided:
-            at = (f" (the last at f = {near:.10g}, within {(hi - near) / hi:.1e} of the "
-                  "certified upper end, which is reported)" if near is not None else "")
-            self.notes.append(f"near f* some relaxations ended with status {undecided}{at}; "
-                              f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
-                              f"{(hi - lo) / hi:.1e})")
             # a trial left at the threshold bounds nothing: R may be zero there with a
             # state the solver cannot certify (extruded 5,006-block wall: one at
             # f = 1.2502445, where the plane wall certifies f* <= 1.2497654)
-            if not math.isfinite(hi) or hi - lo > WIDE * hi:
+            wide = not math.isfinite(hi) or hi - lo > WIDE * hi
+            under = [t for t in at_threshold if t < hi]
+            at = ""
+            if under and math.isfinite(hi):
+                top = max(under)
+                at = (f" (the last at f = {top:.10g}, {(hi - top) / hi:.1e} below the "
+                      f"certified upper end{'' if wide else ', which is reported'})")
+            self.notes.append(f"near f* some relaxations ended with status {undecided}{at}; "
+                              f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
+                              f"{(hi - lo) / hi:.1e})")
+            if wide:
                 self.notes.append(f"the bracket is wider than {WIDE:g} (relative): no "
                                   "number is given")
                 return Limit("undecided", None, lo, hi if math.isfinite(hi) else None)
