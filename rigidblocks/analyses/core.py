@@ -174,7 +174,7 @@ def min_friction(scene: Scene, load_factor: float | None = None,
     if at is not None:
         m.explain(at)
         gov = gov or m.governing_friction(fstar, at)
-    st = m.state(fstar, lf, at) if (state and at is not None) else None
+    st = m.state(fstar, lf, at, limit=True) if (state and at is not None) else None
     return FrictionResult(**_fields(m, "min_friction", "stable", fstar, lf), state=st,
                           governing=gov, friction_factor=fstar,
                           friction_angle_deg=math.degrees(math.atan(fstar)),
@@ -230,7 +230,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         m.explain(at)
         if lim.mechanism is None:
             gov = gov or m.governing_load(f, at)
-    st = m.state(f, lam, at) if (state and at is not None) else None
+    st = m.state(f, lam, at, limit=True) if (state and at is not None) else None
     return LoadResult(**_fields(m, "max_load_multiplier", "collapse", f, lam), state=st,
                       governing=gov, load_multiplier=lam, mechanism=lim.mechanism,
                       bracket=_bracket(lim) if lim.lower != lim.upper else None,

@@ -189,7 +189,8 @@ class NonAssociative(Method):
         notes = (r.reason,) if r.reason else ()
         return Verdict(r.status, 0.0 if r.status == ADMISSIBLE else r.violation, notes, r)
 
-    def state(self, f: float, load_factor: float, verdict: Verdict) -> ForceState | None:
+    def state(self, f: float, load_factor: float, verdict: Verdict,
+              limit: bool = False) -> ForceState | None:
         if verdict.status != ADMISSIBLE or verdict.data is None:
             return None
         return force_state(self.system, verdict.data.x,
@@ -557,7 +558,7 @@ def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: flo
     f_eff = np.where(mk, 0.0, fj)
     cap = np.where(mk, fj, 0.0)[pj] * np.maximum(st.normal, 0.0) / cv.scaling.force
     prob, _ = build_max_load(cv.system, cv.scaling, f_eff, cv.pyramid, cap=cap)
-    res = cv._run(prob, "maximum load (capped laws)", tight=True)
+    res = cv._run(prob, "maximum load (capped laws)", tight=True, stall=False)
     if res.status != OPTIMAL:
         return None, ()
     lam_cap = float(res.z[prob.cols["lambda"]][0])
@@ -578,7 +579,7 @@ def _frictionless_bound(cv: ConvexMethod, marked: np.ndarray, f: float) -> float
     a lower bound on any non-associative collapse multiplier (Drucker 1954)."""
     fj = np.where(marked, 0.0, cv.f_joint(f))
     prob, _ = build_max_load(cv.system, cv.scaling, fj, cv.pyramid)
-    res = cv._run(prob, "maximum load (frictionless bound)", tight=True)
+    res = cv._run(prob, "maximum load (frictionless bound)", tight=True, stall=False)
     if res.status != OPTIMAL:
         return None
     lam = float(res.z[prob.cols["lambda"]][0])

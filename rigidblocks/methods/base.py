@@ -141,8 +141,10 @@ class Method:
         ``for_state``: the verdict's data will be used for the force state."""
         raise NotImplementedError
 
-    def state(self, f: float, load_factor: float, verdict: Verdict) -> ForceState | None:
-        """The force state that goes with an admissible verdict."""
+    def state(self, f: float, load_factor: float, verdict: Verdict,
+              limit: bool = False) -> ForceState | None:
+        """The force state that goes with an admissible verdict (``limit``: at a limit
+        state, f* or lambda*)."""
         raise NotImplementedError
 
     # -- fast paths (None: the analyses bisect on verdicts) ----------------------------

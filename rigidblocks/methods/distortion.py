@@ -98,7 +98,8 @@ class DistortionMethod(Method):
         viol = 0.0 if r.status == ADMISSIBLE else r.violation * self.solver_.scaling.force
         return Verdict(r.status, viol, self.describe(r), r)
 
-    def state(self, f: float, load_factor: float, verdict: Verdict) -> ForceState | None:
+    def state(self, f: float, load_factor: float, verdict: Verdict,
+              limit: bool = False) -> ForceState | None:
         if verdict.status != ADMISSIBLE:
             return None
         with self.timings.stage("state"):
