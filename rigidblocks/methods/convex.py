@@ -102,9 +102,11 @@ WIDE = 1e-3
 #: in the search for f*, trials in a row whose relaxation has no checked answer (the
 #: solver failed, or its answer fails the check) before the search gives up: undecided
 #: with the bracket, or a failure where the solver failed before any upper end was
-#: certified; and half the number of trials left at the threshold (in all) after which
-#: it ends with the bracket it has
+#: certified
 MISSED_LIMIT = 4
+#: in the search for f*, trials left at the threshold (in all) after which it ends with
+#: the bracket it has
+THRESHOLD_TRIALS = 8
 #: beginning of the reason of a verdict undecided for that reason
 FORCES_SPAN = "forces span"
 #: an admissible state at a limit whose forces exceed this many times the loads of the
@@ -502,32 +504,37 @@ class ConvexMethod(Method):
             step_up *= 4.0
             return min(nxt, 0.5 * (trial + hi)) if math.isfinite(hi) else nxt
 
+        def resolved_below(end: float) -> float:
+            """Where R, predicted with the lower end's slope, is twice what is taken as a
+            lower point on its value below ``end`` (:func:`by_value_from`)."""
+            return end - 2.0 * by_value_from(last) / s_lo
+
         for _ in range(100):
             if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
                 break
             newton = lo + _root_step(R_lo, s_lo, lo, prev) if s_lo > 0 else math.inf
             inside = [t for t in at_threshold if lo < t < hi]
-            if inside and math.isfinite(hi) and hi - max(inside) <= NEAR_STOP * hi:
-                # certified just above a trial at the threshold, where the solver's
-                # resolution ends: f* is there if the lower end is close (the bracket
-                # goes into the notes)
-                if hi - lo <= WIDE * hi:
+            if inside and math.isfinite(hi):
+                gap = hi - max(inside)
+                if gap <= NEAR_STOP * hi and hi - lo <= WIDE * hi:
+                    # certified just above a trial at the threshold, where the solver's
+                    # resolution ends, and a lower end close below: f* is there (the
+                    # bracket goes into the notes)
                     break
-            if inside and math.isfinite(hi) and hi - max(inside) <= 0.5 * WIDE * hi \
-                    and hi - lo > WIDE * hi:
-                # the upper end is certified close above such a trial (within half the
-                # width that gives a number), but it bounds nothing from below (R may be
-                # zero there with a state the solver cannot certify): the search goes on
-                # below the lowest one, and ends where that is about the lower end
-                # (undecided: the rest of the bracket holds only trials at the threshold)
-                below = min(inside)
-                if below - lo <= WIDE * hi:
-                    break
-                forced = 0.5 * (lo + below)
-                if lo < newton < below * (1.0 - 0.5 * rtol):
-                    forced = newton
-                elif last is not None and s_lo > 0:  # as below a certified upper end
-                    forced = max(forced, below - 2.0 * by_value_from(last) / s_lo)
+                if gap <= 0.5 * WIDE * hi and hi - lo > WIDE * hi:
+                    # the upper end is certified close above such a trial (within half
+                    # the width that gives a number), but it bounds nothing from below (R
+                    # may be zero there with a state the solver cannot certify): the
+                    # search goes on below the lowest one, and ends where that is about
+                    # the lower end (undecided: the rest holds only such trials)
+                    below = min(inside)
+                    if below - lo <= WIDE * hi:
+                        break
+                    forced = 0.5 * (lo + below)
+                    if lo < newton < below * (1.0 - 0.5 * rtol):
+                        forced = newton
+                    elif last is not None and s_lo > 0:  # as below a certified upper end
+                        forced = max(forced, resolved_below(below))
             if forced is not None:
                 trial, forced = forced, None
             elif math.isinf(hi):
@@ -562,7 +569,7 @@ class ConvexMethod(Method):
                     # distance only, and the dual bound is weaker near f* than at the
                     # lower end (Arpino gate: R = 1.65 (0.0905192 - f), and at
                     # 0.0905191 - 2.5e-8, R = 4.1e-8 with a dual bound of -7.0e-8)
-                    trial = min(trial, hi - 2.0 * by_value_from(last) / s_lo)
+                    trial = min(trial, resolved_below(hi))
                     if trial <= 0.5 * (lo + hi):
                         trial = 0.5 * (lo + hi)
                         probe_below_hi = True
@@ -643,7 +650,7 @@ class ConvexMethod(Method):
                 undecided = "undecided (near the threshold)"
                 at_threshold.append(trial)
                 missed_at.add(trial)
-                if len(at_threshold) > 2 * MISSED_LIMIT:
+                if len(at_threshold) > THRESHOLD_TRIALS:
                     break
                 # above it, by twice its Newton step (R there is at most the value read)
                 forced = past(trial, trial + 2.0 * rx.R / rx.slope if rx.slope > 0

@@ -217,9 +217,8 @@ class Runner:
                 settings, near = {**near, **base}, None
         # the solve that follows where these settings are out of reach, given to the back
         # end: Clarabel stops where it stalls with an iterate that meets its tolerances
-        after = {**near, **base} if near else base if settings is not base else None
-        if not stall:
-            after = None
+        after = None if not stall else {**near, **base} if near else (
+            base if settings is not base else None)
         res = self._solve(problem, solver, settings, after)
         refine = REFINE_SETTINGS.get(solver, {})
         if (res.status not in _DONE and retry and refine and res.iterations < REFINE_WITHIN
