@@ -8,7 +8,8 @@ back end is driven to that answer is decided here, in one place:
   :data:`FALLBACK`;
 * **tight settings**: the relaxations decide verdicts by comparing a residual with 1e-9
   of the largest force, so their solves run at :data:`TIGHT_SETTINGS` (tolerance 1e-10)
-  where a back end's defaults are looser;
+  where a back end's defaults are looser, and those whose answer is read as a number
+  (lambda*) with the finer KKT regularisation of :data:`VALUE_SETTINGS`;
 * **retries**: a solve that ends short of optimal is retried once with
   :data:`REFINE_SETTINGS` (stronger regularisation, refined KKT solves; not after
   :data:`REFINE_WITHIN` iterations or more), then, if the
@@ -60,6 +61,17 @@ TIGHT_SETTINGS = {
 #: tried, a :class:`Runner`'s later tight solves start there
 NEAR_TIGHT_SETTINGS = {"clarabel": {"tol_gap_abs": 1e-9, "tol_gap_rel": 1e-9,
                                     "tol_feas": 1e-9}}
+#: KKT regularisation of the tight solves whose answer is read as a number (lambda*,
+#: ``stall=False`` in :meth:`Runner.run`): Clarabel's static regularisation (default 1e-8)
+#: bounds the dual residual its answers reach, and the dual residual, times forces of
+#: thousands of block loads, the accuracy of the objective. The max-load LP of a
+#: 1,009-block wall at f = 1.18372: lambda* 0.9999956 with the default (dual residual
+#: 1.9e-8), 1.0000005 with 1e-10 (7.8e-10), HiGHS' simplex 1.0000009; on the 5,006-block
+#: wall at f = 1.25, 0.9997980 (9.1e-8) and 1.0002615 (9.8e-10), where the relaxation
+#: certifies an admissible state at lambda = 1 below f = 1.24977. The relaxations' LPs
+#: do not take it (Clarabel ends them with InsufficientProgress or AlmostSolved at 1e-9
+#: to 1e-12).
+VALUE_SETTINGS = {"clarabel": {"static_regularization_constant": 1e-10}}
 #: retry settings when a solve ends short of optimal: KKT systems regularised and refined
 #: further. Where the interior-point iteration is near-degenerate a rounding decides
 #: between "Solved" and "AlmostSolved" (the max-load SOCP of the extruded stocky arch with
@@ -168,7 +180,9 @@ class Runner:
         tolerances with an iterate that meets the next solve's: for a number read from
         the answer (lambda*), not a verdict against a threshold that follows the
         tolerances (on the 20,093- and 50,065-block walls lambda* so stopped at 1e-9 was
-        1.3e-3 and 4.8e-3 below the 1e-10 answer)."""
+        1.3e-3 and 4.8e-3 below the 1e-10 answer); such a solve also takes
+        :data:`VALUE_SETTINGS`, as the accuracy of that number rests on its dual
+        residual."""
         if self.progress is not None:
             self.progress.stage = f"{what} problem"
         check = verify and self.verify
@@ -211,10 +225,11 @@ class Runner:
             solver, base = FALLBACK, {}
         settings = base
         near = NEAR_TIGHT_SETTINGS.get(solver) if tight else None
+        value = VALUE_SETTINGS.get(solver, {}) if tight and not stall else {}
         if tight and solver in TIGHT_SETTINGS:
-            settings = {**TIGHT_SETTINGS[solver], **base}
+            settings = {**TIGHT_SETTINGS[solver], **value, **base}
             if near and solver in self.out_of_reach:
-                settings, near = {**near, **base}, None
+                settings, near = {**near, **value, **base}, None
         # the solve that follows where these settings are out of reach, given to the back
         # end: Clarabel stops where it stalls with an iterate that meets its tolerances
         after = None if not stall else {**near, **base} if near else (
@@ -222,7 +237,7 @@ class Runner:
         res = self._solve(problem, solver, settings, after)
         refine = REFINE_SETTINGS.get(solver, {})
         if (res.status not in _DONE and retry and refine and res.iterations < REFINE_WITHIN
-                and not refine.keys() & settings.keys()):
+                and not refine.keys() & base.keys()):
             # not given the next solve: its regularised iterates are not the ones that
             # solve would go through (the extruded 1,009-block wall near f*: one that met
             # 1e-9 after 73 iterations breached the joint laws by 1.8e-5, the 1e-9
@@ -235,7 +250,7 @@ class Runner:
         if res.status not in _DONE and near:
             self.out_of_reach.add(solver)
             # near is set only with tight settings: the defaults' solve follows it
-            res = _settled(self._solve(problem, solver, {**near, **base},
+            res = _settled(self._solve(problem, solver, {**near, **value, **base},
                                        base if stall else None))
         if res.status not in _DONE and settings is not base:
             # the tight tolerances were out of reach: the back end's defaults decide
@@ -294,5 +309,6 @@ def describe(r: dict) -> str:
 
 
 __all__ = ["CERT_MARGIN", "CONFIRM_SETTINGS", "FALLBACK", "LP_ONLY", "REFINE_SETTINGS",
-           "REFINE_WITHIN", "RELAX_SETTINGS", "TIGHT_SETTINGS", "VERIFY_TOL", "Runner",
+           "REFINE_WITHIN", "RELAX_SETTINGS", "TIGHT_SETTINGS", "VALUE_SETTINGS",
+           "VERIFY_TOL", "Runner",
            "check_solver", "describe", "verified"]
