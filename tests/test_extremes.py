@@ -269,8 +269,8 @@ def test_a_solve_settled_at_the_next_solves_tolerances_is_not_solved_again(
             assert after["tol_feas"] == 1e-9
             return replace(policy_solve(problem, solver, **after), status=status,
                            next_met=True, iterations=iterations, raw_status="short of 1e-10")
-        # the 1e-9 solves that follow are given Clarabel's defaults as the next
-        assert settings.get("tol_feas") != 1e-9 or after == {}
+        # the 1e-9 relaxations that follow are given Clarabel's defaults as the next
+        assert settings.get("tol_feas") != 1e-9 or after == {} or "r" not in problem.cols
         return policy_solve(problem, solver, after=after, **settings)
 
     monkeypatch.setattr(policy, "solve", settling)
@@ -677,7 +677,16 @@ def test_top_block_limits_bound_lambda_star_on_walls(courses, per_course):
         assert r.load_multiplier <= bound * (1 + 1e-7)
 
 
-def test_friction_bracket_ends_where_the_solver_stops_resolving():
+@pytest.fixture
+def relaxation_search(monkeypatch):
+    """The f* search on the relaxation R(f) alone: the search there is at load factor 0
+    or without a live load, and where the search on lambda*(f) hands over."""
+    from rigidblocks.methods import convex
+
+    monkeypatch.setattr(convex.ConvexMethod, "_friction_by_load", lambda *a, **k: None)
+
+
+def test_friction_bracket_ends_where_the_solver_stops_resolving(relaxation_search):
     """A 17 x 18 running-bond wall under its horizontal live load at full value: Newton's
     steps on R(f) end with a narrow bracket whose lower end is not certified by the dual
     bound; just below the certified upper end R is predicted under what the solver
@@ -716,8 +725,8 @@ def _unchecked_at(monkeypatch, spoil, spoilt=None):
     monkeypatch.setattr(convex.ConvexMethod, "_read", patched)
 
 
-def test_friction_search_steps_past_a_trial_without_a_checked_answer(monkeypatch,
-                                                                     block_on_base):
+def test_friction_search_steps_past_a_trial_without_a_checked_answer(
+        monkeypatch, block_on_base, relaxation_search):
     """A b = 1, h = 2 block under a horizontal body force of 0.3 times its weight needs
     f* = 0.3 (it slides; it would tip at b/h = 0.5). Newton's first step from f = 0
     lands on 0.3, where the relaxation is made to come back without a checked answer:
@@ -742,7 +751,8 @@ def test_friction_search_steps_past_a_trial_without_a_checked_answer(monkeypatch
 
 
 @pytest.mark.parametrize("top", [0.30001, 0.3015, 0.33, 0.6])
-def test_a_trial_left_at_the_threshold_bounds_nothing(monkeypatch, block_on_base, top):
+def test_a_trial_left_at_the_threshold_bounds_nothing(monkeypatch, block_on_base, top,
+                                                     relaxation_search):
     """A trial the solver leaves at the threshold (its state's breach above the
     threshold, its dual bound below) does not bracket f* from below: R may be zero there
     with a state the solver cannot certify. On the extruded 5,006-block wall one such
@@ -854,3 +864,62 @@ def test_the_energy_is_scaled_at_limit_states_only(monkeypatch, block_on_base):
         given.clear()
         assert run().state is not None
         assert given == [at_limit]
+
+
+def test_friction_from_lambda_star_agrees_with_the_simplex():
+    """Under a live load, f* is found where lambda*(f) = the load factor (Newton steps on
+    the max-load LP, far better conditioned near f* than the relaxation). The 17 x 18
+    running-bond wall at load factor 1: HiGHS (exact duals) brackets f* within 1e-6
+    about 1.0753988 (test_friction_bracket_ends_where_the_solver_stops_resolving); our
+    upper end, where a state carries lambda >= 1, lies within 1e-6 above it, and the
+    lower end, read on lambda*'s value, below it."""
+    wall = running_bond_wall(17, 18)
+    r = min_friction(wall, load_factor=1.0, state=False)
+    exact = min_friction(wall, load_factor=1.0, state=False, solver="highs")
+    lo, hi = exact.bracket
+    assert hi - lo <= 1e-6 * hi
+    assert r.status == "stable" and lo <= r.friction_factor <= hi * (1 + 1e-6)
+    assert r.bracket[0] <= lo and r.bracket[1] == r.friction_factor
+    assert any("lambda*(f) = 1" in n for n in r.notes)
+    assert r.n_solves <= 9  # f = inf and 0, six max-load LPs, the dead load at f*
+
+
+def test_the_state_at_f_star_from_lambda_star_carries_the_load_factor(monkeypatch):
+    """The upper end of the search on lambda*(f) has a state at lambda* >= the load
+    factor; the state reported at f* is combined with one under the dead load alone
+    (theta = lf / lambda*), so it carries the load factor itself. Shown where the
+    least-energy QP fails and that state is reported: on the 17 x 18 running-bond wall
+    at load factor 1 (live load: the blocks' weights, horizontal), the joints on the
+    support carry a shear of 1 times their normal force, where the upper end's own
+    state carries lambda* = 1 + 7.0e-8 (found there)."""
+    from rigidblocks.errors import SolverFailure
+    from rigidblocks.methods import convex
+
+    run = convex.ConvexMethod._run
+
+    def no_qp(self, problem, what, *args, **kw):
+        if what == "force-state":
+            raise SolverFailure("QP refused", "clarabel", "refused")
+        return run(self, problem, what, *args, **kw)
+
+    monkeypatch.setattr(convex.ConvexMethod, "_run", no_qp)
+    limits = []
+    max_load = convex.ConvexMethod._max_load
+
+    def recorded(self, f):
+        out = max_load(self, f)
+        limits.append((f, out[2].z[out[0].cols["lambda"]][0]))
+        return out
+
+    monkeypatch.setattr(convex.ConvexMethod, "_max_load", recorded)
+    wall = running_bond_wall(17, 18)
+    r = min_friction(wall, load_factor=1.0)
+    at_hi = dict(limits)[r.friction_factor]
+    assert at_hi > 1 + 1e-8
+    st = r.state
+    assert st.method == "solution of the limit problem"
+    pairs = open_method(wall).system.contacts.pairs
+    base = np.isin(pairs, np.flatnonzero(wall.support_mask)).any(axis=1)
+    assert base.any()
+    ratio = st.joint_shear[base].sum() / st.joint_normal[base].sum()
+    assert abs(ratio) == pytest.approx(1.0, rel=1e-10)

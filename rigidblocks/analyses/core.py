@@ -148,8 +148,9 @@ def min_friction(scene: Scene, load_factor: float | None = None,
     structure fails by hinging; "undecided" or "failure" where the method says so.
 
     Notes:
-        Convex path: Newton steps on the relaxation R(f) (a few solves reach ``rtol``,
-        see :meth:`rigidblocks.methods.convex.ConvexMethod.friction_limit`). Other
+        Convex path: Newton steps on the relaxation R(f), or under a live load on
+        lambda*(f) = ``load_factor`` (a few solves reach ``rtol``, see
+        :meth:`rigidblocks.methods.convex.ConvexMethod.friction_limit`). Other
         methods: bracketing and bisection on their verdicts to ``rtol`` (at least 1e-9:
         a verdict is only as sharp as its violation tolerance).
     """
