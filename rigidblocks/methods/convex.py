@@ -826,7 +826,12 @@ class ConvexMethod(Method):
             if lo < newton < hi:
                 trial = newton
             elif math.isfinite(hi):
+                # past the upper end: the chord between the ends (above the root where
+                # lambda* is concave), or the midpoint
                 trial = 0.5 * (lo + hi)
+                if math.isfinite(lam_lo) and at_hi[3] > lam_lo:
+                    chord = lo + (lf - lam_lo) * (hi - lo) / (at_hi[3] - lam_lo)
+                    trial = chord if lo < chord < hi else trial
             else:
                 trial = max(2.0 * trial, 1.0)
         else:
