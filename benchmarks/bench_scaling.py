@@ -507,9 +507,11 @@ def markdown(cases: list[dict[str, Any]], summary: dict[str, Any],
                 f"Load factor {MF_LOAD_FACTOR:g} (the live load at full value). `floor at f*`: "
                 "one bare Clarabel solve (default settings) of the plain max-load problem "
                 "with the friction set to our f*, in the same process right after our "
-                "analysis; `ratio`: our total / that solve. `solves`: relaxations (Newton "
-                "steps and the ends of the bracket, the force-state QP where one is "
-                "computed); `it/solve`: interior-point iterations per solve.", "",
+                "analysis; `ratio`: our total / that solve. `solves`: every solve (the "
+                "relaxations at f = infinity and 0, the max-load LPs of the Newton steps "
+                "on lambda*(f) = 1, the relaxation under the dead load alone at f*, the "
+                "force-state QP where one is computed); `it/solve`: interior-point "
+                "iterations per solve.", "",
                 markdown_table(
                     ["dim", "blocks", "analysis", "f*", "solves", "iterations", "it/solve",
                      "solve s", "total s", "floor at f*", "ratio"],

@@ -242,13 +242,15 @@ class Runner:
             # solve would go through (the extruded 1,009-block wall near f*: one that met
             # 1e-9 after 73 iterations breached the joint laws by 1.8e-5, the 1e-9
             # solve's answer by 3.8e-6, under the threshold of 3.9e-6)
-            # a solve with VALUE_SETTINGS is retried without them instead (the max-load
+            # a solve with VALUE_SETTINGS is retried without them first (the max-load
             # LP of a 1,009-block wall at f = 1 - 1e-10: AlmostSolved after 44
-            # iterations with them, Solved after 196 with REFINE_SETTINGS)
-            again = self._solve(problem, solver, {k: v for k, v in settings.items()
-                                                  if k not in value} if value
-                                else {**settings, **refine})
-            res = again if again.status in _DONE or not res.next_met else res
+            # iterations with them, Solved after 43 without, after 196 refined)
+            plain = {k: v for k, v in settings.items() if k not in value}
+            for retry_settings in ([plain] if value else []) + [{**plain, **refine}]:
+                again = self._solve(problem, solver, retry_settings)
+                res = again if again.status in _DONE or not res.next_met else res
+                if res.status in _DONE:
+                    break
         res = _settled(res)
         if res.next_met and near:
             self.out_of_reach.add(solver)
