@@ -964,7 +964,22 @@ class ConvexMethod(Method):
         with self.timings.stage("state"):
             mech = mechanism(self.system, self.lscaling.row, y_eq, kind)
         sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
-        return Limit("collapse", lam, lam, lam, governing=sliding, mechanism=mech,
+        # lambda* is read from the solver's answer, whose state carries it; above it,
+        # what the duals' residual could account for (SPREAD_MARGIN times its work on
+        # that state, as for the f* searches' values): where that exceeds rtol, the
+        # result gives the bracket and says so (the 50,065-block wall: 0.3679 with
+        # Clarabel's default regularisation, 0.3790 with VALUE_SETTINGS)
+        reach = SPREAD_MARGIN * float(np.abs(prob.c + prob.A.T @ res.y) @ np.abs(res.z))
+        upper = lam
+        if reach > rtol * max(abs(lam), 1.0):
+            upper = lam + reach
+            self.notes.append(
+                f"lambda* = {lam:.7g} is the solver's answer (its state carries it); "
+                f"what the residual of its duals could account for ({SPREAD_MARGIN:g} "
+                f"times its work on that state) allows lambda* up to {upper:.7g}: "
+                f"lambda* is in [{lam:.7g}, {upper:.7g}], the upper end by value, not "
+                "certified")
+        return Limit("collapse", lam, lam, upper, governing=sliding, mechanism=mech,
                      at=Verdict(ADMISSIBLE, 0.0, (), (res, prob)))
 
     def mechanism_duals(self, prob: Any, res: SolverResult, lam: float, kind: str,
