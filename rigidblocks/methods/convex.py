@@ -756,7 +756,7 @@ class ConvexMethod(Method):
         no upper end is found in 40 solves.
         """
         lo, hi = 0.0, math.inf
-        lam_lo, s_lo = math.nan, 0.0
+        lam_lo, s_lo, s_hi = math.nan, 0.0, 0.0
         at_lo = at_hi = None
         n_joints = self.system.contacts.n_joints
         queue: list[float] = []  # trials around one within lambda*'s resolution of lf
@@ -790,7 +790,7 @@ class ConvexMethod(Method):
                 slope = float(np.sum(y[prob.rows["joints"].start + jr.fric_head]
                                      * (jr.fric_nsum @ z) * self.uniform[jr.fric_joint]))
                 if lam >= lf and admissible:
-                    hi, at_hi = trial, (prob, jr, res, lam)
+                    hi, at_hi, s_hi = trial, (prob, jr, res, lam), slope
                 elif lam + margin < lf:
                     prev = (lo, s_lo) if s_lo > 0 else None
                     lo, lam_lo, s_lo, at_lo = trial, lam, slope, (prob, jr, res)
@@ -826,12 +826,17 @@ class ConvexMethod(Method):
             if lo < newton < hi:
                 trial = newton
             elif math.isfinite(hi):
-                # past the upper end: the chord between the ends (above the root where
-                # lambda* is concave), or the midpoint
+                # past the upper end: Newton's step down from it (below the root where
+                # lambda* is concave, as Newton's step up from the lower end falls short
+                # of it elsewhere: the chord between the ends would stay above it and
+                # move the upper end slowly), else the chord, else the midpoint
                 trial = 0.5 * (lo + hi)
+                down = hi - (at_hi[3] - lf) / s_hi if s_hi > 0 else -math.inf
                 if math.isfinite(lam_lo) and at_hi[3] > lam_lo:
                     chord = lo + (lf - lam_lo) * (hi - lo) / (at_hi[3] - lam_lo)
                     trial = chord if lo < chord < hi else trial
+                if lo < down < hi:
+                    trial = down
             else:
                 trial = max(2.0 * trial, 1.0)
         else:
