@@ -752,8 +752,9 @@ class ConvexMethod(Method):
         load alone there (one relaxation). None, for the relaxation search, where a
         solve is not checked or unbounded, where the dead load alone is not admissible
         at the upper end, where the state at f* needs forces above FORCE_WARN times
-        the loads (the relaxation search says whether f* is then an infimum), or where
-        no upper end is found in 40 solves.
+        the loads (the relaxation search says whether f* is then an infimum), where
+        no upper end is found in 40 solves, or where no trial gave a lower end and the
+        bracket is wider than WIDE.
         """
         lo, hi = 0.0, math.inf
         lam_lo, s_lo, s_hi = math.nan, 0.0, 0.0
