@@ -329,9 +329,8 @@ class ConvexMethod(Method):
         eq = prob.rows["equilibrium"]
         residual = float(np.abs(prob.A[eq] @ z - prob.b[eq]).max(initial=0.0))
         # the dual objective bounds R below up to the dual residual's work on the state
-        dres = prob.c + prob.A.T @ y
-        low = float(-prob.b @ y) - float(np.abs(dres).sum()) * max(
-            1.0, float(np.abs(z).max(initial=0.0)))
+        allowance, spread = _dual_work(prob, res)
+        low = float(-prob.b @ y) - allowance
         big = float(np.max(np.abs(x), initial=0.0))
         tol = ADMISSIBLE_TOL * max(1.0, big)
         near = NEAR_ADMISSIBLE_TOL / ADMISSIBLE_TOL if res.solver in self.runner.out_of_reach \
@@ -347,11 +346,7 @@ class ConvexMethod(Method):
                           f"they act on: their joint laws are resolved only to {tol:.1e} "
                           "of those loads (double precision and the solver's tolerance "
                           "cannot separate admissible from inadmissible there)")
-        head = prob.rows["joints"].start + jr.fric_head
-        uni = self.uniform[jr.fric_joint]
-        nsum = jr.fric_nsum @ z
-        slope = float(np.sum(y[head][uni] * nsum[uni]))
-        spread = float(np.abs(dres) @ np.abs(z))
+        slope = float(np.sum(self._friction_shares(res, jr, prob)))
         return Relaxation(R, slope, res, jr, prob, near * tol, f, low, residual, unresolved,
                           spread)
 
@@ -704,13 +699,18 @@ class ConvexMethod(Method):
             else ()
         return Limit("stable", hi, lo, hi, governing=governing, at=self._verdict(at_hi))
 
-    def _governing(self, res: SolverResult, jr: Any, prob: Any) -> tuple[int, ...]:
-        """The uniform joints that govern f* below it: each friction row's share of the
-        derivative with respect to f of a solved problem's objective (R, or lambda*),
-        y_r N_r; a joint whose normal force vanishes (an opening joint carrying only a
-        relaxation's slack) does not govern."""
+    def _friction_shares(self, res: SolverResult, jr: Any, prob: Any) -> np.ndarray:
+        """Each friction row's share y_r N_r of the derivative with respect to the uniform
+        friction of a solved problem's objective (-dR/df, or dlambda*/df; envelope
+        theorem), 0 on joints with friction of their own."""
         head = prob.rows["joints"].start + jr.fric_head
-        w = res.y[head] * (jr.fric_nsum @ res.z) * self.uniform[jr.fric_joint]
+        return res.y[head] * (jr.fric_nsum @ res.z) * self.uniform[jr.fric_joint]
+
+    def _governing(self, res: SolverResult, jr: Any, prob: Any) -> tuple[int, ...]:
+        """The uniform joints that govern f* below it: the largest shares of
+        :meth:`_friction_shares`; a joint whose normal force vanishes (an opening joint
+        carrying only a relaxation's slack) does not govern."""
+        w = self._friction_shares(res, jr, prob)
         if not (w.size and w.max() > 0):
             return ()
         strong = w > 1e-3 * w.max()
@@ -782,14 +782,12 @@ class ConvexMethod(Method):
                 admissible = (
                     float(joint_violations(prob, jr, z, n_joints).max(initial=0.0)) <= tol
                     and float(np.abs(prob.A[eq] @ z - prob.b[eq]).max(initial=0.0)) <= tol)
-                dres = np.abs(prob.c + prob.A.T @ y)
-                margin = SPREAD_MARGIN * float(dres @ np.abs(z))
+                allowance, spread = _dual_work(prob, res)
+                margin = SPREAD_MARGIN * spread
                 # the dual bound on lambda*, with the dual residual's work on forces up
                 # to the state's largest (as the relaxation's lower bound)
-                bound = float(prob.b @ y) + float(dres.sum()) * max(
-                    1.0, float(np.abs(z).max(initial=0.0)))
-                slope = float(np.sum(y[prob.rows["joints"].start + jr.fric_head]
-                                     * (jr.fric_nsum @ z) * self.uniform[jr.fric_joint]))
+                bound = float(prob.b @ y) + allowance
+                slope = float(np.sum(self._friction_shares(res, jr, prob)))
                 if lam >= lf and admissible:
                     hi, at_hi, s_hi = trial, (prob, jr, res, lam), slope
                 elif lam + margin < lf:
@@ -861,11 +859,9 @@ class ConvexMethod(Method):
             if not rx0.zero:
                 return None
             x0 = self.vscaling.forces(rx0.res.z[rx0.prob.cols["x"]])
-            x = theta * x + (1.0 - theta) * x0 / (self.lscaling.force
-                                                  * self.lscaling.cols(len(x0)))
+            x = theta * x + (1.0 - theta) * self.lscaling.scaled(x0)
         # forces in units of the loads of the blocks they act on (as the relaxation's)
-        per_block = self.lscaling.forces(x) / (self.vscaling.force
-                                                * self.vscaling.cols(len(x)))
+        per_block = self.vscaling.scaled(self.lscaling.forces(x))
         if float(np.abs(per_block).max(initial=0.0)) > FORCE_WARN:
             return None
         z = res.z.copy()
@@ -975,7 +971,7 @@ class ConvexMethod(Method):
         # that state, as for the f* searches' values): where that exceeds rtol, the
         # result gives the bracket and says so (the 50,065-block wall: 0.3679 with
         # Clarabel's default regularisation, 0.3790 with VALUE_SETTINGS)
-        reach = SPREAD_MARGIN * float(np.abs(prob.c + prob.A.T @ res.y) @ np.abs(res.z))
+        reach = SPREAD_MARGIN * _dual_work(prob, res)[1]
         upper = lam
         if reach > rtol * max(abs(lam), 1.0):
             upper = lam + reach
@@ -1053,6 +1049,15 @@ def beyond_resolution(rx: Relaxation, value: float) -> bool:
     bound fell short of ``rx.R`` by more than that at the nearby lower point ``rx``) nor
     taken as a lower point on its value (:func:`by_value_from`)."""
     return value < by_value_from(rx) and value < rx.R - rx.low
+
+
+def _dual_work(prob: Any, res: SolverResult) -> tuple[float, float]:
+    """What the residual d = c + A^T y of a solved problem's duals could do to its
+    value: at most |d|_1 max(1, max |z|) on states no larger than its own (the dual
+    bound's allowance), and sum |d_j z_j| on its own state (its spread, an estimate)."""
+    d = np.abs(prob.c + prob.A.T @ res.y)
+    za = np.abs(res.z)
+    return float(d.sum()) * max(1.0, float(za.max(initial=0.0))), float(d @ za)
 
 
 def _among(f: float, trials: set[float]) -> bool:

@@ -69,6 +69,10 @@ class Scaling:
         """Scaled unknowns back to forces in the scene's units."""
         return x_scaled * self.force * self.cols(len(x_scaled))
 
+    def scaled(self, forces: np.ndarray) -> np.ndarray:
+        """Forces in the scene's units as scaled unknowns (the inverse of :meth:`forces`)."""
+        return forces / (self.force * self.cols(len(forces)))
+
     @property
     def spread(self) -> float:
         """Largest over smallest block load scale (1 for the uniform scaling)."""

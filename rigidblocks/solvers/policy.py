@@ -245,7 +245,7 @@ class Runner:
             # a solve with VALUE_SETTINGS is retried without them first (the max-load
             # LP of a 1,009-block wall at f = 1 - 1e-10: AlmostSolved after 44
             # iterations with them, Solved after 43 without, after 196 refined)
-            plain = {k: v for k, v in settings.items() if k not in value}
+            plain = {k: v for k, v in settings.items() if k not in value or k in base}
             for retry_settings in ([plain] if value else []) + [{**plain, **refine}]:
                 again = self._solve(problem, solver, retry_settings)
                 res = again if again.status in _DONE or not res.next_met else res
