@@ -169,7 +169,8 @@ def test_tight_tolerances_out_of_reach_go_on_at_1e_9(monkeypatch, block_on_base)
     fr = min_friction(s, load_factor=0.3, state=False)
     assert fr.friction_factor == pytest.approx(0.3, rel=1e-6)
     assert asked[:3] == [1e-10, 1e-10, 1e-9]  # tight, refined, then 1e-9
-    assert asked.count(1e-10) == 2 and None not in asked
+    # at the defaults only the search on lambda*(f)'s first max-load LP
+    assert asked.count(1e-10) == 2 and asked.count(None) == 1
     assert any("ran at 1e-9" in n for n in fr.notes)
     # a failure after many iterations (a large problem) goes to 1e-9 without the
     # refined retry, which would cost as many again
@@ -276,7 +277,9 @@ def test_a_solve_settled_at_the_next_solves_tolerances_is_not_solved_again(
     monkeypatch.setattr(policy, "solve", settling)
     fr = min_friction(block_on_base(1.0, 2.0, 0.4), load_factor=0.3, state=False)
     assert fr.friction_factor == pytest.approx(0.3, rel=1e-6)
-    assert asked[:asks] == [1e-10] * asks and set(asked[asks:]) == {1e-9}
+    # at the defaults only the search on lambda*(f)'s first max-load LP
+    assert asked[:asks] == [1e-10] * asks and set(asked[asks:]) == {1e-9, None}
+    assert asked.count(None) == 1
     assert any("ran at 1e-9" in n for n in fr.notes)
 
 
@@ -906,8 +909,8 @@ def test_the_state_at_f_star_from_lambda_star_carries_the_load_factor(monkeypatc
     limits = []
     max_load = convex.ConvexMethod._max_load
 
-    def recorded(self, f):
-        out = max_load(self, f)
+    def recorded(self, f, *args):
+        out = max_load(self, f, *args)
         limits.append((f, out[2].z[out[0].cols["lambda"]][0]))
         return out
 
@@ -923,3 +926,20 @@ def test_the_state_at_f_star_from_lambda_star_carries_the_load_factor(monkeypatc
     assert base.any()
     ratio = st.joint_shear[base].sum() / st.joint_normal[base].sum()
     assert abs(ratio) == pytest.approx(1.0, rel=1e-10)
+
+
+def test_forces_that_grow_as_towards_an_infimum_are_told_from_a_structures_scale():
+    """Towards an infimum f0 the forces of the states grow at least as 1 / (f - f0)
+    (the pinched block above: N = W L / (2 (f h - d))). From an upper end at f = 1.5 to
+    one at 1.0001 above a lower end at 1.0, forces ~ 1 / (f - 1) grow 5,000 times, at
+    least (f_far - hi) / (hi - lo) = 4,999 times: they may be an infimum's. Forces that
+    stay about the same there (the structure's own scale: a tall wall's base) are not,
+    nor those that grew 10 times, far less than that; with no upper end further above,
+    nothing tells them apart."""
+    from rigidblocks.methods.convex import _infimum_growth
+
+    lo, hi, f_far = 1.0, 1.0001, 1.5
+    assert _infimum_growth((f_far, 1.0 / (f_far - lo)), hi, lo, 1.0 / (hi - lo))
+    assert not _infimum_growth((f_far, 1.0e4), hi, lo, 1.4e4)
+    assert not _infimum_growth((f_far, 1.0e4), hi, lo, 1.0e5)
+    assert _infimum_growth((hi, 1.0e4), hi, lo, 1.0e4)

@@ -37,7 +37,7 @@ from ..problems.formulation import (
 from ..results import ForceState
 from ..scene.model import Scene
 from ..solvers import INFEASIBLE, OPTIMAL, UNBOUNDED, Runner, SolverResult
-from ..solvers.policy import VERIFY_TOL, describe
+from ..solvers.policy import FINER_SETTINGS, VERIFY_TOL, describe
 from .base import (
     ADMISSIBLE,
     INADMISSIBLE,
@@ -99,6 +99,18 @@ NARROW = 1e-3
 #: a search for f* that ends with trials the solver could not decide gives a number only
 #: where they leave f* bracketed to this (relative) below the certified upper end
 WIDE = 1e-3
+#: in the search for f* on lambda*(f), a tight solve whose value resolves f to more
+#: than this fraction of :data:`WIDE` (its resolution over its slope) puts the later
+#: ones at :data:`~rigidblocks.solvers.policy.FINER_SETTINGS` first: the
+#: 20,093-block wall at f = 1.2877647 resolves lambda* to 1.2e-3 at VALUE_SETTINGS,
+#: about 1e-3 in f, where the bracket takes at least 1.75 times that
+FINER_WHEN = 0.25
+#: an upper end is sought where lambda* is predicted this fraction of its resolution
+#: (SPREAD_MARGIN times the dual residual's work) above the load factor: about the
+#: work itself, by which the solver's lambda* falls short of lambda* (the 5,006-block
+#: wall at f = 1.25: 1.0002615 with dual residual work 9.4e-6 at VALUE_SETTINGS,
+#: 1.0002645 with 2.2e-6 at tolerances 1e-12)
+UP_REACH = 0.125
 #: in the search for f*, trials in a row whose relaxation has no checked answer (the
 #: solver failed, or its answer fails the check) before the search gives up: undecided
 #: with the bracket, or a failure where the solver failed before any upper end was
@@ -113,6 +125,10 @@ FORCES_SPAN = "forces span"
 #: blocks they act on is noted: the limit is an ill-conditioned infimum (the forces grow
 #: without bound as the limit is approached), not a value with moderate forces
 FORCE_WARN = 1e4
+#: forces of the state at f* found from lambda*(f) above FORCE_WARN are the structure's
+#: scale, not an infimum's, where they grew from the first upper end's by at least this
+#: many times less than an infimum's 1 / (f - f*) growth would
+GROWTH_SPAN = 4.0
 #: the note of a relaxation whose equilibrium equations have no solution
 NO_EQUILIBRIUM = ("the equilibrium equations have no solution with these joints (the "
                   "scene is a mechanism)")
@@ -716,13 +732,26 @@ class ConvexMethod(Method):
         strong = w > 1e-3 * w.max()
         return tuple(sorted({int(j) for j in jr.fric_joint[strong]}))
 
-    def _max_load(self, f: float) -> tuple[Any, Any, SolverResult]:
+    def _max_load(self, f: float, tight: bool = True,
+                  finer: bool = False) -> tuple[Any, Any, SolverResult]:
         """The max-load LP (SOCP) at uniform friction ``f``, solved and checked: lambda* is
-        read from it, at the tight tolerances and without a stall stop."""
+        read from it, at the tight tolerances and without a stall stop (``tight``), else
+        at the back end's defaults; with ``finer``, first at
+        :data:`~rigidblocks.solvers.policy.FINER_SETTINGS` (where that solve ends short
+        of a checked optimum, as usual after it)."""
         with self.timings.stage("build"):
             prob, jr = build_max_load(self.system, self.lscaling, self.f_joint(f),
                                       self.pyramid)
-        return prob, jr, self._run(prob, "maximum load", tight=True, stall=False)
+        if tight and finer:
+            w0, c0 = self.runner.wall_time, time.process_time()
+            try:
+                res = self.runner.attempt(prob, "maximum load", FINER_SETTINGS)
+            finally:
+                self.timings.add("solve", self.runner.wall_time - w0,
+                                 time.process_time() - c0)
+            if res is not None and res.status in (OPTIMAL, INFEASIBLE) and res.verified:
+                return prob, jr, res
+        return prob, jr, self._run(prob, "maximum load", tight=tight, stall=not tight)
 
     def _friction_by_load(self, lf: float, rtol: float, first: float) -> Limit | None:
         """f* at load factor ``lf`` > 0 as the friction where lambda*(f) = ``lf``.
@@ -743,21 +772,30 @@ class ConvexMethod(Method):
         the state); a lower end one where the dual bound on lambda* (with the dual
         residual's work on forces up to the state's largest, as the relaxation's) is
         below lf, or else lambda* plus that resolution is: on its value, as the
-        relaxation's lower points by value, and the notes say so. A trial within that
-        resolution below lf is followed by Newton's step from it (an upper end just
-        above f*) and, where the bracket is still wider than WIDE, a trial where
-        lambda*, predicted with its slope, is twice the resolution below lf; a bracket
-        left wider than WIDE is undecided, with no number. The state at lf is the
-        combination of the upper end's state and an admissible state under the dead
-        load alone there (one relaxation). None, for the relaxation search, where a
+        relaxation's lower points by value, and the notes say so. Where the next step
+        would land where lambda*, predicted with the upper end's slope, is within that
+        resolution of lf (no end to expect), the trial goes where it is predicted
+        UP_REACH times the resolution above lf (on the chord from the lower end) while
+        the upper end is above lf by more than twice it, else 1.5 times it below lf;
+        where neither moves an end, the bracket stands. A trial within that resolution
+        is followed the same way from itself. A bracket left wider than WIDE is
+        undecided, with no number; where a trial resolves f more coarsely than
+        FINER_WHEN times WIDE, the later ones are solved at FINER_SETTINGS first. The
+        first trial, far from f* as a rule, is solved at the back end's defaults, and
+        again at the tight tolerances where that answer decides no end. The state at lf
+        is the combination of the upper end's state and an admissible state under the
+        dead load alone there (one relaxation). None, for the relaxation search, where a
         solve is not checked or unbounded, where the dead load alone is not admissible
         at the upper end, where the state at f* needs forces above FORCE_WARN times
-        the loads (the relaxation search says whether f* is then an infimum), where
-        no upper end is found in 40 solves, or where no trial gave a lower end and the
-        bracket is wider than WIDE.
+        the loads that may have grown from the first upper end's as towards an infimum
+        (:func:`_infimum_growth`; the relaxation search says whether f* is one; where
+        they did not, the notes give them), where no upper end is found in 40 solves,
+        or where no trial gave a lower end and the bracket is wider than WIDE.
         """
         lo, hi = 0.0, math.inf
         lam_lo, s_lo, s_hi = math.nan, 0.0, 0.0
+        # lambda*'s resolution: the largest margin of the tight solves at their settings
+        reach = 0.0
         at_lo = at_hi = None
         n_joints = self.system.contacts.n_joints
         queue: list[float] = []  # trials around one within lambda*'s resolution of lf
@@ -765,10 +803,22 @@ class ConvexMethod(Method):
         below: float | None = None  # where a lower end by value is expected below it
         prev: tuple[float, float] | None = None  # (f, slope) of the previous lower end
         lo_by_value = False  # the lower end rests on lambda*'s value, not its dual bound
+        far: tuple[float, float] | None = None  # the first upper end, its largest force
         trial = first
+        tight = False  # the first trial, far from f* as a rule, at the defaults first
+        finer = False  # the tight solves at FINER_SETTINGS first
         for _ in range(40):
-            prob, jr, res = self._max_load(trial)
+            try:
+                prob, jr, res = self._max_load(trial, tight, finer)
+            except SolverFailure:
+                if tight:
+                    raise
+                tight = True
+                continue
             if res.verified is False or res.status == UNBOUNDED:
+                if not tight:
+                    tight = True
+                    continue
                 return None
             if res.status == INFEASIBLE:  # no multiplier at all is admissible there
                 lo, lam_lo, s_lo, at_lo, prev = trial, -math.inf, 0.0, None, None
@@ -788,25 +838,41 @@ class ConvexMethod(Method):
                 # to the state's largest (as the relaxation's lower bound)
                 bound = float(prob.b @ y) + allowance
                 slope = float(np.sum(self._friction_shares(res, jr, prob)))
+                if tight:
+                    reach = max(reach, margin)
+                if tight and not finer and slope > 0 and \
+                        margin / slope > FINER_WHEN * WIDE * trial:
+                    # lambda* resolves f too coarsely here for a bracket within WIDE
+                    finer, reach = True, 0.0
                 if lam >= lf and admissible:
                     hi, at_hi, s_hi = trial, (prob, jr, res, lam), slope
+                    if far is None:
+                        far = (trial, float(np.abs(self._per_block(x)).max(initial=0.0)))
                 elif lam + margin < lf:
                     prev = (lo, s_lo) if s_lo > 0 else None
                     lo, lam_lo, s_lo, at_lo = trial, lam, slope, (prob, jr, res)
                     lo_by_value = bound >= lf
+                elif not tight:
+                    # the defaults' answer decides only ends away from lf: this trial again
+                    # at the tight tolerances
+                    tight = True
+                    continue
                 elif not admissible or slope <= 0:
                     return None
                 elif n_unresolved < THRESHOLD_TRIALS:
                     # within what lambda* resolves below lf: f* is about here. Above it
-                    # an upper end needs only a state at lambda >= lf (Newton's step from
-                    # the first such trial, then certify above); below it a lower end
-                    # needs lambda* below lf by its resolution (where lambda*, predicted
-                    # with this slope, is twice this trial's resolution below lf), tried
-                    # while the bracket is wider than WIDE
+                    # an upper end needs only a state at lambda >= lf (where lambda*,
+                    # predicted with this slope, is UP_REACH times the resolution above
+                    # lf, then certify above); below it a lower end needs lambda* below
+                    # lf by its resolution (where lambda* is predicted at 1.5 times the
+                    # largest seen below lf: the spread varies twofold from trial to
+                    # trial), tried while the bracket is wider than WIDE
                     if not n_unresolved:
-                        queue = [trial + (lf - lam) / slope + 0.5 * rtol * trial]
+                        queue = [trial + (lf - lam + UP_REACH * reach) / slope
+                                 + 0.5 * rtol * trial]
                     n_unresolved += 1
-                    below = trial - 2.0 * margin / slope
+                    below = trial - (lam - lf + 1.5 * max(reach, margin)) / slope
+            tight = True
             if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
                 break
             queue = [t for t in queue if lo < t < hi]
@@ -822,9 +888,12 @@ class ConvexMethod(Method):
                 if s_lo > 0 else math.inf
             if newton - lo <= 0.5 * rtol * newton:
                 newton = lo * (1.0 + 0.5 * rtol)  # certify from above
+            if not math.isfinite(hi):
+                trial = newton if math.isfinite(newton) else max(2.0 * trial, 1.0)
+                continue
             if lo < newton < hi:
                 trial = newton
-            elif math.isfinite(hi):
+            else:
                 # past the upper end: Newton's step down from it (below the root where
                 # lambda* is concave, as Newton's step up from the lower end falls short
                 # of it elsewhere: the chord between the ends would stay above it and
@@ -836,8 +905,26 @@ class ConvexMethod(Method):
                     trial = chord if lo < chord < hi else trial
                 if lo < down < hi:
                     trial = down
-            else:
-                trial = max(2.0 * trial, 1.0)
+            if s_hi > 0 and trial > hi - (at_hi[3] - lf + reach) / s_hi:
+                # lambda* there, predicted with the upper end's slope, within its
+                # resolution of lf: no end to expect. Where the upper end is above lf by
+                # more than twice that, a trial where lambda* is predicted UP_REACH
+                # times it above lf (on the chord from the lower end, which stays below
+                # lambda* where it is concave), else one where it is predicted 1.5
+                # times it below lf (on the tangent at the upper end, which stays above
+                # it);
+                # neither, where the ends are that close: the bracket stands
+                # (1,009-block wall: a trial between ends 1.4e-6 apart, within 4.3e-6
+                # of lf, decided nothing)
+                trial = -math.inf
+                if at_hi[3] - lf > 2.0 * reach and math.isfinite(lam_lo) and \
+                        at_hi[3] > lam_lo:
+                    trial = lo + (lf + UP_REACH * reach - lam_lo) * (hi - lo) / \
+                        (at_hi[3] - lam_lo)
+                if not lo < trial < hi * (1.0 - 0.5 * rtol):
+                    trial = hi - (at_hi[3] - lf + 1.5 * reach) / s_hi
+                    if not lo * (1.0 + 0.5 * rtol) < trial < hi:
+                        break
         else:
             return None
         if at_hi is None or at_lo is None and hi - lo > WIDE * hi:
@@ -860,10 +947,18 @@ class ConvexMethod(Method):
                 return None
             x0 = self.vscaling.forces(rx0.res.z[rx0.prob.cols["x"]])
             x = theta * x + (1.0 - theta) * self.lscaling.scaled(x0)
-        # forces in units of the loads of the blocks they act on (as the relaxation's)
-        per_block = self.vscaling.scaled(self.lscaling.forces(x))
-        if float(np.abs(per_block).max(initial=0.0)) > FORCE_WARN:
-            return None
+        big = float(np.abs(self._per_block(x)).max(initial=0.0))
+        if big > FORCE_WARN:
+            # the structure's own scale, or an infimum's growth? (the relaxation search
+            # says whether f* is an infimum where this cannot tell)
+            if far is None or _infimum_growth(far, hi, lo, big):
+                return None
+            f_far, big_far = far
+            self.notes.append(
+                f"the state at f* carries forces up to {big:.1e} times the loads of the "
+                f"blocks they act on; at f = {f_far:.6g}, {(f_far - hi) / (hi - lo):.0f} "
+                f"times further above f* than the bracket's width, {big_far:.1e}: forces "
+                "that do not grow as f* is approached (not an infimum)")
         z = res.z.copy()
         z[prob.cols["x"]] = x
         z[prob.cols["lambda"]] = lf
@@ -878,6 +973,11 @@ class ConvexMethod(Method):
         governing = self._governing(at_lo[2], at_lo[1], at_lo[0]) if at_lo else ()
         return Limit("stable", hi, lo, hi, governing=governing,
                      at=Verdict(ADMISSIBLE, 0.0, (), (replace(res, z=z), prob)))
+
+    def _per_block(self, x: np.ndarray) -> np.ndarray:
+        """Forces of a max-load state in units of the loads of the blocks they act on (as
+        the relaxation's unknowns)."""
+        return self.vscaling.scaled(self.lscaling.forces(x))
 
     def force_ratio(self, f: float, load_factor: float, rx: Relaxation) -> float:
         """How many times the loads of the blocks they act on the forces of an admissible
@@ -1058,6 +1158,19 @@ def _dual_work(prob: Any, res: SolverResult) -> tuple[float, float]:
     d = np.abs(prob.c + prob.A.T @ res.y)
     za = np.abs(res.z)
     return float(d.sum()) * max(1.0, float(za.max(initial=0.0))), float(d @ za)
+
+
+def _infimum_growth(far: tuple[float, float], hi: float, lo: float, big: float) -> bool:
+    """Whether the largest force ``big`` of the state at the upper end ``hi`` of f*'s
+    bracket [``lo``, ``hi``] may have grown from ``far`` = (f, largest force) at an upper
+    end further above as forces do towards an infimum, at least as 1 / (f - f*): by
+    (f_far - hi) / (hi - lo) at least. False where it grew GROWTH_SPAN times less than
+    that: the structure's own scale (the base of a 20,093-block wall carries 1.40e4 times
+    the loads of its blocks at f* = 1.2772487, 1.43e4 at f = 1.3432768)."""
+    f_far, big_far = far
+    if not (hi > lo and f_far > hi and big_far > 0):
+        return True
+    return (f_far - hi) / (hi - lo) < GROWTH_SPAN * big / big_far
 
 
 def _among(f: float, trials: set[float]) -> bool:
