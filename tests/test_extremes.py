@@ -833,6 +833,30 @@ def test_lambda_star_is_not_stopped_where_its_solve_stalls(monkeypatch, block_on
     assert all(reg is None for _, rx, _, reg in given if rx)
 
 
+def test_finer_regularisation_out_of_reach_is_not_asked_again(monkeypatch):
+    """On small problems Clarabel fails with VALUE_SETTINGS (the max-load LP of the
+    19-block example wall: AlmostSolved at every f the search on lambda*(f) tries) and
+    answers without them; once that has happened, the runner's later max-load LPs go
+    without them: one failure in the search, not one per trial (12 solves before, 9)."""
+    from rigidblocks.io.scene_file import read_scene
+
+    asked = []
+    policy_solve = policy.solve
+
+    def recording(problem, solver="clarabel", after=None, **settings):
+        res = policy_solve(problem, solver, after=after, **settings)
+        asked.append((settings.get("static_regularization_constant"), res.status))
+        return res
+
+    monkeypatch.setattr(policy, "solve", recording)
+    wall = read_scene(EXAMPLES / "wall.json")
+    r = min_friction(wall, load_factor=1.0, state=False)
+    assert r.status == "stable" and r.friction_factor == pytest.approx(1.0, rel=1e-6)
+    fine = policy.VALUE_SETTINGS["clarabel"]["static_regularization_constant"]
+    assert [status for reg, status in asked if reg == fine] == ["failure"]
+    assert sum(reg is None for reg, _ in asked) >= 4  # the max-load LPs after it
+
+
 def test_lambda_star_of_a_large_wall_agrees_with_the_simplex():
     """lambda* of the 1,009-block running-bond wall (32 courses of 31 blocks) at
     f = 1.18372000405 (its f* at load factor 1), against HiGHS' dual simplex on the same

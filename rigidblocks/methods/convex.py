@@ -103,7 +103,7 @@ WIDE = 1e-3
 #: than this fraction of :data:`WIDE` (its resolution over its slope) puts the later
 #: ones at :data:`~rigidblocks.solvers.policy.FINER_SETTINGS` first: the
 #: 20,093-block wall at f = 1.2877647 resolves lambda* to 1.2e-3 at VALUE_SETTINGS,
-#: about 1e-3 in f, where the bracket takes at least 1.75 times that
+#: about 1e-3 in f, where the bracket takes about 1/8 + 1.5 times that
 FINER_WHEN = 0.25
 #: an upper end is sought where lambda* is predicted this fraction of its resolution
 #: (SPREAD_MARGIN times the dual residual's work) above the load factor: about the
@@ -340,10 +340,8 @@ class ConvexMethod(Method):
             return Relaxation(None, 0.0, res, jr, prob, ADMISSIBLE_TOL, f)
         z, y = res.z, res.y
         x = z[prob.cols["x"]]
-        viol = joint_violations(prob, jr, z, self.system.contacts.n_joints)
-        R = max(float(z[prob.cols["r"]][0]), float(viol.max(initial=0.0)), 0.0)
-        eq = prob.rows["equilibrium"]
-        residual = float(np.abs(prob.A[eq] @ z - prob.b[eq]).max(initial=0.0))
+        breach, residual = self._breach(prob, jr, z)
+        R = max(float(z[prob.cols["r"]][0]), breach, 0.0)
         # the dual objective bounds R below up to the dual residual's work on the state
         allowance, spread = _dual_work(prob, res)
         low = float(-prob.b @ y) - allowance
@@ -365,6 +363,14 @@ class ConvexMethod(Method):
         slope = float(np.sum(self._friction_shares(res, jr, prob)))
         return Relaxation(R, slope, res, jr, prob, near * tol, f, low, residual, unresolved,
                           spread)
+
+    def _breach(self, prob: Any, jr: Any, z: np.ndarray) -> tuple[float, float]:
+        """The largest breach of the joint laws by a solution ``z`` of a relaxation or
+        max-load problem, and its largest equilibrium residual (scaled units)."""
+        viol = joint_violations(prob, jr, z, self.system.contacts.n_joints)
+        eq = prob.rows["equilibrium"]
+        return (float(viol.max(initial=0.0)),
+                float(np.abs(prob.A[eq] @ z - prob.b[eq]).max(initial=0.0)))
 
     def _violation_force(self, rx: Relaxation) -> float:
         """The largest breach of the joint laws by the relaxation's state, force units."""
@@ -797,7 +803,6 @@ class ConvexMethod(Method):
         # lambda*'s resolution: the largest margin of the tight solves at their settings
         reach = 0.0
         at_lo = at_hi = None
-        n_joints = self.system.contacts.n_joints
         queue: list[float] = []  # trials around one within lambda*'s resolution of lf
         n_unresolved = 0  # trials within that resolution
         below: float | None = None  # where a lower end by value is expected below it
@@ -828,10 +833,7 @@ class ConvexMethod(Method):
                 lam = float(z[prob.cols["lambda"]][0])
                 x = z[prob.cols["x"]]
                 tol = ADMISSIBLE_TOL * max(1.0, float(np.abs(x).max(initial=0.0)))
-                eq = prob.rows["equilibrium"]
-                admissible = (
-                    float(joint_violations(prob, jr, z, n_joints).max(initial=0.0)) <= tol
-                    and float(np.abs(prob.A[eq] @ z - prob.b[eq]).max(initial=0.0)) <= tol)
+                admissible = max(self._breach(prob, jr, z)) <= tol
                 allowance, spread = _dual_work(prob, res)
                 margin = SPREAD_MARGIN * spread
                 # the dual bound on lambda*, with the dual residual's work on forces up
@@ -914,8 +916,8 @@ class ConvexMethod(Method):
                 # times it below lf (on the tangent at the upper end, which stays above
                 # it);
                 # neither, where the ends are that close: the bracket stands
-                # (1,009-block wall: a trial between ends 1.4e-6 apart, within 4.3e-6
-                # of lf, decided nothing)
+                # (1,009-block wall: a trial 4.8e-8 below the upper end, lambda* 7e-8
+                # below lf with a resolution of 4.1e-6, decided nothing)
                 trial = -math.inf
                 if at_hi[3] - lf > 2.0 * reach and math.isfinite(lam_lo) and \
                         at_hi[3] > lam_lo:

@@ -9,7 +9,8 @@ back end is driven to that answer is decided here, in one place:
 * **tight settings**: the relaxations decide verdicts by comparing a residual with 1e-9
   of the largest force, so their solves run at :data:`TIGHT_SETTINGS` (tolerance 1e-10)
   where a back end's defaults are looser, and those whose answer is read as a number
-  (lambda*) with the finer KKT regularisation of :data:`VALUE_SETTINGS`;
+  (lambda*) with the finer KKT regularisation of :data:`VALUE_SETTINGS` (or, tried
+  once where a search needs it, :data:`FINER_SETTINGS`: :meth:`Runner.attempt`);
 * **retries**: a solve that ends short of optimal is retried once with
   :data:`REFINE_SETTINGS` (stronger regularisation, refined KKT solves; not after
   :data:`REFINE_WITHIN` iterations or more), then, if the
@@ -152,6 +153,10 @@ class Runner:
     #: back ends whose TIGHT_SETTINGS were out of reach: their tight solves start at
     #: NEAR_TIGHT_SETTINGS
     out_of_reach: set = field(default_factory=set)
+    #: back ends whose VALUE_SETTINGS failed where the same solve without them did not:
+    #: their later solves go without them (small problems: the max-load LP of the
+    #: 19-block example wall fails with them at every f tried, AlmostSolved)
+    value_out_of_reach: set = field(default_factory=set)
 
     def __post_init__(self) -> None:
         self.solver = check_solver(self.solver)
@@ -249,7 +254,8 @@ class Runner:
             solver, base = FALLBACK, {}
         settings = base
         near = NEAR_TIGHT_SETTINGS.get(solver) if tight else None
-        value = VALUE_SETTINGS.get(solver, {}) if tight and not stall else {}
+        value = VALUE_SETTINGS.get(solver, {}) if tight and not stall and \
+            solver not in self.value_out_of_reach else {}
         if tight and solver in TIGHT_SETTINGS:
             settings = {**TIGHT_SETTINGS[solver], **value, **base}
             if near and solver in self.out_of_reach:
@@ -274,6 +280,8 @@ class Runner:
                 again = self._solve(problem, solver, retry_settings)
                 res = again if again.status in _DONE or not res.next_met else res
                 if res.status in _DONE:
+                    if retry_settings is plain:
+                        self.value_out_of_reach.add(solver)
                     break
         res = _settled(res)
         if res.next_met and near:
