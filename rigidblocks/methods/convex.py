@@ -914,8 +914,7 @@ class ConvexMethod(Method):
                 # times it above lf (on the chord from the lower end, which stays below
                 # lambda* where it is concave), else one where it is predicted 1.5
                 # times it below lf (on the tangent at the upper end, which stays above
-                # it);
-                # neither, where the ends are that close: the bracket stands
+                # it); neither, where the ends are that close: the bracket stands
                 # (1,009-block wall: a trial 4.8e-8 below the upper end, lambda* 7e-8
                 # below lf with a resolution of 4.1e-6, decided nothing)
                 trial = -math.inf
@@ -966,12 +965,13 @@ class ConvexMethod(Method):
         z[prob.cols["lambda"]] = lf
         if lo_by_value:
             self.notes.append(
-                f"f* from lambda*(f) = {lf:g} (the maximum-load LP, Newton steps on f): "
-                f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
-                f"{(hi - lo) / hi:.1e}); the lower end rests on lambda*'s value there "
-                f"({lam_lo:.10g}), below {lf:g} by more than {SPREAD_MARGIN:g} times "
-                "what its duals' residual could account for, not on a certified dual "
-                "bound")
+                f"f* is certified from above: at f = {hi:.10g} a state carries the load "
+                f"factor {lf:g} (f* from lambda*(f) = {lf:g}, the largest load "
+                f"multiplier at friction f). Below, f* is bracketed in [{lo:.10g}, "
+                f"{hi:.10g}] (relative width {(hi - lo) / hi:.1e}) by lambda*'s value at "
+                f"the lower end ({lam_lo:.10g}: below {lf:g} by more than "
+                f"{SPREAD_MARGIN:g} times the solver's resolution there), not by a "
+                "certified bound")
         governing = self._governing(at_lo[2], at_lo[1], at_lo[0]) if at_lo else ()
         return Limit("stable", hi, lo, hi, governing=governing,
                      at=Verdict(ADMISSIBLE, 0.0, (), (replace(res, z=z), prob)))
