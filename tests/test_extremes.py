@@ -838,8 +838,6 @@ def test_finer_regularisation_out_of_reach_is_not_asked_again(monkeypatch):
     19-block example wall: AlmostSolved at every f the search on lambda*(f) tries) and
     answers without them; once that has happened, the runner's later max-load LPs go
     without them: one failure in the search, not one per trial (12 solves before, 9)."""
-    from rigidblocks.io.scene_file import read_scene
-
     asked = []
     policy_solve = policy.solve
 
@@ -967,3 +965,23 @@ def test_forces_that_grow_as_towards_an_infimum_are_told_from_a_structures_scale
     assert not _infimum_growth((f_far, 1.0e4), hi, lo, 1.4e4)
     assert not _infimum_growth((f_far, 1.0e4), hi, lo, 1.0e5)
     assert _infimum_growth((hi, 1.0e4), hi, lo, 1.0e4)
+
+
+def test_governing_joints_are_ranked_by_their_share():
+    """The joints that govern f* come ranked by their share y_r N_r of dlambda*/df (the
+    friction rows' duals times their normal forces), largest first: a long list (the
+    19-block example wall under a horizontal load at 0.3: 28 joints) is read from its
+    head, not in the order of the joints' numbers."""
+    from rigidblocks.methods import open_method
+
+    wall = read_scene(EXAMPLES / "wall.json")
+    r = min_friction(wall, load_factor=0.3, state=False)
+    gov = r.governing
+    assert len(gov) > 12 and list(gov) != sorted(gov)
+    m = open_method(wall)
+    prob, jr, res = m._max_load(r.bracket[0])
+    w = m._friction_shares(res, jr, prob)
+    strong = w > 1e-3 * w.max()
+    share = np.bincount(jr.fric_joint[strong], w[strong], minlength=m.system.contacts.n_joints)
+    assert set(gov) == set(np.flatnonzero(share))
+    assert all(share[a] >= share[b] for a, b in zip(gov, gov[1:], strict=False))

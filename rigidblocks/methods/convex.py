@@ -729,14 +729,17 @@ class ConvexMethod(Method):
         return res.y[head] * (jr.fric_nsum @ res.z) * self.uniform[jr.fric_joint]
 
     def _governing(self, res: SolverResult, jr: Any, prob: Any) -> tuple[int, ...]:
-        """The uniform joints that govern f* below it: the largest shares of
-        :meth:`_friction_shares`; a joint whose normal force vanishes (an opening joint
-        carrying only a relaxation's slack) does not govern."""
+        """The uniform joints that govern f* below it, ranked by their share of
+        :meth:`_friction_shares` (largest first: a long list is read from its head),
+        those above 1e-3 of the largest; a joint whose normal force vanishes (an opening
+        joint carrying only a relaxation's slack) does not govern."""
         w = self._friction_shares(res, jr, prob)
         if not (w.size and w.max() > 0):
             return ()
         strong = w > 1e-3 * w.max()
-        return tuple(sorted({int(j) for j in jr.fric_joint[strong]}))
+        share = np.bincount(jr.fric_joint[strong], w[strong])
+        joints = np.flatnonzero(share)
+        return tuple(int(j) for j in joints[np.argsort(-share[joints], kind="stable")])
 
     def _max_load(self, f: float, tight: bool = True,
                   finer: bool = False) -> tuple[Any, Any, SolverResult]:
