@@ -730,16 +730,19 @@ class ConvexMethod(Method):
 
     def _governing(self, res: SolverResult, jr: Any, prob: Any) -> tuple[int, ...]:
         """The uniform joints that govern f* below it, ranked by their share of
-        :meth:`_friction_shares` (largest first: a long list is read from its head),
-        those above 1e-3 of the largest; a joint whose normal force vanishes (an opening
-        joint carrying only a relaxation's slack) does not govern."""
+        :meth:`_friction_shares` (largest first: a long list is read from its head;
+        shares equal to 1e-6 of the largest in the joints' order), those above 1e-3 of
+        the largest; a joint whose normal force vanishes (an opening joint carrying only
+        a relaxation's slack) does not govern."""
         w = self._friction_shares(res, jr, prob)
         if not (w.size and w.max() > 0):
             return ()
         strong = w > 1e-3 * w.max()
         share = np.bincount(jr.fric_joint[strong], w[strong])
         joints = np.flatnonzero(share)
-        return tuple(int(j) for j in joints[np.argsort(-share[joints], kind="stable")])
+        # shares equal to 1e-6 (symmetric joints, round-off apart) keep the joints' order
+        rank = np.round(share[joints] / share.max(), 6)
+        return tuple(int(j) for j in joints[np.argsort(-rank, kind="stable")])
 
     def _max_load(self, f: float, tight: bool = True,
                   finer: bool = False) -> tuple[Any, Any, SolverResult]:
