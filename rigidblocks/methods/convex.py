@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -111,6 +113,10 @@ FINER_WHEN = 0.25
 #: wall at f = 1.25: 1.0002615 with dual residual work 9.4e-6 at VALUE_SETTINGS,
 #: 1.0002645 with 2.2e-6 at tolerances 1e-12)
 UP_REACH = 0.125
+#: a lower end is sought where lambda* is predicted this many times its resolution
+#: below the load factor: the largest resolution seen, as it varies twofold from trial
+#: to trial (2.4e-6 to 5.2e-6 on the 1,009-block wall near f*)
+LOW_REACH = 1.5
 #: in the search for f*, trials in a row whose relaxation has no checked answer (the
 #: solver failed, or its answer fails the check) before the search gives up: undecided
 #: with the bracket, or a failure where the solver failed before any upper end was
@@ -244,10 +250,19 @@ class ConvexMethod(Method):
     def iterations(self) -> int:
         return self.runner.iterations
 
-    def _run(self, problem: Any, what: str, tight: bool = False,
-             confirm: bool = False, refine: bool = True, stall: bool = True) -> SolverResult:
+    @contextmanager
+    def _solve_stage(self) -> Iterator[None]:
+        """Time what the runner solves inside as the "solve" stage (its own wall time,
+        and this process's CPU time)."""
         w0, c0 = self.runner.wall_time, time.process_time()
         try:
+            yield
+        finally:
+            self.timings.add("solve", self.runner.wall_time - w0, time.process_time() - c0)
+
+    def _run(self, problem: Any, what: str, tight: bool = False,
+             confirm: bool = False, refine: bool = True, stall: bool = True) -> SolverResult:
+        with self._solve_stage():
             n = len(self.runner.rejected)
             res = (self.runner.confirm(problem, what) if confirm
                    else self.runner.run(problem, what, tight, refine=refine, stall=stall))
@@ -267,8 +282,6 @@ class ConvexMethod(Method):
                                   f"the problem were solved again by clarabel (first: "
                                   f"{self.runner.rejected[n]})")
             return res
-        finally:
-            self.timings.add("solve", self.runner.wall_time - w0, time.process_time() - c0)
 
     # -- the relaxation ----------------------------------------------------------------
     def _relaxation_problem(self, f: float, load_factor: float) -> tuple[Any, Any]:
@@ -755,12 +768,8 @@ class ConvexMethod(Method):
             prob, jr = build_max_load(self.system, self.lscaling, self.f_joint(f),
                                       self.pyramid)
         if tight and finer:
-            w0, c0 = self.runner.wall_time, time.process_time()
-            try:
+            with self._solve_stage():
                 res = self.runner.attempt(prob, "maximum load", FINER_SETTINGS)
-            finally:
-                self.timings.add("solve", self.runner.wall_time - w0,
-                                 time.process_time() - c0)
             if res is not None and res.status in (OPTIMAL, INFEASIBLE) and res.verified:
                 return prob, jr, res
         return prob, jr, self._run(prob, "maximum load", tight=tight, stall=not tight)
@@ -817,6 +826,14 @@ class ConvexMethod(Method):
         far: tuple[float, float] | None = None  # the first upper end, its largest force
         trial = first
         tight = False  # the first trial, far from f* as a rule, at the defaults first
+
+        def on_chord(value: float) -> float:
+            """Where the chord between the ends reaches lambda* = ``value`` (NaN where
+            there is none)."""
+            if not (math.isfinite(lam_lo) and at_hi[3] > lam_lo):
+                return math.nan
+            return lo + (value - lam_lo) * (hi - lo) / (at_hi[3] - lam_lo)
+
         finer = False  # the tight solves at FINER_SETTINGS first
         for _ in range(40):
             try:
@@ -872,14 +889,13 @@ class ConvexMethod(Method):
                     # an upper end needs only a state at lambda >= lf (where lambda*,
                     # predicted with this slope, is UP_REACH times the resolution above
                     # lf, then certify above); below it a lower end needs lambda* below
-                    # lf by its resolution (where lambda* is predicted at 1.5 times the
-                    # largest seen below lf: the spread varies twofold from trial to
-                    # trial), tried while the bracket is wider than WIDE
+                    # lf by its resolution (where lambda* is predicted LOW_REACH times
+                    # it below lf), tried while the bracket is wider than WIDE
                     if not n_unresolved:
                         queue = [trial + (lf - lam + UP_REACH * reach) / slope
                                  + 0.5 * rtol * trial]
                     n_unresolved += 1
-                    below = trial - (lam - lf + 1.5 * max(reach, margin)) / slope
+                    below = trial - (lam - lf + LOW_REACH * max(reach, margin)) / slope
             tight = True
             if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
                 break
@@ -908,9 +924,8 @@ class ConvexMethod(Method):
                 # move the upper end slowly), else the chord, else the midpoint
                 trial = 0.5 * (lo + hi)
                 down = hi - (at_hi[3] - lf) / s_hi if s_hi > 0 else -math.inf
-                if math.isfinite(lam_lo) and at_hi[3] > lam_lo:
-                    chord = lo + (lf - lam_lo) * (hi - lo) / (at_hi[3] - lam_lo)
-                    trial = chord if lo < chord < hi else trial
+                chord = on_chord(lf)
+                trial = chord if lo < chord < hi else trial
                 if lo < down < hi:
                     trial = down
             if s_hi > 0 and trial > hi - (at_hi[3] - lf + reach) / s_hi:
@@ -918,18 +933,16 @@ class ConvexMethod(Method):
                 # resolution of lf: no end to expect. Where the upper end is above lf by
                 # more than twice that, a trial where lambda* is predicted UP_REACH
                 # times it above lf (on the chord from the lower end, which stays below
-                # lambda* where it is concave), else one where it is predicted 1.5
-                # times it below lf (on the tangent at the upper end, which stays above
-                # it); neither, where the ends are that close: the bracket stands
+                # lambda* where it is concave), else one where it is predicted
+                # LOW_REACH times it below lf (on the tangent at the upper end, which
+                # stays above it); neither, where the ends are that close: the bracket
+                # stands
                 # (1,009-block wall: a trial 4.8e-8 below the upper end, lambda* 7e-8
                 # below lf with a resolution of 4.1e-6, decided nothing)
-                trial = -math.inf
-                if at_hi[3] - lf > 2.0 * reach and math.isfinite(lam_lo) and \
-                        at_hi[3] > lam_lo:
-                    trial = lo + (lf + UP_REACH * reach - lam_lo) * (hi - lo) / \
-                        (at_hi[3] - lam_lo)
+                trial = on_chord(lf + UP_REACH * reach) if at_hi[3] - lf > 2.0 * reach \
+                    else math.nan
                 if not lo < trial < hi * (1.0 - 0.5 * rtol):
-                    trial = hi - (at_hi[3] - lf + 1.5 * reach) / s_hi
+                    trial = hi - (at_hi[3] - lf + LOW_REACH * reach) / s_hi
                     if not lo * (1.0 + 0.5 * rtol) < trial < hi:
                         break
         else:
