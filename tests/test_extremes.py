@@ -875,13 +875,13 @@ def test_the_energy_is_scaled_at_limit_states_only(monkeypatch, block_on_base):
     from rigidblocks.methods import convex
 
     given = []
-    build = convex.build_energy_qp
+    build = convex.energy_problem
 
     def recording(*args, reference=None, **kw):
         given.append(reference is not None)
         return build(*args, reference=reference, **kw)
 
-    monkeypatch.setattr(convex, "build_energy_qp", recording)
+    monkeypatch.setattr(convex, "energy_problem", recording)
     scene = block_on_base(1.0, 2.0, 0.5)
     for run, at_limit in ((lambda: check(scene, load_factor=0.2), False),
                           (lambda: min_friction(scene, load_factor=0.2), True),

@@ -479,8 +479,18 @@ def build_energy_qp(system: EquilibriumSystem, scaling: Scaling, f_joint: np.nda
                     load_factor: float, relax: float = 0.0,
                     pyramid: int | None = None, cap: np.ndarray | None = None,
                     reference: np.ndarray | None = None) -> ConicProblem:
+    """The least-energy QP of :func:`energy_problem`, without its joint rows."""
+    return energy_problem(system, scaling, f_joint, load_factor, relax, pyramid, cap,
+                          reference)[0]
+
+
+def energy_problem(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
+                   load_factor: float, relax: float = 0.0,
+                   pyramid: int | None = None, cap: np.ndarray | None = None,
+                   reference: np.ndarray | None = None) -> tuple[ConicProblem, JointRows]:
     """min 1/2 x'Cx  s.t.  equilibrium at ``load_factor``, joint laws relaxed by ``relax``
-    (``cap``: extra shear capacity per contact point, see :func:`joint_rows`).
+    (``cap``: extra shear capacity per contact point, see :func:`joint_rows`); the
+    problem and its joint rows (for :func:`joint_violations`).
 
     ``reference``: a state (scaled forces) of about the solution's energy, such as the
     limit problem's; the energy is then scaled to at most one per force component
@@ -502,6 +512,7 @@ def build_energy_qp(system: EquilibriumSystem, scaling: Scaling, f_joint: np.nda
         if energy > n:
             diag = diag * (n / energy)
     P = sp.diags(diag, format="csc")
-    return ConicProblem(c=np.zeros(n), A=A, b=b, n_eq=system.n_rows,
-                        n_nonneg=jr.G_lin.shape[0], soc=jr.soc, P=P,
-                        cols={"x": slice(0, n)}, rows={"equilibrium": slice(0, system.n_rows)})
+    ne = system.n_rows
+    return ConicProblem(c=np.zeros(n), A=A, b=b, n_eq=ne, n_nonneg=jr.G_lin.shape[0],
+                        soc=jr.soc, P=P, cols={"x": slice(0, n)},
+                        rows={"equilibrium": slice(0, ne), "joints": slice(ne, len(b))}), jr
