@@ -1,8 +1,7 @@
 """rigidblocks: limit analysis of rigid-block masonry with unilateral frictional joints."""
 
-import sys as _sys
+from typing import Any as _Any
 
-from . import studies as study
 from ._version import __version__
 from .analyses import check, load_path, max_load_multiplier, min_friction
 from .contacts import Contacts, detect_contacts
@@ -10,10 +9,21 @@ from .equilibrium import EquilibriumSystem, assemble
 from .errors import InputError, RigidBlocksError, SolverFailure
 from .io import read_scene, write_scene
 from .scene import INFINITE, Block, JointOverride, Load, Scene, make_block
-from .studies import min_thickness
 
-#: ``from rigidblocks import study`` and ``import rigidblocks.study``: the studies package
-_sys.modules[f"{__name__}.study"] = study
+
+def __getattr__(name: str) -> _Any:
+    """``rigidblocks.study`` (the studies package, also ``import rigidblocks.study``, see
+    :mod:`rigidblocks.study`) and ``min_thickness``, imported when first asked for: the
+    sweeps' modules are not part of an analysis' start-up (about 25 ms)."""
+    if name == "study":
+        import importlib
+
+        return importlib.import_module(f"{__name__}.study")
+    if name == "min_thickness":
+        from .studies import min_thickness
+
+        return min_thickness
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def plot(scene: Scene, result: object = None, ax: object = None, **kwargs: object) -> object:

@@ -57,7 +57,6 @@ from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from ..equilibrium import force_state
 from ..errors import InputError, SolverFailure
@@ -220,8 +219,9 @@ class ConvexNonAssociative(NonAssociative):
         if not self._lu_done:
             self._lu_done = True
             if As.shape[0]:
+                from scipy.sparse.linalg import splu  # here: 60 ms of start-up
                 try:
-                    lu = spla.splu((As @ sp.diags(K) @ As.T).tocsc())
+                    lu = splu((As @ sp.diags(K) @ As.T).tocsc())
                     d = np.abs(lu.U.diagonal())
                     if d.size and d.min() > 1e-12 * d.max() and np.all(np.isfinite(d)):
                         self._lu = lu

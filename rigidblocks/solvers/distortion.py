@@ -78,7 +78,6 @@ from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from ..equilibrium import EquilibriumSystem
 
@@ -179,8 +178,9 @@ class DistortionSolver:
         n = self.As.shape[0]
         if n:
             M = (self.As @ sp.diags(self.K) @ self.AsT).tocsc()
+            from scipy.sparse.linalg import splu  # here: 60 ms of start-up
             try:
-                lu = spla.splu(M)
+                lu = splu(M)
                 d = np.abs(lu.U.diagonal())
                 if d.size and (d.min() <= RCOND_MIN * d.max() or not np.all(np.isfinite(d))):
                     raise RuntimeError("ill-conditioned")
