@@ -15,10 +15,12 @@ discrete-element assemblies", CAD 2022, doi:10.1016/j.cad.2022.103216) offers
   verdict: admissible when IPOPT converges, inadmissible when it reports the problem
   infeasible, no answer otherwise.
 
-Ours: :func:`rigidblocks.check` with ``load_factor=0`` (self-weight only) on the 2D
-scene where the structure is planar, on its extrusion (:func:`rigidblocks.scene.extrude`)
-with the exact second-order Coulomb cone, and on the extrusion with an inscribed
-8-facet pyramid (``pyramid=8``, the peer's facet count).
+Ours: :func:`rigidblocks.check` with ``load_factor=0`` (self-weight only) and its force
+state (the work RBE does: it always returns its forces) on the 2D scene where the
+structure is planar, on its extrusion (:func:`rigidblocks.scene.extrude`) with the exact
+second-order Coulomb cone, and on the extrusion with an inscribed 8-facet pyramid
+(``pyramid=8``, the peer's facet count). The peer has no 2D mode: our 2D figures are
+set against its RBE on the extrusion.
 
 Structures: semicircular arches on abutments (radial joints, t/R = 0.15, 10-100
 voussoirs, straight intrados and extrados per voussoir so both tools see the same
@@ -32,19 +34,25 @@ contacts among the ``nmax`` nearest block centroids only, and would miss most of
 foundation; fixed pieces change nothing in the mechanics.
 
 Protocol: both sides in one session, with the same thread settings (``THREADS``: one
-BLAS / OpenMP thread, set in this process before numpy loads and passed to every peer
-process), interleaved per structure (ours, the peer's RBE, ours, the peer's RBE, ...),
-``--repeats`` times (at least 3); each figure is the minimum over the repeats, and the
-machine's load average is recorded at the start and end of the run and of each
-structure. End to end: ours from the block data (the scene dict; the COMPAS file for
-the peer's examples) to the verdict (reading and validating the blocks, contacts,
-assembly, problem, solve); the peer's from the block data (building its assembly, its
-interface detection, its solver's set-up and solve; ``times`` in the runner's output).
-Solve only: our Clarabel solve against its IPOPT solve (as its own timer prints them).
-Both are also timed in CPU seconds of each process (``cpu``; one thread per side, so
-the machine's load stretches wall-clock times but hardly these), stage by stage on our
-side (read, contacts, assembly, build, solve), which gives the 3D profile. The peer's
-own method (CRA or CRA-penalty) runs once per structure for its verdict.
+BLAS / OpenMP thread, set in this process before numpy loads and passed to every
+process it starts), interleaved per structure (its RBE, ours, our whole processes, its
+whole process, its RBE, ...), ``--repeats`` times (at least 3); each figure is the
+minimum over the repeats, and the machine's load average is recorded at the start and
+end of the run and of each structure. Both sides do the same work, the verdict and the
+forces, timed two ways. In-process: ours from the block data (the scene dict; the
+COMPAS file for the peer's examples) to the verdict and the force state (reading and
+validating the blocks, contacts, assembly, problem, solve, state); the peer's from the
+block data (building its assembly, its interface detection, its solver's set-up and
+solve; ``times`` in the runner's output), after a warm-up solve in its process. Whole
+process (arches and walls), what a user pays from the interpreter's start to its exit:
+ours ``rigidblocks check FILE --load-factor 0 --json`` on the scene file, the peer's
+runner on its case file without the warm-up. Solve only: our Clarabel solve against its
+IPOPT solve. Times are CPU seconds of each process (``cpu``; a whole process's from
+``resource.getrusage(RUSAGE_CHILDREN)``; one thread per side, so the machine's load
+stretches wall-clock times but hardly these; wall-clock times are kept in the JSON),
+stage by stage on our side (read, contacts, assembly, build, solve, state), which gives
+the 3D profile. The peer's own method (CRA or CRA-penalty) runs once per structure for
+its verdict.
 
 Non-associative friction (section "non-associative", ``--only nonassoc`` runs it alone
 and keeps the static figures of an earlier run in bench_peer.json, ``--only static``
@@ -86,6 +94,7 @@ if __name__ == "__main__":  # before numpy loads its BLAS
 import argparse  # noqa: E402
 import json  # noqa: E402
 import math  # noqa: E402
+import resource  # noqa: E402
 import subprocess  # noqa: E402
 import tempfile  # noqa: E402
 import time  # noqa: E402
@@ -189,7 +198,10 @@ PEER_EXAMPLES: tuple[dict, ...] = (
 )
 HEYMAN = ("semicircular arch, radial joints, t/R above the minimum 0.1075 "
           "(Milankovitch 1907; Heyman 1969): stands")
-TARGET_2D, TARGET_3D = 100.0, 20.0
+#: the goals at the largest wall, the peer's RBE CPU seconds over ours, the same work
+#: on both sides (verdict and forces), in-process and whole process
+GOALS = {"2d": {"in_process": 60.0, "process": 30.0},
+         "3d_cone": {"in_process": 10.0, "process": 8.0}}
 
 
 def loadavg() -> list[float]:
@@ -292,16 +304,16 @@ def joint_forces(result: Any) -> dict[tuple[str, str], float]:
 def run_ours(make_scene: Any, pyramid: int | None = None, forces: bool = False,
              contact_tol: Any = None) -> dict:
     """Time one ``check`` from the block data: ``make_scene()`` reads and validates the
-    blocks (the scene dict, or the COMPAS file), then the verdict (no force state);
-    ``contact_tol`` may be a function of the scene. Wall-clock seconds (``total``,
-    ``read``, ``check``, ``solve``: Clarabel's own) and CPU seconds per stage (``cpu``:
-    read, contacts, assembly, build, solve, total). With ``forces``, also the state's
-    joint forces (untimed)."""
+    blocks (the scene dict, or the COMPAS file), then the verdict and the force state
+    (the work the peer's RBE does: it always returns its forces); ``contact_tol`` may
+    be a function of the scene. Wall-clock seconds (``total``, ``read``, ``check``,
+    ``solve``: Clarabel's own) and CPU seconds per stage (``cpu``: read, contacts,
+    assembly, build, solve, total). With ``forces``, also the state's joint forces."""
     c0, t0 = time.process_time(), time.perf_counter()
     scene = make_scene()
     tol = contact_tol(scene) if callable(contact_tol) else contact_tol
     c1, t1 = time.process_time(), time.perf_counter()
-    res = check(scene, load_factor=0.0, state=False, pyramid=pyramid, contact_tol=tol)
+    res = check(scene, load_factor=0.0, state=True, pyramid=pyramid, contact_tol=tol)
     c2, t2 = time.process_time(), time.perf_counter()
     stages = dict(res.cpu_timings)  # contacts, assembly, build, solve (CPU seconds)
     out = {"verdict": res.status, "total": t2 - t0, "read": t1 - t0, "check": t2 - t1,
@@ -310,10 +322,37 @@ def run_ours(make_scene: Any, pyramid: int | None = None, forces: bool = False,
            "cpu": {"read": c1 - c0, **stages, "check": c2 - c1, "total": c2 - c0}}
     if tol is not None:
         out["contact_tol"] = tol
-    if forces and res.status == "admissible":
-        state = check(scene, load_factor=0.0, state=True, pyramid=pyramid, contact_tol=tol)
-        out["forces"] = joint_forces(state)
+    if forces and res.state is not None:
+        out["forces"] = joint_forces(res)
     return out
+
+
+def _child_cpu() -> float:
+    """CPU seconds (user + system) of this process's finished children so far."""
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def run_ours_process(path: Path) -> dict:
+    """One whole ``rigidblocks check FILE --load-factor 0 --json`` process, what a user
+    pays: interpreter start, imports, reading and validating the scene file, contacts,
+    the verdict and the force state, the JSON answer written; one thread (``THREADS``).
+    Its CPU seconds (the finished child's user + system time) and wall seconds."""
+    import rigidblocks
+
+    env = {**os.environ, **THREADS}
+    here = str(Path(rigidblocks.__file__).resolve().parents[1])  # this run's package
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (here, env.get("PYTHONPATH")) if p)
+    cmd = [sys.executable, "-m", "rigidblocks.cli.main", "check", str(path),
+           "--load-factor", "0", "--json"]
+    c0, t0 = _child_cpu(), time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    wall, cpu = time.perf_counter() - t0, _child_cpu() - c0
+    try:
+        verdict = json.loads(proc.stdout)["status"]
+    except (ValueError, KeyError):
+        verdict = f"error: {(proc.stderr or proc.stdout).strip()[-200:]}"
+    return {"verdict": verdict, "cpu": cpu, "wall": wall}
 
 
 def peer_python(arg: str | None) -> str | None:
@@ -324,26 +363,32 @@ def peer_python(arg: str | None) -> str | None:
     return path
 
 
-def run_peer(python: str, case: dict, method: str, timeout: float, tmp: Path) -> dict:
+def run_peer(python: str, case: dict, method: str, timeout: float, tmp: Path,
+             cold: bool = False) -> dict:
     """One peer run in its own process (thread settings ``THREADS``); status "timeout"
-    when it exceeds ``timeout`` s."""
+    when it exceeds ``timeout`` s. ``cold``: without the runner's warm-up solve, the
+    whole process as a user's script pays it (see peer_runner.py); its CPU seconds (the
+    finished child's user + system time) are ``process_cpu``, its wall seconds
+    ``times["process"]``."""
     src, dst = tmp / "case.json", tmp / "out.json"
     src.write_text(json.dumps(case))
     dst.unlink(missing_ok=True)
     env = {**os.environ, **THREADS}
-    t0 = time.perf_counter()
+    c0, t0 = _child_cpu(), time.perf_counter()
     try:
-        proc = subprocess.run([python, str(RUNNER), str(src), str(dst), method],
+        proc = subprocess.run([python, str(RUNNER), str(src), str(dst), method,
+                               *(["cold"] if cold else [])],
                               capture_output=True, text=True, timeout=timeout, env=env)
     except subprocess.TimeoutExpired:
         return {"method": method, "status": "timeout", "times": {"limit": timeout},
                 "message": f"no answer within {timeout:g} s (stopped)", "joints": []}
-    wall = time.perf_counter() - t0
+    wall, cpu = time.perf_counter() - t0, _child_cpu() - c0
     if not dst.exists():
         return {"method": method, "status": "error", "times": {}, "joints": [],
                 "message": (proc.stderr or proc.stdout).strip()[-300:]}
     out = json.loads(dst.read_text())
     out["times"]["process"] = wall
+    out["process_cpu"] = cpu
     return out
 
 
@@ -406,6 +451,18 @@ def _min_runs(runs: list[dict]) -> dict:
     return out
 
 
+def _min_process(runs: list[dict]) -> dict:
+    """Whole processes: the minimum CPU and wall seconds over the runs, each run's CPU
+    seconds, and the verdict (or "varies: ...")."""
+    cpu = [r["cpu"] for r in runs if r.get("cpu") is not None]
+    wall = [r["wall"] for r in runs if r.get("wall") is not None]
+    verdicts = sorted({r["verdict"] for r in runs})
+    return {"cpu": min(cpu) if cpu else None, "wall": min(wall) if wall else None,
+            "runs_cpu": cpu,
+            "verdict": verdicts[0] if len(verdicts) == 1 else "varies: " + ", ".join(
+                verdicts)}
+
+
 def _min_peer(runs: list[dict]) -> dict:
     out = dict(runs[0])
     times: dict[str, float] = {}
@@ -456,16 +513,21 @@ def bench(sizes: dict, python: str | None, timeouts: dict, repeats: int,
                                                       "basis")}
             row["loadavg_start"] = loadavg()
             big = (st["blocks"] or 0) >= 1_000
-            small = (st["blocks"] or 0) <= 100
             variants: dict[str, tuple[Any, dict]] = {}
+            files: dict[str, Path] = {}  # the scene files of our whole processes
             if st["scene2d"] is not None:
                 d2, d3 = scene_to_dict(st["scene2d"]), scene_to_dict(st["scene3d"])
-                variants["2d"] = (lambda d=d2: scene_from_dict(d), {"forces": small})
-                variants["3d_cone"] = (lambda d=d3: scene_from_dict(d), {"forces": small})
+                variants["2d"] = (lambda d=d2: scene_from_dict(d), {"forces": True})
+                variants["3d_cone"] = (lambda d=d3: scene_from_dict(d), {"forces": True})
                 variants["3d_pyr8"] = (lambda d=d3: scene_from_dict(d), {"pyramid": 8})
+                for m, d in (("2d", d2), ("3d_cone", d3)):
+                    files[m] = tmp / f"scene_{m}.json"
+                    files[m].write_text(json.dumps(d))
             case = {"name": st["name"], **st["peer"]}
             ours_runs: dict[str, list[dict]] = {m: [] for m in variants}
+            procs: dict[str, list[dict]] = {m: [] for m in files}
             rbe_runs: list[dict] = []
+            cold_runs: list[dict] = []
             not_modelled = None
             for rep in range(repeats):
                 # a peer run that reached its time limit is not repeated
@@ -492,12 +554,26 @@ def bench(sizes: dict, python: str | None, timeouts: dict, repeats: int,
                 for m, (make, kw) in variants.items():
                     ours_runs[m].append(run_ours(make, **{**kw, "forces": kw.get(
                         "forces", False) and rep == 0}))
+                # whole processes, a user's cost: ours, then the peer's without warm-up
+                for m, path in files.items():
+                    procs[m].append(run_ours_process(path))
+                if files and python is not None and not (
+                        cold_runs and cold_runs[-1]["status"] in ("timeout", "error")) \
+                        and rbe_runs[-1]["status"] not in ("timeout", "error"):
+                    cold_runs.append(run_peer(python, case, "rbe", timeouts["rbe"], tmp,
+                                              cold=True))
             ours = {m: _min_runs(r) for m, r in ours_runs.items() if r}
+            for m, r in procs.items():
+                ours[m]["process"] = _min_process(r)
             if not_modelled:
                 ours["3d_cone"] = {"verdict": not_modelled}
             peer: dict[str, Any] = {}
             if rbe_runs:
                 peer["rbe"] = _min_peer(rbe_runs)
+                if cold_runs:
+                    peer["rbe"]["process"] = _min_process([
+                        {"verdict": peer_verdict(c), "cpu": c.get("process_cpu"),
+                         "wall": c.get("times", {}).get("process")} for c in cold_runs])
                 peer["rbe"]["verdict"] = peer_verdict(rbe_runs[0])
                 peer["rbe"]["tension_ratio"] = rbe_tension_ratio(rbe_runs[0])
                 peer["rbe"]["settings"] = {}
@@ -884,47 +960,39 @@ def summary_line(row: dict) -> str:
 
 
 def targets(rows: list[dict]) -> dict | None:
-    """The ratios at the largest wall: the peer's RBE time over ours (2D, 3D cone),
-    end to end and solve only."""
+    """The claims at the largest wall, each side doing the same work (the verdict and
+    the forces), in CPU seconds (one thread each side, so the machine's load stretches
+    the wall clock, not these): in-process (ours: :func:`run_ours`, from the block data;
+    its RBE: from its assembly to its forces, after its warm-up) and whole processes
+    (:func:`run_ours_process` and its runner without warm-up); the peer's time over
+    ours, 2D (ours: the plane problem; its: the extrusion, as it has no 2D mode) and 3D
+    exact cone."""
     walls = [r for r in rows if r["kind"] == "wall" and r["peer"].get("rbe", {}).get(
         "status") == "solved"]
     if not walls:
         return None
     w = max(walls, key=lambda r: r["blocks"])
-    rbe = w["peer"]["rbe"]["times"]
-    o2, o3 = w["ours"]["2d"], w["ours"]["3d_cone"]
-    ipopt = rbe.get("ipopt", rbe["solve"])
-    return {"case": w["name"], "blocks": w["blocks"],
-            "rbe_total_s": rbe["total"], "rbe_solve_s": rbe["solve"], "rbe_ipopt_s": ipopt,
-            "rbe_setup_s": rbe.get("setup"), "rbe_interfaces_s": rbe["interfaces"],
-            "rbe_build_s": rbe.get("build"),
-            "ours_2d_total_s": o2["total"], "ours_3d_cone_total_s": o3["total"],
-            "ours_2d_solve_s": o2["solve"], "ours_3d_cone_solve_s": o3["solve"],
-            "ratio_2d_total": rbe["total"] / o2["total"],
-            "ratio_3d_total": rbe["total"] / o3["total"],
-            "ratio_2d_solve": ipopt / o2["solve"],
-            "ratio_3d_solve": ipopt / o3["solve"],
-            "target_2d": TARGET_2D, "target_3d": TARGET_3D,
-            "met_2d": rbe["total"] / o2["total"] >= TARGET_2D,
-            "met_3d": rbe["total"] / o3["total"] >= TARGET_3D,
-            **_cpu_targets(w),
-            "loadavg_start": w.get("loadavg_start"), "loadavg_end": w.get("loadavg_end")}
-
-
-def _cpu_targets(w: dict) -> dict:
-    """The same ratios in CPU seconds (one thread each side: robust to the load)."""
-    rc = w["peer"]["rbe"].get("cpu") or {}
-    c2, c3 = w["ours"]["2d"].get("cpu") or {}, w["ours"]["3d_cone"].get("cpu") or {}
-    if not (rc.get("total") and c2.get("total") and c3.get("total")):
-        return {}
-    ip = rc.get("ipopt", rc.get("solve"))
-    return {"cpu_rbe_total_s": rc["total"], "cpu_rbe_ipopt_s": ip,
-            "cpu_rbe_interfaces_s": rc.get("interfaces"),
-            "cpu_ours_2d_total_s": c2["total"], "cpu_ours_3d_cone_total_s": c3["total"],
-            "cpu_ratio_2d_total": rc["total"] / c2["total"],
-            "cpu_ratio_3d_total": rc["total"] / c3["total"],
-            "cpu_ratio_2d_solve": ip / c2["solve"], "cpu_ratio_3d_solve": ip / c3["solve"],
-            "cpu_profile_3d": c3}
+    rbe = w["peer"]["rbe"]
+    rc, rt = rbe.get("cpu") or {}, rbe["times"]
+    out = {"case": w["name"], "blocks": w["blocks"],
+           "loadavg_start": w.get("loadavg_start"), "loadavg_end": w.get("loadavg_end"),
+           "rbe_cpu_s": rc.get("total"), "rbe_ipopt_cpu_s": rc.get("ipopt"),
+           "rbe_interfaces_cpu_s": rc.get("interfaces"), "rbe_build_cpu_s": rc.get("build"),
+           "rbe_setup_s": rt.get("setup"), "rbe_ipopt_s": rt.get("ipopt"),
+           "rbe_process_cpu_s": (rbe.get("process") or {}).get("cpu"),
+           "goals": GOALS, "cpu_profile_3d": w["ours"]["3d_cone"].get("cpu")}
+    for m in ("2d", "3d_cone"):
+        o = w["ours"][m]
+        c = (o.get("cpu") or {}).get("total")
+        pc = (o.get("process") or {}).get("cpu")
+        out[f"ours_{m}_cpu_s"], out[f"ours_{m}_process_cpu_s"] = c, pc
+        out[f"ours_{m}_solve_cpu_s"] = (o.get("cpu") or {}).get("solve")
+        for key, theirs, mine in (("in_process", out["rbe_cpu_s"], c),
+                                  ("process", out["rbe_process_cpu_s"], pc)):
+            ratio = theirs / mine if theirs and mine else None
+            out[f"ratio_{m}_{key}"] = ratio
+            out[f"met_{m}_{key}"] = ratio is not None and ratio >= GOALS[m][key]
+    return out
 
 
 def hard_cases(rows: list[dict]) -> list[dict]:
@@ -1074,7 +1142,7 @@ def chart(rows: list[dict], path: Path) -> None:
             ax.scatter(*zip(*stops, strict=True), marker="x", s=60, color="k",
                        label=f"compas_cra {m.upper()} stopped at the time limit", zorder=5)
     ax.set_xlabel("blocks (running-bond wall, self-weight)")
-    ax.set_ylabel("seconds, blocks to verdict (min of runs)")
+    ax.set_ylabel("seconds, blocks to verdict and forces (min of runs)")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
@@ -1097,6 +1165,88 @@ def _ratio(a: Any, b: Any) -> Any:
     if isinstance(a, float) and isinstance(b, float) and b > 0:
         return f"{a / b:.3g}x"
     return "-"
+
+
+def _cpu(d: dict, key: str = "total") -> Any:
+    x = (d.get("cpu") or {}).get(key)
+    return "-" if x is None else float(x)
+
+
+def _proc(d: dict) -> Any:
+    x = (d.get("process") or {}).get("cpu")
+    if x is None and "limit" in d.get("times", {}):
+        return f"> {d['times']['limit']:g} (stopped)"
+    return "-" if x is None else float(x)
+
+
+def timing_markdown(gen: list[dict], tg: dict | None) -> list[str]:
+    """The time tables of the generated structures and the claims at the largest wall:
+    both sides doing the same work (the verdict and the forces), in CPU seconds."""
+    head = ["structure", "ours 2D", "ours 3D cone", "ours 3D 8-pyr", "RBE", "RBE / 2D",
+            "RBE / 3D cone", "ours 2D solve", "ours 3D solve", "RBE IPOPT",
+            "ours 2D process", "ours 3D process", "RBE process", "RBE / 2D process",
+            "RBE / 3D process", "CRA"]
+    body = []
+    for r in gen:
+        o, p = r["ours"], r["peer"]
+        rb = p.get("rbe", {})
+        a2, a3, ap = (_cpu(o.get(m, {})) for m in ("2d", "3d_cone", "3d_pyr8"))
+        rt = _cpu(rb) if "cpu" in rb else _t(rb.get("times", {}))
+        w2, w3, wr = _proc(o.get("2d", {})), _proc(o.get("3d_cone", {})), _proc(rb)
+        body.append([r["name"], a2, a3, ap, rt, _ratio(rt, a2), _ratio(rt, a3),
+                     _cpu(o.get("2d", {}), "solve"), _cpu(o.get("3d_cone", {}), "solve"),
+                     _cpu(rb, "ipopt"), w2, w3, wr, _ratio(wr, w2), _ratio(wr, w3),
+                     _t(p.get("cra", {}).get("times", {}))])
+    lines = ["The verdict and the forces on both sides (the peer's RBE always returns its "
+             "forces; ours is `check` with its force state, the state of least "
+             "complementary energy), CPU seconds of each process (one thread each side, "
+             "so the machine's load stretches the wall clock, hardly these). In-process: "
+             "ours from the block data (the scene dict: reading and validating the "
+             "blocks, contacts, assembly, problem, solve, force state), its RBE from its "
+             "assembly (building it, its interface detection, its solver's set-up and "
+             "IPOPT solve, after a warm-up solve in the same process); solve: our "
+             "Clarabel call against its IPOPT calls. Process: the whole command as a "
+             "user runs it, from the interpreter's start to its exit (imports, reading "
+             "the file, the answer written): ours `rigidblocks check FILE --load-factor "
+             "0 --json`, its runner on the case file without the warm-up. 2D: our plane "
+             "problem against its RBE on the extrusion of the same blocks (it has no 2D "
+             "mode), the same RBE figure as in the 3D columns; 8-pyr: our extrusion with "
+             "an inscribed 8-facet pyramid, in-process only (the command line has no "
+             "pyramid). CRA: its own method, once, wall seconds.", "",
+             markdown_table(head, body), ""]
+    if not tg:
+        return lines
+    lines += [f"Claims at the {tg['case']} (CPU seconds, the minimum of the runs, load "
+              f"average {tg['loadavg_start']} to {tg['loadavg_end']}; its RBE in-process "
+              f"{tg['rbe_cpu_s']:.3g} s = build {tg['rbe_build_cpu_s']:.3g} + interfaces "
+              f"{tg['rbe_interfaces_cpu_s']:.3g} + set-up and IPOPT "
+              f"{tg['rbe_cpu_s'] - tg['rbe_build_cpu_s'] - tg['rbe_interfaces_cpu_s']:.3g}"
+              + (f", its whole process {tg['rbe_process_cpu_s']:.3g} s"
+                 if tg.get("rbe_process_cpu_s") else "") + "):"]
+    for m, label in (("2d", "2D (ours: the plane problem; its: the extrusion)"),
+                     ("3d_cone", "3D exact cone")):
+        parts = []
+        for key, what in (("in_process", "in-process"), ("process", "whole process")):
+            ratio = tg.get(f"ratio_{m}_{key}")
+            mine = tg.get(f"ours_{m}_cpu_s" if key == "in_process" else
+                          f"ours_{m}_process_cpu_s")
+            if ratio is None:
+                continue
+            goal = tg["goals"][m][key]
+            parts.append(f"{ratio:.3g}x {what} ({mine:.3g} s; goal >= {goal:g}x: "
+                         f"{'met' if ratio >= goal else 'NOT met'})")
+        lines.append(f"- {label}, verdict and forces: " + "; ".join(parts))
+    lines.append("")
+    prof = tg.get("cpu_profile_3d")
+    if prof:
+        keys = ("read", "contacts", "assembly", "build", "solve", "state", "total")
+        lines += [f"Where our 3D time goes at the {tg['case']} (exact cone, in-process, "
+                  "CPU seconds, each stage's minimum over the runs; read: the scene's "
+                  "blocks to a validated scene; build: the problem; solve: the Clarabel "
+                  "call, one least-energy QP where the structure is admissible; state: "
+                  "the joint resultants):", "",
+                  markdown_table(list(keys), [[prof.get(k, 0.0) for k in keys]]), ""]
+    return lines
 
 
 def markdown(data: dict) -> str:
@@ -1124,67 +1274,7 @@ def markdown(data: dict) -> str:
         [r["name"], r["blocks"], _v(r["ours"], "2d"), _v(r["ours"], "3d_cone"),
          _v(r["ours"], "3d_pyr8"), _v(r["peer"], "rbe"), _v(r["peer"], "cra")]
         for r in gen]), ""]
-    head = ["structure", "ours 2D s", "ours 3D s", "RBE s", "RBE / 2D", "RBE / 3D",
-            "ours 2D solve s", "ours 3D solve s", "RBE IPOPT s", "IPOPT / 2D solve",
-            "IPOPT / 3D solve", "CRA s"]
-    body = []
-    for r in gen:
-        o, p = r["ours"], r["peer"]
-        rt = p.get("rbe", {}).get("times", {})
-        a2, a3 = _t(o.get("2d", {})), _t(o.get("3d_cone", {}))
-        s2, s3 = _t(o.get("2d", {}), "solve"), _t(o.get("3d_cone", {}), "solve")
-        rtot, ripo = _t(rt), _t(rt, "ipopt")
-        body.append([r["name"], a2, a3, rtot, _ratio(rtot, a2), _ratio(rtot, a3), s2, s3,
-                     ripo, _ratio(ripo, s2), _ratio(ripo, s3),
-                     _t(p.get("cra", {}).get("times", {}))])
-    lines += ["Wall-clock seconds, end to end (block data to verdict) and solve only "
-              "(Clarabel against IPOPT):", "", markdown_table(head, body), ""]
-    body = []
-    for r in gen:
-        o, p = r["ours"], r["peer"]
-        rc = p.get("rbe", {}).get("cpu", {})
-        c2, c3 = o.get("2d", {}).get("cpu", {}), o.get("3d_cone", {}).get("cpu", {})
-        a2, a3, rt = _t(c2), _t(c3), _t(rc)
-        s2, s3, ri = _t(c2, "solve"), _t(c3, "solve"), _t(rc, "ipopt")
-        body.append([r["name"], a2, a3, rt, _ratio(rt, a2), _ratio(rt, a3), s2, s3, ri,
-                     _ratio(ri, s2), _ratio(ri, s3), _t(p.get("cra", {}).get("cpu", {}))])
-    lines += ["The same in CPU seconds of each process (one thread on each side, so the "
-              "machine's load stretches the wall clock above, not these):", "",
-              markdown_table(head, body), ""]
-    if tg:
-        lines += [f"Claims at the {tg['case']} (end to end: the peer's RBE "
-                  f"{tg['rbe_total_s']:.3g} s = build {tg['rbe_build_s']:.3g} s + "
-                  f"interfaces {tg['rbe_interfaces_s']:.3g} s + set-up "
-                  f"{tg['rbe_setup_s'] or 0:.3g} s + IPOPT {tg['rbe_ipopt_s']:.3g} s; load "
-                  f"average {tg['loadavg_start']} to {tg['loadavg_end']}):",
-                  f"- 2D: {tg['ratio_2d_total']:.3g}x faster than its RBE end to end "
-                  f"({tg['ours_2d_total_s']:.3g} s), {tg['ratio_2d_solve']:.3g}x solve only; "
-                  f"goal >= {tg['target_2d']:g}x end to end: "
-                  f"{'met' if tg['met_2d'] else 'NOT met'}",
-                  f"- 3D exact cone: {tg['ratio_3d_total']:.3g}x end to end "
-                  f"({tg['ours_3d_cone_total_s']:.3g} s), {tg['ratio_3d_solve']:.3g}x solve "
-                  f"only; goal >= {tg['target_3d']:g}x end to end: "
-                  f"{'met' if tg['met_3d'] else 'NOT met'}"]
-        if "cpu_ratio_2d_total" in tg:
-            lines += [f"- in CPU seconds: its RBE {tg['cpu_rbe_total_s']:.3g} s (IPOPT "
-                      f"{tg['cpu_rbe_ipopt_s']:.3g} s, interfaces "
-                      f"{tg['cpu_rbe_interfaces_s']:.3g} s); 2D "
-                      f"{tg['cpu_ratio_2d_total']:.3g}x end to end "
-                      f"({tg['cpu_ours_2d_total_s']:.3g} s), "
-                      f"{tg['cpu_ratio_2d_solve']:.3g}x solve only: "
-                      f"{'met' if tg['cpu_ratio_2d_total'] >= tg['target_2d'] else 'NOT met'}"
-                      f"; 3D cone {tg['cpu_ratio_3d_total']:.3g}x end to end "
-                      f"({tg['cpu_ours_3d_cone_total_s']:.3g} s), "
-                      f"{tg['cpu_ratio_3d_solve']:.3g}x solve only: "
-                      f"{'met' if tg['cpu_ratio_3d_total'] >= tg['target_3d'] else 'NOT met'}"]
-        lines += [""]
-    prof = (tg or {}).get("cpu_profile_3d")
-    if prof:
-        keys = ("read", "contacts", "assembly", "build", "solve", "total")
-        lines += [f"Where our 3D time goes at the {tg['case']} (exact cone, CPU seconds, "
-                  "each stage's minimum over the runs; read: the scene's blocks to a "
-                  "validated scene; build: the problem; solve: the Clarabel call):", "",
-                  markdown_table(list(keys), [[prof.get(k, 0.0) for k in keys]]), ""]
+    lines += timing_markdown(gen, tg)
     if hard:
         lines += ["Hard cases:", "", markdown_table(
             ["method", "case", "expected", "answer", "grade"],

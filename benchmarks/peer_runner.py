@@ -4,7 +4,9 @@ Run with the peer's Python (a separate environment with ``compas_cra`` installed
 a dependency of rigidblocks), one case and one method per process, so that the caller
 can stop a solve that runs too long:
 
-    /path/to/peer/python benchmarks/peer_runner.py CASE.json OUT.json rbe|cra|cra_penalty|export
+    /path/to/peer/python benchmarks/peer_runner.py CASE.json OUT.json METHOD [cold]
+
+with METHOD one of rbe, cra, cra_penalty, export.
 
 ``CASE.json``: ``{"name", "mu", "blocks": [{"id", "vertices": [[x, y, z], ...],
 "faces": [[i, j, k, ...], ...], "support": bool, "density": float}, ...],
@@ -38,6 +40,11 @@ does only that (no interfaces, no solve; ``status`` "exported"). ``times`` also 
 ``setup`` and ``ipopt``: the solver's own problem set-up and IPOPT solve, as its timer
 prints them; ``cpu`` has the process CPU seconds of the same stages (``ipopt``: the
 IPOPT calls alone). Thread settings come from the environment (the caller sets them).
+
+Before the timed stages a process solves two stacked cubes (:func:`warm_up`), so that
+the stages' times leave out first-call costs; with ``cold`` it does not: the process is
+then what a user's script pays from start to exit (interpreter, imports, reading the
+case file, the stages, writing the answer), timed by the caller from outside.
 """
 
 from __future__ import annotations
@@ -179,14 +186,16 @@ def _time_ipopt() -> list[float]:
     return spent
 
 
-def run(case: dict, method: str) -> dict:
-    """Build, detect interfaces and solve; the answer as a JSON-ready dict."""
+def run(case: dict, method: str, cold: bool = False) -> dict:
+    """Build, detect interfaces and solve; the answer as a JSON-ready dict (``cold``:
+    without the warm-up solve)."""
     from compas_cra.algorithms import assembly_interfaces_numpy
     from compas_cra.equilibrium import cra_penalty_solve, cra_solve, rbe_solve
 
     solvers = {"rbe": rbe_solve, "cra": cra_solve, "cra_penalty": cra_penalty_solve}
-    out: dict = {"method": method, "case": case.get("name"), "times": {}}
-    warm_up()
+    out: dict = {"method": method, "case": case.get("name"), "times": {}, "cold": cold}
+    if not cold:
+        warm_up()
     out["cpu"] = {}
     c_all = time.process_time()
     t_all = time.perf_counter()
@@ -261,11 +270,13 @@ def run(case: dict, method: str) -> dict:
 
 
 def main(argv: list[str]) -> int:
-    """``peer_runner.py CASE.json OUT.json METHOD``; exit 0 when OUT.json was written."""
-    if len(argv) != 3:
+    """``peer_runner.py CASE.json OUT.json METHOD [cold]``; exit 0 when OUT.json was
+    written."""
+    cold = argv[3:] == ["cold"]
+    if len(argv) != 3 and not cold:
         print(__doc__.split("\n\n")[1], file=sys.stderr)
         return 2
-    case_path, out_path, method = argv
+    case_path, out_path, method = argv[:3]
     with open(case_path) as fh:
         case = json.load(fh)
     try:
@@ -274,7 +285,7 @@ def main(argv: list[str]) -> int:
             out = {"method": method, "case": case.get("name"), "status": "exported",
                    "times": {}, "joints": []}
         else:
-            out = run(case, method)
+            out = run(case, method, cold)
     except Exception as exc:  # the peer's own error, reported rather than raised
         out = {"method": method, "case": case.get("name"), "status": "error",
                "message": f"{type(exc).__name__}: {exc}"[:300],
