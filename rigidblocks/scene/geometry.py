@@ -126,11 +126,9 @@ def block_weights(scene: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         area, centroids = polygon_areas_centroids(verts, starts)
         sizes = polygon_diagonals(verts, starts)
         return gamma * np.abs(area) * scene.effective_depth, centroids, sizes
-    n = len(scene.blocks)
-    meas = np.zeros(n)
-    centroids = np.zeros((n, 3))
-    sizes = np.zeros(n)
-    for i, b in enumerate(scene.blocks):
-        meas[i], centroids[i] = block_measure(b, 3)
-        sizes[i] = float(np.linalg.norm(b.points.max(axis=0) - b.points.min(axis=0)))
+    from .polyhedra import polyhedra_volumes_centroids  # 3D only
+
+    meas, centroids = polyhedra_volumes_centroids(scene.blocks)
+    sizes = np.array([float(np.linalg.norm(np.ptp(b.points, axis=0)))
+                      for b in scene.blocks])
     return gamma * meas, centroids, sizes
