@@ -34,11 +34,22 @@ from .model import Contacts
 
 def plane_frame(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Two unit tangents (t1, t2) with (n, t1, t2) right-handed."""
-    x, y, z = float(n[0]), float(n[1]), float(n[2])
-    # n x e1 when n is far from e1, else n x e2
-    t1 = np.array([0.0, z, -y]) if abs(x) < 0.9 else np.array([-z, 0.0, x])
-    t1 /= np.linalg.norm(t1)
-    return t1, np.array([y * t1[2] - z * t1[1], z * t1[0] - x * t1[2], x * t1[1] - y * t1[0]])
+    t1, t2 = plane_frames(np.asarray(n, dtype=float)[None, :])
+    return t1[0], t2[0]
+
+
+def plane_frames(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`plane_frame` of many unit normals (m, 3) at once: (m, 3) t1 and t2."""
+    x, y, z = n[:, 0], n[:, 1], n[:, 2]
+    # n x e1 where n is far from e1, else n x e2
+    far = np.abs(x) < 0.9
+    zero = np.zeros_like(x)
+    t1 = np.where(far[:, None], np.stack([zero, z, -y], axis=1),
+                  np.stack([-z, zero, x], axis=1))
+    t1 /= np.linalg.norm(t1, axis=1)[:, None]
+    t2 = np.stack([y * t1[:, 2] - z * t1[:, 1], z * t1[:, 0] - x * t1[:, 2],
+                   x * t1[:, 1] - y * t1[:, 0]], axis=1)
+    return t1, t2
 
 
 def _polygonal(geom):
@@ -99,16 +110,15 @@ def _regions(scene: Scene, shapes: list, pending: list[tuple], eps: float, add) 
     for k, g, ring in _exteriors(hull, live):
         key, i, j, n = pending[g][:4]
         t1, t2, o = frames[g]
-        add(key, i, j, n, t1, t2, o, ring, float(area[k]))
+        add([key], np.array([i]), np.array([j]), n[None, :], t1[None, :], t2[None, :],
+            o + ring[:, :1] * t1 + ring[:, 1:2] * t2, np.array([len(ring)]),
+            np.array([area[k]]))
 
 
 def _polygons(rings: list[np.ndarray]):
     """Shapely polygons of 2D rings, built in one call."""
-    import shapely
-
-    counts = [len(r) for r in rings]
-    return shapely.polygons(shapely.linearrings(
-        np.concatenate(rings), indices=np.repeat(np.arange(len(rings)), counts)))
+    return _rings_polygons(np.concatenate(rings),
+                           np.repeat(np.arange(len(rings)), [len(r) for r in rings]))
 
 
 def _exteriors(polys, which: np.ndarray):
@@ -124,26 +134,121 @@ def _exteriors(polys, which: np.ndarray):
             yield k, g, ring
 
 
-def _clip_faces(faces: list[tuple], eps: float, add) -> None:
+def _clip_faces(found: dict, eps: float, add) -> None:
     """The joints of coplanar faces of convex blocks, all at once.
 
-    ``faces`` holds (key, i, j, normal, t1, t2, origin, i's face, j's face), the faces
-    in the plane's 2D frame. Each contact is the intersection of the two convex faces
-    (a convex polygon, simplified at ``eps / 2``), kept where its area exceeds eps^2.
+    ``found`` (see :func:`_facing_faces`): per face pair its key, blocks i and j, i's
+    face normal n, the plane's frame (t1, t2) and origin o (the first vertex of i's
+    face), and the two faces in the plane's 2D frame (``ring_a``/``ring_b`` coordinates,
+    ``own_a``/``own_b`` the face pair of each vertex). Each contact is the
+    intersection of the two convex faces (a convex polygon, simplified at ``eps / 2``),
+    kept where its area exceeds eps^2.
     """
     import shapely
 
-    inter = shapely.intersection(_polygons([f[7] for f in faces]),
-                                 _polygons([f[8] for f in faces]))
+    inter = shapely.intersection(_rings_polygons(found["ring_a"], found["own_a"]),
+                                 _rings_polygons(found["ring_b"], found["own_b"]))
     ok = np.flatnonzero((shapely.get_type_id(inter) == 3) & ~shapely.is_empty(inter)
                         & (shapely.area(inter) > eps * eps))
     if not len(ok):
         return
     poly = shapely.simplify(inter[ok], eps * 0.5)
     area = shapely.area(poly)
-    for k, g, ring in _exteriors(poly, ok):
-        key, i, j, n, t1, t2, o = faces[g][:7]
-        add(key, i, j, n, t1, t2, o, ring, float(area[k]))
+    coords, idx = shapely.get_coordinates(shapely.get_exterior_ring(poly),
+                                          return_index=True)
+    cnt = np.bincount(idx, minlength=len(poly))
+    pos = np.arange(len(idx)) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+    good = cnt - 1 >= 3  # rings of three vertices or more, without the closing one
+    keep = good[idx] & (pos < cnt[idx] - 1)
+    g = ok[idx[keep]]
+    x, y = coords[keep, :1], coords[keep, 1:2]
+    points = found["o"][g] + x * found["t1"][g] + y * found["t2"][g]
+    sel = ok[good]
+    add([found["key"][k] for k in sel], found["i"][sel], found["j"][sel], found["n"][sel],
+        found["t1"][sel], found["t2"][sel], points, cnt[good] - 1, area[good])
+
+
+def _rings_polygons(coords: np.ndarray, owner: np.ndarray):
+    """Shapely polygons of 2D rings given as one coordinate array and each vertex's
+    ring (in order), built in one call."""
+    import shapely
+
+    return shapely.polygons(shapely.linearrings(coords, indices=owner))
+
+
+def _face_table(scene: Scene, shapes: list, blocks: np.ndarray) -> dict:
+    """Padded per-block arrays of the convex blocks ``blocks``: unit normals (nb, F, 3)
+    and offsets (nb, F) of their face planes (from each block's origin), which faces
+    exist, and where each face's vertices are in one flat table of global vertex
+    indices (into the scene's points, concatenated)."""
+    nb = len(scene.blocks)
+    nf = max((len(shapes[k].faces) for k in blocks), default=0)
+    N = np.zeros((nb, nf, 3))
+    D = np.zeros((nb, nf))
+    has = np.zeros((nb, nf), dtype=bool)
+    first = np.zeros((nb, nf), dtype=int)
+    count = np.zeros((nb, nf), dtype=int)
+    npts = np.array([len(b.points) for b in scene.blocks])
+    base = np.concatenate([[0], np.cumsum(npts)[:-1]])
+    flat, at = [], 0
+    for k in blocks:
+        n, d = block_planes(scene.blocks[k])
+        faces = shapes[k].faces
+        N[k, :len(n)], D[k, :len(d)], has[k, :len(n)] = n, d, True
+        cnt = [len(f) for f in faces]
+        count[k, :len(cnt)] = cnt
+        first[k, :len(cnt)] = at + np.concatenate([[0], np.cumsum(cnt)[:-1]])
+        flat.append(np.concatenate(faces) + base[k])
+        at += sum(cnt)
+    return {"N": N, "D": D, "has": has, "first": first, "count": count,
+            "flat": np.concatenate(flat) if flat else np.zeros(0, dtype=int)}
+
+
+def _facing_faces(scene: Scene, shapes: list, pairs: np.ndarray, pks: np.ndarray,
+                  eps: float, chunk: int = 4096) -> dict | None:
+    """Every pair of opposite coplanar faces (normals opposite to 1e-9, planes within
+    ``eps``) of the convex block pairs ``pairs`` (their candidate numbers ``pks``), in
+    the order of the pairs and, per pair, of i's and j's faces; each with its plane's
+    frame and both faces' vertices in it (see :func:`_clip_faces`). None if there are
+    none."""
+    used = np.unique(pairs)
+    tab = _face_table(scene, shapes, used)
+    N, D, has = tab["N"], tab["D"], tab["has"]
+    origins = np.zeros((len(scene.blocks), 3))
+    origins[used] = [shapes[k].origin for k in used]
+    hits = []
+    for c in range(0, len(pairs), chunk):
+        i, j = pairs[c:c + chunk, 0], pairs[c:c + chunk, 1]
+        # j's planes in i's coordinates: n_j . (x - o_i) = d_j + n_j . (o_j - o_i)
+        dj_i = D[j] + np.einsum("pfk,pk->pf", N[j], origins[j] - origins[i])
+        dots = np.einsum("pak,pbk->pab", N[i], N[j])
+        mask = ((dots < -1.0 + 1e-9) & (np.abs(D[i][:, :, None] + dj_i[:, None, :]) <= eps)
+                & has[i][:, :, None] & has[j][:, None, :])
+        p, fi, fj = np.nonzero(mask)
+        hits.append((p + c, fi, fj))
+    p = np.concatenate([h[0] for h in hits])
+    if not len(p):
+        return None
+    fi, fj = np.concatenate([h[1] for h in hits]), np.concatenate([h[2] for h in hits])
+    i, j = pairs[p, 0], pairs[p, 1]
+    # the face's number among its pair's (the joints' order key)
+    fk = np.arange(len(p)) - np.searchsorted(p, p)
+    n = N[i, fi]
+    t1, t2 = plane_frames(n)
+    pts = np.concatenate([b.points for b in scene.blocks])
+    out = {"key": [(int(a), int(b)) for a, b in zip(pks[p], fk, strict=True)],
+           "i": i, "j": j, "n": n, "t1": t1, "t2": t2}
+    out["o"] = pts[tab["flat"][tab["first"][i, fi]]]
+    for side, blk, f in (("a", i, fi), ("b", j, fj)):
+        cnt = tab["count"][blk, f]
+        own = np.repeat(np.arange(len(p)), cnt)
+        idx = tab["flat"][np.repeat(tab["first"][blk, f], cnt)
+                          + np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt)]
+        rel = pts[idx] - out["o"][own]
+        out[f"ring_{side}"] = np.stack([np.einsum("vk,vk->v", rel, t1[own]),
+                                        np.einsum("vk,vk->v", rel, t2[own])], axis=1)
+        out[f"own_{side}"] = own
+    return out
 
 
 def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
@@ -167,18 +272,27 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
     shapes = [shape(b) for b in scene.blocks]
     pairs, normals, tangents, polys, areas, order = [], [], [], [], [], []
     pending: list[tuple] = []  # planes of pairs with a non-convex block, done together
-    faces: list[tuple] = []  # coplanar face pairs of convex blocks, clipped together
 
-    def add(key: tuple[int, int], i: int, j: int, n: np.ndarray, t1: np.ndarray,
-            t2: np.ndarray, o: np.ndarray, ring: np.ndarray, area: float) -> None:
-        order.append(key)
-        pairs.append((i, j))
-        normals.append(n)
-        tangents.append(np.stack([t1, t2]))
-        polys.append(o + ring[:, :1] * t1 + ring[:, 1:2] * t2)
-        areas.append(area)
+    def add(keys: list[tuple[int, int]], i: np.ndarray, j: np.ndarray, n: np.ndarray,
+            t1: np.ndarray, t2: np.ndarray, points: np.ndarray, counts: np.ndarray,
+            area: np.ndarray) -> None:
+        """Joints: their order keys, blocks, normals (k, 3), tangents, contact points
+        (all joints' in one array, ``counts`` per joint) and areas."""
+        order.extend(keys)
+        pairs.extend(zip(i.tolist(), j.tolist(), strict=True))
+        normals.extend(n)
+        tangents.extend(np.stack([t1, t2], axis=1))
+        polys.extend(np.split(points, np.cumsum(counts)[:-1]))
+        areas.extend(area.tolist())
 
-    for pk, (i, j) in enumerate(candidate_pairs(scene, eps)):
+    cand = candidate_pairs(scene, eps)
+    convex = np.array([s.convex for s in shapes], dtype=bool)
+    both = convex[cand[:, 0]] & convex[cand[:, 1]] if len(cand) else np.zeros(0, bool)
+    # coplanar face pairs of convex blocks, found and clipped together
+    found = _facing_faces(scene, shapes, cand[both], np.flatnonzero(both), eps) \
+        if both.any() else None
+    for pk in np.flatnonzero(~both):
+        i, j = (int(x) for x in cand[pk])
         si, sj = shapes[i], shapes[j]
         ni, di = planes[i]
         nj, dj = planes[j]
@@ -189,17 +303,6 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
         keep = np.abs(di[fi_all] + dj_i[fj_all]) <= eps
         fi_all, fj_all = fi_all[keep], fj_all[keep]
         if not len(fi_all):
-            continue
-        if si.convex and sj.convex:
-            for fk, (fi, fj) in enumerate(zip(fi_all, fj_all, strict=True)):
-                n = ni[fi]
-                t1, t2 = plane_frame(n)
-                pa = scene.blocks[i].points[si.faces[fi]]
-                pb = scene.blocks[j].points[sj.faces[fj]]
-                o = pa[0]
-                frame = np.stack([t1, t2], axis=1)
-                faces.append(((pk, fk), i, j, n, t1, t2, o, (pa - o) @ frame,
-                              (pb - o) @ frame))
             continue
         # a non-convex block: one joint per plane, the faces of each side in it united
         groups: list[list[int]] = []
@@ -213,10 +316,10 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
                 groups.append([k])
         for gk, g in enumerate(groups):
             f0 = fi_all[g[0]]
-            pending.append(((pk, gk), i, j, ni[f0], si.faces[f0][0],
+            pending.append(((int(pk), gk), i, j, ni[f0], si.faces[f0][0],
                             sorted(set(fi_all[g].tolist())), sorted(set(fj_all[g].tolist()))))
-    if faces:
-        _clip_faces(faces, eps, add)
+    if found is not None:
+        _clip_faces(found, eps, add)
     if pending:
         _regions(scene, shapes, pending, eps, add)
     m = len(pairs)
