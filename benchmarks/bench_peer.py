@@ -1260,8 +1260,9 @@ def markdown(data: dict) -> str:
     la0, la1 = data.get("loadavg_start"), data.get("loadavg_end")
     lines += [f"One session ({data.get('started', '?')} to {data.get('finished', '?')}), "
               f"both sides with the same thread settings ({thr}), interleaved per "
-              f"structure (ours, its RBE, ours, its RBE, ...), {data.get('repeats')} runs "
-              "each; every time is the minimum over the runs. Load average (1, 5, 15 min) "
+              "structure (its RBE, ours, our whole processes, its whole process, its "
+              f"RBE, ...), {data.get('repeats')} runs each; every time is the minimum "
+              "over the runs. Load average (1, 5, 15 min) "
               f"at the start {la0} and at the end {la1} (each structure's in "
               f"bench_peer.json). compas_cra {data.get('peer_version') or '-'}, its "
               "solvers on its bundled IPOPT.", ""]
