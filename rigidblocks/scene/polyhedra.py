@@ -44,10 +44,17 @@ POLY_TOL = 1e-7
 
 
 def _size(block: Block) -> float:
-    p = block.points
-    return float(np.linalg.norm(p.max(axis=0) - p.min(axis=0)))
+    """The diagonal of the block's bounding box (cached on the block, which is
+    immutable)."""
+    cached = block.__dict__.get(_SIZE_CACHE)
+    if cached is None:
+        p = block.points
+        cached = block.__dict__[_SIZE_CACHE] = float(np.linalg.norm(p.max(axis=0)
+                                                                    - p.min(axis=0)))
+    return cached
 
 
+_SIZE_CACHE = "_rigidblocks_size"
 _SHAPE_CACHE = "_rigidblocks_shape"
 _PIECES_CACHE = "_rigidblocks_pieces"
 _PLANES_CACHE = "_rigidblocks_planes"
