@@ -133,6 +133,15 @@ def shape(block: Block) -> Shape:
         out = Shape(origin, local, [], np.zeros((0, 3)), True)
         block.__dict__[_SHAPE_CACHE] = out
         return out
+    # a copy of a block already seen, up to a translation (masonry repeats its units):
+    # the same faces, normals and convexity (the extruded 1,009-block wall: 69 ms for
+    # every block's shape, 5 ms for their keys)
+    key = _key_of(local, _size(block), block.faces, "shape")
+    same = _SAME_SHAPE.get(key)
+    if isinstance(same, Shape):
+        out = Shape(origin, local, same.faces, same.normals, same.convex, same.oriented)
+        block.__dict__[_SHAPE_CACHE] = out
+        return out
     normals, centres = _newell(local, faces)
     flip = np.einsum("ij,ij->i", normals, centres - local.mean(axis=0)) < 0
     normals[flip] *= -1.0
@@ -153,6 +162,7 @@ def shape(block: Block) -> Shape:
             normals = -normals
         out = Shape(origin, local, oriented, normals, False, ok)
     block.__dict__[_SHAPE_CACHE] = out
+    _remember(key, out)
     return out
 
 
@@ -380,10 +390,14 @@ _SAME_SHAPE: dict[tuple, object] = {}
 
 
 def _shape_key(block: Block, what: str) -> tuple:
-    s = shape(block)
-    size = max(_size(block), 1e-300)
-    return (what, np.round(s.local / size, 12).tobytes(), round(size, 12),
-            tuple(block.faces or ()))
+    return _key_of(shape(block).local, _size(block), block.faces, what)
+
+
+def _key_of(local: np.ndarray, size: float, faces, what: str) -> tuple:
+    """The key of a polyhedron up to a translation: its vertices relative to its first
+    one (to 1e-12 of its size), its size and its faces."""
+    size = max(size, 1e-300)
+    return (what, np.round(local / size, 12).tobytes(), round(size, 12), tuple(faces or ()))
 
 
 def _remember(key: tuple, value: object) -> None:
