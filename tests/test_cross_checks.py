@@ -1,0 +1,132 @@
+"""Verdicts that are checked where they are weakest, and back ends that answer for
+themselves (issue 32 items 1 and 2).
+
+The wedge scene: a block W, trapezoid (-2, 0), (2, 0), (1, 1), (-1, 1), whose slanted
+faces rest at 45 degrees against two supports (an inverted keystone: the faces' normal
+forces push it down), carrying a block H of ``heavy`` times its weight. Its f* = 1 is an
+infimum approached with forces growing as 1 / (f - 1): settled exactly in rational
+arithmetic by :func:`exact_state` (an explicit admissible state for every f > 1) and
+the argument in :func:`test_wedge_infimum_settled_exactly` (none at f <= 1).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+from rigidblocks.analyses import check, min_friction
+from rigidblocks.cli.main import main
+from rigidblocks.equilibrium import assemble
+from rigidblocks.generators.catalogue import scene2d
+from rigidblocks.io.scene_file import dumps_scene
+
+
+def wedge(heavy: float) -> object:
+    """The wedge scene of the module docstring (unit weight 1: W weighs 3, H 2 heavy)."""
+    W = [[-2, 0], [2, 0], [1, 1], [-1, 1]]
+    left = [[-4, -1], [-3, -1], [-2, 0], [-1, 1], [-4, 1]]
+    right = [[-x, y] for x, y in left][::-1]
+    blocks = [{"id": "L", "vertices": left, "support": True},
+              {"id": "R", "vertices": right, "support": True},
+              {"id": "W", "vertices": W},
+              {"id": "H", "vertices": [[-1, 1], [1, 1], [1, 2], [-1, 2]],
+               "unit_weight": heavy}]
+    return scene2d(blocks, unit_weight=1.0, friction=1.5)
+
+
+def exact_state(f: Fraction, load: Fraction) -> tuple[Fraction, Fraction]:
+    """(N, T) on each slanted face of the wedge, in the face's unnormalised frame
+    n = (1, 1), t = (-1, 1) (the right face; the left one mirrors it), carrying the
+    total weight ``load`` at friction ``f`` > 1 with T = f N: the force on W from the
+    right support is N (-1, -1) + T (-1, 1), so the two faces lift W by 2 (T - N) =
+    load and push it sideways by -(N + T) and +(N + T), which cancel; mirrored about
+    x = 0, their moments about the axis cancel too."""
+    N = load / (2 * (f - 1))
+    return N, f * N
+
+
+@pytest.mark.parametrize("delta", ["1e-2", "1e-6", "1e-12"])
+def test_wedge_infimum_settled_exactly(delta):
+    """Rational arithmetic: for f = 1 + delta the state of :func:`exact_state` lifts
+    the total weight exactly and meets |T| <= f N, with N = load / (2 (f - 1)); for
+    f <= 1 no state does, as the lift 2 sum (T - N) over the faces' points needs
+    T > N somewhere, i.e. T > f N. So f* = 1 is an infimum and no value."""
+    f = 1 + Fraction(delta)
+    load = Fraction(3) + 2 * Fraction(10) ** 4
+    N, T = exact_state(f, load)
+    right = (-N - T, -N + T)  # force on W from the right face
+    left = (N + T, -N + T)  # mirrored
+    assert right[0] + left[0] == 0 and right[1] + left[1] == load
+    assert 0 <= N and abs(T) <= f * N
+    assert N == load / (2 * Fraction(delta))  # grows as 1 / (f - 1)
+
+
+def test_wedge_exact_state_balances_the_assembled_model():
+    """The project's own equilibrium matrix carries the state of :func:`exact_state`
+    (normal forces split between each joint's two points, the shears solved for, H on
+    W by its weight at two points): residual at round-off, shears within f N."""
+    heavy, f = 1e4, 1.000001
+    s = wedge(heavy)
+    sysm = assemble(s)
+    c = sysm.contacts
+    load = 3.0 + 2.0 * heavy
+    N, _ = exact_state(Fraction(f), Fraction(load))
+    lay = sysm.layout
+    x = np.zeros(lay.size)
+    normal = np.zeros(c.n_points)
+    ids = c.block_ids
+    for k, (a, b) in enumerate(c.pairs):
+        pts = np.flatnonzero(c.point_joint == k)
+        names = {ids[a], ids[b]}
+        # per point: half the face's normal force, |n| = sqrt(2) in the unnormalised frame
+        normal[pts] = float(N) * np.sqrt(2.0) / 2 if "H" not in names else heavy
+    x[lay.normal] = normal
+    F = sysm.dead + sysm.live
+    shear = lay.tangential
+    rest = sysm.A[:, shear].toarray()
+    t, *_ = np.linalg.lstsq(rest, -(sysm.A @ x + F), rcond=None)
+    x[shear] = t
+    assert np.abs(sysm.A @ x + F).max() <= 1e-9 * load
+    joint_n = np.bincount(c.point_joint, normal, minlength=c.n_joints)
+    assert np.all(np.abs(t) <= f * joint_n * (1 + 1e-9))
+
+
+@pytest.mark.parametrize("heavy", [1e2, 1e4, 1e6])
+@pytest.mark.parametrize("delta", [1e-2, 1e-4, 1e-6, 1e-7])
+def test_check_above_an_infimum_is_never_inadmissible(heavy, delta):
+    """Above f* = 1 an admissible state exists (exactly, above), with forces
+    (1 + 2 heavy / 3) / (2 sqrt 2 delta) times W's load: admissible, or undecided where
+    those are beyond what the solver resolves, never inadmissible. At heavy = 1e4,
+    delta = 1e-6 Clarabel's dual bound certified a breach of 4.7e3 (its certificate
+    holds at f = 1 and excludes forces up to 2.2e9 only): "inadmissible" before."""
+    r = check(wedge(heavy), friction=1.0 + delta, state=False)
+    assert r.status in ("admissible", "undecided"), (r.status, r.notes)
+    if r.status == "undecided":
+        assert r.notes
+
+
+@pytest.mark.parametrize("heavy", [0.0, 1e4])
+@pytest.mark.parametrize("delta", [1e-4, 1e-6])
+def test_check_below_an_infimum_stays_inadmissible(heavy, delta):
+    """Below f* = 1 no state exists at any scale (exactly, above): inadmissible."""
+    r = check(wedge(heavy), friction=1.0 - delta, state=False)
+    assert r.status == "inadmissible", r.notes
+
+
+def test_cli_check_above_an_infimum_exits_undecided_with_the_reason(tmp_path, capsys):
+    """The command line: exit 3 and the certificate's reason."""
+    path = tmp_path / "wedge.json"
+    path.write_text(dumps_scene(wedge(1e4)))
+    assert main(["check", str(path), "--friction", "1.000001"]) == 3
+    out = capsys.readouterr().out
+    assert "certificate of inadmissibility" in out and "infimum" in out
+
+
+def test_friction_on_the_wedge_reports_the_infimum():
+    """The same scene's f* comes with the bracket from 1 and the infimum note."""
+    r = min_friction(wedge(1e4), state=False)
+    assert r.status == "stable" and r.bracket[0] >= 1.0 - 1e-7 and r.bracket[1] > 1.0
+    assert any("infimum" in n for n in r.notes)
+
