@@ -127,6 +127,11 @@ class Result:
     flow: str = "associative"
     converged: bool | None = None
     history: tuple = field(default=(), repr=False)
+    #: the back ends that answered the solves (``solver`` alone where it answered every
+    #: one itself), and the answers of ``solver`` that failed their check against the
+    #: problem and were solved again by another (the notes say so too)
+    answered_by: tuple[str, ...] = ()
+    rejected: tuple[str, ...] = ()
 
     #: the statuses that are not verdicts: the method could not decide, or broke down
     UNDECIDED: ClassVar[tuple[str, ...]] = ("undecided", "failure")

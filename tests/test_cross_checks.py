@@ -130,3 +130,74 @@ def test_friction_on_the_wedge_reports_the_infimum():
     assert r.status == "stable" and r.bracket[0] >= 1.0 - 1e-7 and r.bracket[1] > 1.0
     assert any("infimum" in n for n in r.notes)
 
+
+
+# -- every back end answers for itself --------------------------------------------------
+def tiny(c, rows, b, ne, nl, soc=()):
+    import scipy.sparse as sp
+
+    from rigidblocks.solvers.base import ConicProblem
+
+    return ConicProblem(c=np.asarray(c, float), A=sp.csc_matrix(np.asarray(rows, float)),
+                        b=np.asarray(b, float), n_eq=ne, n_nonneg=nl, soc=tuple(soc))
+
+
+CVXPY = ("cvxpy-clarabel", "cvxpy-scs", "cvxpy-highs")
+
+
+@pytest.mark.parametrize("solver", CVXPY)
+def test_cvxpy_duals_follow_the_kkt_convention(solver):
+    """base.py's convention, P z + c + A'y = 0: min z s.t. z == 1 has y = -1 (Clarabel
+    gives -1, and so does cvxpy: the back end negated it, and every answer failed its
+    check); min z s.t. -z <= -1 has y = +1; min t s.t. (t, 3, 4) in SOC(3) has
+    y = (1, -0.6, -0.8) (t = 5)."""
+    from rigidblocks.solvers import solve
+
+    settings = {"eps_abs": 1e-9, "eps_rel": 1e-9} if solver == "cvxpy-scs" else {}
+    eq = solve(tiny([1.0], [[1.0]], [1.0], 1, 0), solver, **settings)
+    assert eq.y == pytest.approx([-1.0], abs=1e-6)
+    ineq = solve(tiny([1.0], [[-1.0]], [-1.0], 0, 1), solver, **settings)
+    assert ineq.y == pytest.approx([1.0], abs=1e-6)
+    if solver != "cvxpy-highs":  # HiGHS takes no cones
+        cone = solve(tiny([1.0], [[-1.0], [0.0], [0.0]], [0.0, 3.0, 4.0], 0, 0, (3,)),
+                     solver, **settings)
+        assert cone.z == pytest.approx([5.0], abs=1e-5)
+        assert cone.y == pytest.approx([1.0, -0.6, -0.8], abs=1e-5)
+
+
+INFEASIBLE_LP = ([1.0, 0.0], [[1.0, 1.0], [-1.0, 0.0], [0.0, -1.0], [1.0, 1.0]],
+                 [1.0, 0.0, 0.0, 0.5], 1, 3)  # z0 + z1 = 1, z >= 0, z0 + z1 <= 0.5
+UNBOUNDED_LP = ([-1.0, 0.0], [[0.0, 1.0], [-1.0, 0.0]], [1.0, 0.0], 1, 1)  # max z0 >= 0
+
+
+@pytest.mark.parametrize("solver", ["clarabel", "highs", "osqp", "scs", "cvxpy-clarabel",
+                                    "cvxpy-highs"])
+@pytest.mark.parametrize("kind", ["infeasible", "unbounded"])
+def test_every_back_end_certifies_its_own_statuses(solver, kind):
+    """An infeasible or unbounded status is passed on with its certificate checked (the
+    back end's own, or one it finds for the problem of base.certificate_problem), not
+    solved again by Clarabel: before, every back end but Clarabel and OSQP's
+    infeasible ones came without one."""
+    from rigidblocks.solvers import Runner
+
+    prob = tiny(*(INFEASIBLE_LP if kind == "infeasible" else UNBOUNDED_LP))
+    runner = Runner(solver)
+    res = runner.run(prob, "tiny", tight=True)
+    assert res.status == kind
+    assert not runner.rejected and runner.answered_by == [solver], runner.rejected
+    if solver != "clarabel" or kind == "infeasible":  # Clarabel's rays are its own
+        assert res.verified and res.residuals["margin"] > 0
+
+
+def test_a_rejected_answer_is_solved_again_and_said():
+    """A back end whose answer fails its check (SCS stopped after 20 iterations by the
+    user's setting) is solved again by Clarabel for the user: the answer stands, the
+    result names both and what was rejected, and the notes say so."""
+    from rigidblocks.generators.catalogue import CASES
+
+    case = CASES["seed_model"]
+    r = min_friction(case.scene(), solver="scs", settings={"max_iters": 20}, state=False)
+    assert r.friction_factor == pytest.approx(case.value, rel=1e-6)
+    assert r.rejected and "scs" in r.rejected[0]
+    assert "clarabel" in r.answered_by
+    assert any("solved again by clarabel" in n for n in r.notes)

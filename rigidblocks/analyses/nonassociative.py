@@ -175,6 +175,14 @@ class NonAssociative(Method):
         return self.inner.solve_time
 
     @property
+    def answered_by(self) -> tuple[str, ...]:
+        return self.inner.answered_by
+
+    @property
+    def rejected(self) -> tuple[str, ...]:
+        return self.inner.rejected
+
+    @property
     def iterations(self) -> int:
         return self.fp_iterations
 
@@ -408,7 +416,8 @@ def _fields(na: NonAssociative, analysis: str, status: str, friction: Any,
                 n_solves=na.n_solves, solve_time=na.solve_time, iterations=na.iterations,
                 units=(na.scene.length_unit, na.scene.force_unit), notes=tuple(notes),
                 timings=dict(na.timings.wall), cpu_timings=dict(na.timings.cpu),
-                flow=NON_ASSOCIATIVE, converged=converged, history=history)
+                flow=NON_ASSOCIATIVE, converged=converged, history=history,
+                answered_by=na.answered_by, rejected=na.rejected)
 
 
 def _trial(kind: str, value: float, v: Verdict) -> dict[str, Any]:

@@ -252,6 +252,14 @@ class ConvexMethod(Method):
         return self.runner.solve_time
 
     @property
+    def answered_by(self) -> tuple[str, ...]:
+        return tuple(self.runner.answered_by)
+
+    @property
+    def rejected(self) -> tuple[str, ...]:
+        return tuple(self.runner.rejected)
+
+    @property
     def iterations(self) -> int:
         return self.runner.iterations
 
