@@ -353,7 +353,8 @@ class LoadResult(Result):
     mechanism: Mechanism | None = field(default=None, repr=False)
     tilt_angle_deg: float | None = None
     #: non-associative: [lo, hi] with hi the associative multiplier (an upper bound)
-    #: and lo a proven lower bound (None where there is none)
+    #: and lo the best lower bound known, the frictionless multiplier or the answer's
+    #: admissible lower end (None where there is none)
     load_multiplier_bounds: tuple[float | None, float | None] | None = None
 
     def _answer(self) -> dict[str, Any]:

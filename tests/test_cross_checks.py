@@ -16,7 +16,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from rigidblocks.analyses import check, min_friction
+from rigidblocks.analyses import check, max_load_multiplier, min_friction
 from rigidblocks.cli.main import main
 from rigidblocks.equilibrium import assemble
 from rigidblocks.generators.catalogue import scene2d
@@ -201,3 +201,40 @@ def test_a_rejected_answer_is_solved_again_and_said():
     assert r.rejected and "scs" in r.rejected[0]
     assert "clarabel" in r.answered_by
     assert any("solved again by clarabel" in n for n in r.notes)
+
+
+# -- non-associative answers on closed forms ---------------------------------------------
+@pytest.mark.parametrize("name", ["inclined_20deg_b1_h2", "inclined_10deg_b0.5_h2",
+                                  "box_on_20deg_slope_azimuth_0.4"])
+def test_nonassociative_friction_of_a_block_on_an_incline_is_tan_theta(name):
+    """A single block sliding down an incline does not dilate under either flow rule:
+    the non-associative f* is the static one, tan theta (validation.md; the catalogue
+    case's source). Before, the search answered 1e-5 above it (0.36397387 for
+    tan 20 deg = 0.36397023) with the note that it "equals the static f*"."""
+    from rigidblocks.generators.catalogue import CASES
+
+    case = CASES[name]
+    static = min_friction(case.scene(), state=False)
+    r = min_friction(case.scene(), flow="non-associative", state=False)
+    assert r.status == "stable"
+    assert r.friction_factor == pytest.approx(case.value, rel=1e-6)
+    assert r.bracket is not None and r.bracket[0] <= r.friction_factor
+    equal = [n for n in r.notes if "equals the static f*" in n]
+    assert equal and r.friction_factor == static.friction_factor
+
+
+@pytest.mark.parametrize("f,expect", [(0.4, 0.4), (0.3, 0.3), (0.8, 0.5)])
+def test_nonassociative_load_of_a_single_block_is_the_associative_one(f, expect):
+    """A block b = 1, h = 2 on a base under a horizontal body force: lambda* = min(f,
+    b/h) (validation.md), the same without dilatancy (a slide of one block on a level
+    joint does not open it). The answer is that value, not (1 - 1e-6) times it
+    (0.3999996 before), and the lower bound is the answer, not the frictionless 0."""
+    from rigidblocks.generators.catalogue import block_on_base
+
+    r = max_load_multiplier(block_on_base(1.0, 2.0, f), flow="non-associative",
+                            state=False)
+    assert r.status == "collapse"
+    assert r.load_multiplier == pytest.approx(expect, rel=1e-9)
+    lo, hi = r.load_multiplier_bounds
+    assert lo == pytest.approx(expect, rel=1e-9) and hi == pytest.approx(expect, rel=1e-9)
+    assert any("equals the associative" in n for n in r.notes)
