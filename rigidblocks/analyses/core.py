@@ -19,6 +19,7 @@ from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_me
 from ..methods.convex import FRICTION_RTOL
 from ..results import CheckResult, FrictionResult, LoadResult
 from ..scene.model import Scene, friction_label, friction_value
+from ..scene.validate import check_load_factor
 from .nonassociative import (
     check_nonassociative,
     is_nonassociative,
@@ -43,10 +44,13 @@ def _fields(m: Method, analysis: str, status: str, friction: Any,
 
 
 def _load_factor(scene: Scene, value: Any) -> float:
-    """The load factor asked for, or the scene's (``load_factor`` key, default 1)."""
-    if value is None:
-        return scene.effective_load_factor
-    return finite_number(value, "load factor")
+    """The load factor asked for, or the scene's (``load_factor`` key, default 1),
+    checked to keep the live loads it multiplies representable
+    (:func:`~rigidblocks.scene.validate.check_load_factor`)."""
+    lf = scene.effective_load_factor if value is None else finite_number(value,
+                                                                         "load factor")
+    check_load_factor(scene, lf)
+    return lf
 
 
 def _bracket(lim: Limit) -> tuple[float, float] | None:
