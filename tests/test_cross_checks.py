@@ -23,17 +23,23 @@ from rigidblocks.generators.catalogue import scene2d
 from rigidblocks.io.scene_file import dumps_scene
 
 
-def wedge(heavy: float) -> object:
-    """The wedge scene of the module docstring (unit weight 1: W weighs 3, H 2 heavy)."""
+def wedge(heavy: float, length: float = 1.0, force: float = 1.0) -> object:
+    """The wedge scene of the module docstring (unit weight 1: W weighs 3, H 2 heavy),
+    its lengths times ``length`` and its forces times ``force``."""
     W = [[-2, 0], [2, 0], [1, 1], [-1, 1]]
     left = [[-4, -1], [-3, -1], [-2, 0], [-1, 1], [-4, 1]]
     right = [[-x, y] for x, y in left][::-1]
-    blocks = [{"id": "L", "vertices": left, "support": True},
-              {"id": "R", "vertices": right, "support": True},
-              {"id": "W", "vertices": W},
-              {"id": "H", "vertices": [[-1, 1], [1, 1], [1, 2], [-1, 2]],
-               "unit_weight": heavy}]
-    return scene2d(blocks, unit_weight=1.0, friction=1.5)
+    H = [[-1, 1], [1, 1], [1, 2], [-1, 2]]
+
+    def scaled(pts):
+        return [[length * x, length * y] for x, y in pts]
+
+    gamma = force / length ** 2
+    blocks = [{"id": "L", "vertices": scaled(left), "support": True},
+              {"id": "R", "vertices": scaled(right), "support": True},
+              {"id": "W", "vertices": scaled(W)},
+              {"id": "H", "vertices": scaled(H), "unit_weight": heavy * gamma}]
+    return scene2d(blocks, unit_weight=gamma, friction=1.5)
 
 
 def exact_state(f: Fraction, load: Fraction) -> tuple[Fraction, Fraction]:
@@ -105,6 +111,20 @@ def test_check_above_an_infimum_is_never_inadmissible(heavy, delta):
     assert r.status in ("admissible", "undecided"), (r.status, r.notes)
     if r.status == "undecided":
         assert r.notes
+
+
+@pytest.mark.parametrize("length,force,extruded", [(1e3, 1e-6, False), (1e-2, 1e5, False),
+                                                   (1.0, 1.0, True)])
+def test_check_above_an_infimum_rescaled_and_extruded(length, force, extruded):
+    """The same verdict on copies in other units and on the extruded 3D scene (prisms
+    of depth 1, the same statics): at f = 1 + 1e-6 never inadmissible, at 1 - 1e-6
+    inadmissible."""
+    from rigidblocks.scene.extrude import extrude
+
+    s = wedge(1e4, length, force)
+    s = extrude(s) if extruded else s
+    assert check(s, friction=1.0 + 1e-6, state=False).status in ("admissible", "undecided")
+    assert check(s, friction=1.0 - 1e-6, state=False).status == "inadmissible"
 
 
 @pytest.mark.parametrize("heavy", [0.0, 1e4])
