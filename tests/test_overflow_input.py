@@ -120,12 +120,16 @@ def test_ids_with_control_characters_make_one_line_errors(tmp_path, capsys, bad_
 def test_a_multiplier_is_never_negative(solver):
     """A frictionless block on a level base slides at once: lambda* = 0 (validation.md,
     block on a support, min(f, b/h) with f = 0). Round-off put it at -3.4e-11 (Clarabel)
-    and -4.8e-10 (OSQP), reported as "collapse" at a negative multiplier."""
-    r = max_load_multiplier(block_on_base(1.0, 2.0, 0.0), solver=solver, state=False)
-    assert r.status == "collapse"
-    assert 0.0 <= r.load_multiplier <= 1e-9
-    if r.bracket is not None:
-        assert r.bracket[0] >= 0.0
+    and -4.8e-10 (OSQP), reported as "collapse" at a negative multiplier, and the
+    non-associative analysis with the bounds [0, -4.8e-10]."""
+    for flow in ("associative", "non-associative"):
+        r = max_load_multiplier(block_on_base(1.0, 2.0, 0.0), solver=solver, state=False,
+                                flow=flow)
+        assert r.status == "collapse"
+        assert 0.0 <= r.load_multiplier <= 1e-9 and str(r.load_multiplier)[0] != "-"
+        for pair in (r.bracket, r.load_multiplier_bounds):
+            if pair is not None and pair[0] is not None:
+                assert 0.0 <= pair[0] <= pair[1]
 
 
 def test_realistic_units_pass():

@@ -232,7 +232,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     # a multiplier within round-off below 0 (the methods call one below -1e-9 unstable)
     # is 0: the dead load alone is at its limit (a frictionless block on a level base:
     # -3.4e-11 from Clarabel, -4.8e-10 from OSQP)
-    lam = max(float(lim.value), 0.0)
+    lam = float(lim.value) if lim.value > 0 else 0.0  # not -0.0 either
     if lim.lower is not None and lim.lower < 0.0:
         lim = replace(lim, lower=0.0, upper=max(float(lim.upper), 0.0))
     at = m.at_limit(f, lam, lim.at, state)

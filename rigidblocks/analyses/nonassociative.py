@@ -479,7 +479,9 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
     na, cv = _open(scene, method, flow, **kw)
     trials: list[dict[str, Any]] = []
     up = cv.load_limit(f, 1e-9)
-    hi = up.value if up.status == "collapse" else None
+    # the associative multiplier, within round-off below 0 taken as 0 (as the
+    # associative analysis reports it)
+    hi = (up.value if up.value > 0 else 0.0) if up.status == "collapse" else None
     if up.status == "unbounded":
         na.notes.append("the associative multiplier is unbounded: no upper bound")
     lo = _frictionless_bound(cv, na.marked, f)
