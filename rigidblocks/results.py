@@ -127,6 +127,11 @@ class Result:
     flow: str = "associative"
     converged: bool | None = None
     history: tuple = field(default=(), repr=False)
+    #: the back ends that answered the solves (``solver`` alone where it answered every
+    #: one itself), and the answers of ``solver`` that failed their check against the
+    #: problem and were solved again by another (the notes say so too)
+    answered_by: tuple[str, ...] = ()
+    rejected: tuple[str, ...] = ()
 
     #: the statuses that are not verdicts: the method could not decide, or broke down
     UNDECIDED: ClassVar[tuple[str, ...]] = ("undecided", "failure")
@@ -348,7 +353,8 @@ class LoadResult(Result):
     mechanism: Mechanism | None = field(default=None, repr=False)
     tilt_angle_deg: float | None = None
     #: non-associative: [lo, hi] with hi the associative multiplier (an upper bound)
-    #: and lo a proven lower bound (None where there is none)
+    #: and lo the best lower bound known, the frictionless multiplier or the answer's
+    #: admissible lower end (None where there is none)
     load_multiplier_bounds: tuple[float | None, float | None] | None = None
 
     def _answer(self) -> dict[str, Any]:

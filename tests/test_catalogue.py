@@ -6,8 +6,9 @@ Every expected value is derived by hand or cited in its catalogue case's ``sourc
 (validation.md closed forms; the seed paper's numerical example 1). Tolerances: the
 case's own (1e-6 relative for the closed forms) on the convex back ends; 1e-4 on the
 distortion method (its f* and lambda* come from a bisection over its own verdicts:
-measured 1.3e-5 at worst, the leaning pair); 1e-3 for SCS, a first-order method, run on
-the cases tagged for it.
+measured 1.3e-5 at worst, the leaning pair). Every back end answers for itself: a run
+fails where an answer had to be solved again by Clarabel (``result.rejected``,
+``result.answered_by``).
 """
 
 from __future__ import annotations
@@ -23,17 +24,13 @@ from rigidblocks.generators.catalogue import CASES, Case
 
 RTOL = 1e-6
 DISTORTION_RTOL = 1e-4
-SCS_RTOL = 1e-3
-#: the convex path's back ends every case runs on; HiGHS (simplex) takes LPs only
-SOLVERS = ["clarabel", "highs", "cvxpy-clarabel", "cvxpy-highs"]
+#: the convex path's back ends every case runs on: HiGHS (simplex) and OSQP take LPs
+#: only; SCS (first-order) at the policy's tight settings
+SOLVERS = ["clarabel", "highs", "osqp", "scs", "cvxpy-clarabel", "cvxpy-highs"]
+LP_ONLY = ("highs", "osqp", "cvxpy-highs")
 INTERIOR_POINT = ("clarabel", "cvxpy-clarabel")
 ANALYSES = {"check": check, "min_friction": min_friction,
             "max_load_multiplier": max_load_multiplier}
-#: cases SCS is checked on (its defaults miss other closed forms by more than 1e-3 or
-#: give a wrong verdict, see the honest-answers issue)
-SCS_CASES = ("block_on_base_b1_h2_f0.3", "block_on_base_b1_h2_f0.8", "seed_model",
-             "seed_model_weight_50", "leaning_pair", "inclined_20deg_b1_h2",
-             "side_by_side_pull")
 
 
 def close(a: float, b: float, rtol: float = RTOL) -> bool:
@@ -49,15 +46,25 @@ def runs() -> list:
     out = []
     for case in CASES.values():
         for solver in SOLVERS:
-            if solver in ("highs", "cvxpy-highs") and not case.is_lp:
+            if solver in LP_ONLY and not case.is_lp:
                 continue
             out.append(pytest.param(case, "clarabel", solver, id=f"{case.name}-{solver}"))
         if case.dimension == 2:  # two contact points per joint
             out.append(pytest.param(case, "distortion", None,
                                     id=f"{case.name}-distortion"))
-        if case.name in SCS_CASES:
-            out.append(pytest.param(case, "clarabel", "scs", id=f"{case.name}-scs"))
     return out
+
+
+def answered_itself(result, solver: str) -> None:
+    """Every answer of a convex-path result came from ``solver`` itself: none failed its
+    check and was solved again by Clarabel, and no other back end answered (the force
+    state, a QP, goes to Clarabel from an LP-only back end: not a rejection, and
+    asserted separately)."""
+    assert not result.rejected, result.rejected
+    others = set(result.answered_by) - {solver}
+    if solver in LP_ONLY and result.state is not None:
+        others -= {"clarabel"}
+    assert result.answered_by[:1] == (solver,) and not others, result.answered_by
 
 
 def value_of(result, analysis: str):
@@ -75,6 +82,8 @@ def test_catalogue(case: Case, method: str, solver: str | None):
     if solver is not None:
         kw["solver"] = solver
     r = ANALYSES[case.analysis](case.scene(), **kw)
+    if solver is not None:
+        answered_itself(r, solver)
     value = value_of(r, case.analysis)
     if method == "distortion" and r.status == "undecided":
         assert value is None and r.notes
@@ -86,29 +95,28 @@ def test_catalogue(case: Case, method: str, solver: str | None):
             assert value is None
             if case.analysis == "min_friction":
                 assert r.friction_angle_deg is None
-        rtol = {"distortion": DISTORTION_RTOL, "scs": SCS_RTOL}.get(
-            method if method == "distortion" else solver, case.rtol)  # type: ignore[arg-type]
+        rtol = DISTORTION_RTOL if method == "distortion" else case.rtol
         if case.value is not None:
             assert abs(value - case.value) <= max(rtol * abs(case.value), case.atol), value
         if case.angle_deg is not None:
             assert close(r.friction_angle_deg, case.angle_deg, rtol)
-        if case.governing is not None and solver != "scs":
+        if case.governing is not None:
             got = pair_set(r.governing_joints)
             if case.governing_any_vertex and solver not in INTERIOR_POINT:
                 assert got and got <= case.governing  # a vertex dual may pick one
             else:
                 assert got == case.governing
-        if case.modes is not None and method == "clarabel" and solver != "scs":
+        if case.modes is not None and method == "clarabel":
             assert r.mechanism.modes == case.modes  # (the distortion method has none)
         if case.max_solves is not None and method == "clarabel":
             assert r.n_solves <= case.max_solves
-    if solver == "scs":
-        return  # verdicts at 1e-4 of the limit are beyond a first-order method
     for v in case.verdicts:
         scene = v.scene() if v.scene is not None else case.scene()
         opts = {**{k: x for k, x in kw.items() if k != "pyramid" or scene.dimension == 3},
                 **dict(v.options)}
         c = check(scene, state=False, **opts)
+        if solver is not None:
+            answered_itself(c, solver)
         if method == "distortion" and c.status == "undecided":
             assert c.admissible is None
             continue

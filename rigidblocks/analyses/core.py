@@ -19,6 +19,7 @@ from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_me
 from ..methods.convex import FRICTION_RTOL
 from ..results import CheckResult, FrictionResult, LoadResult
 from ..scene.model import Scene, friction_label, friction_value
+from ..scene.validate import check_load_factor
 from .nonassociative import (
     check_nonassociative,
     is_nonassociative,
@@ -38,14 +39,18 @@ def _fields(m: Method, analysis: str, status: str, friction: Any,
                 load_factor=load_factor, contacts=m.system.contacts, solver=m.solver,
                 n_solves=m.n_solves, solve_time=m.solve_time, iterations=m.iterations,
                 units=(m.scene.length_unit, m.scene.force_unit), notes=tuple(m.notes),
-                timings=dict(m.timings.wall), cpu_timings=dict(m.timings.cpu))
+                timings=dict(m.timings.wall), cpu_timings=dict(m.timings.cpu),
+                answered_by=m.answered_by, rejected=m.rejected)
 
 
 def _load_factor(scene: Scene, value: Any) -> float:
-    """The load factor asked for, or the scene's (``load_factor`` key, default 1)."""
-    if value is None:
-        return scene.effective_load_factor
-    return finite_number(value, "load factor")
+    """The load factor asked for, or the scene's (``load_factor`` key, default 1),
+    checked to keep the live loads it multiplies representable
+    (:func:`~rigidblocks.scene.validate.check_load_factor`)."""
+    lf = scene.effective_load_factor if value is None else finite_number(value,
+                                                                         "load factor")
+    check_load_factor(scene, lf)
+    return lf
 
 
 def _bracket(lim: Limit) -> tuple[float, float] | None:
@@ -224,7 +229,12 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     if lim.status != "collapse":
         return LoadResult(**_fields(m, "max_load_multiplier", lim.status, f, None),
                           bracket=_bracket(lim))
-    lam = float(lim.value)
+    # a multiplier within round-off below 0 (the methods call one below -1e-9 unstable)
+    # is 0: the dead load alone is at its limit (a frictionless block on a level base:
+    # -3.4e-11 from Clarabel, -4.8e-10 from OSQP)
+    lam = float(lim.value) if lim.value > 0 else 0.0  # not -0.0 either
+    if lim.lower is not None and lim.lower < 0.0:
+        lim = replace(lim, lower=0.0, upper=max(float(lim.upper), 0.0))
     at = m.at_limit(f, lam, lim.at, state)
     gov = lim.governing
     if at is not None:

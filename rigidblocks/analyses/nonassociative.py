@@ -61,7 +61,7 @@ import scipy.sparse as sp
 from ..equilibrium import force_state
 from ..errors import InputError, SolverFailure
 from ..methods import ADMISSIBLE, FAILURE, INADMISSIBLE, UNDECIDED, Method, Verdict
-from ..methods.convex import ADMISSIBLE_TOL, STATE_SLACK, ConvexMethod
+from ..methods.convex import ADMISSIBLE_TOL, FRICTION_RTOL, STATE_SLACK, ConvexMethod
 from ..methods.distortion import DistortionMethod
 from ..problems.formulation import build_energy_qp, build_max_load, build_relaxation, flexibility
 from ..results import CheckResult, ForceState, FrictionResult, LoadResult
@@ -172,6 +172,14 @@ class NonAssociative(Method):
     @property
     def solve_time(self) -> float:
         return self.inner.solve_time
+
+    @property
+    def answered_by(self) -> tuple[str, ...]:
+        return self.inner.answered_by
+
+    @property
+    def rejected(self) -> tuple[str, ...]:
+        return self.inner.rejected
 
     @property
     def iterations(self) -> int:
@@ -408,7 +416,8 @@ def _fields(na: NonAssociative, analysis: str, status: str, friction: Any,
                 n_solves=na.n_solves, solve_time=na.solve_time, iterations=na.iterations,
                 units=(na.scene.length_unit, na.scene.force_unit), notes=tuple(notes),
                 timings=dict(na.timings.wall), cpu_timings=dict(na.timings.cpu),
-                flow=NON_ASSOCIATIVE, converged=converged, history=history)
+                flow=NON_ASSOCIATIVE, converged=converged, history=history,
+                answered_by=na.answered_by, rejected=na.rejected)
 
 
 def _trial(kind: str, value: float, v: Verdict) -> dict[str, Any]:
@@ -454,11 +463,14 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
     state, by bisection between 0 and the associative multiplier (an upper bound).
 
     ``load_multiplier_bounds`` = [lo, hi]: hi the associative multiplier (Radenkovic's
-    first theorem), lo the associative multiplier with frictionless marked joints
-    (Drucker 1954; None where it is not defined: the frictionless dead load has no
-    admissible state). ``mechanism``: "vertex" (default) or "blend", which of the
-    optimal mechanisms of the computed state is drawn, as for associative friction
-    (see :func:`_collapse_mechanism`).
+    first theorem), lo the best lower bound known: the associative multiplier with
+    frictionless marked joints (Drucker 1954; None where it is not defined: the
+    frictionless dead load has no admissible state) or, where higher, the answer's
+    admissible lower end (its ``bracket``, where that is not one point). The
+    associative multiplier is tried first: where the state reached from the elastic
+    state stands there, it is the answer, exact. ``mechanism``: "vertex" (default) or
+    "blend", which of the optimal mechanisms of the computed state is drawn, as for
+    associative friction (see :func:`_collapse_mechanism`).
     """
     if not scene.has_live_load:
         raise InputError("the scene has no live load (no \"live\": true load and no "
@@ -467,23 +479,32 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
     na, cv = _open(scene, method, flow, **kw)
     trials: list[dict[str, Any]] = []
     up = cv.load_limit(f, 1e-9)
-    hi = up.value if up.status == "collapse" else None
+    # the associative multiplier, within round-off below 0 taken as 0 (as the
+    # associative analysis reports it)
+    hi = (up.value if up.value > 0 else 0.0) if up.status == "collapse" else None
     if up.status == "unbounded":
         na.notes.append("the associative multiplier is unbounded: no upper bound")
     lo = _frictionless_bound(cv, na.marked, f)
     bounds = (lo, math.inf if up.status == "unbounded" else hi)
 
     def result(status: str, lam: float | None = None, v: Verdict | None = None,
-               converged: bool | None = None) -> LoadResult:
+               converged: bool | None = None,
+               bracket: tuple[float, float] | None = None) -> LoadResult:
+        """The result; ``bracket``: the answer's, whose lower end (an admissible trial)
+        raises the lower bound where it is above the frictionless one."""
         st = na.state(f, lam, v) if (v is not None and lam is not None) else None
         mech, gov = None, ()
         if st is not None:
             mech, gov = _collapse_mechanism(cv, na, f, lam, st, mechanism)
         hist = tuple(trials)
+        low = bounds[0]
+        if bracket is not None and (low is None or bracket[0] > low):
+            low = bracket[0]
         return LoadResult(**_fields(na, "max_load_multiplier", status, f, lam, hist,
                                     converged), state=st if state else None,
-                          load_multiplier=lam, load_multiplier_bounds=bounds,
-                          mechanism=mech, governing=gov)
+                          load_multiplier=lam, load_multiplier_bounds=(low, bounds[1]),
+                          mechanism=mech, governing=gov,
+                          bracket=bracket if bracket and bracket[0] < bracket[1] else None)
 
     if up.status == "unstable":
         na.notes.append("the dead load alone has no admissible state (static problem)")
@@ -514,11 +535,16 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
             if bad > UNBOUNDED_AT:
                 return result("unbounded", converged=True)
     else:
-        top = hi * (1.0 - TOP_RTOL)
-        ok, v = decide(top)
-        if ok is True:
-            na.notes.append("the non-associative multiplier reaches the associative one")
-            return result("collapse", top, v, True)
+        # the associative multiplier first (an upper bound: where the state reached from
+        # the elastic state stands there, it is the answer), then just below it
+        for top in (hi, hi * (1.0 - TOP_RTOL)):
+            ok, v = decide(top)
+            if ok is True:
+                na.notes.append("the non-associative multiplier equals the associative one"
+                                if top == hi else
+                                f"the non-associative multiplier is within {TOP_RTOL:g} "
+                                f"(relative) below the associative one, {hi:.9g}")
+                return result("collapse", top, v, True, (top, hi))
         good, bad, best = 0.0, top, v0
     br = bisect(decide, bad, good, rtol)
     best_v = br.good_data or best
@@ -535,7 +561,7 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
         na.notes.append(f"the computed multiplier {br.good:.6g} is below the frictionless "
                         f"bound {lo:.6g}: the state reached from the elastic state "
                         "collapses earlier than some other state would")
-    return result("collapse", br.good, best_v, True)
+    return result("collapse", br.good, best_v, True, (br.lower, br.upper))
 
 
 def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: float,
@@ -635,7 +661,9 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
         raise InputError("every joint has its own friction override: there is no uniform "
                          "friction to minimise", scene.source)
     trials: list[dict[str, Any]] = []
-    lim = cv.friction_limit(lf, 1e-9)
+    # the static f* as the associative analysis gives it (same accuracy, same solves):
+    # where the answer equals it, the two print the same number
+    lim = cv.friction_limit(lf, FRICTION_RTOL)
 
     def out(status: str, fstar: float | None = None, v: Verdict | None = None,
             lower: float | None = None, upper: float | None = None,
@@ -647,8 +675,8 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
             at = (np.abs(st.joint_shear) >= (1 - 1e-5) * fj * st.joint_normal) \
                 & (st.joint_normal > 1e-9 * max(1.0, float(np.abs(st.joint_normal).max())))
             gov = tuple(int(k) for k in np.flatnonzero(at & na.uniform))
-        bracket = (lower, upper) if (status == UNDECIDED and lower is not None
-                                     and upper is not None) else None
+        bracket = (lower, upper) if (lower is not None and upper is not None
+                                     and (status == UNDECIDED or lower < upper)) else None
         return FrictionResult(**_fields(na, "min_friction", status, fstar, lf,
                                         tuple(trials), converged), bracket=bracket,
                               state=st if state else None, governing=gov, friction_factor=fstar,
@@ -666,11 +694,18 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
         trials.append(_trial("friction", fv, v))
         return v.admissible, v
 
-    first = fs * (1.0 + rtol) if fs > 0 else 0.0
-    ok, v = decide(first)
-    if ok is True:
-        na.notes.append("the non-associative friction equals the static f*")
-        return out("stable", first, v, fs, first, True)
+    # the static f* first (a lower bound: where the state reached from the elastic
+    # state stands there, it is the answer, in the static f*'s bracket), then rtol above
+    first = fs
+    for first in (fs, fs * (1.0 + rtol)) if fs > 0 else (0.0,):
+        low = lim.lower if first == fs and lim.lower is not None else fs
+        ok, v = decide(first)
+        if ok is True:
+            na.notes.append("the non-associative friction equals the static f*"
+                            if first == fs else
+                            f"the non-associative friction is within {rtol:g} (relative) "
+                            f"above the static f* = {fs:.9g}")
+            return out("stable", first, v, low, first, True)
     bad, good, best = first, max(2.0 * fs, 1e-3), None
     breach = [(first, v.violation)] if ok is False else []
     unsettled: list[float] = []

@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import warnings
 from collections.abc import Sequence
 
 from ..analyses import ANALYSES
@@ -18,6 +19,8 @@ from ..errors import InputError, SolverFailure
 from ..io.paths import output_path
 from .options import use_finite_floats
 
+#: numpy's floating-point warnings (RuntimeWarning)
+NUMPY_WARNINGS = r"(overflow|invalid value|divide by zero|underflow) encountered"
 #: command name -> (module, one-line help)
 COMMANDS: dict[str, tuple[str, str]] = {
     **{a.command: ("analyses", a.help) for a in ANALYSES.values()},
@@ -57,6 +60,21 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the CLI; returns the exit status."""
+    with warnings.catch_warnings():
+        # numpy's floating-point warnings are not for the user: the scene's derived
+        # quantities are checked representable before any solve (scene.validate), and
+        # a solve's trouble is its status
+        warnings.filterwarnings("ignore", NUMPY_WARNINGS, RuntimeWarning)
+        return _main(argv)
+
+
+def _one_line(message: object) -> str:
+    """``message`` with its unprintable characters escaped (a block id with a newline
+    stays on the error's one line)."""
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in str(message))
+
+
+def _main(argv: Sequence[str] | None) -> int:
     try:
         parser = build_parser()
         args = parser.parse_args(argv)
@@ -67,10 +85,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             output_path(args.output)
         return int(args._run(args) or 0)
     except InputError as err:
-        print(f"rigidblocks: error: {err}", file=sys.stderr)
+        print(f"rigidblocks: error: {_one_line(err)}", file=sys.stderr)
         return 2
     except SolverFailure as err:
-        print(f"rigidblocks: solver failure: {err}", file=sys.stderr)
+        print(f"rigidblocks: solver failure: {_one_line(err)}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:  # pragma: no cover
         return 130

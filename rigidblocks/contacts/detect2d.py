@@ -61,7 +61,7 @@ def oriented_polygons(scene: Scene, tol: float) -> tuple[np.ndarray, np.ndarray]
             raise InputError(f"the block ({size:.3g} across) is smaller than the contact "
                              f"tolerance {tol:.3g} (relative tolerance x scene size): "
                              "enlarge or remove it, or analyse it in a scene of its own "
-                             "size", f"block '{scene.blocks[b].id}'")
+                             "size", f"block {scene.blocks[b].id!r}")
         pieces.append(simple)
         counts[b] = len(simple)
         done = starts[b + 1]
@@ -170,7 +170,7 @@ def joint_laws(scene: Scene, pairs: np.ndarray) -> tuple[np.ndarray, np.ndarray,
         ts[k] = j.tensile_strength or 0.0
     for key, j in table.items():
         if key not in found:
-            raise InputError(f"blocks '{j.blocks[0]}' and '{j.blocks[1]}' are not in "
+            raise InputError(f"blocks {j.blocks[0]!r} and {j.blocks[1]!r} are not in "
                              "contact, so their joint cannot be overridden",
-                             f"joint '{j.blocks[0]}'-'{j.blocks[1]}'")
+                             f"joint {j.blocks[0]!r}-{j.blocks[1]!r}")
     return fr, coh, ts

@@ -267,7 +267,7 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
             raise InputError(f"the block ({size:.3g} across) is smaller than the contact "
                              f"tolerance {eps:.3g} (relative tolerance x scene size): "
                              "enlarge or remove it, or analyse it in a scene of its own "
-                             "size", f"block '{b.id}'")
+                             "size", f"block {b.id!r}")
     planes = [block_planes(b) for b in scene.blocks]
     shapes = [shape(b) for b in scene.blocks]
     pairs, normals, tangents, polys, areas, order = [], [], [], [], [], []

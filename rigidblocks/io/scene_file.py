@@ -29,6 +29,12 @@ BLOCK_KEYS = {"id", "vertices", "faces", "support", "unit_weight"}
 LOAD_KEYS = {"block", "force", "point", "moment", "live"}
 JOINT_KEYS = {"blocks", "friction", "cohesion", "tensile_strength", "flow"}
 UNIT_KEYS = {"length", "force"}
+#: how deeply a scene document nests lists and objects: the scene, "blocks", a block,
+#: "vertices" (or "faces"), a point
+SCENE_DEPTH = 5
+#: a document nested deeper is refused before it is read as a scene (a value nested a
+#: little too deep is named by the reader with its block and key)
+NESTING_LIMIT = 32
 
 
 # -- small strict parsers -------------------------------------------------------------
@@ -182,7 +188,7 @@ def _list(top: dict, key: str) -> list:
 def _parse_block(b: Any, i: int, dim: int) -> Block:
     where = f"block #{i}"
     if isinstance(b, dict) and isinstance(b.get("id"), str):
-        where = f"block '{b['id']}'"
+        where = f"block {b['id']!r}"
     b = _keys(b, BLOCK_KEYS, ("id", "vertices"), where)
     bid = _string(b["id"], f'{where} "id"')
     if bid == "":
@@ -229,7 +235,7 @@ def _parse_load(ld: Any, i: int, dim: int) -> Load:
     where = f"load #{i}"
     ld = _keys(ld, LOAD_KEYS, ("block", "force"), where)
     block = _string(ld["block"], f'{where} "block"')
-    where = f"load #{i} on block '{block}'"
+    where = f"load #{i} on block {block!r}"
     force = _vector(ld["force"], dim, f'{where} "force"')
     point = _vector(ld["point"], dim, f'{where} "point"') if "point" in ld else None
     moment = None
@@ -247,8 +253,8 @@ def _parse_joint(j: Any, i: int) -> JointOverride:
     if not (isinstance(pair, list) and len(pair) == 2 and all(isinstance(s, str) for s in pair)):
         raise InputError('"blocks" must be a list of two block ids', where)
     if pair[0] == pair[1]:
-        raise InputError(f"a joint needs two different blocks, got '{pair[0]}' twice", where)
-    where = f"joint '{pair[0]}'-'{pair[1]}'"
+        raise InputError(f"a joint needs two different blocks, got {pair[0]!r} twice", where)
+    where = f"joint {pair[0]!r}-{pair[1]!r}"
     friction = _friction(j["friction"], f'{where} "friction"') if "friction" in j else None
     coh = (_number(j["cohesion"], f'{where} "cohesion"', minimum=0)
            if "cohesion" in j else None)
@@ -265,12 +271,38 @@ def loads_json(text: str, source: str | None = None) -> Any:
     rejects naming the block and key where they stand.
     """
     try:
-        return json.loads(text, parse_constant=_nonfinite_constant)
+        doc = json.loads(text, parse_constant=_nonfinite_constant)
     except json.JSONDecodeError as err:
         raise InputError(f"malformed JSON: {err.msg} at line {err.lineno} column {err.colno}",
                          source) from None
     except InputError as err:
         raise (err.located(source) if source else err) from None
+    except RecursionError:  # the decoder's own recursion, thousands of levels deep
+        raise InputError(f"JSON nested deeper than the decoder can follow; a scene "
+                         f"nests {SCENE_DEPTH} levels at most", source) from None
+    depth = _depth(doc)
+    if depth > NESTING_LIMIT:
+        raise InputError(f"JSON nested more than {NESTING_LIMIT} levels deep; a scene nests "
+                         f"{SCENE_DEPTH} at most (scene, blocks, block, vertices, point)",
+                         source)
+    return doc
+
+
+def _depth(doc: Any) -> int:
+    """How deeply lists and objects nest in a parsed JSON document (a number: 0), without
+    recursion."""
+    deepest = 0
+    stack = [(doc, 1)]
+    while stack:
+        node, level = stack.pop()
+        items = node.values() if isinstance(node, dict) else node \
+            if isinstance(node, list) else None
+        if items is None:
+            continue
+        deepest = max(deepest, level)
+        if level <= NESTING_LIMIT:  # deeper is an error already: no need to look further
+            stack.extend((v, level + 1) for v in items)
+    return deepest
 
 
 def read_scene(path: str | os.PathLike, *, validate: bool = True) -> Scene:

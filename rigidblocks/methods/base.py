@@ -194,6 +194,17 @@ class Method:
         raise NotImplementedError
 
     @property
+    def answered_by(self) -> tuple[str, ...]:
+        """The back ends that answered this method's solves (none named by default)."""
+        return ()
+
+    @property
+    def rejected(self) -> tuple[str, ...]:
+        """Answers of the method's back end that failed their check and were solved
+        again by another (what each problem was and why)."""
+        return ()
+
+    @property
     def solve_time(self) -> float:
         raise NotImplementedError
 

@@ -26,7 +26,7 @@ def extrude(scene: Scene, depth: float | None = None) -> Scene:
     for b in scene.blocks:
         poly = ccw(b.points)
         if signed_area(poly) <= 0:
-            raise InputError("polygon has zero area", f"block '{b.id}'")
+            raise InputError("polygon has zero area", f"block {b.id!r}")
         n = len(poly)
         verts = [(float(x), 0.0, float(y)) for x, y in poly] + \
                 [(float(x), t, float(y)) for x, y in poly]

@@ -322,7 +322,7 @@ def validate_polyhedra(scene: Scene) -> None:
 
 
 def _validate_block(b: Block) -> None:
-    where = f"block '{b.id}'"
+    where = f"block {b.id!r}"
     size = _size(b)
     tol = POLY_TOL * max(size, 1e-300)
     for k, f in enumerate(b.faces or ()):
@@ -413,7 +413,7 @@ def _check_self_intersection(b: Block, s: Shape, nhat: np.ndarray, offset: np.nd
     end at one of its vertices excepted), and no coplanar face overlapping it."""
     import shapely
 
-    where = f"block '{b.id}'"
+    where = f"block {b.id!r}"
     local, faces = s.local, s.faces
     edges = np.array(list(table.keys()), dtype=int)
     polys = []
@@ -723,8 +723,8 @@ def check_overlaps_3d(scene: Scene) -> None:
                     hit = True
                     break
         if hit:
-            raise InputError(f"blocks '{A.id}' and '{B.id}' overlap; blocks may touch but "
-                             "not overlap", f"block '{A.id}'")
+            raise InputError(f"blocks {A.id!r} and {B.id!r} overlap; blocks may touch but "
+                             "not overlap", f"block {A.id!r}")
 
 
 def _boxes(block: Block, pieces: list[Piece]) -> tuple[np.ndarray, np.ndarray]:

@@ -1,13 +1,17 @@
 """Semantic and geometric validation of a scene.
 
 Checks that a scene file's structure alone cannot catch: duplicate ids, loads on
-supports or unknown blocks, supports and free blocks present, simple polygons of
+supports or unknown blocks, supports and free blocks present, quantities derived from
+the numbers (areas, volumes, weights, loads and their moments, and live loads times a
+load factor) finite and representable, simple polygons of
 non-zero area, no two blocks whose interiors overlap, and joint overrides only between
 blocks in contact, one per joint. Every failure is an :class:`~rigidblocks.errors.InputError` naming
 the block(s) at fault.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -19,6 +23,11 @@ from .model import Scene
 DEFAULT_TOL = 1e-7
 #: an overlap smaller than this fraction of the smaller block's area is round-off
 OVERLAP_AREA_TOL = 1e-6
+#: the largest magnitude of a quantity derived from a scene (coordinates, areas and
+#: volumes, weights, loads, their moments, live loads times the load factor): the
+#: analysis multiplies such quantities in pairs (forces by lever arms, loads by
+#: factors) and sums them over blocks, which stays finite below 1e300
+LARGEST = 1e150
 
 
 def validate_scene(scene: Scene, tol: float = DEFAULT_TOL) -> None:
@@ -27,6 +36,7 @@ def validate_scene(scene: Scene, tol: float = DEFAULT_TOL) -> None:
     name touching blocks is checked where the joints are found
     (:func:`rigidblocks.contacts.detect_contacts`)."""
     _check_ids_and_loads(scene)
+    check_representable(scene)
     if scene.dimension == 2:
         _check_polygons(scene)
         check_overlaps_2d(scene)
@@ -36,11 +46,95 @@ def validate_scene(scene: Scene, tol: float = DEFAULT_TOL) -> None:
         validate_polyhedra(scene)
 
 
+def _too_large(value: float) -> bool:
+    return not (math.isfinite(value) and abs(value) <= LARGEST)
+
+
+def _beyond(what: str, value: float, remedy: str = "give the scene in other units") -> str:
+    return (f"{what} reaches {value:.3g}, beyond {LARGEST:g}: more than the analysis "
+            f"carries in double precision (its products and sums would overflow); {remedy}")
+
+
+def _block_bounds(scene: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per block: its largest coordinate, the diagonal of its bounding box, and the
+    weight of that box (unit weight x area x depth, or x volume), an upper bound on
+    the block's weight computed from coordinates alone (without overflow warnings)."""
+    verts = np.concatenate([b.points for b in scene.blocks], axis=0)
+    starts = np.concatenate([[0], np.cumsum([len(b.vertices) for b in scene.blocks])])
+    gamma = np.array([scene.effective_unit_weight if b.unit_weight is None
+                      else float(b.unit_weight) for b in scene.blocks])
+    depth = scene.effective_depth if scene.dimension == 2 else 1.0
+    with np.errstate(all="ignore"):
+        lo = np.minimum.reduceat(verts, starts[:-1], axis=0)
+        hi = np.maximum.reduceat(verts, starts[:-1], axis=0)
+        big = np.maximum(np.abs(lo), np.abs(hi)).max(axis=1)
+        extent = hi - lo
+        weight = gamma * np.prod(extent, axis=1) * depth
+        return big, np.linalg.norm(extent, axis=1), weight
+
+
+def check_representable(scene: Scene) -> None:
+    """Raise :class:`InputError` naming the block or key where a quantity derived from
+    the scene is not finite or exceeds :data:`LARGEST`: a block's coordinates, the area
+    (volume) and weight of its bounding box (bounds on the block's own, computed
+    without an invalid geometry), the live body force on it and the moment of its
+    weight, a load's force and moment and the moment of its force about the block.
+    Checked before any geometry is computed from them (coordinates of 1e300 gave "zero
+    area" after overflow warnings) and so before any solve."""
+    if not scene.blocks:
+        return
+    big, diag, weight = _block_bounds(scene)
+    g = max((abs(x) for x in scene.live_body_force or ()), default=0.0)
+    name = "its area" if scene.dimension == 2 else "its volume"
+    with np.errstate(all="ignore"):
+        checks = (("a coordinate", big), (f"{name} (bounding box)", diag ** scene.dimension),
+                  ("its weight (unit weight x bounding box)", weight),
+                  ('its live body force ("live_body_force" x weight)', weight * g),
+                  ("the moment of its weight", weight * big))
+    free = ~scene.support_mask  # a support's weight is not a load
+    for k, (what, values) in enumerate(checks):
+        bad = ~(np.abs(values) <= LARGEST) & (free if k >= 2 else True)
+        if bad.any():
+            k = int(np.flatnonzero(bad)[0])
+            raise InputError(_beyond(what, float(values[k])),
+                             f"block {scene.blocks[k].id!r}")
+    reach = dict(zip((b.id for b in scene.blocks), big + diag, strict=True))
+    for i, ld in enumerate(scene.loads):
+        force = float(np.abs(ld.force).max(initial=0.0))
+        arm = reach.get(ld.block, 0.0)
+        if ld.point is not None:
+            arm += float(np.abs(ld.point).max(initial=0.0))
+        moment = float(np.abs(np.atleast_1d(ld.moment)).max(initial=0.0)) \
+            if ld.moment is not None else 0.0
+        for what, value in (("its force", force), ("its moment", moment),
+                            ("the moment of its force about the block", force * arm)):
+            if _too_large(value):
+                raise InputError(_beyond(what, value), f"load #{i} on block {ld.block!r}")
+
+
+def check_load_factor(scene: Scene, load_factor: float) -> None:
+    """Raise :class:`InputError` where ``load_factor`` times the largest live load (a
+    force or moment, or the live body force on a block's weight bound, as
+    :func:`check_representable` has them) is not finite or exceeds :data:`LARGEST`
+    (``check --load-factor 1e308`` ended in a solver's NumericalError)."""
+    live = [float(np.abs(ld.force).max(initial=0.0)) for ld in scene.loads if ld.is_live]
+    live += [float(np.abs(np.atleast_1d(ld.moment)).max(initial=0.0))
+             for ld in scene.loads if ld.is_live and ld.moment is not None]
+    if scene.live_body_force is not None and scene.blocks:
+        g = max(abs(x) for x in scene.live_body_force)
+        live.append(float(_block_bounds(scene)[2][~scene.support_mask].max(initial=0.0)) * g)
+    with np.errstate(all="ignore"):
+        top = max(live, default=0.0) * float(load_factor)
+    if _too_large(top):
+        raise InputError(_beyond(f"the load factor {load_factor:g} times the largest live "
+                                 "load", top, "give a smaller load factor"), "load factor")
+
+
 def _check_ids_and_loads(scene: Scene) -> None:
     seen: set[str] = set()
     for b in scene.blocks:
         if b.id in seen:
-            raise InputError("duplicate block id", f"block '{b.id}'")
+            raise InputError("duplicate block id", f"block {b.id!r}")
         seen.add(b.id)
     if not any(b.support for b in scene.blocks):
         raise InputError("no support block: mark at least one block with \"support\": true")
@@ -48,16 +142,16 @@ def _check_ids_and_loads(scene: Scene) -> None:
         raise InputError("no free block: every block is a support, there is nothing to analyse")
     for i, ld in enumerate(scene.loads):
         if ld.block not in scene.index:
-            raise InputError(f"unknown block '{ld.block}'", f"load #{i}")
+            raise InputError(f"unknown block {ld.block!r}", f"load #{i}")
         if scene.block(ld.block).support:
-            raise InputError(f"block '{ld.block}' is a support: loads go on free blocks only",
+            raise InputError(f"block {ld.block!r} is a support: loads go on free blocks only",
                              f"load #{i}")
     pairs: set[frozenset[str]] = set()
     for j in scene.joints:
-        where = f"joint '{j.blocks[0]}'-'{j.blocks[1]}'"
+        where = f"joint {j.blocks[0]!r}-{j.blocks[1]!r}"
         for bid in j.blocks:
             if bid not in scene.index:
-                raise InputError(f"unknown block '{bid}'", where)
+                raise InputError(f"unknown block {bid!r}", where)
         if frozenset(j.blocks) in pairs:
             raise InputError("overridden twice: give one override per joint", where)
         pairs.add(frozenset(j.blocks))
@@ -74,13 +168,13 @@ def _check_polygons(scene: Scene) -> None:
     if flat.any():
         b = scene.blocks[int(np.flatnonzero(flat)[0])]
         raise InputError("polygon has zero area (its vertices are collinear or repeated)",
-                         f"block '{b.id}'")
+                         f"block {b.id!r}")
     rings = shapely.linearrings(verts, indices=owner)
     simple = shapely.is_simple(rings)
     if not simple.all():
         b = scene.blocks[int(np.flatnonzero(~simple)[0])]
         raise InputError("polygon is self-intersecting (its edges cross or touch)",
-                         f"block '{b.id}'")
+                         f"block {b.id!r}")
 
 
 def block_polygons(scene: Scene):
@@ -124,9 +218,9 @@ def check_overlaps_2d(scene: Scene) -> None:
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
         a, b = scene.blocks[i[k]].id, scene.blocks[j[k]].id
-        raise InputError(f"blocks '{a}' and '{b}' overlap (their interiors share an area of "
+        raise InputError(f"blocks {a!r} and {b!r} overlap (their interiors share an area of "
                          f"{areas[k]:.3g}); blocks may touch but not overlap",
-                         f"block '{a}'")
+                         f"block {a!r}")
 
 
 __all__ = ["validate_scene", "check_overlaps_2d", "block_polygons", "scene_size"]

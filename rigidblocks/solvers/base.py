@@ -145,6 +145,37 @@ def normalised(problem: ConicProblem, res: SolverResult) -> SolverResult | None:
     return replace(res, y=res.y * scale)
 
 
+def certificate_problem(problem: ConicProblem, status: str) -> ConicProblem | None:
+    """The problem whose solution is the certificate of an infeasible (``status``
+    infeasible) or unbounded problem, for a back end that returns the status without
+    one, in the same standard form (the back end solves it as any other):
+
+    * infeasible: min b'y s.t. A'y = 0, y in the dual cone K* (= K: zero rows free,
+      nonnegative rows, second-order cones), |y| <= 1;
+    * unbounded (no quadratic term): min c'd s.t. A d + s = 0 with s in K, |d| <= 1.
+
+    A negative optimum is the certificate (y, or the ray d as ``z``); None for an
+    unbounded problem with a quadratic term."""
+    A = problem.A.tocsr()
+    m, n = A.shape
+    ne, nl = problem.n_eq, problem.n_nonneg
+    eye_m, eye_n = sp.identity(m, format="csr"), sp.identity(n, format="csr")
+    if status == INFEASIBLE:
+        # rows: A'y = 0; y >= 0 on the nonnegative rows; box; y in the cones
+        rows = [A.T.tocsr(), -eye_m[ne:ne + nl], eye_m, -eye_m, -eye_m[ne + nl:]]
+        rhs = [np.zeros(n), np.zeros(nl), np.ones(m), np.ones(m), np.zeros(m - ne - nl)]
+        return ConicProblem(c=problem.b.astype(float), A=sp.vstack(rows).tocsc(),
+                            b=np.concatenate(rhs), n_eq=n, n_nonneg=nl + 2 * m,
+                            soc=problem.soc)
+    if problem.P is not None and problem.P.nnz:
+        return None
+    rows = [A[:ne], A[ne:ne + nl], eye_n, -eye_n, A[ne + nl:]]
+    rhs = [np.zeros(ne), np.zeros(nl), np.ones(n), np.ones(n), np.zeros(m - ne - nl)]
+    return ConicProblem(c=problem.c.astype(float), A=sp.vstack(rows).tocsc(),
+                        b=np.concatenate(rhs), n_eq=ne, n_nonneg=nl + 2 * n,
+                        soc=problem.soc)
+
+
 def residuals(problem: ConicProblem, res: SolverResult) -> dict:
     """The answer's residuals against the problem itself, relative to its size.
 
@@ -154,6 +185,9 @@ def residuals(problem: ConicProblem, res: SolverResult) -> dict:
     (|primal - dual objective| over max(1, |objective|)).
     Infeasible with a certificate y: ``certificate`` (|A'y| and the cone breach of y,
     over |y| |A|) and ``margin`` (-b'y over |y| max(1, |b|), > 0 for a certificate).
+    Unbounded with a ray d in ``z`` (no quadratic term): ``certificate`` (|A d| on the
+    zero rows and the cone breach of -A d, over |d| |A|) and ``margin`` (-c'd over
+    |d| max(1, |c|)).
     Empty when the back end returned nothing to check.
     """
     A, b, c = problem.A, problem.b, problem.c
@@ -175,6 +209,17 @@ def residuals(problem: ConicProblem, res: SolverResult) -> dict:
         dobj = float(-b @ y - 0.5 * z @ Pz)
         return {"primal": primal / pscale, "dual": dual / dscale,
                 "gap": abs(pobj - dobj) / max(1.0, abs(pobj), abs(dobj))}
+    if res.status == UNBOUNDED and res.z is not None and (problem.P is None
+                                                          or not problem.P.nnz):
+        d = res.z
+        nd = float(np.abs(d).max(initial=0.0))
+        if not nd > 0:
+            return {"certificate": float("inf"), "margin": 0.0}
+        na = float(abs(A).max()) if A.nnz else 1.0
+        Ad = A @ d
+        ray = max(float(np.abs(Ad[:ne]).max(initial=0.0)), _cone_breach(problem, -Ad))
+        return {"certificate": ray / (nd * na),
+                "margin": float(-c @ d) / (nd * max(1.0, float(np.abs(c).max(initial=0.0))))}
     if res.status == INFEASIBLE and res.y is not None:
         y = res.y
         ny = float(np.abs(y).max(initial=0.0))

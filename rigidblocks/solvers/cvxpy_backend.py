@@ -7,6 +7,7 @@ formulation as the native Clarabel path.
 from __future__ import annotations
 
 import time
+import warnings
 
 import numpy as np
 
@@ -52,7 +53,10 @@ def solve_cvxpy(problem: ConicProblem, solver: str, **options) -> SolverResult:
     prob = cp.Problem(cp.Minimize(obj), cons)
     t0 = time.perf_counter()
     try:
-        prob.solve(solver=name, **options)
+        with warnings.catch_warnings():
+            # "Solution may be inaccurate": the status says so (a failure here)
+            warnings.simplefilter("ignore", UserWarning)
+            prob.solve(solver=name, **options)
     except cp.error.SolverError as err:
         return SolverResult(FAILURE, None, None, np.nan, f"cvxpy-{name.lower()}", str(err),
                             solve_time=time.perf_counter() - t0)
@@ -63,10 +67,14 @@ def solve_cvxpy(problem: ConicProblem, solver: str, **options) -> SolverResult:
     zz = y = None
     if status == OPTIMAL:
         zz = np.asarray(z.value)
+    if status in (OPTIMAL, INFEASIBLE) and all(c.dual_value is not None for c in cons):
+        # infeasible: the duals are a certificate (A'y = 0, y in the dual cone, b'y < 0)
         parts = []
         k = 0
+        # cvxpy's duals follow the convention of the module's KKT condition already
+        # (min z s.t. z == 1 gives -1, as Clarabel's)
         if ne:
-            parts.append(-np.asarray(cons[k].dual_value).ravel())
+            parts.append(np.asarray(cons[k].dual_value).ravel())
             k += 1
         if ni:
             parts.append(np.asarray(cons[k].dual_value).ravel())

@@ -42,6 +42,7 @@ from .base import (
     UNBOUNDED,
     ConicProblem,
     SolverResult,
+    certificate_problem,
     normalised,
     residuals,
 )
@@ -49,12 +50,19 @@ from .registry import SOLVERS, solve
 
 #: tolerances of the verdict-deciding solves (the relaxations, the max-load LP)
 RELAX_SETTINGS = {"tol_gap_abs": 1e-10, "tol_gap_rel": 1e-10, "tol_feas": 1e-10}
+#: SCS (a first-order method, defaults 1e-4) at tolerances that bring its answers within
+#: the check of :data:`VERIFY_TOL` on the catalogue (docs/methods.md gives the figures)
+SCS_TIGHT = {"eps_abs": 1e-10, "eps_rel": 1e-10, "max_iters": 1_000_000}
 #: the same for each back end whose defaults are looser than the verdict threshold
 TIGHT_SETTINGS = {
     "clarabel": RELAX_SETTINGS,
     "cvxpy-highs": {"primal_feasibility_tolerance": 1e-10,
                     "dual_feasibility_tolerance": 1e-10},
     "cvxpy-clarabel": RELAX_SETTINGS,
+    "scs": SCS_TIGHT,
+    "cvxpy-scs": SCS_TIGHT,
+    "cvxpy-osqp": {"eps_abs": 1e-10, "eps_rel": 1e-10, "max_iter": 200000,
+                   "polish": True},
 }
 #: the next tolerances short of a back end's defaults, where TIGHT_SETTINGS are out of
 #: its reach at the scene's size (the relaxation of a 20,093-block wall at f = 1: no
@@ -102,6 +110,12 @@ CONFIRM_SETTINGS = {"tol_gap_abs": 1e-12, "tol_gap_rel": 1e-12, "tol_feas": 1e-1
                     "tol_ktratio": 1e-9, "max_iter": 400,
                     "iterative_refinement_reltol": 1e-14,
                     "iterative_refinement_abstol": 1e-14}
+#: the confirming settings by back end (:meth:`Runner.confirm`)
+CONFIRM_BY = {"clarabel": CONFIRM_SETTINGS, "cvxpy-clarabel": CONFIRM_SETTINGS,
+              "osqp": {"eps_abs": 1e-12, "eps_rel": 1e-12},
+              "cvxpy-osqp": {"eps_abs": 1e-12, "eps_rel": 1e-12, "polish": True},
+              "scs": {**SCS_TIGHT, "eps_abs": 1e-12, "eps_rel": 1e-12},
+              "cvxpy-scs": {**SCS_TIGHT, "eps_abs": 1e-12, "eps_rel": 1e-12}}
 #: back ends that solve linear programs only
 LP_ONLY = ("highs",)
 #: the back end that takes the problems an LP-only back end cannot
@@ -150,6 +164,11 @@ class Runner:
     verify: bool = True
     #: answers of the back end that were rejected and solved again by FALLBACK
     rejected: list = field(default_factory=list)
+    #: the back ends that answered a solve (optimal, infeasible or unbounded), in the
+    #: order of their first answer: others than ``solver`` where an answer of it was
+    #: rejected and solved again, where a problem is beyond its capabilities (a QP for
+    #: an LP-only back end), or for a confirming solve
+    answered_by: list = field(default_factory=list)
     #: back ends whose TIGHT_SETTINGS were out of reach: their tight solves start at
     #: NEAR_TIGHT_SETTINGS
     out_of_reach: set = field(default_factory=set)
@@ -172,6 +191,8 @@ class Runner:
                after: dict | None = None) -> SolverResult:
         t0 = time.perf_counter()
         res = solve(problem, solver, after=after, **settings)
+        if solver not in self.answered_by and (res.status in _DONE or res.next_met):
+            self.answered_by.append(solver)
         self.wall_time += time.perf_counter() - t0
         self.n_solves += 1
         self.solve_time += res.solve_time
@@ -210,7 +231,7 @@ class Runner:
         else:
             if not check:
                 return res
-            res = verified(problem, res)
+            res = verified(problem, self._certified(problem, what, res))
             if res.verified or (res.solver == FALLBACK and tight and not self.settings):
                 return res
             rejected = f"{res.solver} {res.status}: {describe(res.residuals)}"
@@ -223,6 +244,25 @@ class Runner:
             return res
         self.rejected.append(f"the {what} problem ({rejected})")
         return replace(again, residuals={**again.residuals, "rejected": rejected})
+
+    def _certified(self, problem: ConicProblem, what: str,
+                   res: SolverResult) -> SolverResult:
+        """An infeasible or unbounded answer of this runner's back end given without its
+        certificate, with the one the same back end finds for it
+        (:func:`~rigidblocks.solvers.base.certificate_problem`: a negative optimum),
+        else as it is."""
+        missing = (res.status == INFEASIBLE and res.y is None
+                   or res.status == UNBOUNDED and res.z is None)
+        cp = certificate_problem(problem, res.status) if missing else None
+        if cp is None:
+            return res
+        try:
+            ans = self._run(cp, f"{what} certificate", True, self.solver, self.settings)
+        except SolverFailure:
+            return res
+        if ans.status != OPTIMAL or not ans.objective < 0:
+            return res
+        return replace(res, y=ans.z) if res.status == INFEASIBLE else replace(res, z=ans.z)
 
     def attempt(self, problem: ConicProblem, what: str,
                 settings: dict) -> SolverResult | None:
@@ -242,11 +282,20 @@ class Runner:
 
     def confirm(self, problem: ConicProblem, what: str) -> SolverResult:
         """A tighter, checked solve of a problem whose answer left a verdict near its
-        threshold: :data:`FALLBACK` at :data:`CONFIRM_SETTINGS`."""
-        res = self._solve(problem, FALLBACK, CONFIRM_SETTINGS)
+        threshold, by this runner's back end at its entry of :data:`CONFIRM_BY` (the
+        tight solve again where it has none: HiGHS' simplex answers with a vertex);
+        Clarabel's answer (the policy's re-solve, noted) where the back end's own fails
+        its check."""
+        extra = CONFIRM_BY.get(self.solver)
+        if extra is None:
+            return self.run(problem, what, tight=True)
+        res = self._solve(problem, self.solver, {**extra, **self.settings})
         if res.status not in _DONE:
-            res = self._run(problem, what, True, FALLBACK, {})
-        return verified(problem, res)
+            res = self._run(problem, what, True, self.solver, self.settings)
+        res = verified(problem, res)
+        if res.verified or self.solver == FALLBACK:
+            return res
+        return self.run(problem, what, tight=True)
 
     def _run(self, problem: ConicProblem, what: str, tight: bool, solver: str,
              base: dict, retry: bool = True, stall: bool = True) -> SolverResult:
@@ -312,9 +361,9 @@ def _settled(res: SolverResult) -> SolverResult:
 
 def verified(problem: ConicProblem, res: SolverResult) -> SolverResult:
     """``res`` with its residuals and whether they pass :data:`VERIFY_TOL`: an optimal
-    answer by its primal and dual residuals and gap, an infeasible one by its
-    certificate; an unbounded one, or one without what it takes to check it, fails
-    unless Clarabel gave it (its statuses come with their own certificate tests). An
+    answer by its primal and dual residuals and gap, an infeasible or unbounded one by
+    its certificate (the duals, or a ray in ``z``); one without what it takes to check
+    it fails unless Clarabel gave it (its statuses come with their own certificate tests). An
     optimal answer that fails with its duals as given passes with them normalised
     (:func:`~rigidblocks.solvers.base.normalised`) where they then pass: that answer
     is returned, with the dual residual before normalisation as ``normalised``."""
@@ -330,7 +379,7 @@ def verified(problem: ConicProblem, res: SolverResult) -> SolverResult:
             if passes(rs):
                 return replace(scaled, residuals={**rs, "normalised": r["dual"]},
                                verified=True)
-    elif res.status == INFEASIBLE and r:
+    elif res.status in (INFEASIBLE, UNBOUNDED) and r:
         ok = r["certificate"] <= VERIFY_TOL and r["margin"] > CERT_MARGIN
     else:
         ok = res.solver == FALLBACK
