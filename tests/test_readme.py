@@ -24,3 +24,18 @@ def test_readme_python_example_output_matches_comments():
     assert len(out) == len(expected) == 3
     for got, want in zip(out, expected, strict=True):
         assert got.strip() == want
+
+
+def test_readme_keeps_its_commands_and_states_what_the_tests_need():
+    """The first two command lines stay the ones a new user types; the requirements are
+    stated; every notebook in notebooks/ is listed."""
+    text = (ROOT / "README.md").read_text()
+    block = re.search(r"```bash\n(.*?)```", text, re.S).group(1).splitlines()
+    assert block[:2] == ['pip install . && rigidblocks friction examples/reference.json',
+                         'pip install ".[test]" && python -m pytest -q']
+    for need in ("Python >= 3.11", "virtual environment", "Chromium", "../shared",
+                 "CI=true"):
+        assert need in text, need
+    notebooks = sorted(p.stem for p in (ROOT / "notebooks").glob("*.ipynb"))
+    assert len(notebooks) == 5
+    assert all(f"`{name}`" in text for name in notebooks)
