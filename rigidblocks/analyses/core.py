@@ -45,7 +45,10 @@ def _load_factor(scene: Scene, value: Any) -> float:
     """The load factor asked for, or the scene's (``load_factor`` key, default 1)."""
     if value is None:
         return scene.effective_load_factor
-    return finite_number(value, "load factor")
+    lf = finite_number(value, "load factor")
+    if lf < 0:
+        raise InputError(f"load factor must be >= 0, got {value!r}")
+    return lf
 
 
 def _bracket(lim: Limit) -> tuple[float, float] | None:

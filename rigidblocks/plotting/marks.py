@@ -5,13 +5,12 @@ off the axes.
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from ..scene.geometry import block_weights, scene_size
+from ..scene.geometry import scene_size, scene_weights
 from ..scene.model import Scene
 
 DEAD_COLOUR = "#333333"
@@ -33,22 +32,6 @@ MARK_FRACTION = 0.05
 ZERO_FORCE = 1e-4
 LAMBDA = "\N{GREEK SMALL LETTER LAMDA}"
 TIMES = "\N{MULTIPLICATION SIGN}"
-
-
-_WEIGHTS: dict[int, tuple[Any, tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
-
-
-def scene_weights(scene: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`rigidblocks.scene.geometry.block_weights`, remembered for the last scene
-    asked about (a report asks for them several times; a 3D block's volume and
-    centroid take a fraction of a millisecond each, seconds for thousands)."""
-    hit = _WEIGHTS.get(id(scene))
-    if hit is not None and hit[0]() is scene:
-        return hit[1]
-    value = block_weights(scene)
-    _WEIGHTS.clear()
-    _WEIGHTS[id(scene)] = (weakref.ref(scene), value)
-    return value
 
 
 @dataclass(frozen=True)
