@@ -286,14 +286,14 @@ class _Words:
             return ("UNSTABLE: the dead load alone has no admissible state", "", "", [])
         lm = float(res.load_multiplier)
         size = self.live_size
-        number = (f"{self.lam}* = {lm:.6g}: {lm:.4g} {self.x} {self.force(size)} = "
+        number = (f"{self.lam}* = {lm:.6g}, that is {lm:.4g} {self.x} {self.force(size)} = "
                   f"{self.force(lm * size)} {self.direction()}").rstrip()
+        why = []
         if res.tilt_angle_deg is not None:
             a = float(np.linalg.norm(np.asarray(self.scene.live_body_force)[:-1]))
-            number += (f" (tilt angle atan({self.lam}* a) = {res.tilt_angle_deg:.4f}"
-                       f"{self.deg}, a = {a:g}: the horizontal body force per unit weight, "
-                       "in g)")
-        why = []
+            why.append(f"tilt angle atan({self.lam}* a) = {res.tilt_angle_deg:.4f}{self.deg}, "
+                       f"a = {a:g} the horizontal body force per unit weight (in g): the "
+                       "ground tilted by this angle loads it the same way")
         lf = self.scene.load_factor
         if lf:
             ok = "carries" if lm >= lf else "does NOT carry"
@@ -301,10 +301,10 @@ class _Words:
         mech = res.mechanism
         if mech is None:
             names = [f"{a}-{b}" for a, b in res.governing_joints]
-            return (f"COLLAPSE at {self.lam}* = {lm:.4g}", number,
+            return ("COLLAPSE", number,
                     ("joints at their friction limit: " + joint_list(names)) if names
                     else "", why)
-        return (f"COLLAPSE at {self.lam}* = {lm:.4g}", number, mechanism_text(res), why)
+        return "COLLAPSE", number, mechanism_text(res), why
 
     def live_hint(self, res: Any) -> list[str]:
         """Where the live loads at a nonzero load factor made the verdict, how to ask

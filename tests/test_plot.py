@@ -260,5 +260,5 @@ def test_svg_keeps_text_as_text(tmp_path):
     out = tmp_path / "s.svg"
     assert main(["plot", str(path), "--analysis", "load", "-o", str(out)]) == 0
     svg = out.read_text()
-    assert "<text" in svg and "COLLAPSE at" in svg
+    assert "<text" in svg and "COLLAPSE: λ* = " in svg
     assert 'id="DejaVuSans' not in svg  # no glyphs stored as paths
