@@ -34,6 +34,10 @@ _SOLVER_NOTE = re.compile(
     r"iteration|extreme point|\bLPs?\b|\bSOCPs?\b|mechanism: ", re.I)
 
 
+_SOLVED_AGAIN = re.compile(r"answers of (\S+) that failed their check .*? solved again "
+                           r"by (\w+)")
+
+
 @dataclass(frozen=True)
 class AnswerBlock:
     """One answer, in words (see the module's docstring). ``decided`` is False for an
@@ -98,6 +102,11 @@ def split_notes(notes: Any) -> tuple[tuple[str, ...], tuple[str, ...]]:
     reasons, solver = [], []
     for n in notes:
         (solver if _SOLVER_NOTE.search(str(n)) else reasons).append(str(n))
+        again = _SOLVED_AGAIN.match(str(n))
+        if again:  # the answer is not the chosen back end's: it is no cross-check
+            reasons.append(f"some answers of {again[1]} failed their check and were "
+                           f"solved again by {again[2]}: the result is not a "
+                           f"cross-check of {again[2]} by {again[1]}")
     return tuple(reasons), tuple(solver)
 
 
@@ -304,7 +313,8 @@ class _Words:
             return ("COLLAPSE", number,
                     ("joints at their friction limit: " + joint_list(names)) if names
                     else "", why)
-        return "COLLAPSE", number, mechanism_text(res), why
+        body = bodies_text(res)
+        return "COLLAPSE", number, mechanism_text(res), ([body] if body else []) + why
 
     def live_hint(self, res: Any) -> list[str]:
         """Where the live loads at a nonzero load factor made the verdict, how to ask
@@ -337,14 +347,71 @@ def mechanism_groups(res: Any) -> list[tuple[str, list[str]]]:
     return out
 
 
+def rigid_bodies(res: Any) -> list[list[int]]:
+    """The free blocks that move, grouped into the rigid bodies they form: blocks joined
+    by a joint that stays closed move together (largest body first)."""
+    m = res.mechanism
+    c = res.contacts
+    vel = np.abs(np.asarray(m.velocities, dtype=float)).max(axis=1)
+    top = float(vel.max(initial=0.0))
+    n = len(vel)
+    parent = list(range(n))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for k, mode in enumerate(m.modes):
+        if mode == "closed":
+            a, b = (int(x) for x in c.pairs[k])
+            parent[root(a)] = root(b)
+    support = {root(i) for i in range(n) if vel[i] <= 1e-9 * top}  # at rest
+    groups: dict[int, list[int]] = {}
+    for i in range(n):
+        if vel[i] > 1e-9 * top and root(i) not in support:
+            groups.setdefault(root(i), []).append(i)
+    return sorted(groups.values(), key=len, reverse=True)
+
+
+def bodies_text(res: Any) -> str:
+    """How the moving blocks move, in words: as how many rigid bodies."""
+    groups = rigid_bodies(res)
+    if not groups:
+        return ""
+    n = sum(len(g) for g in groups)
+    if len(groups) == 1:
+        return f"the {n} moving block{'s' if n > 1 else ''} move as one rigid body"
+    if len(groups) == n:
+        return f"the {n} moving blocks move each on its own (no two together)"
+    sizes = ", ".join(str(len(g)) for g in groups[:FIRST])
+    more = f", and {len(groups) - FIRST} more" if len(groups) > FIRST else ""
+    return (f"the {n} moving blocks form {len(groups)} rigid bodies (of {sizes} "
+            f"blocks{more})")
+
+
 def mechanism_text(res: Any) -> str:
+    """The mechanism in words: each group with its joints where few joints move; where
+    more than FIRST do, how many of each kind and the fastest FIRST (a distributed
+    mechanism, a dome's, is read from its head)."""
     groups = mechanism_groups(res)
-    kind = ("" if res.mechanism.kind == "vertex" else
-            "the blend of every optimal mechanism: ")
+    m = res.mechanism
+    kind = ("the blend of every optimal mechanism: " if m.kind == "blend" else "")
     if not groups:
         return kind + "no joint moves"
-    return kind + "; ".join(f"{len(n)} {w} ({joint_list(n)})" for w, n in groups)
+    order = m.ranking
+    if len(order) <= FIRST:
+        return kind + "; ".join(f"{len(n)} {w} ({', '.join(n)})" for w, n in groups)
+    word = dict(MODE_WORDS)
+    fastest = [f"{a}-{b} ({word[m.modes[k]]})"
+               for a, b, k in ((*res.joint_name(k), k) for k in order[:FIRST])]
+    return (kind + f"{len(order)} joints move: "
+            + ", ".join(f"{len(n)} {w}" for w, n in groups)
+            + "; fastest: " + ", ".join(fastest)
+            + f" and {len(order) - FIRST} more")
 
 
-__all__ = ["AnswerBlock", "answer_block", "joint_list", "mechanism_groups",
-           "live_load_size", "live_load_text", "mechanism_text", "split_notes"]
+__all__ = ["AnswerBlock", "answer_block", "bodies_text", "joint_list", "live_load_size",
+           "live_load_text", "mechanism_groups", "mechanism_text", "rigid_bodies",
+           "split_notes"]

@@ -177,7 +177,7 @@ def test_mechanism_counts_are_one_counting(capsys):
         line = next(ln for ln in capsys.readouterr().out.splitlines()
                     if ln.startswith("governing"))
         for word, names in groups.items():
-            assert f"{len(names)} {word} (" in line, (name, line)
+            assert re.search(rf"\b{len(names)} {word}\b", line), (name, word, line)
 
 
 def test_non_associative_friction_is_printed_inside_its_bracket(capsys):
@@ -191,3 +191,25 @@ def test_non_associative_friction_is_printed_inside_its_bracket(capsys):
     assert brackets, out
     for lo, hi in brackets:
         assert float(lo) <= printed <= float(hi), (printed, lo, hi)
+
+
+def test_solver_notes_are_verbose_and_a_fallback_is_a_reason(capsys):
+    """Notes on the solver go under --verbose (the JSON keeps them); a back end whose
+    answers were solved again by Clarabel is said in the answer (no cross-check)."""
+    from rigidblocks.answer import split_notes
+
+    note = ("answers of scs that failed their check against the problem were solved "
+            "again by clarabel (first: the relaxation problem (cvxpy-scs optimal: primal "
+            "residual 1e-05))")
+    reasons, notes = split_notes([note, "block 'beam' touches no other block"])
+    assert notes == (note,)
+    assert len(reasons) == 2 and "block 'beam' touches no other block" in reasons
+    assert any("not a cross-check of clarabel by scs" in r for r in reasons)
+    f = str(EXAMPLES / "arch.json")
+    capsys.readouterr()
+    main(["friction", f, "--flow", "non-associative"])
+    quiet = capsys.readouterr().out
+    main(["friction", f, "--flow", "non-associative", "--verbose"])
+    loud = capsys.readouterr().out
+    assert "\nnote " not in quiet and "\nnote " in loud and "\nsolver " in loud
+    assert set(quiet.splitlines()) <= set(loud.splitlines())
