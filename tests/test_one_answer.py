@@ -213,3 +213,15 @@ def test_solver_notes_are_verbose_and_a_fallback_is_a_reason(capsys):
     loud = capsys.readouterr().out
     assert "\nnote " not in quiet and "\nnote " in loud and "\nsolver " in loud
     assert set(quiet.splitlines()) <= set(loud.splitlines())
+
+
+def test_path_table_has_headers_with_units(capsys):
+    """`path` prints its events under column headers with units: lambda, the live load
+    it means in the force unit (lambda x 37.69 kN for the arch), the event, the joints."""
+    capsys.readouterr()
+    assert main(["path", str(EXAMPLES / "arch.json")]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    header = next(i for i, ln in enumerate(lines) if "lambda [-]" in ln)
+    assert "live [kN]" in lines[header] and "event" in lines[header]
+    lam, live = (float(x) for x in lines[header + 1].split()[:2])
+    assert live == pytest.approx(lam * 37.69, rel=1e-3)
