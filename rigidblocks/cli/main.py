@@ -87,8 +87,10 @@ def _silence_stdout() -> None:
     fail again on the closed pipe."""
     import os
 
-    devnull = os.open(os.devnull, os.O_WRONLY)
-    os.dup2(devnull, sys.stdout.fileno())
+    try:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    except (OSError, ValueError):  # a standard output with no file (a captured one)
+        pass
 
 
 if __name__ == "__main__":  # pragma: no cover
