@@ -50,6 +50,9 @@ class AnswerBlock:
     reasons: tuple[str, ...] = ()
     notes: tuple[str, ...] = ()
     decided: bool = True
+    #: the load case in a few words for a title ("under its self-weight only (load
+    #: factor 0)")
+    case: str = ""
 
     def lines(self, verbose: bool = False, width: int = 10) -> list[str]:
         """Labelled lines for a terminal (``verbose``: with the solver's notes)."""
@@ -61,8 +64,9 @@ class AnswerBlock:
         return [f"{k:<{width}} {v}" for k, v in rows if v]
 
     def title(self) -> str:
-        """A picture's title: the verdict and the number."""
-        return f"{self.verdict}: {self.number}" if self.number else self.verdict
+        """A picture's title: the verdict, the number and the load case."""
+        text = f"{self.verdict}: {self.number}" if self.number else self.verdict
+        return f"{text}, {self.case}" if self.case else text
 
 
 def answer_block(scene: Scene, result: Any, symbols: bool = False) -> AnswerBlock:
@@ -81,7 +85,8 @@ def answer_block(scene: Scene, result: Any, symbols: bool = False) -> AnswerBloc
         return AnswerBlock(asked, str(getattr(result, "status", "")).upper(),
                            reasons=reasons, notes=notes)
     verdict, number, governing, why = build(result)
-    return AnswerBlock(asked, verdict, number, governing, tuple(why) + reasons, notes)
+    return AnswerBlock(asked, verdict, number, governing, tuple(why) + reasons, notes,
+                       case=w.short_case(result))
 
 
 def live_load_text(scene: Scene, symbols: bool = False) -> str:
@@ -206,6 +211,17 @@ class _Words:
             return text
         size = self.live_size * float(lf)
         return f"{text}, that is {self.force(size)} {self.direction()}".rstrip()
+
+    def short_case(self, result: Any) -> str:
+        """The load case of check and friction in a few words (load: none, lambda is
+        its answer)."""
+        if getattr(result, "analysis", "") not in ("check", "min_friction") or \
+                not self.scene.has_live_load:
+            return ""
+        lf = getattr(result, "load_factor", None)
+        if not lf:
+            return "under its self-weight only (load factor 0)"
+        return f"under the dead load + {lf:g} {self.x} the live load"
 
     def friction_text(self, f: Any) -> str:
         if f is None or isinstance(f, str) or math.isinf(float(f)):

@@ -88,6 +88,8 @@ def test_every_command_gives_the_same_answer(path, answers, tmp_path, capsys):
         assert main(["plot", str(path), "--analysis", cmd, "-o", str(svg)]) == 0
         title = svg_text(svg)
         assert words in title, (cmd, title)
+        if cmd != "load" and scene.has_live_load and not scene.effective_load_factor:
+            assert "self-weight only" in title and "self-weight only" in text
         if value is not None:
             assert number_text(value) in title, (cmd, title)
         # report: the status and the number

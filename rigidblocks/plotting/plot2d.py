@@ -167,7 +167,7 @@ def _title(scene: Scene, result: Any) -> str:
 
     name = scene.name or ""
     txt = answer_block(scene, result, symbols=True).title() if result is not None else ""
-    txt = "\n".join(textwrap.wrap(txt, 90))
+    txt = "\n".join(textwrap.wrap(txt, 90, break_on_hyphens=False))
     return f"{name}\n{txt}" if (name and txt) else (name or txt)
 
 
