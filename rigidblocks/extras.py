@@ -11,7 +11,7 @@ from .errors import InputError
 EXTRAS: dict[str, tuple[str, ...]] = {
     "cad": ("ezdxf",),
     "study": ("pandas", "pyarrow", "tqdm"),
-    "solvers": ("highspy",),
+    "solvers": ("highspy", "ecos"),
 }
 #: solvers reached through cvxpy that no extra installs -> how to install them
 SOLVER_PACKAGES: dict[str, str] = {"ecos": "ecos", "scs": "scs", "highs": "highspy",
@@ -35,7 +35,7 @@ def require(extra: str, what: str, modules: tuple[str, ...] | None = None) -> li
 def solver_install_hint(solver: str) -> str:
     """How to install a convex solver for cvxpy, e.g. ``pip install ecos``."""
     name = solver.lower().removeprefix("cvxpy-")
-    if name == "highs":
+    if name in ("highs", "ecos"):
         return "pip install 'rigidblocks[solvers]'"
     return f"pip install {SOLVER_PACKAGES.get(name, name)}"
 

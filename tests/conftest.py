@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
@@ -11,6 +12,44 @@ from rigidblocks.io.scene_file import scene_from_dict
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
 SHARED = ROOT.parent / "shared"
+
+
+def in_ci() -> bool:
+    """CI sets CI=true (and has ../shared beside the checkout, and Chromium)."""
+    return os.environ.get("CI", "").strip().lower() in ("true", "1", "yes")
+
+
+def require(present: bool, reason: str) -> None:
+    """A test that needs something outside the repository (shared data, a browser):
+    skipped with ``reason`` where it is missing, failed instead under CI=true, where
+    it must be there."""
+    if present:
+        return
+    if in_ci():
+        pytest.fail(f"{reason} (CI=true: it must be there)")
+    pytest.skip(reason)
+
+
+def require_shared(path: Path) -> Path:
+    """``path`` under ../shared (beside the checkout), or skip (fail under CI)."""
+    require(path.exists(), f"outside data {path} is missing (../shared beside the "
+            "checkout)")
+    return path
+
+
+def require_chromium() -> str:
+    """The Chromium executable, or skip (fail under CI)."""
+    from rigidblocks.reporting.browser import find_chromium
+
+    exe = find_chromium()
+    require(exe is not None, "no chromium on the PATH (the browser tests need it)")
+    return exe
+
+
+@pytest.fixture
+def chromium() -> str:
+    """The Chromium executable; the test is skipped without one (failed under CI)."""
+    return require_chromium()
 
 
 def rect(x0, y0, w, h):

@@ -193,3 +193,46 @@ def test_contact_tolerance_option(tmp_path, capsys):
     assert json.loads(capsys.readouterr().out)["status"] == "admissible"
     assert main(["check", path, "--contact-tol", "0"]) == 2
     assert "contact_tol" in capsys.readouterr().err
+
+
+# -- small things a user meets ----------------------------------------------------------
+def test_extrude_command_keeps_the_answers(tmp_path, capsys, block_file):
+    """`extrude` turns the 1 x 2 block (f = 0.3) into prisms: lambda* = min(f, b/h) =
+    0.3 in 3D as in 2D (the extruded problem is the plane one spread over the depth)."""
+    from rigidblocks.io import read_scene
+    from rigidblocks.scene import extrude
+
+    out = tmp_path / "block3d.json"
+    assert main(["extrude", block_file, "-o", str(out), "--depth", "0.5"]) == 0
+    assert "2 prisms 0.5 deep" in capsys.readouterr().out
+    solid = read_scene(out)
+    assert solid.dimension == 3 and solid == extrude(read_scene(block_file), 0.5)
+    assert main(["load", str(out), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["load_multiplier"] == pytest.approx(0.3,
+                                                                                 rel=1e-6)
+    assert main(["extrude", str(out), "-o", str(tmp_path / "x.json")]) == 2
+    assert "2D scene" in capsys.readouterr().err
+
+
+def test_example_help_shows_the_generator_parameters(capsys):
+    assert main(["example", "wall", "--help"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("usage: rigidblocks example wall") and "--courses" in out
+
+
+def test_output_piped_into_head_ends_quietly(tmp_path):
+    """A reader that stops after one line (`| head -1`) ends the run without a
+    traceback (exit 141, as a program the pipe ended)."""
+    import os
+    import subprocess
+    import sys
+
+    from conftest import ROOT
+
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    cmd = [sys.executable, "-m", "rigidblocks.cli.main", "check",
+           str(EXAMPLES / "wall.json"), "--joints"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
+    proc.stdout.close()  # the reader is gone before the answer is printed
+    err = proc.stderr.read().decode()
+    assert proc.wait() == 141 and "Traceback" not in err and "BrokenPipe" not in err, err

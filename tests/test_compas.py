@@ -162,6 +162,28 @@ def test_json_file_round_trip_and_cli(tmp_path, capsys):
     assert rb.check(back, load_factor=0).status == "admissible"
 
 
+def test_import_with_a_live_body_force_gives_load_its_question(tmp_path, capsys):
+    """--live-body-force '1 0': a unit cube on a support under lambda x its weight
+    along x tips about its edge at lambda* = (b/2)/(h/2) = 1 where f > 1, and slides at
+    lambda* = f below (docs/validation.md, block on a support); the load factor written
+    is 0, so check answers for the weight alone."""
+    path = tmp_path / "assembly.json"
+    compas.json_dump(two_boxes(0.0), str(path))
+    for f, expected in (("2", 1.0), ("0.4", 0.4)):
+        out = tmp_path / f"scene{f}.json"
+        assert main(["import-compas", str(path), "-o", str(out), "--friction", f,
+                     "--live-body-force", "1 0"]) == 0
+        assert "load factor 0 written" in capsys.readouterr().out
+        scene = read_scene(out)
+        assert scene.live_body_force == (1.0, 0.0, 0.0) and scene.load_factor == 0
+        res = rb.max_load_multiplier(scene)
+        assert res.load_multiplier == pytest.approx(expected, rel=1e-6)
+        assert rb.check(scene).status == "admissible"
+    assert main(["import-compas", str(path), "-o", str(tmp_path / "x.json"),
+                 "--live-body-force", "0 0"]) == 2
+    assert "--live-body-force" in capsys.readouterr().err
+
+
 def test_cra_assembly_dtype_reads_without_compas_cra(tmp_path):
     """compas_cra saves CRA_Assembly; it adds methods only, so it reads as an Assembly."""
     text = compas.json_dumps(two_boxes(0.3)).replace(

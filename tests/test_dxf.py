@@ -15,7 +15,7 @@ import math
 import ezdxf
 import numpy as np
 import pytest
-from conftest import SHARED
+from conftest import SHARED, require_shared
 
 import rigidblocks as rb
 from rigidblocks.cli.main import main
@@ -153,8 +153,7 @@ def test_lact3_import_and_collapse_multiplier(name, n_blocks, phi, theta):
     folder): published collapse tilt angle theta*, lambda* = tan(theta*) for a
     horizontal body force lambda x weight, associative friction tan(phi), zero
     cohesion; the angles were found on a grid of about 1/128 degree (about 0.1 %)."""
-    assert LACT3.is_dir(), f"shared data folder {LACT3} is missing (CI has ../shared)"
-    sc, rep = rb.read_dxf(LACT3 / name, unit_weight=25e-9, units=("mm", "kN"),
+    sc, rep = rb.read_dxf(require_shared(LACT3 / name), unit_weight=25e-9, units=("mm", "kN"),
                           friction=math.tan(math.radians(phi)), live_body_force=(1, 0),
                           report=True)
     assert len(sc.blocks) == n_blocks

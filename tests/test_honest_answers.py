@@ -52,9 +52,10 @@ def test_undecided_load_is_not_a_verdict_and_exits_3(capsys, short_budget):
     path = str(EXAMPLES / "reference.json")
     code, out, _ = run(capsys, ["load", path, "--method", "distortion"])
     assert code == 3
-    assert "UNDECIDED" in out and "UNSTABLE" not in out and "lambda*" not in out
-    assert "hinges" not in out  # no empty mechanism lists that read as "no hinges"
-    assert "note" in out  # the reason
+    assert "UNDECIDED" in out and "UNSTABLE" not in out and "lambda* =" not in out
+    assert "\nanswer " not in out  # no number
+    assert "hinging" not in out  # no empty mechanism lists that read as "no hinges"
+    assert "\nwhy " in out  # the reason
     code, d, _ = run_json(capsys, ["load", path, "--method", "distortion", "--json"])
     assert code == 3
     assert d["status"] == "undecided" and d["load_multiplier"] is None

@@ -45,10 +45,14 @@ def _fields(m: Method, analysis: str, status: str, friction: Any,
 
 def _load_factor(scene: Scene, value: Any) -> float:
     """The load factor asked for, or the scene's (``load_factor`` key, default 1),
-    checked to keep the live loads it multiplies representable
+    at least 0 and checked to keep the live loads it multiplies representable
     (:func:`~rigidblocks.scene.validate.check_load_factor`)."""
-    lf = scene.effective_load_factor if value is None else finite_number(value,
-                                                                         "load factor")
+    if value is None:
+        lf = scene.effective_load_factor
+    else:
+        lf = finite_number(value, "load factor")
+        if lf < 0:
+            raise InputError(f"load factor must be >= 0, got {value!r}")
     check_load_factor(scene, lf)
     return lf
 

@@ -102,8 +102,8 @@ _UNSETTLED = "admissible; the iteration budget"
 #: the note every non-associative result carries
 STATE_NOTE = ("non-associative sliding (no dilatancy): the answer is the one reached from "
               "the elastic state X0 (least complementary energy under equilibrium alone, "
-              "the seed's starting point), with no pinch the loads do not cause; other "
-              "states, and so other answers, may exist")
+              "the starting state of the distortion method), with no pinch the loads do "
+              "not cause; other states, and so other answers, may exist")
 
 
 def flow_mask(scene: Scene, contacts: Any, flow: str | None = None) -> np.ndarray:

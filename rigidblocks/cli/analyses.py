@@ -9,10 +9,11 @@ import sys
 from typing import Any
 
 from ..analyses import analysis
+from ..answer import answer_block
 from ..errors import InputError
 from ..io import read_scene
 from ..methods import METHODS, Progress
-from ..results import headline
+from .options import load_factor as load_factor_type
 from .progress import run_interruptible
 
 #: options of the question an analysis answers: command-line name -> keyword argument
@@ -25,7 +26,7 @@ def add_question_args(p: argparse.ArgumentParser, takes: tuple[str, ...]) -> Non
         p.add_argument("--friction", help='friction coefficient f, or "infinite" '
                        "(default: the scene's)")
     if "load_factor" in takes:
-        p.add_argument("--load-factor", type=float, default=None,
+        p.add_argument("--load-factor", type=load_factor_type, default=None,
                        help="lambda multiplying the live loads (default: the scene's "
                        "load_factor, or 1)")
     p.add_argument("--method", default=None,
@@ -60,6 +61,9 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                    help="the per-joint table (N, T, eccentricity, |T|/N, mode): in the "
                    "JSON with --json, else printed, or written to the CSV file given")
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--verbose", "-v", action="store_true",
+                   help="also print the solver's and the accuracy's notes (the JSON "
+                   "always has them)")
 
 
 #: exit status by result status: 3 undecided, 1 failure, 0 decided
@@ -84,7 +88,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(_jsonable(res.to_dict(joints=args.joints == "-"))))
     else:
-        print(report(scene, res, joints=args.joints == "-"))
+        print(report(scene, res, joints=args.joints == "-", verbose=args.verbose))
         if csv_path is not None:
             print(f"wrote {csv_path}")
     return EXIT.get(res.status, 0)
@@ -127,90 +131,31 @@ def _jsonable(v: Any) -> Any:
     return v
 
 
-def report(scene, res, joints: bool = False) -> str:
-    """A short human-readable table of a result (``joints``: with the joint table)."""
-    fu = scene.force_unit or "force units"
+def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
+    """The answer in words (:func:`rigidblocks.answer.answer_block`, as the HTML report
+    and the pictures give it); ``joints``: with the joint table; ``verbose``: with the
+    solver's and the accuracy's notes."""
     lines = [f"scene      {scene.name or scene.source}",
              f"blocks     {len(scene.blocks)} ({int(scene.support_mask.sum())} supports), "
              f"joints {res.contacts.n_joints}"]
-    d = res.to_dict()
-    if res.analysis == "check":
-        f = d["friction"]
-        lines.append(f"friction   {f if f is not None else '-'}   load factor {res.load_factor:g}")
-    elif res.analysis == "min_friction":
-        lines.append(f"lambda     {res.load_factor:g}   (load factor)")
-    else:
-        lines.append(f"friction   {d['friction']}")
-    if not res.decided:
-        lines += _undecided(res)
-    elif res.analysis == "check":
-        verdict = {"admissible": "ADMISSIBLE", "inadmissible": "NOT ADMISSIBLE"}
-        lines.append(f"verdict    {verdict[res.status]}")
-        fd = res.friction_demand
-        if fd is not None:
-            a, b = res.joint_name(fd[1])
-            lines.append(f"demand     |T|/N up to {fd[0]:.4g} (joint {a}-{b}) in the state "
-                         "of least complementary energy")
-        if res.status == "inadmissible" and math.isfinite(res.violation):
-            lines.append(f"violation  {res.violation:.4g} {fu} (smallest possible breach "
-                         "of the joint laws)")
-            if res.breaches:
-                lines.append("breached   " + _joint_list(
-                    [res.joint_name(k) for k, _ in res.breaches],
-                    [f"{v:.3g}" for _, v in res.breaches]))
-        if res.status == "inadmissible":
-            lines += _live_hint(scene, res)
-    elif res.analysis == "min_friction":
-        if res.status == "stable":
-            lines.append(f"f*         {res.friction_factor:.6g}   (friction angle "
-                         f"{res.friction_angle_deg:.4f} deg)")
-            lines.append(f"governing  {_joint_list(res.governing_joints)}")
-        else:
-            lines.append(f"verdict    {headline(res).upper()}")
-            if res.status == "unstable":
-                lines += _live_hint(scene, res)
-    else:
-        if res.status == "collapse":
-            tilt = (f"   (tilt angle theta* = atan(lambda* a) = {res.tilt_angle_deg:.4f} deg)"
-                    if res.tilt_angle_deg is not None else "")
-            lines.append(f"lambda*    {res.load_multiplier:.6g}{tilt}")
-            mech = d.get("mechanism")
-            if mech is not None:
-                for key in ("hinges", "sliding", "open"):
-                    lines.append(f"{key:<10} {_joint_list(mech.get(key, []))}")
-                if mech["kind"] == "blend":
-                    lines.append("mechanism  the blend of every optimal mechanism "
-                                 "(interior-point duals)")
-            else:
-                lines.append(f"mechanism  none from the {res.solver} method; joints at "
-                             f"their friction limit: {_joint_list(res.governing_joints)}")
-        else:
-            lines.append(f"verdict    {headline(res).upper()}")
+    lines += answer_block(scene, res).lines(verbose)
     if res.flow != "associative":
         lines += _flow_lines(res)
-    lines += [f"note       {n}" for n in res.notes]
     if joints:
-        lines += _table(res)
-    lines.append(f"solver     {res.solver}, {res.n_solves} solve(s), {res.solve_time:.3g} s")
+        lines += _table(res, scene)
+    if verbose:
+        lines.append(f"solver     {res.solver}, {res.n_solves} solve(s), "
+                     f"{res.solve_time:.3g} s")
     return "\n".join(lines)
 
 
-def _undecided(res) -> list[str]:
-    """An answer the method could not give: never a verdict, always the reason."""
-    word = "UNDECIDED" if res.status == "undecided" else "FAILURE"
-    out = [f"status     {word}: the {res.solver} method could not decide (no verdict, "
-           "no number)"]
-    if res.bracket is not None:
-        what = {"min_friction": "f*", "max_load_multiplier": "lambda*"}.get(res.analysis, "")
-        out.append(f"bracket    {what} in [{res.bracket[0]:.6g}, {res.bracket[1]:.6g}]")
-    return out
-
-
-def _table(res) -> list[str]:
+def _table(res, scene) -> list[str]:
     rows = res.joint_table()
     if not rows:
         return ["joints     no force state (the analysis found no admissible state)"]
-    out = [f"{'joint':<24} {'N':>12} {'T':>12} {'e':>10} {'|T|/N':>8}  {'state':<15} mode"]
+    fu, lu = f"[{scene.force_unit or 'force'}]", f"[{scene.length_unit or 'length'}]"
+    out = [f"{'joint':<24} {'N ' + fu:>12} {'T ' + fu:>12} {'e ' + lu:>10} {'|T|/N':>8}  "
+           f"{'state':<15} mode"]
     for r in rows:
         e = "-" if r["eccentricity"] is None else f"{r['eccentricity']:.4g}"
         name = "-".join(r["joint"])
@@ -230,28 +175,6 @@ def _flow_lines(res) -> list[str]:
         out.append(f"bounds     [{lo}, {hi}]   (frictionless lower bound, associative "
                    "upper bound)")
     return out
-
-
-def _joint_list(joints, values=None, most: int = 12) -> str:
-    """Joints as ``a-b`` names (with a value each, if given); a long list is cut, with
-    its length (``--json`` has all)."""
-    names = [f"{a}-{b}" for a, b in joints]
-    if values is not None:
-        names = [f"{n} ({v})" for n, v in zip(names, values, strict=True)]
-    if len(names) <= most:
-        return ", ".join(names) or "-"
-    return f"{len(names)} joints: " + ", ".join(names[:most]) + ", ... (--json lists all)"
-
-
-def _live_hint(scene, res) -> list[str]:
-    """Where live loads at a nonzero load factor made the verdict, say how to ask the
-    two questions an engineer usually means."""
-    if not (scene.has_live_load and res.load_factor):
-        return []
-    src = scene.source or "SCENE"
-    return [f"hint       the live loads are included at load factor {res.load_factor:g}; "
-            f"--load-factor 0 for the dead load alone, `rigidblocks load {src}` for the "
-            "collapse multiplier"]
 
 
 __all__ = ["add_args", "run", "report", "InputError"]

@@ -52,8 +52,9 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
         p.add_argument("-o", "--output", required=True, help="DXF file to write")
         p.add_argument("--analysis", choices=("check", "friction", "load"), default=None,
                        help="add the thrust line and force arrows of this analysis")
-        p.add_argument("--friction", default=None, help='friction f or "infinite"')
-        p.add_argument("--load-factor", type=finite_float, default=1.0, help="lambda (default 1)")
+        from .analyses import add_question_args
+
+        add_question_args(p, ("friction", "load_factor"))
 
 
 def _layers(text: str | None) -> list[str] | None:
@@ -95,10 +96,11 @@ def run(args: argparse.Namespace) -> int:
             print(f"rigidblocks: warning: {NO_UNIT_WEIGHT_NOTE}", file=sys.stderr)
         print(f"wrote {args.output}")
         return 0
+    from .analyses import question
     from .plot import analyse
 
     scene = read_scene(args.scene)
-    result = analyse(scene, args.analysis, args.friction, args.load_factor)
+    result = analyse(scene, args.analysis, question(args))
     if result is not None and getattr(result, "state", None) is None and args.analysis:
         print(f"{args.analysis}: {result.status}, no force state to draw")
     write_dxf(scene, args.output, result)

@@ -82,12 +82,15 @@ def convert(gen: str, key: str, value: str, default: Any) -> Any:
 def listing() -> str:
     from ..generators import available
 
-    lines = []
-    for name, gen in available().items():
-        lines.append(f"{name}: {gen.summary}")
-        for p in gen.params:
-            default = "" if p.default in ((), []) else f" (default {p.default})"
-            lines.append(f"    --{p.name}{default}  {p.help}".rstrip())
+    return "\n".join(describe(gen) for gen in available().values())
+
+
+def describe(gen) -> str:
+    """A generator's name, summary and parameters (with their defaults)."""
+    lines = [f"{gen.name}: {gen.summary}"]
+    for p in gen.params:
+        default = "" if p.default in ((), []) else f" (default {p.default})"
+        lines.append(f"    --{p.name}{default}  {p.help}".rstrip())
     return "\n".join(lines)
 
 
@@ -102,6 +105,10 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("example: give a generator name, or --list")
     gen = get(args.generator)
     tokens = list(args.params)
+    if "-h" in tokens or "--help" in tokens:
+        print(f"usage: rigidblocks example {gen.name} [--PARAM VALUE ...] [-o SCENE.json]\n")
+        print(describe(gen))
+        return 0
     if "-o" in tokens or "--output" in tokens:  # an -o given after the parameters
         k = tokens.index("-o") if "-o" in tokens else tokens.index("--output")
         if k + 1 >= len(tokens):
@@ -120,4 +127,4 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-__all__ = ["add_args", "run", "parse_params", "convert", "listing"]
+__all__ = ["add_args", "run", "parse_params", "convert", "listing", "describe"]

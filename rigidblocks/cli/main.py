@@ -33,6 +33,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "export-dxf": ("dxf", "write a scene, its thrust line and forces to DXF"),
     "import-compas": ("compas", "read a COMPAS Assembly or BlockModel (JSON) into a scene "
                       "file"),
+    "extrude": ("extrude", "turn a 2D scene into the 3D scene of its prisms"),
     "sweep": ("sweep", "parametric study from a spec file: many cases, in parallel, resumable"),
 }
 
@@ -83,7 +84,12 @@ def _main(argv: Sequence[str] | None) -> int:
             return 2
         if getattr(args, "output", None):  # every command's -o, before any work
             output_path(args.output)
-        return int(args._run(args) or 0)
+        status = int(args._run(args) or 0)
+        sys.stdout.flush()  # a closed pipe (`| head`) shows here, not at exit
+        return status
+    except BrokenPipeError:  # the reader stopped reading: not an error of the run
+        _silence_stdout()
+        return 141  # 128 + SIGPIPE, as a program the pipe ended
     except InputError as err:
         print(f"rigidblocks: error: {_one_line(err)}", file=sys.stderr)
         return 2
@@ -92,6 +98,17 @@ def _main(argv: Sequence[str] | None) -> int:
         return 1
     except KeyboardInterrupt:  # pragma: no cover
         return 130
+
+
+def _silence_stdout() -> None:
+    """Point standard output at /dev/null, so the interpreter's flush at exit does not
+    fail again on the closed pipe."""
+    import os
+
+    try:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    except (OSError, ValueError):  # a standard output with no file (a captured one)
+        pass
 
 
 if __name__ == "__main__":  # pragma: no cover

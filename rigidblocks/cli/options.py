@@ -22,6 +22,16 @@ def finite_float(text: str) -> float:
                          error=argparse.ArgumentTypeError)
 
 
+def load_factor(text: str) -> float:
+    """argparse type of ``--load-factor``: a finite number >= 0, as a scene file's
+    ``load_factor`` must be."""
+    v = finite_float(text)
+    if v < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0 (it multiplies the live loads, as "
+                                         f"a scene's load_factor), got {text!r}")
+    return v
+
+
 def use_finite_floats(parser: argparse.ArgumentParser) -> None:
     """Give every ``type=float`` option of ``parser`` the type :func:`finite_float`."""
     for action in parser._actions:
@@ -29,4 +39,4 @@ def use_finite_floats(parser: argparse.ArgumentParser) -> None:
             action.type = finite_float
 
 
-__all__ = ["finite_float", "output_path", "use_finite_floats"]
+__all__ = ["finite_float", "load_factor", "output_path", "use_finite_floats"]

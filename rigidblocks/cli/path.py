@@ -22,6 +22,8 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                    help="shear links: plastic (Drucker, default) or coulomb (shear drops "
                    "to zero after sliding)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--verbose", "-v", action="store_true",
+                   help="also print the work done and the solver's notes")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -31,16 +33,33 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(_jsonable(res.to_dict())))
         return EXIT.get(res.status, 0)
+    from ..answer import live_load_size, live_load_text
+
+    fu = scene.force_unit or "force units"
+    live = live_load_size(scene)
     lines = [f"scene      {scene.name or scene.source}",
-             f"sliding    {res.sliding}   friction {res.friction}",
+             f"asked      the load path of the distortion method from lambda = 0 to "
+             f"{args.max_load:g} in {args.steps} steps, lambda multiplying the live load "
+             f"({live_load_text(scene)}); {res.sliding} sliding, friction {res.friction}",
              f"status     {res.status.upper()}"
-             + (f" at load factor {res.collapse_load:.6g}" if res.collapse_load is not None
-                else "")]
+             + (f" at lambda = {res.collapse_load:.6g}: {res.collapse_load:.4g} x "
+                f"{live:.4g} {fu} = {res.collapse_load * live:.4g} {fu}"
+                if res.collapse_load is not None else "")]
+    if res.events:
+        lines.append(f"  {'lambda [-]':>12}  {'live [' + fu + ']':>12}  {'event':8s}  "
+                     "joints (blocks a-b)")
     for e in res.events:
         joints = ", ".join(f"{a}-{b}" for a, b in e.joints) or "-"
-        lines.append(f"  {e.load_factor:12.6g}  {e.kind:8s}  {joints}")
-    lines.append(f"work       {res.n_solves} runs, {res.iterations} iterations, "
-                 f"{res.solve_time:.3g} s")
-    lines.extend(f"note       {n}" for n in res.notes)
+        lines.append(f"  {e.load_factor:12.6g}  {e.load_factor * live:12.4g}  "
+                     f"{e.kind:8s}  {joints}")
+    if args.verbose:
+        lines.append(f"work       {res.n_solves} runs, {res.iterations} iterations, "
+                     f"{res.solve_time:.3g} s")
+    from ..answer import split_notes
+
+    reasons, notes = split_notes(res.notes)
+    lines.extend(f"why        {n}" for n in reasons)
+    if args.verbose:
+        lines.extend(f"note       {n}" for n in notes)
     print("\n".join(lines))
     return EXIT.get(res.status, 0)

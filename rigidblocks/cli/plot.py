@@ -8,6 +8,7 @@ from pathlib import Path
 from ..analyses import ANALYSES
 from ..errors import InputError
 from ..io import read_scene
+from .analyses import add_question_args, question
 
 FORMATS = (".png", ".svg", ".pdf")
 
@@ -18,11 +19,7 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                    default=None,
                    help="run this analysis and draw its result (forces and thrust line "
                    "for check/friction, the collapse mechanism for load)")
-    p.add_argument("--friction", default=None,
-                   help='friction coefficient f or "infinite" for check/load '
-                   "(default: the scene's)")
-    p.add_argument("--load-factor", type=float, default=1.0,
-                   help="lambda for check/friction (default 1)")
+    add_question_args(p, ("friction", "load_factor"))
     p.add_argument("--ids", action="store_true", help="write the block ids")
     p.add_argument("-o", "--output", default=None,
                    help="output file, .png, .svg or .pdf (default: SCENE with .png)")
@@ -34,7 +31,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"unknown picture format '{out.suffix}': use "
                          f"{', '.join(FORMATS)}", str(out))
     scene = read_scene(args.scene)
-    result = analyse(scene, args.analysis, args.friction, args.load_factor)
+    result = analyse(scene, args.analysis, question(args))
 
     import matplotlib
 
@@ -54,10 +51,12 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def analyse(scene, name: str | None, friction, load_factor: float):
-    """Run the named analysis (None: no analysis) with a force state."""
+def analyse(scene, name: str | None, options: dict):
+    """Run the named analysis (None: no analysis) with a force state; ``options`` are
+    the question's (:func:`.analyses.question`): what is not given is the scene's, as
+    for ``check``, ``friction``, ``load`` and ``report``."""
     from ..analyses import analysis
 
     if name is None:
         return None
-    return analysis(name).run(scene, friction=friction, load_factor=load_factor)
+    return analysis(name).run(scene, **options)

@@ -13,6 +13,9 @@ from .assembly import EquilibriumSystem
 #: none when joints are classified (interior-point duals spread round-off of the order
 #: of the solver's tolerance over every joint)
 MODE_TOL = 1e-6
+#: a joint slides, or hinges as it slides, when its slip, or the spread of its opening
+#: over its points, exceeds this fraction of the joint's own largest motion
+MODE_SHARE = 0.1
 
 
 def force_state(system: EquilibriumSystem, x: np.ndarray, method: str) -> ForceState:
@@ -160,11 +163,14 @@ def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray
         else:
             ds = float(np.abs(slip.reshape(len(opening), -1)[pts]).max())
         rates[k] = max(ds, float(np.abs(dn).max(initial=0.0)))
-        uneven = dn.max() - dn.min() > tol
-        if ds > tol:
+        # what the joint does is what makes up more than MODE_SHARE of its motion (a
+        # sliding joint of a 3D mechanism also turns a little: it slides)
+        share = max(tol, MODE_SHARE * rates[k])
+        uneven = dn.max() - dn.min() > share
+        if ds > share:
             modes.append("slide+hinge" if uneven else "slide")
         elif dn.max() > tol:
-            modes.append("hinge" if dn.min() <= tol else "open")
+            modes.append("hinge" if dn.min() <= share else "open")
         else:
             modes.append("closed")
     return Mechanism(velocities=vel, opening=opening, slip=slip, modes=tuple(modes),

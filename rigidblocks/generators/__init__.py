@@ -79,7 +79,7 @@ _ARCH_HELP = (
 
 GENERATORS: dict[str, Generator] = {g.name: g for g in (
     Generator("reference", "seed:reference",
-              "the seed's four-block reference model (P on the top block, H pulling the "
+              "the reference paper's four-block model (P on the top block, H pulling the "
               "central blocks apart)",
               (("P", "dead vertical force on the top block (N)"),
                ("H", "live horizontal force on each central block (N)"),
@@ -104,9 +104,11 @@ GENERATORS: dict[str, Generator] = {g.name: g for g in (
                ("pointedness", "pointed: centre offset / R"),
                ("arc_points", "straight segments per voussoir face"), *_ARCH_HELP)),
     Generator("stocky_arch", "arches:stocky_arch",
-              "thick semicircular arch of few voussoirs (seed Fig. 7a)", _ARCH_HELP),
+              "thick semicircular arch of few voussoirs (the reference paper's Fig. 7a)",
+              _ARCH_HELP),
     Generator("corbel_arch", "arches:corbel_arch",
-              "corbel arch, horizontal or inward-inclined bed joints (seed Fig. 7b, 7c)",
+              "corbel arch, horizontal or inward-inclined bed joints (the reference "
+              "paper's Fig. 7b, 7c)",
               (("opening", "clear width at the base (m)"), ("courses", "number of courses"),
                ("course_height", "course height (m)"),
                ("block_length", "horizontal length of each block (m)"),
@@ -114,7 +116,7 @@ GENERATORS: dict[str, Generator] = {g.name: g for g in (
                ("inclination", "inclined: bed joints dip towards the opening (deg)"),
                *_ARCH_HELP[-3:])),
     Generator("arpino_gate", "arches:arpino_gate",
-              "pointed corbelled dry-stone gate (Arpino, seed Fig. 8)",
+              "pointed corbelled dry-stone gate (Arpino, the reference paper's Fig. 8)",
               (("opening", "width at the ground (m)"), ("height", "apex height (m)"),
                ("courses", "number of courses"),
                ("joint_inclination", "bed joints dip towards the opening (deg)"),

@@ -47,8 +47,9 @@ from typing import Any
 
 import numpy as np
 
+from ..answer import answer_block
 from ..errors import InputError
-from ..results import headline, joint_force_vectors
+from ..results import joint_force_vectors
 from ..scene.geometry import signed_area
 from ..scene.model import Scene, Units, make_block
 from .dxf_repair import DxfReport, Outline, line_loops, repair
@@ -423,7 +424,7 @@ def write_dxf(scene: Scene, path: str | os.PathLike, result: Any = None, *,
             for sgn in (1, -1):
                 msp.add_line(tuple(q), tuple(q - head * u + sgn * 0.4 * head * nrm),
                              dxfattribs={"layer": LAYERS["forces"]})
-    title = headline(result)
+    title = answer_block(scene, result).title() if result is not None else ""
     if title:
         allpts = np.concatenate([b.points for b in scene.blocks])
         hi = allpts.max(axis=0)

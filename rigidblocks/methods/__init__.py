@@ -34,7 +34,7 @@ from .distortion import DistortionMethod
 #: the methods by name, with what each is
 METHODS: dict[str, str] = {
     "clarabel": "the convex path (relaxation and LP/SOCP); back end chosen by solver=",
-    "distortion": "the seed's iterative impressed-distortion solver (2D)",
+    "distortion": "the iterative impressed-distortion solver of the reference paper (2D)",
 }
 _ALIASES = {"convex": "clarabel"}
 

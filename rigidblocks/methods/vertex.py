@@ -13,11 +13,19 @@ is dual feasible and complementary to z*: it vanishes on rows that are slack at 
 restricted further to the blocks that move in the blend (the centre of the face moves
 every block that moves in any optimal mechanism). For a linear program (2D, or 3D
 with pyramids) HiGHS' dual simplex returns a vertex: one mechanism. With friction cones
-the minimiser of the same objective is found by Clarabel: an extreme point of the face
-where it is unique.
+complementarity leaves each active cone's dual one direction where its slack is on the
+cone's boundary (the contact point at its friction limit) and the cone itself where the
+slack is at the apex (the point carries nothing), which an inscribed pyramid of
+APEX_EDGES edges approximates: the problem becomes an LP, and the simplex again
+returns a vertex (:func:`_cone_lp`; the 28-block 3D wall and the box stack). Where that
+LP has no solution, Clarabel minimises over the cones themselves: an extreme point of
+the face where the minimiser is unique (:func:`_cone_extreme`; the 62-block corbel
+dome).
 """
 
 from __future__ import annotations
+
+import time
 
 import numpy as np
 import scipy.sparse as sp
@@ -37,6 +45,13 @@ BOUND_TOL = 1e-7
 OPTIMAL_GAP = 1e-4
 #: a block moves in the blend when its velocity exceeds this fraction of the largest
 MOVING_TOL = 1e-6
+#: a cone's slack whose size is below this fraction of the largest slack is at the
+#: cone's apex (the contact point carries nothing)
+APEX_TOL = 1e-7
+#: edges of a cone at its apex in the linear restricted dual (an inscribed pyramid)
+APEX_EDGES = 16
+#: weight of the multipliers' sum after b^T y in the second objective (relative)
+LEX_WEIGHT = 1e-3
 
 
 def vertex_dual(prob: ConicProblem, res: SolverResult, eq_rows: slice, dofs: int,
@@ -44,7 +59,7 @@ def vertex_dual(prob: ConicProblem, res: SolverResult, eq_rows: slice, dofs: int
     """Duals at a vertex (LP) or extreme point (cones) of the optimal face, and which
     ("vertex" or "extreme"); None when the restricted problem cannot be solved or its
     solution's objective exceeds the interior-point dual's by more than OPTIMAL_GAP
-    (relative), or when the simplex needs more than ``time_limit`` seconds. The
+    (relative), or when the search needs more than ``time_limit`` seconds. The
     objective b^T y of the duals is the multiplier at which their mechanism's work
     balances: compare it with lambda*.
 
@@ -95,26 +110,114 @@ def vertex_dual(prob: ConicProblem, res: SolverResult, eq_rows: slice, dofs: int
     bound = float(b @ y)
     n_eq_k = int(np.sum(idx < ne))
     n_lin_k = int(np.sum((idx >= ne) & (idx < ne + nl)))
-    w = np.concatenate([np.zeros(n_eq_k), np.ones(len(idx) - n_eq_k)])
     if not prob.soc:
-        from scipy.optimize import linprog
+        yv = _linear_vertex(prob, idx, n_eq_k, At, rhs, bound, time_limit)
+        return None if yv is None else (yv, "vertex")
+    # the time is shared: half for the LP, the rest for the cone problems
+    t0 = time.perf_counter()
+    lp = _cone_lp(prob, idx, n_eq_k, n_lin_k, cone_rows, At, rhs, s, bound, time_limit / 2)
+    if lp is not None:
+        return lp, "vertex"
+    left = time_limit - (time.perf_counter() - t0)
+    if left <= 0:
+        return None
+    return _cone_extreme(prob, idx, n_eq_k, n_lin_k, cone_rows, At, rhs, bound, y, left)
 
-        bounds = [(None, None)] * n_eq_k + [(0, None)] * (len(idx) - n_eq_k)
-        lp = dict(A_ub=b[idx][None, :], b_ub=[bound + BOUND_TOL * max(1.0, abs(bound))],
-                  A_eq=At, b_eq=rhs, bounds=bounds, options={"time_limit": time_limit})
-        # where the active set taken at the interior point's tolerances leaves the
-        # restricted problem without a solution (large walls), HiGHS' interior-point
-        # method says so in a fraction of the simplex's time (1,009-block wall: 0.08 s
-        # against 0.7 s, when the simplex does not end in a solve error)
-        if linprog(w, method="highs-ipm", **lp).status == 2:
-            return None
-        out = linprog(w, method="highs-ds", **lp)
-        if out.status != 0:
-            return None
-        yv = np.zeros(n_rows)
-        yv[idx] = out.x
-        return yv, "vertex"
-    # cones: Clarabel on the restricted dual (variables y_idx)
+
+def _linear_vertex(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, At: sp.csc_matrix,
+                   rhs: np.ndarray, bound: float, time_limit: float) -> np.ndarray | None:
+    """The restricted dual of a linear program by HiGHS' dual simplex: a vertex."""
+    from scipy.optimize import linprog
+
+    w = np.concatenate([np.zeros(n_eq_k), np.ones(len(idx) - n_eq_k)])
+    bounds = [(None, None)] * n_eq_k + [(0, None)] * (len(idx) - n_eq_k)
+    lp = dict(A_ub=prob.b[idx][None, :], b_ub=[bound + BOUND_TOL * max(1.0, abs(bound))],
+              A_eq=At, b_eq=rhs, bounds=bounds, options={"time_limit": time_limit})
+    # where the active set taken at the interior point's tolerances leaves the
+    # restricted problem without a solution (large walls), HiGHS' interior-point
+    # method says so in a fraction of the simplex's time (1,009-block wall: 0.08 s
+    # against 0.7 s, when the simplex does not end in a solve error)
+    if linprog(w, method="highs-ipm", **lp).status == 2:
+        return None
+    out = linprog(w, method="highs-ds", **lp)
+    if out.status != 0:
+        return None
+    yv = np.zeros(len(prob.b))
+    yv[idx] = out.x
+    return yv
+
+
+def _cone_directions(s: np.ndarray, rows: np.ndarray, scale: float) -> np.ndarray:
+    """The directions a cone's dual may take, complementary to its slack ``s[rows]``:
+    one, d = (s0, -s1, -s2) / |s|, where the slack is on the boundary away from the
+    apex (the point carries force at the friction limit); where it is at the apex (the
+    point carries nothing) the cone's edges at APEX_EDGES angles, whose non-negative
+    combinations approximate the cone from inside (a dual among them is feasible)."""
+    sk = s[rows]
+    size = float(np.linalg.norm(sk))
+    if size > APEX_TOL * scale:
+        return (np.concatenate([[sk[0]], -sk[1:]]) / size)[None, :]
+    if len(rows) == 2:
+        return np.array([[1.0, 1.0], [1.0, -1.0]])
+    th = 2 * np.pi * np.arange(APEX_EDGES) / APEX_EDGES
+    return np.column_stack([np.ones(APEX_EDGES), np.cos(th), np.sin(th)])
+
+
+def _cone_lp(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int,
+             cone_rows: list[np.ndarray], At: sp.csc_matrix, rhs: np.ndarray,
+             s: np.ndarray, bound: float, time_limit: float) -> np.ndarray | None:
+    """The restricted dual as a linear program: each active cone's dual is a
+    non-negative combination of the directions :func:`_cone_directions` allows
+    (complementarity y . s = 0 leaves one where the slack is on the cone's boundary),
+    so the simplex returns a vertex, one mechanism, with b^T y within BOUND_TOL of
+    lambda*. None where that LP has no solution (the directions are read from the
+    interior-point slacks to the solver's accuracy, and the apex cones' edges only
+    approximate them)."""
+    from scipy.optimize import linprog
+
+    pos = {int(r): j for j, r in enumerate(idx)}
+    scale = max(1.0, float(np.abs(s).max(initial=0.0)))
+    lin = np.arange(n_eq_k + n_lin_k)
+    gens, g_cols, g_obj, g_b = [], [], [], []
+    for rows in cone_rows:
+        if not all(int(r) in pos for r in rows):
+            continue
+        dirs = _cone_directions(s, rows, scale)
+        cols = [pos[int(r)] for r in rows]
+        gens.append((rows, dirs))
+        g_cols.append(At[:, cols] @ dirs.T)
+        g_obj.append(dirs[:, 0])
+        g_b.append(dirs @ prob.b[rows])
+    parts = [At[:, lin]] + [sp.csc_matrix(g) for g in g_cols]
+    A_eq = sp.hstack(parts, format="csc")
+    n_g = A_eq.shape[1] - len(lin)
+    w = np.concatenate([np.zeros(n_eq_k), np.ones(n_lin_k), *g_obj])
+    b_row = np.concatenate([prob.b[idx[lin]], *g_b])
+    bounds = [(None, None)] * n_eq_k + [(0, None)] * (n_lin_k + n_g)
+    out = linprog(w, A_ub=b_row[None, :], b_ub=[bound + BOUND_TOL * max(1.0, abs(bound))],
+                  A_eq=A_eq, b_eq=rhs, bounds=bounds, method="highs-ds",
+                  options={"time_limit": time_limit})
+    if out.status != 0:
+        return None
+    y = np.zeros(len(prob.b))
+    y[idx[lin]] = out.x[:len(lin)]
+    at = len(lin)
+    for rows, dirs in gens:
+        y[rows] = out.x[at:at + len(dirs)] @ dirs
+        at += len(dirs)
+    return y
+
+
+def _cone_extreme(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int,
+                  cone_rows: list[np.ndarray], At: sp.csc_matrix, rhs: np.ndarray,
+                  bound: float, y_ip: np.ndarray, time_limit: float,
+                  ) -> tuple[np.ndarray, str] | None:
+    """The restricted dual with its cones, solved by Clarabel: an extreme point of the
+    face where the minimiser is unique. First the sum of the multipliers alone; where
+    its minimiser lies off the optimal face (its multiplier b^T y more than
+    OPTIMAL_GAP above lambda*: a simpler mechanism that needs a larger load, the ring
+    of a corbel dome sliding at lambda = f), b^T y first and the multipliers after
+    (their sum weighted LEX_WEIGHT of the interior-point dual's)."""
     k_idx = {int(r): j for j, r in enumerate(idx)}
     cones = [[k_idx[int(r)] for r in cr] for cr in cone_rows if int(cr[0]) in k_idx
              and all(int(r) in k_idx for r in cr)]
@@ -132,14 +235,22 @@ def vertex_dual(prob: ConicProblem, res: SolverResult, eq_rows: slice, dofs: int
     for c in cones:
         blocks.append(-eye[c])
         rhs_all.append(np.zeros(len(c)))
-    dual = ConicProblem(c=w, A=sp.vstack(blocks, format="csc"), b=np.concatenate(rhs_all),
-                        n_eq=At.shape[0], n_nonneg=n_lin_k,
-                        soc=tuple(len(c) for c in cones))
-    r = solve(dual, "clarabel")
-    if r.status != OPTIMAL:
-        return None
-    yv = np.zeros(n_rows)
-    yv[idx] = r.z
-    if float(b @ yv) > bound + OPTIMAL_GAP * max(1.0, abs(bound)):
-        return None  # not near the optimal face
-    return yv, "extreme"
+    A = sp.vstack(blocks, format="csc")
+    lex = prob.b[idx] / max(abs(bound), 1e-300) + \
+        LEX_WEIGHT * w / (float(w @ np.abs(y_ip[idx])) or 1.0)
+    t0 = time.perf_counter()
+    for objective in (w, lex):
+        left = time_limit - (time.perf_counter() - t0)
+        if left <= 0:
+            return None
+        dual = ConicProblem(c=objective, A=A, b=np.concatenate(rhs_all),
+                            n_eq=At.shape[0], n_nonneg=n_lin_k,
+                            soc=tuple(len(c) for c in cones))
+        r = solve(dual, "clarabel", time_limit=left)
+        if r.status != OPTIMAL:
+            continue
+        yv = np.zeros(len(prob.b))
+        yv[idx] = r.z
+        if float(prob.b @ yv) <= bound + OPTIMAL_GAP * max(1.0, abs(bound)):
+            return yv, "extreme"
+    return None  # not near the optimal face

@@ -5,13 +5,12 @@ off the axes.
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from ..scene.geometry import block_weights, scene_size
+from ..scene.geometry import scene_size, scene_weights
 from ..scene.model import Scene
 
 DEAD_COLOUR = "#333333"
@@ -27,28 +26,15 @@ POINT_ARROW_FRACTION = 0.12
 #: joints whose opening or slip is below this fraction of the mechanism's largest are
 #: not marked (an interior-point mechanism spreads small motions over many joints)
 MARK_FRACTION = 0.05
+#: a 3D mechanism picture marks at most this many joints, the fastest (hinge lines and
+#: joint outlines of a distributed mechanism, a dome's, tangle past a dozen)
+MOST_MARKED_3D = 12
 #: a contact force below this fraction of the state's largest counts as none (an open
 #: joint, or a joint's end that carries nothing): interior-point force states leave
 #: round-off of about 1e-5 of the largest force where the exact state has zero
 ZERO_FORCE = 1e-4
 LAMBDA = "\N{GREEK SMALL LETTER LAMDA}"
 TIMES = "\N{MULTIPLICATION SIGN}"
-
-
-_WEIGHTS: dict[int, tuple[Any, tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
-
-
-def scene_weights(scene: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`rigidblocks.scene.geometry.block_weights`, remembered for the last scene
-    asked about (a report asks for them several times; a 3D block's volume and
-    centroid take a fraction of a millisecond each, seconds for thousands)."""
-    hit = _WEIGHTS.get(id(scene))
-    if hit is not None and hit[0]() is scene:
-        return hit[1]
-    value = block_weights(scene)
-    _WEIGHTS.clear()
-    _WEIGHTS[id(scene)] = (weakref.ref(scene), value)
-    return value
 
 
 @dataclass(frozen=True)
@@ -127,14 +113,18 @@ def joint_motion(result: Any) -> np.ndarray:
     return out
 
 
-def marked_joints(result: Any) -> dict[str, np.ndarray]:
+def marked_joints(result: Any, most: int | None = None) -> dict[str, np.ndarray]:
     """Joints to mark in a mechanism picture: "hinge" (hinge or slide+hinge), "slide"
     (slide, slide+hinge) and "open", each left out when its motion is below
-    MARK_FRACTION of the largest; "left_out" counts the joints so dropped."""
+    MARK_FRACTION of the largest, or (``most``) when it moves slower than the ``most``-th
+    fastest; "left_out" counts the joints so dropped."""
     mech = result.mechanism
     motion = joint_motion(result)
     top = float(motion.max(initial=0.0))
     big = motion >= MARK_FRACTION * top if top > 0 else np.zeros(len(motion), bool)
+    if most is not None and big.sum() > most:  # the fastest, and those as fast
+        cut = float(np.sort(motion)[::-1][most - 1])
+        big &= motion >= cut * (1 - 1e-6)
     modes = np.array(mech.modes, dtype=object)
     moving = np.array([m != "closed" for m in mech.modes], dtype=bool)
     out = {"hinge": np.flatnonzero(big & np.isin(modes, ["hinge", "slide+hinge"])),

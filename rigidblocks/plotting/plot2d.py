@@ -40,7 +40,6 @@ from typing import Any
 
 import numpy as np
 
-from ..results import headline
 from ..scene.geometry import block_weights, scene_size
 from ..scene.model import Scene
 from .marks import (
@@ -159,8 +158,16 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
 
 
 def _title(scene: Scene, result: Any) -> str:
+    """The scene's name and the answer's verdict and number
+    (:meth:`rigidblocks.answer.AnswerBlock.title`, as the CLI and the report say it),
+    wrapped to lines of at most 90 characters."""
+    import textwrap
+
+    from ..answer import answer_block
+
     name = scene.name or ""
-    txt = headline(result, symbols=True)
+    txt = answer_block(scene, result, symbols=True).title() if result is not None else ""
+    txt = "\n".join(textwrap.wrap(txt, 90, break_on_hyphens=False))
     return f"{name}\n{txt}" if (name and txt) else (name or txt)
 
 

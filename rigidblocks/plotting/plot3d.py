@@ -37,6 +37,7 @@ from .marks import (
     DEAD_COLOUR,
     HINGE_COLOUR,
     LIVE_COLOUR,
+    MOST_MARKED_3D,
     MOVING_COLOUR,
     OPEN_COLOUR,
     SLIDE_COLOUR,
@@ -291,11 +292,11 @@ def mechanism_joints(scene: Scene, result: Any
       points that stay closed (a single closed point gives a zero-length segment);
     * "slide" and "open": the outline of each sliding or opening joint's polygon.
 
-    Joints whose motion is below 5 % of the largest are left out
-    (:func:`rigidblocks.plotting.marks.marked_joints`).
+    Joints whose motion is below 5 % of the largest are left out, and all but the
+    MOST_MARKED_3D fastest (:func:`rigidblocks.plotting.marks.marked_joints`).
     """
     c = result.contacts
-    marks = marked_joints(result)
+    marks = marked_joints(result, most=MOST_MARKED_3D)
     op = np.asarray(result.mechanism.opening, dtype=float)
     out: dict[str, tuple[list[np.ndarray], list[int]]] = {}
     for name in ("hinge", "slide", "open"):
@@ -369,10 +370,11 @@ def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, s
         lc = Line3DCollection(segs_m, colors=colour, linewidths=lw, zorder=6, label=label)
         lc.set_gid(gid)
         ax.add_collection3d(lc)
-    left = marked_joints(result)["left_out"]
+    left = marked_joints(result, most=MOST_MARKED_3D)["left_out"]
     if len(left):
-        extra.append(line_handle("none", f"{len(left)} joint(s) moving < 5 % of the "
-                                 "largest: not marked"))
+        extra.append(line_handle("none", f"{len(left)} slower joint(s) not marked (the "
+                                 f"{MOST_MARKED_3D} fastest are, down to 5 % of the "
+                                 "largest)"))
     return np.concatenate([moved[i] for i in free]) if len(free) else None
 
 

@@ -15,8 +15,8 @@ from typing import Any
 
 import numpy as np
 
+from ..answer import answer_block, live_load_text
 from ..plotting.marks import ZERO_FORCE, scene_weights
-from ..results import headline
 from ..scene.model import Scene
 
 #: statuses that answer the question, and how the answer reads (tone of the badge)
@@ -81,23 +81,6 @@ def _vec(v: Any) -> str:
     return "(" + ", ".join(fmt(c) for c in v) + ")"
 
 
-def live_load_text(scene: Scene) -> str:
-    """What lambda multiplies, in words: the live body force and the live point loads."""
-    fu = scene.force_unit or "force units"
-    parts = []
-    lbf = scene.live_body_force
-    if lbf is not None and any(v != 0 for v in lbf):
-        w, _, _ = scene_weights(scene)
-        total = float(w[~scene.support_mask].sum())
-        mag = float(np.linalg.norm(lbf))
-        parts.append(f"a body force of each free block's weight times {_vec(lbf)} "
-                     f"(in all {fmt(total * mag)} {fu})")
-    live = [ld for ld in scene.loads if ld.is_live]
-    if live:
-        parts.append(f"{len(live)} live point load{'s' if len(live) > 1 else ''}")
-    return " and ".join(parts) if parts else "no live load"
-
-
 def summary(scene: Scene, result: Any = None) -> Summary:
     """The scene's summary: size, units, weights, joint laws and loads."""
     lu = scene.length_unit or "(no unit given)"
@@ -130,7 +113,7 @@ def summary(scene: Scene, result: Any = None) -> Summary:
     if scene.joints:
         rows.append(("joint overrides", str(len(scene.joints))))
     rows.append(("live load (what \N{GREEK SMALL LETTER LAMDA} multiplies)",
-                 live_load_text(scene)))
+                 live_load_text(scene, symbols=True)))
     loads = []
     for ld in scene.loads:
         at = "its centroid" if ld.point is None else _vec(ld.point)
@@ -141,97 +124,36 @@ def summary(scene: Scene, result: Any = None) -> Summary:
 
 
 def question(scene: Scene, result: Any) -> str:
-    """The question the analysis asked, with its parameters."""
-    a = getattr(result, "analysis", None)
-    lam = getattr(result, "load_factor", None)
-    f = getattr(result, "friction", None)
-    live = live_load_text(scene)
-    L = "\N{GREEK SMALL LETTER LAMDA}"
-    if a == "check":
-        return (f"Does it stand? Is there an equilibrium state with compression-only "
-                f"joints and shear within the Coulomb limit, under the dead load plus "
-                f"{L} = {fmt(lam)} times the live load ({live}), at friction "
-                f"f = {fmt_friction(f)}?")
-    if a == "min_friction":
-        return (f"What friction does it need? The smallest uniform friction coefficient "
-                f"f* for which an admissible equilibrium state exists, under the dead load "
-                f"plus {L} = {fmt(lam)} times the live load ({live}).")
-    if a == "max_load_multiplier":
-        return (f"How much live load does it take? The largest multiplier {L}* of the "
-                f"live load ({live}) before it collapses, at friction f = "
-                f"{fmt_friction(f)} (associative friction), and its collapse mechanism.")
+    """The question the analysis asked, with its parameters (the CLI's "asked")."""
     if result is None:
         return "No analysis: the scene only."
-    return f"{a}: see the notes."
+    text = answer_block(scene, result, symbols=True).asked
+    return text[:1].upper() + text[1:] + ("" if text.endswith("?") else ".")
 
 
 def answer(scene: Scene, result: Any) -> Answer:
-    """The answer: a verdict only for a status that is one (see VERDICT_TONES)."""
+    """The answer (:func:`rigidblocks.answer.answer_block`, as the CLI prints it): a
+    verdict only for a status that is one (see VERDICT_TONES); ``notes`` are the
+    solver's and the accuracy's, with the work done."""
     status = str(getattr(result, "status", "") or "")
-    notes = tuple(str(n) for n in (getattr(result, "notes", ()) or ()))
-    a = getattr(result, "analysis", None)
-    fu = scene.force_unit or "force units"
+    block = answer_block(scene, result, symbols=True)
     tone = VERDICT_TONES.get(status)
     if tone is None:
-        return Answer(status or "unknown", False, "none",
-                      f"No verdict: the analysis ended with status "
-                      f"\u201c{status or 'unknown'}\u201d. This is not an answer to the "
-                      "question; the notes say why.", (), notes)
-    details: list[str] = []
-    head = headline(result, symbols=True)
-    if a == "check":
-        if status == "admissible":
-            head += ": an admissible equilibrium state exists. It stands."
-        else:
-            head += (": no equilibrium state keeps every joint in compression and within "
-                     "the Coulomb limit.")
-            v = getattr(result, "violation", None)
-            if v is not None and math.isfinite(float(v)):
-                details.append(f"smallest possible breach of the joint laws: {fmt(v)} {fu}")
-    elif a == "min_friction":
-        if status == "stable":
-            head += ": with at least this friction it stands."
-            lo, up = getattr(result, "lower", None), getattr(result, "upper", None)
-            br = getattr(result, "bracket", None)
-            if br is not None:
-                lo, up = br[0], br[1]
-            if lo is not None and up is not None:
-                details.append(f"f* lies in [{fmt(lo, 8)}, {fmt(up, 8)}]")
-        else:
-            head += "; even infinite friction admits no equilibrium."
-    elif a == "max_load_multiplier":
-        if status == "collapse":
-            lm = getattr(result, "load_multiplier", None)
-            head += f": it collapses at {fmt(lm, 6)} times the live load."
-            mech = getattr(result, "mechanism", None)
-            if mech is not None:
-                modes = list(mech.modes)
-                n_h = sum(m in ("hinge", "slide+hinge") for m in modes)
-                n_s = sum(m.startswith("slide") for m in modes)
-                n_o = sum(m == "open" for m in modes)
-                kind = ("mixed (hinging and sliding)" if n_h and n_s else "sliding" if n_s
-                        else "hinging" if n_h else "opening")
-                details.append(f"mechanism: {kind}; {n_h} hinging, {n_s} sliding, {n_o} "
-                               f"opening joint(s) of {len(modes)}")
+        return Answer(status or "unknown", False, "none", block.title(),
+                      block.reasons + block.notes)
+    details = [f"governing joints: {block.governing}"] if block.governing else []
+    details += block.reasons
+    notes = list(block.notes)
     solver = getattr(result, "solver", None)
     if solver:
         t = getattr(result, "solve_time", None)
-        details.append(f"solver {solver}, {getattr(result, 'n_solves', '?')} solve(s)"
-                       + (f", {float(t):.3g} s" if t is not None else ""))
+        notes.append(f"solver {solver}, {getattr(result, 'n_solves', '?')} solve(s)"
+                     + (f", {float(t):.3g} s" if t is not None else ""))
     timings = getattr(result, "timings", None) or getattr(result, "stage_times", None)
     if isinstance(timings, dict) and timings:
-        details.append("stages: " + ", ".join(f"{k} {float(v):.3g} s"
-                                              for k, v in timings.items()))
-    return Answer(status, True, tone, head, tuple(details), notes)
-
-
-def governing(result: Any) -> list[str]:
-    """The governing joints as ``a-b`` names."""
-    try:
-        pairs = getattr(result, "governing_joints", None) or []
-    except (AttributeError, IndexError, TypeError):
-        pairs = []
-    return [f"{a}\N{EN DASH}{b}" for a, b in pairs]
+        notes.append("stages: " + ", ".join(f"{k} {float(v):.3g} s"
+                                            for k, v in timings.items()))
+    return Answer(status, True, tone, block.title(), tuple(details), tuple(notes))
 
 
 def _available_friction(result: Any) -> float:
@@ -323,5 +245,5 @@ def joint_table(result: Any) -> dict[str, Any]:
     return out
 
 
-__all__ = ["Answer", "Summary", "answer", "fmt", "governing", "joint_states", "joint_table",
+__all__ = ["Answer", "Summary", "answer", "fmt", "joint_states", "joint_table",
            "live_load_text", "question", "summary"]

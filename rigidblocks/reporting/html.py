@@ -198,14 +198,11 @@ def render(scene: Scene, result: Any = None, *, title: str | None = None) -> str
         parts += ["<section><h2>Question and answer</h2>",
                   f'<p class="question">{_e(content.question(scene, result))}</p>',
                   _answer_html(ans)]
-        if ans.notes:
-            parts.append('<ul class="notes">' + "".join(f"<li>{_e(n)}</li>"
-                                                        for n in ans.notes) + "</ul>")
-        gov = content.governing(result)
-        if gov:
-            shown = ", ".join(gov[:40]) + (f", \N{HORIZONTAL ELLIPSIS} ({len(gov)} in all)"
-                                           if len(gov) > 40 else "")
-            parts.append(f"<p><b>Governing joints:</b> {_e(shown)}</p>")
+        if ans.notes:  # the solver's and the accuracy's (the CLI's --verbose)
+            parts.append('<details class="notes"><summary>Solver and accuracy notes'
+                         '</summary><ul class="notes">'
+                         + "".join(f"<li>{_e(n)}</li>" for n in ans.notes)
+                         + "</ul></details>")
         st = getattr(result, "state", None)
         if st is not None:
             parts.append(f"<p class=\"rb-help\">Forces shown: one admissible state "

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ..plotting.marks import load_marks, marked_joints, scene_weights
+from ..plotting.marks import MOST_MARKED_3D, load_marks, marked_joints, scene_weights
 from ..plotting.plot2d import DISPLACEMENT_FRACTION, MIN_ARROW_FRACTION
 from ..plotting.plot3d import joint_force_vectors_3d, mechanism_joints
 from ..scene.geometry import scene_size
@@ -146,7 +146,7 @@ def _mechanism(scene: Scene, result: Any, centroids: np.ndarray, size: float
             "segment_block": u32(np.asarray(follow).ravel() if follow else np.zeros(0)),
             "segment_kind": u32(np.asarray(kind)),
             "counts": {k: len(v[0]) for k, v in marks.items()},
-            "left_out": len(marked_joints(result)["left_out"]),
+            "left_out": len(marked_joints(result, most=MOST_MARKED_3D)["left_out"]),
             "modes": list(mech.modes)}
 
 

@@ -5,6 +5,8 @@ Pure numpy (and shapely for validity checks); no solver is imported here.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from .model import Block, Scene, scene_size  # noqa: F401 - scene_size is used from here too
@@ -111,6 +113,24 @@ def polygon_diagonals(verts: np.ndarray, starts: np.ndarray) -> np.ndarray:
     lo = np.minimum.reduceat(verts, starts[:-1], axis=0)
     hi = np.maximum.reduceat(verts, starts[:-1], axis=0)
     return np.linalg.norm(hi - lo, axis=1)
+
+
+_WEIGHTS: dict[int, tuple[Any, tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
+
+
+def scene_weights(scene: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`block_weights`, remembered for the last scene asked about (an answer, a
+    picture and a report ask for them several times; a 3D block's volume and centroid
+    take a fraction of a millisecond each, seconds for thousands)."""
+    import weakref
+
+    hit = _WEIGHTS.get(id(scene))
+    if hit is not None and hit[0]() is scene:
+        return hit[1]
+    value = block_weights(scene)
+    _WEIGHTS.clear()
+    _WEIGHTS[id(scene)] = (weakref.ref(scene), value)
+    return value
 
 
 def block_weights(scene: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -1,0 +1,433 @@
+"""The answer to an analysis in plain words: written once, read in the CLI, the HTML
+report and a picture's title.
+
+An :class:`AnswerBlock` says what was asked (the dead load, the live load and what the
+load factor lambda multiplies, in the scene's force unit; "self-weight only" where
+lambda is 0), the verdict, the number with its unit and the force it means, the
+governing joints (the first few, "and N more") and the reasons an engineer acts on.
+The solver's and the accuracy's notes are kept apart (``notes``): the CLI shows them
+under ``--verbose``, the JSON always.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .results import Result
+from .scene.geometry import scene_weights
+from .scene.model import Scene
+
+#: the statuses that are verdicts (any other is none: undecided, failure, ...)
+VERDICTS = ("admissible", "inadmissible", "stable", "unstable", "collapse", "unbounded")
+#: how many joints a list names before "and N more"
+FIRST = 5
+#: notes about the solver and the accuracy of a number (shown with --verbose); every
+#: other note is a reason an engineer acts on
+_SOLVER_NOTE = re.compile(
+    r"solver|dual|relaxation|bracket|residual|certif|round-off|interior-point|"
+    r"clarabel|highs|\bscs\b|ecos|osqp|cvxpy|slope|solved again|\bsolve[sd]?\b|"
+    r"iteration|extreme point|\bLPs?\b|\bSOCPs?\b|mechanism: ", re.I)
+
+
+_SOLVED_AGAIN = re.compile(r"answers of (\S+) that failed their check .*? solved again "
+                           r"by (\w+)")
+
+
+@dataclass(frozen=True)
+class AnswerBlock:
+    """One answer, in words (see the module's docstring). ``decided`` is False for an
+    undecided or failed analysis: then ``verdict`` says so and no number is given."""
+
+    asked: str
+    verdict: str
+    number: str = ""
+    governing: str = ""
+    reasons: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
+    decided: bool = True
+    #: the load case in a few words for a title ("under its self-weight only (load
+    #: factor 0)")
+    case: str = ""
+
+    def lines(self, verbose: bool = False, width: int = 10) -> list[str]:
+        """Labelled lines for a terminal (``verbose``: with the solver's notes)."""
+        rows = [("asked", self.asked), ("verdict", self.verdict), ("answer", self.number),
+                ("governing", self.governing)]
+        rows += [("why", r) for r in self.reasons]
+        if verbose:
+            rows += [("note", n) for n in self.notes]
+        return [f"{k:<{width}} {v}" for k, v in rows if v]
+
+    def title(self) -> str:
+        """A picture's title: the verdict, the number and the load case."""
+        text = f"{self.verdict}: {self.number}" if self.number else self.verdict
+        return f"{text}, {self.case}" if self.case else text
+
+
+def answer_block(scene: Scene, result: Any, symbols: bool = False) -> AnswerBlock:
+    """The answer of ``result`` (an analysis of ``scene``) in words; ``symbols``: write
+    lambda and the degree sign as symbols (reports, pictures) rather than ASCII."""
+    w = _Words(scene, symbols)
+    a = getattr(result, "analysis", "")
+    reasons, notes = split_notes(getattr(result, "notes", ()) or ())
+    asked = w.asked(result)
+    if getattr(result, "status", "") not in VERDICTS:
+        return AnswerBlock(asked, *w.undecided(result), reasons=reasons + notes,
+                           decided=False)
+    build = {"check": w.check, "min_friction": w.friction,
+             "max_load_multiplier": w.load}.get(a)
+    if build is None:
+        return AnswerBlock(asked, str(getattr(result, "status", "")).upper(),
+                           reasons=reasons, notes=notes)
+    verdict, number, governing, why = build(result)
+    return AnswerBlock(asked, verdict, number, governing, tuple(why) + reasons, notes,
+                       case=w.short_case(result))
+
+
+def live_load_text(scene: Scene, symbols: bool = False) -> str:
+    """What lambda multiplies, in words, with its size in the scene's force unit."""
+    return _Words(scene, symbols).live_text()
+
+
+def live_load_size(scene: Scene) -> float:
+    """The live load's size in the scene's force unit (its resultant, or where its
+    point loads balance, the sum of their sizes): what lambda = 1 means."""
+    return _Words(scene, False).live_size
+
+
+def split_notes(notes: Any) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """(reasons, solver notes): a note on the solver or the accuracy of a number is for
+    ``--verbose``; the others (weightless blocks, a block touching nothing, the
+    non-associative answer's starting state, ...) are reasons."""
+    reasons, solver = [], []
+    for n in notes:
+        (solver if _SOLVER_NOTE.search(str(n)) else reasons).append(str(n))
+        again = _SOLVED_AGAIN.match(str(n))
+        if again:  # the answer is not the chosen back end's: it is no cross-check
+            reasons.append(f"some answers of {again[1]} failed their check and were "
+                           f"solved again by {again[2]}: the result is not a "
+                           f"cross-check of {again[2]} by {again[1]}")
+    return tuple(reasons), tuple(solver)
+
+
+def joint_list(names: list[str], first: int = FIRST) -> str:
+    """``a-b, c-d, ... and N more`` (the first ``first``)."""
+    if len(names) <= first:
+        return ", ".join(names)
+    return ", ".join(names[:first]) + f" and {len(names) - first} more"
+
+
+def fmt(x: float, digits: int = 4) -> str:
+    return f"{x:.{digits}g}"
+
+
+class _Words:
+    """The phrases of one scene (its loads in its force unit)."""
+
+    def __init__(self, scene: Scene, symbols: bool):
+        self.scene = scene
+        self.lam = "\N{GREEK SMALL LETTER LAMDA}" if symbols else "lambda"
+        self.deg = "\N{DEGREE SIGN}" if symbols else " deg"
+        self.x = "\N{MULTIPLICATION SIGN}" if symbols else "x"
+        self.fu = scene.force_unit or "force units"
+        w, _, _ = scene_weights(scene)
+        free = ~scene.support_mask
+        self.weight = float(w[free].sum())
+        dim = scene.dimension
+        live = np.zeros(dim)
+        lbf = scene.live_body_force
+        if lbf is not None:
+            live += self.weight * np.asarray(lbf, dtype=float)[:dim]
+        dead_pts = [ld for ld in scene.loads if not ld.is_live and ld.force is not None]
+        live_pts = [np.asarray(ld.force, dtype=float)[:dim] for ld in scene.loads
+                    if ld.is_live and ld.force is not None]
+        for f in live_pts:
+            live += f
+        self.live = live
+        #: the live load's size: its resultant, or where its point loads balance (two
+        #: equal and opposite pulls) the sum of their sizes
+        self.live_size = float(np.linalg.norm(live))
+        self.live_balanced = False
+        total = self.live_size + sum(float(np.linalg.norm(f)) for f in live_pts)
+        if live_pts and self.live_size <= 1e-9 * total:
+            self.live_size, self.live_balanced = total, True
+        self.n_dead_points = len(dead_pts)
+        self.dead_points = float(sum(np.linalg.norm(ld.force) for ld in dead_pts))
+
+    # -- the loads --------------------------------------------------------------------
+    def force(self, v: float) -> str:
+        return f"{fmt(v)} {self.fu}"
+
+    def direction(self) -> str:
+        """The live load's resultant direction in words."""
+        v = self.live
+        size = float(np.linalg.norm(v))
+        if self.live_balanced:
+            return "in all (balanced: no resultant)"
+        if size == 0:
+            return ""
+        if abs(v[-1]) <= 1e-12 * size:
+            return "horizontal"
+        if float(np.linalg.norm(v[:-1])) <= 1e-12 * size:
+            return "vertical, downwards" if v[-1] < 0 else "vertical, upwards"
+        return "along (" + ", ".join(fmt(c / size, 3) for c in v) + ")"
+
+    def dead(self) -> str:
+        text = f"self-weight {self.force(self.weight)}" if self.weight else "no self-weight"
+        if self.n_dead_points:
+            s = "s" if self.n_dead_points > 1 else ""
+            text += f", {self.n_dead_points} point load{s} of {self.force(self.dead_points)}"
+        return text
+
+    def live_text(self) -> str:
+        """What lambda multiplies: the live load and its resultant."""
+        sc = self.scene
+        parts = []
+        lbf = sc.live_body_force
+        if lbf is not None and any(v != 0 for v in lbf):
+            vec = ", ".join(f"{v:g}" for v in lbf)
+            parts.append(f"each free block's weight {self.x} ({vec})")
+        n = sum(ld.is_live for ld in sc.loads)
+        if n:
+            parts.append(f"{n} live point load{'s' if n > 1 else ''}")
+        if not parts:
+            return "no live load"
+        return " and ".join(parts) + f": {self.force(self.live_size)} {self.direction()}".rstrip()
+
+    def load_case(self, lf: float | None) -> str:
+        """Dead + lambda x live at the result's load factor, in words."""
+        if not self.scene.has_live_load:
+            return f"its dead load ({self.dead()}; there is no live load)"
+        if not lf:
+            return f"its self-weight only ({self.dead()}; load factor 0: no live load)"
+        text = (f"its dead load ({self.dead()}) plus {self.lam} = {lf:g} {self.x} the live "
+                f"load ({self.live_text()})")
+        if lf == 1:
+            return text
+        size = self.live_size * float(lf)
+        return f"{text}, that is {self.force(size)} {self.direction()}".rstrip()
+
+    def short_case(self, result: Any) -> str:
+        """The load case of check and friction in a few words (load: none, lambda is
+        its answer)."""
+        if getattr(result, "analysis", "") not in ("check", "min_friction") or \
+                not self.scene.has_live_load:
+            return ""
+        lf = getattr(result, "load_factor", None)
+        if not lf:
+            return "under its self-weight only (load factor 0)"
+        return f"under the dead load + {lf:g} {self.x} the live load"
+
+    def friction_text(self, f: Any) -> str:
+        if f is None or isinstance(f, str) or math.isinf(float(f)):
+            return "infinite friction (no sliding)"
+        f = float(f)
+        return f"friction f = {f:.4g} ({math.degrees(math.atan(f)):.2f}{self.deg})"
+
+    def asked(self, result: Any) -> str:
+        a = getattr(result, "analysis", "")
+        lf = getattr(result, "load_factor", None)
+        f = getattr(result, "friction", None)
+        flow = getattr(result, "flow", "associative")
+        rule = "" if flow == "associative" else ", sliding without dilatancy"
+        if a == "check":
+            return f"does it stand under {self.load_case(lf)}, at {self.friction_text(f)}{rule}?"
+        if a == "min_friction":
+            return (f"the smallest friction f* at which it stands under "
+                    f"{self.load_case(lf)}{rule}")
+        if a == "max_load_multiplier":
+            return (f"the largest multiple {self.lam}* of the live load "
+                    f"({self.live_text()}) it carries on top of its dead load "
+                    f"({self.dead()}), at {self.friction_text(f)}{rule}")
+        return a.replace("_", " ")
+
+    # -- the answers ------------------------------------------------------------------
+    def undecided(self, result: Any) -> tuple[str, str]:
+        status = str(getattr(result, "status", "") or "unknown")
+        solver = getattr(result, "solver", None)
+        by = f"the {solver} method" if solver else "the analysis"
+        word = status.upper() if status in Result.UNDECIDED else f"status {status}"
+        verdict = f"NO VERDICT: {word} ({by} could not decide; no number is given)"
+        br = getattr(result, "bracket", None)
+        what = {"min_friction": "f*", "max_load_multiplier": f"{self.lam}*"}.get(
+            getattr(result, "analysis", ""), "")
+        number = f"{what} in [{br[0]:.6g}, {br[1]:.6g}]" if br is not None else ""
+        return verdict, number
+
+    def check(self, res: Any) -> tuple[str, str, str, list[str]]:
+        why: list[str] = []
+        if res.status == "admissible":
+            fd = res.friction_demand
+            if fd is not None and fd[0] > 1e-9:
+                a, b = res.joint_name(fd[1])
+                why.append(f"the state of least complementary energy needs |T|/N up to "
+                           f"{fd[0]:.4g} (joint {a}-{b})")
+            elif fd is not None:
+                why.append("the state of least complementary energy needs no friction")
+            return ("ADMISSIBLE: it stands (an equilibrium state with every joint in "
+                    "compression and within friction exists)", "", "", why)
+        number = ""
+        if math.isfinite(res.violation):
+            number = (f"smallest breach of the joint laws {self.force(res.violation)} "
+                      "(0 would stand)")
+        names = [f"{a}-{b} ({fmt(v, 3)} {self.fu})" for a, b, v in
+                 ((*res.joint_name(k), v) for k, v in res.breaches)]
+        why += self.live_hint(res)
+        return ("NOT ADMISSIBLE: no equilibrium state keeps every joint in compression "
+                "and within friction", number,
+                ("breached at " + joint_list(names)) if names else "", why)
+
+    def friction(self, res: Any) -> tuple[str, str, str, list[str]]:
+        if res.status != "stable":
+            return ("UNSTABLE: no friction suffices (even infinite friction admits no "
+                    "equilibrium state)", "", "", self.live_hint(res))
+        fs = float(res.friction_factor)
+        equal_static = any("equals the static f*" in n for n in res.notes)
+        shown = fs
+        if equal_static and res.lower is not None:  # the static f* (see the notes)
+            shown = float(res.lower)
+        number = (f"f* = {shown:.6g} (friction angle {math.degrees(math.atan(shown)):.4f}"
+                  f"{self.deg})")
+        if equal_static and shown != fs:
+            number += f"; found standing at f = {fs:.6g}, just above"
+        why = []
+        f = self.scene.effective_friction
+        if not isinstance(f, str) and math.isfinite(float(f)):
+            enough = "enough" if float(f) >= fs else "NOT enough"
+            why.append(f"the scene's friction f = {float(f):g} is {enough}")
+        names = [f"{a}-{b}" for a, b in res.governing_joints]
+        return ("STANDS with friction f >= f*", number,
+                joint_list(names) + (" (at their friction limit)" if names else ""), why)
+
+    def load(self, res: Any) -> tuple[str, str, str, list[str]]:
+        if res.status == "unbounded":
+            return ("UNBOUNDED: no multiple of the live load makes it collapse", "", "", [])
+        if res.status != "collapse":
+            return ("UNSTABLE: the dead load alone has no admissible state", "", "", [])
+        lm = float(res.load_multiplier)
+        size = self.live_size
+        number = (f"{self.lam}* = {lm:.6g}, that is {lm:.4g} {self.x} {self.force(size)} = "
+                  f"{self.force(lm * size)} {self.direction()}").rstrip()
+        why = []
+        if res.tilt_angle_deg is not None:
+            a = float(np.linalg.norm(np.asarray(self.scene.live_body_force)[:-1]))
+            why.append(f"tilt angle atan({self.lam}* a) = {res.tilt_angle_deg:.4f}{self.deg}, "
+                       f"a = {a:g} the horizontal body force per unit weight (in g): the "
+                       "ground tilted by this angle loads it the same way")
+        lf = self.scene.load_factor
+        if lf:
+            ok = "carries" if lm >= lf else "does NOT carry"
+            why.append(f"it {ok} the scene's load factor {self.lam} = {lf:g}")
+        mech = res.mechanism
+        if mech is None:
+            names = [f"{a}-{b}" for a, b in res.governing_joints]
+            return ("COLLAPSE", number,
+                    ("joints at their friction limit: " + joint_list(names)) if names
+                    else "", why)
+        body = bodies_text(res)
+        return "COLLAPSE", number, mechanism_text(res), ([body] if body else []) + why
+
+    def live_hint(self, res: Any) -> list[str]:
+        """Where the live loads at a nonzero load factor made the verdict, how to ask
+        the two questions an engineer usually means."""
+        if not (self.scene.has_live_load and res.load_factor):
+            return []
+        src = self.scene.source or "SCENE"
+        return [f"the live load is included at load factor {res.load_factor:g}; "
+                f"--load-factor 0 asks for the self-weight alone, `rigidblocks load {src}` "
+                "for the collapse multiplier"]
+
+
+#: a mechanism's joint modes, in the words of the answer (exclusive groups)
+MODE_WORDS = (("hinge", "hinging"), ("slide", "sliding"),
+              ("slide+hinge", "sliding and hinging"), ("open", "opening"))
+
+
+def mechanism_groups(res: Any) -> list[tuple[str, list[str]]]:
+    """The moving joints of a result's mechanism by mode (hinging, sliding, sliding and
+    hinging, opening; each joint in one group), fastest first: the one counting of the
+    CLI, the report and the pictures."""
+    m = res.mechanism
+    order = m.ranking
+    out = []
+    for mode, word in MODE_WORDS:
+        names = [f"{a}-{b}" for a, b in (res.joint_name(k) for k in order
+                                          if m.modes[k] == mode)]
+        if names:
+            out.append((word, names))
+    return out
+
+
+def rigid_bodies(res: Any) -> list[list[int]]:
+    """The free blocks that move, grouped into the rigid bodies they form: blocks joined
+    by a joint that stays closed move together (largest body first)."""
+    m = res.mechanism
+    c = res.contacts
+    vel = np.abs(np.asarray(m.velocities, dtype=float)).max(axis=1)
+    top = float(vel.max(initial=0.0))
+    n = len(vel)
+    parent = list(range(n))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for k, mode in enumerate(m.modes):
+        if mode == "closed":
+            a, b = (int(x) for x in c.pairs[k])
+            parent[root(a)] = root(b)
+    support = {root(i) for i in range(n) if vel[i] <= 1e-9 * top}  # at rest
+    groups: dict[int, list[int]] = {}
+    for i in range(n):
+        if vel[i] > 1e-9 * top and root(i) not in support:
+            groups.setdefault(root(i), []).append(i)
+    return sorted(groups.values(), key=len, reverse=True)
+
+
+def bodies_text(res: Any) -> str:
+    """How the moving blocks move, in words: as how many rigid bodies."""
+    groups = rigid_bodies(res)
+    if not groups:
+        return ""
+    n = sum(len(g) for g in groups)
+    if len(groups) == 1:
+        return f"the {n} moving block{'s' if n > 1 else ''} move as one rigid body"
+    if len(groups) == n:
+        return f"the {n} moving blocks move each on its own (no two together)"
+    sizes = ", ".join(str(len(g)) for g in groups[:FIRST])
+    more = f", and {len(groups) - FIRST} more" if len(groups) > FIRST else ""
+    return (f"the {n} moving blocks form {len(groups)} rigid bodies (of {sizes} "
+            f"blocks{more})")
+
+
+def mechanism_text(res: Any) -> str:
+    """The mechanism in words: each group with its joints where few joints move; where
+    more than FIRST do, how many of each kind and the fastest FIRST (a distributed
+    mechanism, a dome's, is read from its head)."""
+    groups = mechanism_groups(res)
+    m = res.mechanism
+    kind = ("the blend of every optimal mechanism: " if m.kind == "blend" else "")
+    if not groups:
+        return kind + "no joint moves"
+    order = m.ranking
+    if len(order) <= FIRST:
+        return kind + "; ".join(f"{len(n)} {w} ({', '.join(n)})" for w, n in groups)
+    word = dict(MODE_WORDS)
+    fastest = [f"{a}-{b} ({word[m.modes[k]]})"
+               for a, b, k in ((*res.joint_name(k), k) for k in order[:FIRST])]
+    return (kind + f"{len(order)} joints move: "
+            + ", ".join(f"{len(n)} {w}" for w, n in groups)
+            + "; fastest: " + ", ".join(fastest)
+            + f" and {len(order) - FIRST} more")
+
+
+__all__ = ["AnswerBlock", "answer_block", "bodies_text", "joint_list", "live_load_size",
+           "live_load_text", "mechanism_groups", "mechanism_text", "rigid_bodies",
+           "split_notes"]

@@ -1,0 +1,33 @@
+"""``extrude``: a 2D scene file to the 3D scene file of its prisms."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..errors import InputError
+from ..io import read_scene, write_scene
+from .options import finite_float
+
+
+def add_args(p: argparse.ArgumentParser, name: str) -> None:
+    p.add_argument("scene", help="2D scene file (JSON)")
+    p.add_argument("-o", "--output", required=True, help="3D scene file to write (JSON)")
+    p.add_argument("--depth", type=finite_float, default=None,
+                   help="length of the prisms, in the scene's length unit (default: the "
+                   "scene's depth, else 1)")
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..scene.extrude import extrude
+
+    scene = read_scene(args.scene)
+    try:
+        solid = extrude(scene, args.depth)
+    except InputError as err:
+        raise err.located(args.scene) from None
+    write_scene(solid, args.output)
+    depth = scene.effective_depth if args.depth is None else args.depth
+    unit = f" {scene.length_unit}" if scene.length_unit else ""
+    print(f"wrote {args.output}: {len(solid.blocks)} prisms {depth:g}{unit} deep (the 2D "
+          "plane x-y is the vertical plane x-z; f* and lambda* are the 2D scene's)")
+    return 0
