@@ -143,6 +143,7 @@ def test_block_on_base_mechanism_velocities(b, h, f, solver):
     omega k x (c - toe) with c = (b/2, h/2)."""
     s = cat.block_on_base(b, h, f)
     r = max_load_multiplier(s, solver=solver)
+    answered_itself(r, solver)
     u, v, om = r.mechanism.velocities[s.index["B"]]
     if f < b / h:
         assert u > 0 and close(v / u, f, 1e-5) and abs(om) < 1e-6 * abs(u)
@@ -159,6 +160,7 @@ def test_leaning_pair_crown_force(solver):
     the catalogue case's derivation)."""
     s = cat.leaning_pair()
     r = min_friction(s, solver=solver)
+    answered_itself(r, solver)
     st = r.state
     crown = [k for k, (a, b) in enumerate(r.contacts.pairs)
              if {r.contacts.block_ids[a], r.contacts.block_ids[b]} == {"L", "R"}][0]
