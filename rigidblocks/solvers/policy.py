@@ -296,9 +296,11 @@ class Runner:
         extra = CONFIRM_BY.get(self.solver)
         if extra is None:
             return self.run(problem, what, tight=True)
-        res = self._solve(problem, self.solver, {**extra, **self.settings})
+        # Clarabel confirms at its confirming settings alone, whatever the user's
+        own = {} if self.solver == FALLBACK else self.settings
+        res = self._solve(problem, self.solver, {**own, **extra})
         if res.status not in _DONE:
-            res = self._run(problem, what, True, self.solver, self.settings)
+            res = self._run(problem, what, True, self.solver, own)
         res = verified(problem, res)
         if res.verified or self.solver == FALLBACK:
             return res
