@@ -26,8 +26,8 @@ RTOL = 1e-6
 DISTORTION_RTOL = 1e-4
 #: the convex path's back ends every case runs on: HiGHS (simplex) and OSQP take LPs
 #: only; SCS (first-order) at the policy's tight settings
-SOLVERS = ["clarabel", "highs", "osqp", "scs", "cvxpy-clarabel", "cvxpy-highs"]
-LP_ONLY = ("highs", "osqp", "cvxpy-highs")
+SOLVERS = ["clarabel", "highs", "osqp", "scs", "cvxpy-clarabel", "cvxpy-highs", "cvxpy-osqp"]
+LP_ONLY = ("highs", "osqp", "cvxpy-highs", "cvxpy-osqp")
 INTERIOR_POINT = ("clarabel", "cvxpy-clarabel")
 ANALYSES = {"check": check, "min_friction": min_friction,
             "max_load_multiplier": max_load_multiplier}

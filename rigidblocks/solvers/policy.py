@@ -55,10 +55,6 @@ RELAX_SETTINGS = {"tol_gap_abs": 1e-10, "tol_gap_rel": 1e-10, "tol_feas": 1e-10}
 #: at 1e-8 every answer passes (at the defaults 12 of 34 runs did); 1e-9 took 111 s for
 #: f* of the 106-block wall at load factor 1 (0.14 s at 1e-8), the same f*
 SCS_TIGHT = {"eps_abs": 1e-8, "eps_rel": 1e-8, "max_iters": 100_000}
-#: OSQP through cvxpy: polished (a vertex) at 1e-9, within a bounded number of
-#: iterations (OSQP's answers on the 106-block wall fail the check at any tolerance
-#: tried and are solved again by Clarabel; 200,000 iterations took 28 s for its f*)
-CVXPY_OSQP_TIGHT = {"eps_abs": 1e-9, "eps_rel": 1e-9, "max_iter": 20_000, "polish": True}
 #: the same for each back end whose defaults are looser than the verdict threshold
 TIGHT_SETTINGS = {
     "clarabel": RELAX_SETTINGS,
@@ -67,7 +63,6 @@ TIGHT_SETTINGS = {
     "cvxpy-clarabel": RELAX_SETTINGS,
     "scs": SCS_TIGHT,
     "cvxpy-scs": SCS_TIGHT,
-    "cvxpy-osqp": CVXPY_OSQP_TIGHT,
 }
 #: the next tolerances short of a back end's defaults, where TIGHT_SETTINGS are out of
 #: its reach at the scene's size (the relaxation of a 20,093-block wall at f = 1: no
@@ -118,7 +113,7 @@ CONFIRM_SETTINGS = {"tol_gap_abs": 1e-12, "tol_gap_rel": 1e-12, "tol_feas": 1e-1
 #: the confirming settings by back end (:meth:`Runner.confirm`)
 CONFIRM_BY = {"clarabel": CONFIRM_SETTINGS, "cvxpy-clarabel": CONFIRM_SETTINGS,
               "osqp": {"eps_abs": 1e-12, "eps_rel": 1e-12},
-              "cvxpy-osqp": {"eps_abs": 1e-12, "eps_rel": 1e-12, "polish": True},
+              "cvxpy-osqp": {"eps_abs": 1e-12, "eps_rel": 1e-12, "polishing": True},
               "scs": {**SCS_TIGHT, "eps_abs": 1e-10, "eps_rel": 1e-10},
               "cvxpy-scs": {**SCS_TIGHT, "eps_abs": 1e-10, "eps_rel": 1e-10}}
 #: back ends that solve linear programs only
