@@ -190,7 +190,8 @@ class Result:
         return {"status": self.status, "notes": list(self.notes),
                 "bracket": list(self.bracket) if self.bracket is not None else None,
                 "solver": self.solver, "n_solves": self.n_solves,
-                "solve_time": self.solve_time}
+                "solve_time": self.solve_time, "answered_by": list(self.answered_by),
+                "rejected": list(self.rejected)}
 
     def to_dict(self, joints: bool = False) -> dict[str, Any]:
         """The result as plain data (the CLI's ``--json``); ``joints`` adds the

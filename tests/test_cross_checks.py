@@ -11,6 +11,7 @@ the argument in :func:`test_wedge_infimum_settled_exactly` (none at f <= 1).
 
 from __future__ import annotations
 
+import json
 from fractions import Fraction
 
 import numpy as np
@@ -258,3 +259,16 @@ def test_nonassociative_load_of_a_single_block_is_the_associative_one(f, expect)
     lo, hi = r.load_multiplier_bounds
     assert lo == pytest.approx(expect, rel=1e-9) and hi == pytest.approx(expect, rel=1e-9)
     assert any("equals the associative" in n for n in r.notes)
+
+
+def test_the_json_answer_names_the_back_ends_that_answered(tmp_path, capsys):
+    """``--json`` carries ``answered_by`` and ``rejected``: a user relying on a
+    cross-check sees which back end answered."""
+    from rigidblocks.generators.catalogue import CASES
+
+    path = tmp_path / "seed.json"
+    path.write_text(dumps_scene(CASES["seed_model"].scene()))
+    assert main(["friction", str(path), "--solver", "scs", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["answered_by"] == ["scs"] and out["rejected"] == []
+    assert out["friction_factor"] == pytest.approx(0.5, rel=1e-6)

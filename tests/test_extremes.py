@@ -59,6 +59,7 @@ def test_small_block_on_huge_one_tips_at_its_own_b_over_h(w):
     c = check(s, load_factor=0.5, state=False)
     assert c.status == "inadmissible" and c.violation > 0
     hi = max_load_multiplier(s, solver="highs", state=False)
+    assert hi.answered_by == ("highs",) and not hi.rejected  # a real cross-check
     assert hi.load_multiplier == pytest.approx(1 / 3, rel=1e-6)
 
 
@@ -701,6 +702,7 @@ def test_friction_bracket_ends_where_the_solver_stops_resolving(relaxation_searc
     wall = running_bond_wall(17, 18)
     r = min_friction(wall, load_factor=1.0, state=False)
     exact = min_friction(wall, load_factor=1.0, state=False, solver="highs")
+    assert exact.answered_by == ("highs",) and not exact.rejected  # a real cross-check
     lo, hi = exact.bracket
     assert hi - lo <= 1e-6 * hi
     assert lo <= r.friction_factor <= hi * (1 + 1e-6)
@@ -800,6 +802,7 @@ def test_the_probe_below_the_upper_end_lands_where_the_solver_resolves():
     scene = read_scene(EXAMPLES / "arpino_gate.json")
     r = min_friction(scene, state=False)
     simplex = min_friction(scene, state=False, solver="highs")
+    assert simplex.answered_by == ("highs",) and not simplex.rejected  # a real cross-check
     assert r.status == simplex.status == "stable"
     lo, hi = r.bracket
     assert r.friction_factor == hi and (hi - lo) / hi < 1e-5
@@ -901,6 +904,7 @@ def test_friction_from_lambda_star_agrees_with_the_simplex():
     wall = running_bond_wall(17, 18)
     r = min_friction(wall, load_factor=1.0, state=False)
     exact = min_friction(wall, load_factor=1.0, state=False, solver="highs")
+    assert exact.answered_by == ("highs",) and not exact.rejected  # a real cross-check
     lo, hi = exact.bracket
     assert hi - lo <= 1e-6 * hi
     assert r.status == "stable" and lo <= r.friction_factor <= hi * (1 + 1e-6)
