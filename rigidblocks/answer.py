@@ -287,14 +287,8 @@ class _Words:
             return ("UNSTABLE: no friction suffices (even infinite friction admits no "
                     "equilibrium state)", "", "", self.live_hint(res))
         fs = float(res.friction_factor)
-        equal_static = any("equals the static f*" in n for n in res.notes)
-        shown = fs
-        if equal_static and res.lower is not None:  # the static f* (see the notes)
-            shown = float(res.lower)
-        number = (f"f* = {shown:.6g} (friction angle {math.degrees(math.atan(shown)):.4f}"
+        number = (f"f* = {fs:.6g} (friction angle {math.degrees(math.atan(fs)):.4f}"
                   f"{self.deg})")
-        if equal_static and shown != fs:
-            number += f"; found standing at f = {fs:.6g}, just above"
         why = []
         f = self.scene.effective_friction
         if not isinstance(f, str) and math.isfinite(float(f)):
