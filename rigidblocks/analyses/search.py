@@ -15,10 +15,12 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..methods import FAILURE, Limit, Method, Verdict
+from ..methods.engine import WIDE, bisection
 
 #: a bisection stopped by an undecided trial with a bracket wider than BRACKET_RTOL
-#: relative plus BRACKET_ATOL gives no number (the floor: f* or lambda* = 0)
-BRACKET_RTOL = 1e-3
+#: relative plus BRACKET_ATOL gives no number (the floor: f* or lambda* = 0); the
+#: engine's WIDE, as for every search
+BRACKET_RTOL = WIDE
 BRACKET_ATOL = 1e-6
 #: largest friction tried when bracketing f* from above
 FRICTION_CEILING = 1e8
@@ -56,20 +58,12 @@ class Bracket:
 def bisect(decide: Decide, bad: float, good: float, rtol: float, atol: float = 0.0,
            steps: int = 200) -> Bracket:
     """Halve [bad, good] (either order) until |good - bad| <= rtol max(|good|, |bad|) +
-    atol, at most ``steps`` times; an undecided trial stops it."""
-    last = None
-    for _ in range(steps):
-        if abs(good - bad) <= rtol * max(abs(good), abs(bad), 1e-300) + atol:
-            break
-        mid = 0.5 * (bad + good)
-        verdict, data = decide(mid)
-        if verdict is None:
-            return Bracket(bad, good, last, mid)
-        if verdict:
-            good, last = mid, data
-        else:
-            bad = mid
-    return Bracket(bad, good, last, None)
+    atol, at most ``steps`` times; an undecided trial stops it (the engine's
+    :func:`~rigidblocks.methods.engine.bisection`)."""
+    s = bisection(decide, bad, good, rtol, atol, steps)
+    passed = s.end(True)
+    return Bracket(s.bad, s.good, passed.data if passed else None,
+                   s.last.x if s.stopped == "undecided_trial" else None)
 
 
 def _verdicts(m: Method, call: Callable[[float], Verdict]) -> Decide:
