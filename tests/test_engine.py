@@ -7,10 +7,12 @@ x*, a linear or concave residual with a known root)."""
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import pytest
 
-from rigidblocks.methods.engine import Search, Trial, bisection, run
+from rigidblocks.methods import friction_rules as fr
+from rigidblocks.methods.engine import WIDE, Search, Trial, bisection, run
 
 
 def test_bisection_brackets_a_verdict_to_the_requested_accuracy():
@@ -75,3 +77,107 @@ def test_rules_in_order_first_answer_wins_and_names_the_stop():
 
     s = run(Search(0.0, 1.0, 0.0), lambda x: Trial(x, False), (), (quarter,), (refuse,))
     assert s.stopped == "refused" and s.at == 0.25 and not s.trials
+
+
+# -- the rules of f* on R(f) (rigidblocks.methods.friction_rules) on synthetic R ----------
+TOL = 1e-12  # the synthetic solver's admissibility threshold
+
+
+def _trial(f: float, R: float, slope: float, spread: float = 0.0) -> Trial:
+    data = SimpleNamespace(by_value_floor=max(10 * TOL, 4 * spread), shortfall=spread)
+    if R <= TOL:
+        return Trial(f, True, "upper", data=data)
+    return Trial(f, False, "lower", R, slope, data)
+
+
+def newton_search(oracle, R0: float, s0: float, rtol: float = 1e-7,
+                  spread: float = 0.0) -> Search:
+    """The search of ConvexMethod.friction_limit after its first two trials: infinite
+    friction admissible, f = 0 a lower point with R(0) = R0 and slope s0."""
+    s = Search(0.0, math.inf, rtol, 1e-9)
+    s.record(Trial(math.inf, True, "upper"))
+    s.record(_trial(0.0, R0, s0, spread))
+    return run(s, oracle, fr.STOPS, fr.STEPS, fr.AMENDS, budget=100)
+
+
+def test_a_linear_R_is_solved_by_one_newton_step_and_certified_from_both_sides():
+    """R(f) = 2 (0.4 - f)+: Newton's step from f = 0 lands on f* = 0.4 (an upper end);
+    one probe just below certifies the bracket to rtol."""
+    fs = 0.4
+
+    def oracle(f):
+        return _trial(f, max(0.0, 2.0 * (fs - f)), 2.0)
+
+    s = newton_search(oracle, 0.8, 2.0)
+    assert s.stopped == "narrow_enough"
+    assert s.bad < fs <= s.good and s.width <= 1e-7 * s.good + 1e-9
+    assert len(s.trials) - 2 <= 2
+
+
+def test_a_concave_R_converges_from_below_in_a_few_steps():
+    """R(f) = (f* - f)(f* + f + 1/2) (concave: the slope grows towards f*, Newton
+    overshoots and the quadratic model corrects it); f* = 0.7."""
+    fs = 0.7
+
+    def oracle(f):
+        return _trial(f, max(0.0, (fs - f) * (fs + f + 0.5)), 2.0 * f + 0.5)
+
+    s = newton_search(oracle, fs * (fs + 0.5), 0.5)
+    assert s.stopped == "narrow_enough" and s.bad < fs <= s.good
+    assert s.width <= 1e-7 * s.good + 1e-9
+    assert len(s.trials) - 2 <= 12
+
+
+def test_a_noisy_solver_ends_at_its_resolution_with_a_bracket():
+    """A solver whose R carries 3e-6 of noise (its duals' spread says so) and that
+    cannot decide within it of f* = 0.3 (trials at the threshold): the search ends where
+    R below the upper end is predicted below that resolution, with f* in a bracket
+    within WIDE, no trial repeated, in a few solves."""
+    fs, band = 0.3, 3e-6
+
+    def oracle(f):
+        R = max(0.0, fs - f)
+        if 0 < R <= band or 0 < f - fs <= band:
+            return Trial(f, None, "threshold", R + band, 1.0, None)
+        return _trial(f, R, 1.0, spread=band)
+
+    s = newton_search(oracle, fs, 1.0, spread=band)
+    assert s.stopped == "resolution_reached"
+    assert s.bad < fs <= s.good and s.width <= WIDE * s.good
+    xs = [t.x for t in s.trials]
+    assert len(xs) == len(set(xs)) and len(xs) - 2 <= 5
+
+
+def test_a_failing_solver_near_f_star_gives_up_after_missed_limit_trials():
+    """Every solve within 1e-3 of f* = 0.5 fails (no checked answer): after
+    MISSED_LIMIT + 1 such trials in a row the search stops with its bracket."""
+    fs = 0.5
+
+    def oracle(f):
+        if abs(f - fs) <= 1e-3:
+            return Trial(f, None, "missed", why="failed")
+        return _trial(f, max(0.0, fs - f), 1.0)
+
+    s = newton_search(oracle, fs, 1.0)
+    assert s.stopped in ("missed_too_often", "nothing_past_the_undecided",
+                         "undecided_there_before")
+    assert s.bad < fs <= s.good
+    if s.stopped == "missed_too_often":
+        assert s.trailing("missed") == fr.MISSED_LIMIT + 1
+
+
+def test_an_infimum_stops_where_forces_go_beyond_resolution():
+    """f* = 0.2 approached with forces growing without bound: R > 0 up to f* (R >= 1e-9
+    there), and within 1e-4 above it the forces are beyond what the solver resolves. The
+    search stops at the first such trial with f* as its lower end and no certified upper
+    end (the method reports no number)."""
+    fs = 0.2
+
+    def oracle(f):
+        if fs < f < fs + 1e-4:
+            return Trial(f, None, "forces-span", why="forces span")
+        return _trial(f, max(fs - f, 1e-9), 1.0)
+
+    s = newton_search(oracle, fs, 1.0)
+    assert s.stopped == "forces_beyond_resolution"
+    assert s.bad == fs and s.good == math.inf and s.last.x > fs
