@@ -256,8 +256,14 @@ class ConvexMethod(Method):
         finally:
             self.timings.add("solve", self.runner.wall_time - w0, time.process_time() - c0)
 
-    def _run(self, problem: Any, what: str, tight: bool = False,
-             confirm: bool = False, refine: bool = True, stall: bool = True) -> SolverResult:
+    def solve(self, problem: Any, what: str, tight: bool = False,
+              confirm: bool = False, refine: bool = True, stall: bool = True) -> SolverResult:
+        """Solve ``problem`` (named ``what`` in notes) through the runner and its policy,
+        as the "solve" stage: at the tight tolerances (``tight``), the confirming ones
+        (``confirm``), with or without the policy's refined retry (``refine``) and stall
+        stop (``stall``); the notes say once where tolerances went out of reach or a
+        back end's answers were solved again. For problems built on this method's
+        system by other modules (the non-associative analysis)."""
         with self._solve_stage():
             n = len(self.runner.rejected)
             res = (self.runner.confirm(problem, what) if confirm
@@ -312,7 +318,7 @@ class ConvexMethod(Method):
         computed here) or its dual bound, which carries its dual residual, is above
         the threshold."""
         prob, jr = self._relaxation_problem(f, load_factor)
-        rx = self._read(prob, jr, self._run(prob, "relaxation", tight=True), f,
+        rx = self._read(prob, jr, self.solve(prob, "relaxation", tight=True), f,
                         self_certified)
         return self._confirmed(rx) if confirm else rx
 
@@ -320,7 +326,7 @@ class ConvexMethod(Method):
         """An undecided relaxation solved again at the confirming tolerances."""
         if rx.decided or rx.unresolved.startswith(FORCES_SPAN):
             return rx
-        again = self._read(rx.prob, rx.jr, self._run(rx.prob, "relaxation", confirm=True),
+        again = self._read(rx.prob, rx.jr, self.solve(rx.prob, "relaxation", confirm=True),
                            rx.f)
         return again if again.decided or not rx.unresolved else rx
 
@@ -455,7 +461,7 @@ class ConvexMethod(Method):
             # solved once: where the interior-point iteration stalls near a limit, a
             # retry with other settings stalls too (5,006-block wall at f*: AlmostSolved
             # after 200 iterations, twice), and the solved problem's state serves
-            res = self._run(prob, "force-state", refine=False)
+            res = self.solve(prob, "force-state", refine=False)
             status = res.raw_status if res.status != OPTIMAL else None
             if status is None and res.verified is False:
                 status = f"{res.raw_status}, failing its check ({describe(res.residuals)})"
@@ -658,7 +664,7 @@ class ConvexMethod(Method):
                 res = self.runner.attempt(prob, "maximum load", FINER_SETTINGS)
             if res is not None and res.status in (OPTIMAL, INFEASIBLE) and res.verified:
                 return prob, jr, res
-        return prob, jr, self._run(prob, "maximum load", tight=tight, stall=not tight)
+        return prob, jr, self.solve(prob, "maximum load", tight=tight, stall=not tight)
 
     def _friction_by_load(self, lf: float, rtol: float, first: float) -> Limit | None:
         """f* at load factor ``lf`` > 0 as the friction where lambda*(f) = ``lf``.
@@ -901,7 +907,7 @@ class ConvexMethod(Method):
                                    rx.R + STATE_SLACK, self.pyramid,
                                    reference=rx.res.z[rx.prob.cols["x"]])
         try:
-            res = self._run(prob, "force-state")
+            res = self.solve(prob, "force-state")
         except SolverFailure:
             return big
         if res.status != OPTIMAL or res.verified is False:
