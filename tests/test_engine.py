@@ -12,6 +12,7 @@ from types import SimpleNamespace
 import pytest
 
 from rigidblocks.methods import friction_rules as fr
+from rigidblocks.methods import load_rules as lr
 from rigidblocks.methods.engine import WIDE, Search, Trial, bisection, run
 
 
@@ -181,3 +182,56 @@ def test_an_infimum_stops_where_forces_go_beyond_resolution():
     s = newton_search(oracle, fs, 1.0)
     assert s.stopped == "forces_beyond_resolution"
     assert s.bad == fs and s.good == math.inf and s.last.x > fs
+
+
+# -- the rules of f* on lambda*(f) (rigidblocks.methods.load_rules) ----------------------
+def load_search(lam, dlam, lf: float, first: float, margin: float = 0.0,
+                rtol: float = 1e-7) -> Search:
+    """The search of ConvexMethod._friction_by_load on a synthetic lambda*(f) whose
+    solver resolves it to ``margin``."""
+    def oracle(f):
+        data = SimpleNamespace(attempts=1, tight=True, margin=margin, finer=False,
+                               at=None, by_value=False)
+        r = lam(f) - lf
+        if r >= 0:
+            return Trial(f, True, "upper", r, dlam(f), data)
+        if r + margin < 0:
+            return Trial(f, False, "lower", r, dlam(f), data)
+        return Trial(f, None, "unresolved", r, dlam(f), data)
+
+    s = Search(0.0, math.inf, rtol, 1e-9)
+    return run(s, oracle, lr.STOPS, (lr.start_at(first), *lr.STEPS), lr.AMENDS,
+               budget=lr.BUDGET)
+
+
+def test_a_concave_lambda_star_is_bracketed_to_rtol_from_both_sides():
+    """lambda*(f) = 2 sqrt(f) (concave: Newton's step up falls short, the convex model
+    and the step down from the upper end close in); lambda* = 1 at f* = 0.25."""
+    s = load_search(lambda f: 2 * math.sqrt(f), lambda f: 1 / math.sqrt(f), 1.0, 0.01)
+    assert s.stopped == "narrow_enough"
+    assert s.bad < 0.25 <= s.good and s.width <= 1e-7 * s.good + 1e-9
+    assert len(s.trials) <= 10
+
+
+def test_a_lambda_star_resolved_coarsely_stops_with_its_bracket():
+    """lambda*(f) = f resolved to 1e-4 only, lf = 0.5: trials within that of lf decide
+    nothing; the search ends with f* in a bracket within WIDE, not at rtol."""
+    s = load_search(lambda f: f, lambda f: 1.0, 0.5, 0.1, margin=1e-4)
+    assert s.stopped in ("unresolved_bracket", "ends_within_resolution", "narrow_enough")
+    assert s.bad < 0.5 <= s.good and s.width <= WIDE * s.good
+    assert len(s.trials) < lr.BUDGET
+
+
+def test_the_lambda_star_search_hands_back_within_its_budget():
+    """A solver whose every answer is unusable (hand-back) ends the search at once; one
+    whose lambda* never reaches lf runs out of its budget of solves."""
+    def unusable(f):
+        return Trial(f, None, "hand-back", data=SimpleNamespace(attempts=1, tight=True,
+                                                                margin=0.0, finer=False))
+
+    s = Search(0.0, math.inf, 1e-7, 1e-9)
+    run(s, unusable, lr.STOPS, (lr.start_at(0.3), *lr.STEPS), lr.AMENDS)
+    assert s.stopped == "handed_back" and len(s.trials) == 1
+    s = load_search(lambda f: 0.5 * (1 - math.exp(-f)), lambda f: 0.5 * math.exp(-f), 1.0,
+                    0.1)
+    assert s.stopped == "budget" and len(s.trials) == lr.BUDGET

@@ -23,6 +23,7 @@ import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -40,6 +41,7 @@ from ..results import ForceState
 from ..scene.model import Scene
 from ..solvers import INFEASIBLE, OPTIMAL, UNBOUNDED, Runner, SolverResult
 from ..solvers.policy import FINER_SETTINGS, VERIFY_TOL, describe
+from . import load_rules
 from .base import (
     ADMISSIBLE,
     INADMISSIBLE,
@@ -52,7 +54,7 @@ from .base import (
     ranked_breaches,
 )
 from .engine import WIDE, Search, Trial, run
-from .friction_rules import AMENDS, STEPS, STOPS, THRESHOLD_TRIALS, UNDECIDED_KINDS, root_step
+from .friction_rules import AMENDS, STEPS, STOPS, UNDECIDED_KINDS
 from .vertex import vertex_dual
 
 #: a relaxation below this fraction of the largest force of its state counts as zero
@@ -100,16 +102,6 @@ SPREAD_MARGIN = 4.0
 #: 20,093-block wall at f = 1.2877647 resolves lambda* to 1.2e-3 at VALUE_SETTINGS,
 #: about 1e-3 in f, where the bracket takes about 1/8 + 1.5 times that
 FINER_WHEN = 0.25
-#: an upper end is sought where lambda* is predicted this fraction of its resolution
-#: (SPREAD_MARGIN times the dual residual's work) above the load factor: about the
-#: work itself, by which the solver's lambda* falls short of lambda* (the 5,006-block
-#: wall at f = 1.25: 1.0002615 with dual residual work 9.4e-6 at VALUE_SETTINGS,
-#: 1.0002645 with 2.2e-6 at tolerances 1e-12)
-UP_REACH = 0.125
-#: a lower end is sought where lambda* is predicted this many times its resolution
-#: below the load factor: the largest resolution seen, as it varies twofold from trial
-#: to trial (2.4e-6 to 5.2e-6 on the 1,009-block wall near f*)
-LOW_REACH = 1.5
 #: beginning of the reason of a verdict undecided for that reason
 FORCES_SPAN = "forces span"
 #: an admissible state at a limit whose forces exceed this many times the loads of the
@@ -667,18 +659,19 @@ class ConvexMethod(Method):
         return prob, jr, self.solve(prob, "maximum load", tight=tight, stall=not tight)
 
     def _friction_by_load(self, lf: float, rtol: float, first: float) -> Limit | None:
-        """f* at load factor ``lf`` > 0 as the friction where lambda*(f) = ``lf``.
+        """f* at load factor ``lf`` > 0 as the friction where lambda*(f) = ``lf`` (the
+        rules of :mod:`.load_rules` on the search engine, :mod:`.engine`).
 
         lambda*(f), the largest admissible multiplier of the live load at friction f,
         grows with f; lf is admissible at f where lambda*(f) >= lf and the dead load
         alone is admissible (the admissible multipliers form an interval). Newton steps
         on lambda*(f) - lf from ``first`` use dlambda*/df from the duals of the
         friction rows (as dR/df for the relaxation), with the curvature model of
-        :func:`~.friction_rules.root_step` where lambda* is concave (Newton falls short). Each step
-        solves the max-load LP, better conditioned near f* than the relaxation: on the
-        5,006-block wall its value near f* is resolved to 4e-5 (SPREAD_MARGIN times the
-        work of its dual residual on its state), where the relaxation's lower points
-        stopped 5.4e-4 below the certified upper end.
+        :func:`~.friction_rules.root_step` where lambda* is concave (Newton falls
+        short). Each step solves the max-load LP, better conditioned near f* than the
+        relaxation: on the 5,006-block wall its value near f* is resolved to 4e-5
+        (SPREAD_MARGIN times the work of its dual residual on its state), where the
+        relaxation's lower points stopped 5.4e-4 below the certified upper end.
 
         An upper end is a trial whose state carries the live load at lambda >= lf
         within the admissibility threshold (breach and equilibrium residual computed on
@@ -705,31 +698,29 @@ class ConvexMethod(Method):
         they did not, the notes give them), where no upper end is found in 40 solves,
         or where no trial gave a lower end and the bracket is wider than WIDE.
         """
-        lo, hi = 0.0, math.inf
-        lam_lo, s_lo, s_hi = math.nan, 0.0, 0.0
-        # lambda*'s resolution: the largest margin of the tight solves at their settings
-        reach = 0.0
-        at_lo = at_hi = None
-        queue: list[float] = []  # trials around one within lambda*'s resolution of lf
-        n_unresolved = 0  # trials within that resolution
-        below: float | None = None  # where a lower end by value is expected below it
-        prev: tuple[float, float] | None = None  # (f, slope) of the previous lower end
-        lo_by_value = False  # the lower end rests on lambda*'s value, not its dual bound
-        far: tuple[float, float] | None = None  # the first upper end, its largest force
-        trial = first
-        tight = False  # the first trial, far from f* as a rule, at the defaults first
+        search = Search(0.0, math.inf, rtol, FRICTION_ATOL)
+        run(search, lambda f: self._load_trial(f, lf, search), load_rules.STOPS,
+            (load_rules.start_at(first), *load_rules.STEPS), load_rules.AMENDS,
+            budget=load_rules.BUDGET)
+        if search.stopped in ("handed_back", "budget"):
+            return None
+        return self._by_load_end(search, lf)
 
-        def on_chord(value: float) -> float:
-            """Where the chord between the ends reaches lambda* = ``value`` (NaN where
-            there is none)."""
-            if not (math.isfinite(lam_lo) and at_hi[3] > lam_lo):
-                return math.nan
-            return lo + (value - lam_lo) * (hi - lo) / (at_hi[3] - lam_lo)
-
-        finer = False  # the tight solves at FINER_SETTINGS first
-        for _ in range(40):
+    def _load_trial(self, f: float, lf: float, search: Search) -> Trial:
+        """The oracle of the search on lambda*(f): the max-load LP at ``f`` and its kind
+        of trial (:mod:`.load_rules`). The first trial, far from f* as a rule, is
+        solved at the back end's defaults, and again at the tight tolerances where
+        that answer decides no end; once a tight solve resolves f more coarsely than
+        FINER_WHEN times WIDE, the later ones are solved at FINER_SETTINGS first."""
+        tight = bool(search.trials)
+        finer = any(t.data.finer for t in search.trials)
+        attempts = 0
+        while True:
+            attempts += 1
+            data = SimpleNamespace(attempts=attempts, tight=tight, margin=0.0, finer=False,
+                                   at=None, by_value=False)
             try:
-                prob, jr, res = self._max_load(trial, tight, finer)
+                prob, jr, res = self._max_load(f, tight, finer)
             except SolverFailure:
                 if tight:
                     raise
@@ -739,107 +730,42 @@ class ConvexMethod(Method):
                 if not tight:
                     tight = True
                     continue
-                return None
+                return Trial(f, None, "hand-back", data=data)
             if res.status == INFEASIBLE:  # no multiplier at all is admissible there
-                lo, lam_lo, s_lo, at_lo, prev = trial, -math.inf, 0.0, None, None
-                lo_by_value = False
-            else:
-                z, y = res.z, res.y
-                lam = float(z[prob.cols["lambda"]][0])
-                x = z[prob.cols["x"]]
-                tol = ADMISSIBLE_TOL * max(1.0, float(np.abs(x).max(initial=0.0)))
-                admissible = max(self._breach(prob, jr, z)) <= tol
-                allowance, spread = _dual_work(prob, res)
-                margin = SPREAD_MARGIN * spread
-                # the dual bound on lambda*, with the dual residual's work on forces up
-                # to the state's largest (as the relaxation's lower bound)
-                bound = float(prob.b @ y) + allowance
-                slope = float(np.sum(self._friction_shares(res, jr, prob)))
-                if tight:
-                    reach = max(reach, margin)
-                if tight and not finer and slope > 0 and \
-                        margin / slope > FINER_WHEN * WIDE * trial:
-                    # lambda* resolves f too coarsely here for a bracket within WIDE
-                    finer, reach = True, 0.0
-                if lam >= lf and admissible:
-                    hi, at_hi, s_hi = trial, (prob, jr, res, lam), slope
-                    if far is None:
-                        far = (trial, float(np.abs(self._per_block(x)).max(initial=0.0)))
-                elif lam + margin < lf:
-                    prev = (lo, s_lo) if s_lo > 0 else None
-                    lo, lam_lo, s_lo, at_lo = trial, lam, slope, (prob, jr, res)
-                    lo_by_value = bound >= lf
-                elif not tight:
-                    # the defaults' answer decides only ends away from lf: this trial again
-                    # at the tight tolerances
-                    tight = True
-                    continue
-                elif not admissible or slope <= 0:
-                    return None
-                elif n_unresolved < THRESHOLD_TRIALS:
-                    # within what lambda* resolves below lf: f* is about here. Above it
-                    # an upper end needs only a state at lambda >= lf (where lambda*,
-                    # predicted with this slope, is UP_REACH times the resolution above
-                    # lf, then certify above); below it a lower end needs lambda* below
-                    # lf by its resolution (where lambda* is predicted LOW_REACH times
-                    # it below lf), tried while the bracket is wider than WIDE
-                    if not n_unresolved:
-                        queue = [trial + (lf - lam + UP_REACH * reach) / slope
-                                 + 0.5 * rtol * trial]
-                    n_unresolved += 1
-                    below = trial - (lam - lf + LOW_REACH * max(reach, margin)) / slope
-            tight = True
-            if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
-                break
-            queue = [t for t in queue if lo < t < hi]
-            if queue:
-                trial = queue.pop(0)
+                return Trial(f, False, "lower", -math.inf, 0.0, data)
+            z, y = res.z, res.y
+            lam = float(z[prob.cols["lambda"]][0])
+            x = z[prob.cols["x"]]
+            tol = ADMISSIBLE_TOL * max(1.0, float(np.abs(x).max(initial=0.0)))
+            admissible = max(self._breach(prob, jr, z)) <= tol
+            allowance, spread = _dual_work(prob, res)
+            slope = float(np.sum(self._friction_shares(res, jr, prob)))
+            data.margin, data.at = SPREAD_MARGIN * spread, (prob, jr, res)
+            # lambda* resolves f too coarsely here for a bracket within WIDE
+            data.finer = tight and not finer and slope > 0 and \
+                data.margin / slope > FINER_WHEN * WIDE * f
+            if lam >= lf and admissible:
+                return Trial(f, True, "upper", lam - lf, slope, data)
+            if lam + data.margin < lf:
+                # on its value where the dual bound on lambda*, with the dual residual's
+                # work on forces up to the state's largest, does not certify it
+                data.by_value = float(prob.b @ y) + allowance >= lf
+                return Trial(f, False, "lower", lam - lf, slope, data)
+            if not tight:  # the defaults' answer decides only ends away from lf
+                tight = True
                 continue
-            if n_unresolved:
-                if below is None or not lo < below < hi or hi - lo <= WIDE * hi:
-                    break
-                trial, below = below, None
-                continue
-            newton = lo + root_step(lf - lam_lo, s_lo, lo, prev, convex=True) \
-                if s_lo > 0 else math.inf
-            if newton - lo <= 0.5 * rtol * newton:
-                newton = lo * (1.0 + 0.5 * rtol)  # certify from above
-            if not math.isfinite(hi):
-                trial = newton if math.isfinite(newton) else max(2.0 * trial, 1.0)
-                continue
-            if lo < newton < hi:
-                trial = newton
-            else:
-                # past the upper end: Newton's step down from it (below the root where
-                # lambda* is concave, as Newton's step up from the lower end falls short
-                # of it elsewhere: the chord between the ends would stay above it and
-                # move the upper end slowly), else the chord, else the midpoint
-                trial = 0.5 * (lo + hi)
-                down = hi - (at_hi[3] - lf) / s_hi if s_hi > 0 else -math.inf
-                chord = on_chord(lf)
-                trial = chord if lo < chord < hi else trial
-                if lo < down < hi:
-                    trial = down
-            if s_hi > 0 and trial > hi - (at_hi[3] - lf + reach) / s_hi:
-                # lambda* there, predicted with the upper end's slope, within its
-                # resolution of lf: no end to expect. Where the upper end is above lf by
-                # more than twice that, a trial where lambda* is predicted UP_REACH
-                # times it above lf (on the chord from the lower end, which stays below
-                # lambda* where it is concave), else one where it is predicted
-                # LOW_REACH times it below lf (on the tangent at the upper end, which
-                # stays above it); neither, where the ends are that close: the bracket
-                # stands
-                # (1,009-block wall: a trial 4.8e-8 below the upper end, lambda* 7e-8
-                # below lf with a resolution of 4.1e-6, decided nothing)
-                trial = on_chord(lf + UP_REACH * reach) if at_hi[3] - lf > 2.0 * reach \
-                    else math.nan
-                if not lo < trial < hi * (1.0 - 0.5 * rtol):
-                    trial = hi - (at_hi[3] - lf + LOW_REACH * reach) / s_hi
-                    if not lo * (1.0 + 0.5 * rtol) < trial < hi:
-                        break
-        else:
-            return None
-        if at_hi is None or at_lo is None and hi - lo > WIDE * hi:
+            if not admissible or slope <= 0:
+                return Trial(f, None, "hand-back", data=data)
+            # within what lambda* resolves of lf: f* is about here
+            return Trial(f, None, "unresolved", lam - lf, slope, data)
+
+    def _by_load_end(self, search: Search, lf: float) -> Limit | None:
+        """The limit a search on lambda*(f) found (None: the search on R(f) decides),
+        with the state at lf: theta (state at lambda) + (1 - theta) (dead load alone)."""
+        lo, hi = search.bad, search.good
+        upper, lower = search.end(True), search.end(False)
+        at_lo = lower.data.at if lower is not None else None
+        if upper is None or at_lo is None and hi - lo > WIDE * hi:
             return None
         if hi - lo > WIDE * hi:
             self.notes.append(
@@ -849,9 +775,8 @@ class ConvexMethod(Method):
                 f"could account for of {lf:g}; the bracket is wider than {WIDE:g} "
                 "(relative): no number is given")
             return Limit("undecided", None, lo, hi)
-        prob, jr, res, lam = at_hi
-        # the state at lf: theta (state at lambda) + (1 - theta) (dead load alone)
-        theta = lf / lam
+        prob, jr, res = upper.data.at
+        theta = lf / (upper.value + lf)
         x = res.z[prob.cols["x"]]
         if theta < 1.0 and np.any(self.system.dead):
             rx0 = self.relaxation(hi, 0.0)
@@ -860,32 +785,41 @@ class ConvexMethod(Method):
             x0 = self.vscaling.forces(rx0.res.z[rx0.prob.cols["x"]])
             x = theta * x + (1.0 - theta) * self.lscaling.scaled(x0)
         big = float(np.abs(self._per_block(x)).max(initial=0.0))
-        if big > FORCE_WARN:
-            # the structure's own scale, or an infimum's growth? (the relaxation search
-            # says whether f* is an infimum where this cannot tell)
-            if far is None or _infimum_growth(far, hi, lo, big):
-                return None
-            f_far, big_far = far
-            self.notes.append(
-                f"the state at f* carries forces up to {big:.1e} times the loads of the "
-                f"blocks they act on; at f = {f_far:.6g}, {(f_far - hi) / (hi - lo):.0f} "
-                f"times further above f* than the bracket's width, {big_far:.1e}: forces "
-                "that do not grow as f* is approached (not an infimum)")
+        if big > FORCE_WARN and not self._not_an_infimum(search, big):
+            return None
         z = res.z.copy()
         z[prob.cols["x"]] = x
         z[prob.cols["lambda"]] = lf
-        if lo_by_value:
+        if lower is not None and lower.data.by_value:
             self.notes.append(
                 f"f* is certified from above: at f = {hi:.10g} a state carries the load "
                 f"factor {lf:g} (f* from lambda*(f) = {lf:g}, the largest load "
                 f"multiplier at friction f). Below, f* is bracketed in [{lo:.10g}, "
                 f"{hi:.10g}] (relative width {(hi - lo) / hi:.1e}) by lambda*'s value at "
-                f"the lower end ({lam_lo:.10g}: below {lf:g} by more than "
+                f"the lower end ({lower.value + lf:.10g}: below {lf:g} by more than "
                 f"{SPREAD_MARGIN:g} times the solver's resolution there), not by a "
                 "certified bound")
         governing = self._governing(at_lo[2], at_lo[1], at_lo[0]) if at_lo else ()
         return Limit("stable", hi, lo, hi, governing=governing,
                      at=Verdict(ADMISSIBLE, 0.0, (), (replace(res, z=z), prob)))
+
+    def _not_an_infimum(self, search: Search, big: float) -> bool:
+        """Whether forces of ``big`` times the loads at f* are the structure's own scale
+        (they grew from the first upper end's less than an infimum's would, with a note),
+        or may be an infimum's growth (the relaxation search says whether f* is one)."""
+        lo, hi = search.bad, search.good
+        first = search.ends(True)[0]
+        prob, _, res = first.data.at
+        f_far = first.x
+        big_far = float(np.abs(self._per_block(res.z[prob.cols["x"]])).max(initial=0.0))
+        if _infimum_growth((f_far, big_far), hi, lo, big):
+            return False
+        self.notes.append(
+            f"the state at f* carries forces up to {big:.1e} times the loads of the "
+            f"blocks they act on; at f = {f_far:.6g}, {(f_far - hi) / (hi - lo):.0f} "
+            f"times further above f* than the bracket's width, {big_far:.1e}: forces "
+            "that do not grow as f* is approached (not an infimum)")
+        return True
 
     def _per_block(self, x: np.ndarray) -> np.ndarray:
         """Forces of a max-load state in units of the loads of the blocks they act on (as

@@ -29,7 +29,7 @@ from typing import Any
 WIDE = 1e-3
 
 
-@dataclass
+@dataclass(eq=False)
 class Trial:
     """One evaluation: where (``x``), on which side (True: good, False: bad, None: it
     decides nothing), the oracle's kind of answer (its own word: "upper", "lower",
@@ -87,6 +87,13 @@ class Search:
         """The trial at the ``side`` end (None while no trial moved it)."""
         moved = self.ends(side)
         return moved[-1] if moved else None
+
+    def after(self, t: Trial) -> list[Trial]:
+        """The trials recorded after ``t``."""
+        for i, u in enumerate(self.trials):
+            if u is t:
+                return self.trials[i + 1:]
+        return []
 
     def of_kind(self, *kinds: str) -> list[Trial]:
         return [t for t in self.trials if t.kind in kinds]
