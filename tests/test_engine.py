@@ -210,7 +210,7 @@ def test_a_concave_lambda_star_is_bracketed_to_rtol_from_both_sides():
     s = load_search(lambda f: 2 * math.sqrt(f), lambda f: 1 / math.sqrt(f), 1.0, 0.01)
     assert s.stopped == "narrow_enough"
     assert s.bad < 0.25 <= s.good and s.width <= 1e-7 * s.good + 1e-9
-    assert len(s.trials) <= 10
+    assert len(s.trials) <= 8
 
 
 def test_a_lambda_star_resolved_coarsely_stops_with_its_bracket():
@@ -219,7 +219,7 @@ def test_a_lambda_star_resolved_coarsely_stops_with_its_bracket():
     s = load_search(lambda f: f, lambda f: 1.0, 0.5, 0.1, margin=1e-4)
     assert s.stopped in ("unresolved_bracket", "ends_within_resolution", "narrow_enough")
     assert s.bad < 0.5 <= s.good and s.width <= WIDE * s.good
-    assert len(s.trials) < lr.BUDGET
+    assert len(s.trials) <= 4  # Newton lands on f*: a probe below, not a bisection
 
 
 def test_the_lambda_star_search_hands_back_within_its_budget():
@@ -235,3 +235,17 @@ def test_the_lambda_star_search_hands_back_within_its_budget():
     s = load_search(lambda f: 0.5 * (1 - math.exp(-f)), lambda f: 0.5 * math.exp(-f), 1.0,
                     0.1)
     assert s.stopped == "budget" and len(s.trials) == lr.BUDGET
+
+
+def test_no_admissible_multiplier_below_f_star_is_followed_by_doubling():
+    """No multiplier is admissible below f = 0.2 (the max-load LP infeasible: a lower end
+    of residual -inf and slope 0), lambda*(f) = 5 (f - 0.2) above: the search doubles
+    from the first trial (to 1 at least), then Newton's step down from there lands on
+    f* = 0.4 (lambda* = lf = 1) and a probe just below it certifies the bracket."""
+    def lam(f):
+        return -math.inf if f < 0.2 else 5 * (f - 0.2)
+
+    s = load_search(lam, lambda f: 0.0 if f < 0.2 else 5.0, 1.0, 0.1)
+    assert s.stopped == "narrow_enough" and s.bad < 0.4 <= s.good
+    assert s.trials[1].x == 1.0 and s.trials[1].rule == "first_upper_end"
+    assert len(s.trials) == 4

@@ -41,7 +41,7 @@ from ..results import ForceState
 from ..scene.model import Scene
 from ..solvers import INFEASIBLE, OPTIMAL, UNBOUNDED, Runner, SolverResult
 from ..solvers.policy import FINER_SETTINGS, VERIFY_TOL, describe
-from . import load_rules
+from . import friction_rules, load_rules
 from .base import (
     ADMISSIBLE,
     INADMISSIBLE,
@@ -72,8 +72,6 @@ FRICTION_RTOL = 1e-7
 #: absolute accuracy of the minimum friction: a structure that stands with f <= 1e-9
 #: needs no friction (round-off keeps R(0) just above the threshold)
 FRICTION_ATOL = 1e-9
-#: relaxations the search for f* on R(f) may solve before it gives up
-FRICTION_BUDGET = 100
 #: slack (reference-force units) granted to the force-state QP at a limit state, where
 #: the admissible set shrinks to a point and round-off would make it empty
 STATE_SLACK = 1e-9
@@ -509,7 +507,7 @@ class ConvexMethod(Method):
             if by_load is not None:
                 return by_load
         run(search, lambda f: self._friction_trial(f, lf), STOPS, STEPS, AMENDS,
-            budget=FRICTION_BUDGET)
+            budget=friction_rules.BUDGET)
         return self._friction_end(search, lf)
 
     def _friction_trial(self, f: float, lf: float) -> Trial:
@@ -550,8 +548,9 @@ class ConvexMethod(Method):
         lo, hi, last, why = search.bad, search.good, search.last, search.stopped
         upper = hi if math.isfinite(hi) else None
         if why == "budget":
-            raise SolverFailure(f"minimum friction did not converge in {FRICTION_BUDGET} "
-                                "solves", self.solver, "iteration limit")
+            raise SolverFailure(f"minimum friction did not converge in "
+                                f"{friction_rules.BUDGET} solves", self.solver,
+                                "iteration limit")
         if why == "missed_too_often":
             if isinstance(last.data, SolverFailure) and upper is None:
                 raise last.data

@@ -41,6 +41,8 @@ NARROW = 1e-3
 MISSED_LIMIT = 4
 #: trials left at the threshold (in all) after which the search ends with its bracket
 THRESHOLD_TRIALS = 8
+#: relaxations the search may solve before it gives up (a failure: it did not converge)
+BUDGET = 100
 #: relative offset of a trial from a point it must lie above or below, in units of the
 #: requested accuracy: a Newton step that lands this close to the lower end is moved up
 #: by it (to certify from above), a probe goes this far below the upper end
@@ -283,5 +285,5 @@ def root_step(R: float, s: float, f: float, prev: tuple[float, float] | None,
     return R / s
 
 
-__all__ = ["AMENDS", "MISSED_LIMIT", "UNDECIDED_KINDS", "NARROW", "NEAR_STOP", "STEPS", "STOPS",
-           "THRESHOLD_TRIALS", "root_step"]
+__all__ = ["AMENDS", "BUDGET", "MISSED_LIMIT", "NARROW", "NEAR_STOP", "STEPS", "STOPS",
+           "THRESHOLD_TRIALS", "UNDECIDED_KINDS", "root_step"]

@@ -15,7 +15,8 @@ tolerances), ``finer`` (this trial put the later ones at finer settings) and
 
 The rules, in the order they are asked: stop where the oracle hands back, at the
 requested accuracy (:data:`STOPS`); step above and below the first unresolved trial, to
-a first upper end, by Newton, down from the upper end, on the chord, to the midpoint,
+a first upper end, by Newton, down from the upper end, on the chord, just below the
+upper end, to the midpoint,
 each moved where lambda* is predicted resolvable (:data:`STEPS`); within the budget of
 solves (:data:`AMENDS`).
 """
@@ -183,13 +184,26 @@ def chord_between_ends(s: Search) -> float | str | None:
     return _resolvable(s, chord) if s.bad < chord < s.good else None
 
 
+def probe_below_upper_end(s: Search) -> float | str | None:
+    """Where Newton's step, the step down and the chord all land at or past the upper
+    end (lambda* about linear with its root at the upper end): once after each
+    midpoint, a probe CERTIFY_OFFSET x rtol below it, to certify the bracket from
+    below (moved where lambda* is resolvable)."""
+    rules = [t.rule for t in s.trials if t.rule in ("probe_below_upper_end",
+                                                      "midpoint_resolvable")]
+    if rules and rules[-1] == "probe_below_upper_end" or _newton(s) < s.good:
+        return None
+    return _resolvable(s, s.good * (1.0 - CERTIFY_OFFSET * s.rtol))
+
+
 def midpoint_resolvable(s: Search) -> float | str:
     """Halve the bracket."""
     return _resolvable(s, 0.5 * (s.bad + s.good))
 
 
 STEPS = (above_the_unresolved, below_the_unresolved, first_upper_end, newton_step,
-         down_from_upper_end, chord_between_ends, midpoint_resolvable)
+         down_from_upper_end, chord_between_ends, probe_below_upper_end,
+         midpoint_resolvable)
 
 
 # -- amend rule --------------------------------------------------------------------------
