@@ -924,14 +924,14 @@ def test_the_state_at_f_star_from_lambda_star_carries_the_load_factor(monkeypatc
     from rigidblocks.errors import SolverFailure
     from rigidblocks.methods import convex
 
-    run = convex.ConvexMethod._run
+    run = convex.ConvexMethod.solve
 
     def no_qp(self, problem, what, *args, **kw):
         if what == "force-state":
             raise SolverFailure("QP refused", "clarabel", "refused")
         return run(self, problem, what, *args, **kw)
 
-    monkeypatch.setattr(convex.ConvexMethod, "_run", no_qp)
+    monkeypatch.setattr(convex.ConvexMethod, "solve", no_qp)
     limits = []
     max_load = convex.ConvexMethod._max_load
 

@@ -21,6 +21,7 @@ from ..results import CheckResult, FrictionResult, LoadResult
 from ..scene.model import Scene, friction_label, friction_value
 from ..scene.validate import check_load_factor
 from .nonassociative import (
+    NA_RTOL,
     check_nonassociative,
     is_nonassociative,
     max_load_nonassociative,
@@ -30,6 +31,17 @@ from .search import friction_by_bisection, load_by_bisection
 
 #: relative accuracy of lambda* where it is bisected (methods without a fast path)
 LOAD_RTOL = 1e-6
+
+
+def requested_rtol(rtol: float | None, default: float) -> float:
+    """The relative accuracy asked for: ``default`` where None; a number in (0, 1)
+    (bad input otherwise)."""
+    if rtol is None:
+        return default
+    if not (isinstance(rtol, int | float) and 0 < rtol < 1):
+        raise InputError(f"rtol (the requested relative accuracy) must be a number in "
+                         f"(0, 1), got {rtol!r}")
+    return float(rtol)
 
 
 def _fields(m: Method, analysis: str, status: str, friction: Any,
@@ -144,7 +156,7 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
 
 def min_friction(scene: Scene, load_factor: float | None = None,
                  method: str = "clarabel", *,
-                 solver: str | None = None, state: bool = True, rtol: float = FRICTION_RTOL,
+                 solver: str | None = None, state: bool = True, rtol: float | None = None,
                  settings: dict | None = None, pyramid: int | None = None,
                  contact_tol: float | None = None, progress: Progress | None = None,
                  flow: str | None = None) -> FrictionResult:
@@ -157,6 +169,9 @@ def min_friction(scene: Scene, load_factor: float | None = None,
     structure fails by hinging; "undecided" or "failure" where the method says so.
 
     Notes:
+        ``rtol``: the relative accuracy of f* (the width of its bracket relative to
+        f*); default FRICTION_RTOL = 1e-7 on the convex path and on bisection, NA_RTOL =
+        1e-5 for the non-associative analysis.
         Convex path: Newton steps on the relaxation R(f), or under a live load on
         lambda*(f) = ``load_factor`` (a few solves reach ``rtol``, see
         :meth:`rigidblocks.methods.convex.ConvexMethod.friction_limit`). Other
@@ -168,7 +183,9 @@ def min_friction(scene: Scene, load_factor: float | None = None,
         return min_friction_nonassociative(scene, lf, method, flow=flow, state=state,
                                            solver=solver, settings=settings,
                                            pyramid=pyramid, contact_tol=contact_tol,
-                                           progress=progress)
+                                           progress=progress,
+                                           rtol=requested_rtol(rtol, NA_RTOL))
+    rtol = requested_rtol(rtol, FRICTION_RTOL)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol, progress=progress)
     if m.contacts.n_joints and not m.uniform.any():
@@ -194,7 +211,7 @@ def min_friction(scene: Scene, load_factor: float | None = None,
 def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clarabel", *,
                         solver: str | None = None, state: bool = True,
                         settings: dict | None = None, pyramid: int | None = None,
-                        contact_tol: float | None = None, rtol: float = LOAD_RTOL,
+                        contact_tol: float | None = None, rtol: float | None = None,
                         mechanism: str = "vertex", progress: Progress | None = None,
                         flow: str | None = None) -> LoadResult:
     """The largest multiplier lambda* of the live loads (associative friction; with
@@ -205,6 +222,10 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     has no admissible state; "undecided" or "failure" where the method says so.
 
     Notes:
+        ``rtol``: the relative accuracy of lambda*; default LOAD_RTOL = 1e-6 (the
+        convex path's one solve is at its tight tolerances whatever it is: above it, the
+        result gives lambda*'s bracket by the duals' residual), NA_RTOL = 1e-5 for the
+        non-associative analysis.
         Convex path: one LP (SOCP in 3D), max lambda s.t. A x + F_dead + lambda F_live
         = 0 and the joint laws; its duals on the equilibrium rows are the mechanism (see
         :meth:`rigidblocks.methods.convex.ConvexMethod.load_limit`). Other methods:
@@ -223,9 +244,11 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         res = max_load_nonassociative(scene, friction, method, flow=flow, state=state,
                                       solver=solver, settings=settings, pyramid=pyramid,
                                       contact_tol=contact_tol, progress=progress,
-                                      mechanism=mechanism)
+                                      mechanism=mechanism,
+                                      rtol=requested_rtol(rtol, NA_RTOL))
         return replace(res, tilt_angle_deg=tilt_angle_deg(scene, res.load_multiplier)
                        if res.status == "collapse" else None)
+    rtol = requested_rtol(rtol, LOAD_RTOL)
     f = friction_value(scene.effective_friction if friction is None else friction)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol, progress=progress)

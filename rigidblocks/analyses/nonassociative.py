@@ -250,7 +250,7 @@ class ConvexNonAssociative(NonAssociative):
             prob = build_energy_qp(self.system, cv.scaling, f_eff, lf, relax, cv.pyramid,
                                    cap)
             try:
-                res = cv._run(prob, "non-associative state")
+                res = cv.solve(prob, "non-associative state")
             except SolverFailure:  # (almost) infeasible: decided by the relaxation
                 return None
             return res.z[prob.cols["x"]] if res.status == OPTIMAL else None
@@ -259,7 +259,7 @@ class ConvexNonAssociative(NonAssociative):
         if x is not None:
             return x, 0.0
         rprob, _ = build_relaxation(self.system, cv.scaling, f_eff, lf, cv.pyramid, cap=cap)
-        rres = cv._run(rprob, "relaxation", tight=True)
+        rres = cv.solve(rprob, "relaxation", tight=True)
         if rres.status != OPTIMAL:
             return None, math.inf
         R = max(float(rres.z[rprob.cols["r"]][0]), 0.0)
@@ -277,7 +277,7 @@ class ConvexNonAssociative(NonAssociative):
         cap = np.where(low, 0.0, f_pt * N)
         rprob, _ = build_relaxation(self.system, self.cv.scaling, f_eff, lf, self.cv.pyramid,
                                     cap=cap)
-        rres = self.cv._run(rprob, "relaxation", tight=True)
+        rres = self.cv.solve(rprob, "relaxation", tight=True)
         if rres.status != OPTIMAL:
             return None
         R0 = max(float(rres.z[rprob.cols["r"]][0]), 0.0)
@@ -584,7 +584,7 @@ def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: flo
     f_eff = np.where(mk, 0.0, fj)
     cap = np.where(mk, fj, 0.0)[pj] * np.maximum(st.normal, 0.0) / cv.scaling.force
     prob, _ = build_max_load(cv.system, cv.scaling, f_eff, cv.pyramid, cap=cap)
-    res = cv._run(prob, "maximum load (capped laws)", tight=True, stall=False)
+    res = cv.solve(prob, "maximum load (capped laws)", tight=True, stall=False)
     if res.status != OPTIMAL:
         return None, ()
     lam_cap = float(res.z[prob.cols["lambda"]][0])
@@ -605,14 +605,14 @@ def _frictionless_bound(cv: ConvexMethod, marked: np.ndarray, f: float) -> float
     a lower bound on any non-associative collapse multiplier (Drucker 1954)."""
     fj = np.where(marked, 0.0, cv.f_joint(f))
     prob, _ = build_max_load(cv.system, cv.scaling, fj, cv.pyramid)
-    res = cv._run(prob, "maximum load (frictionless bound)", tight=True, stall=False)
+    res = cv.solve(prob, "maximum load (frictionless bound)", tight=True, stall=False)
     if res.status != OPTIMAL:
         return None
     lam = float(res.z[prob.cols["lambda"]][0])
     if lam < -ADMISSIBLE_TOL:
         return None
     rprob, _ = build_relaxation(cv.system, cv.scaling, fj, 0.0, cv.pyramid)
-    rres = cv._run(rprob, "relaxation", tight=True)
+    rres = cv.solve(rprob, "relaxation", tight=True)
     if rres.status != OPTIMAL:
         return None
     x = rres.z[rprob.cols["x"]]

@@ -15,15 +15,29 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..methods import FAILURE, Limit, Method, Verdict
+from ..methods.engine import (
+    WIDE,
+    Oracle,
+    Search,
+    StepRule,
+    Trial,
+    bisection,
+    midpoint,
+    narrow_enough,
+    run,
+)
 
 #: a bisection stopped by an undecided trial with a bracket wider than BRACKET_RTOL
-#: relative plus BRACKET_ATOL gives no number (the floor: f* or lambda* = 0)
-BRACKET_RTOL = 1e-3
+#: relative plus BRACKET_ATOL gives no number (the floor: f* or lambda* = 0); the
+#: engine's WIDE, as for every search
+BRACKET_RTOL = WIDE
 BRACKET_ATOL = 1e-6
 #: largest friction tried when bracketing f* from above
 FRICTION_CEILING = 1e8
 #: largest load multiplier tried when bracketing lambda* (beyond it: "unbounded")
 UNBOUNDED_AT = 1e6
+#: trials of a search on verdicts (doubling to a ceiling, then bisection)
+BUDGET = 300
 
 #: decide(x) -> (True: good, False: bad, None: undecided; anything to keep with it)
 Decide = Callable[[float], tuple[bool | None, Any]]
@@ -56,20 +70,12 @@ class Bracket:
 def bisect(decide: Decide, bad: float, good: float, rtol: float, atol: float = 0.0,
            steps: int = 200) -> Bracket:
     """Halve [bad, good] (either order) until |good - bad| <= rtol max(|good|, |bad|) +
-    atol, at most ``steps`` times; an undecided trial stops it."""
-    last = None
-    for _ in range(steps):
-        if abs(good - bad) <= rtol * max(abs(good), abs(bad), 1e-300) + atol:
-            break
-        mid = 0.5 * (bad + good)
-        verdict, data = decide(mid)
-        if verdict is None:
-            return Bracket(bad, good, last, mid)
-        if verdict:
-            good, last = mid, data
-        else:
-            bad = mid
-    return Bracket(bad, good, last, None)
+    atol, at most ``steps`` times; an undecided trial stops it (the engine's
+    :func:`~rigidblocks.methods.engine.bisection`)."""
+    s = bisection(decide, bad, good, rtol, atol, steps)
+    passed = s.end(True)
+    return Bracket(s.bad, s.good, passed.data if passed else None,
+                   s.last.x if s.stopped == "undecided_trial" else None)
 
 
 def _verdicts(m: Method, call: Callable[[float], Verdict]) -> Decide:
@@ -81,15 +87,60 @@ def _verdicts(m: Method, call: Callable[[float], Verdict]) -> Decide:
     return decide
 
 
+def _oracle(decide: Decide) -> Oracle:
+    def oracle(x: float) -> Trial:
+        side, v = decide(x)
+        return Trial(x, side, "failure" if v.status == FAILURE else "", data=v)
+    return oracle
+
+
+# -- bracketing, then bisection: the rules of the searches on verdicts -------------------
+def _bracketing(s: Search) -> bool:
+    """The last trial was made before both ends were finite."""
+    return s.last is not None and not all(map(math.isfinite, s.last.bracket))
+
+
+def failed_while_bracketing(s: Search) -> bool:
+    """The method failed on a trial made before f* or lambda* was bracketed."""
+    return _bracketing(s) and s.last.kind == "failure"
+
+
+def undecided_while_bracketing(s: Search) -> bool:
+    """A lambda* trial made before an inadmissible upper end was found decided nothing:
+    lambda* is not bracketed (friction trials go on doubling past such a trial)."""
+    return _bracketing(s) and s.last.side is None and s.bad > s.good
+
+
+def undecided_while_bisecting(s: Search) -> bool:
+    """A bisection trial decided nothing: the bracket stands as it is."""
+    return s.last is not None and s.last.side is None and not _bracketing(s)
+
+
+STOPS = (failed_while_bracketing, undecided_while_bracketing, undecided_while_bisecting,
+         narrow_enough)
+
+
+def doubling(ceiling: float) -> StepRule:
+    """Double from 1 while an end is infinite; beyond ``ceiling`` the search stops
+    ("beyond_ceiling")."""
+    def double_up(s: Search) -> float | str | None:
+        if all(map(math.isfinite, (s.bad, s.good))):
+            return None
+        trial = 2.0 * s.last.x if s.trials and s.last.x > 0 else 1.0
+        return "beyond_ceiling" if trial > ceiling else trial
+    return double_up
+
+
 def friction_by_bisection(m: Method, load_factor: float, rtol: float) -> Limit:
     """f* by bracketing and bisection on the method's verdicts.
 
     f = infinite first (not admissible: "unstable"; undecided or failed: so stated),
     then f = 0, then doubling from 1 to bracket f* (an undecided trial does not raise the
-    lower end), then bisection to ``rtol``. An undecided trial ends the bisection: f* is
-    the upper (certified admissible) end of the bracket, which goes into ``lower``,
-    ``upper`` and the notes; if it is wider than ``BRACKET_RTOL`` relative (plus
-    ``BRACKET_ATOL``) the status is "undecided" and no f* is given.
+    lower end), then bisection to ``rtol`` (the engine's rules :data:`STOPS` and
+    :func:`doubling`). An undecided trial ends the bisection: f* is the upper
+    (certified admissible) end of the bracket, which goes into ``lower``, ``upper`` and
+    the notes; if it is wider than ``BRACKET_RTOL`` relative (plus ``BRACKET_ATOL``)
+    the status is "undecided" and no f* is given.
     """
     lf = load_factor
     decide = _verdicts(m, lambda f: m.admissible(f, lf))
@@ -102,27 +153,21 @@ def friction_by_bisection(m: Method, load_factor: float, rtol: float) -> Limit:
     ok0, v0 = decide(0.0)
     if ok0 is True:
         return Limit("stable", 0.0, 0.0, 0.0, at=v0)
-    lo, hi, best = 0.0, 1.0, None
-    while True:
-        ok, v = decide(hi)
-        if v.status == FAILURE:
-            return Limit(FAILURE)
-        if ok is True:
-            best = v
-            break
-        if ok is False:
-            lo = hi
-        else:
-            m.notes.append(f"the iteration could not decide at f = {hi:.9g}")
-        hi = 2 * hi
-        if hi > FRICTION_CEILING:
-            if lo < hi / 2:  # some trial was undecided: nothing is certified
-                m.notes.append(f"no finite friction up to {FRICTION_CEILING:g} is certified "
-                               f"admissible; f = {lo:.9g} is not admissible")
-                return Limit("undecided")
-            m.notes.append(f"no finite friction up to {FRICTION_CEILING:g} is admissible")
-            return Limit("unstable")
-    return _limit(m, bisect(decide, lo, hi, rtol), "f", "stable", best)
+    s = run(Search(0.0, math.inf, rtol), _oracle(decide), STOPS,
+            (doubling(FRICTION_CEILING), midpoint), budget=BUDGET)
+    for t in s.trials:
+        if _bracket_trial(t) and t.side is None and t.kind != "failure":
+            m.notes.append(f"the iteration could not decide at f = {t.x:.9g}")
+    if s.stopped == "failed_while_bracketing":
+        return Limit(FAILURE)
+    if s.stopped == "beyond_ceiling":
+        if s.last.side is not False:  # some trial was undecided: nothing is certified
+            m.notes.append(f"no finite friction up to {FRICTION_CEILING:g} is certified "
+                           f"admissible; f = {s.bad:.9g} is not admissible")
+            return Limit("undecided")
+        m.notes.append(f"no finite friction up to {FRICTION_CEILING:g} is admissible")
+        return Limit("unstable")
+    return _limit(m, s, "f", "stable")
 
 
 def load_by_bisection(m: Method, f: float, rtol: float) -> Limit:
@@ -143,36 +188,39 @@ def load_by_bisection(m: Method, f: float, rtol: float) -> Limit:
     if ok0 is not True:
         m.explain(v0)
         return Limit("undecided" if ok0 is None else "unstable")
-    lo, hi, best = 0.0, 1.0, v0
-    while True:
-        ok, v = decide(hi)
-        if v.status == FAILURE:
-            return Limit(FAILURE)
-        if ok is None:  # no inadmissible upper end: lambda* is not bracketed
-            m.explain(v)
-            m.notes.append(f"the iteration could not decide at lambda = {hi:.9g}; "
-                           f"lambda = {lo:.9g} is admissible, no upper bound is certified")
-            return Limit("undecided", None, lo, None)
-        if ok is False:
-            break
-        lo, best = hi, v
-        hi *= 2
-        if hi > UNBOUNDED_AT:
-            return Limit("unbounded")
-    return _limit(m, bisect(decide, hi, lo, rtol), "lambda", "collapse", best)
+    s = Search(math.inf, 0.0, rtol)
+    s.record(Trial(0.0, True, data=v0))
+    run(s, _oracle(decide), STOPS, (doubling(UNBOUNDED_AT), midpoint), budget=BUDGET)
+    if s.stopped == "failed_while_bracketing":
+        return Limit(FAILURE)
+    if s.stopped == "undecided_while_bracketing":  # lambda* is not bracketed
+        m.explain(s.last.data)
+        m.notes.append(f"the iteration could not decide at lambda = {s.last.x:.9g}; "
+                       f"lambda = {s.good:.9g} is admissible, no upper bound is certified")
+        return Limit("undecided", None, s.good, None)
+    if s.stopped == "beyond_ceiling":
+        return Limit("unbounded")
+    return _limit(m, s, "lambda", "collapse")
 
 
-def _limit(m: Method, br: Bracket, name: str, status: str, best: Verdict | None) -> Limit:
-    """The limit a bisection found: its certified end (``good``), or "undecided" when an
-    undecided trial stopped it with a bracket wider than ``BRACKET_RTOL``; the bracket
-    goes into the notes either way."""
+def _bracket_trial(t: Trial) -> bool:
+    """``t`` was made before both ends were finite."""
+    return not all(map(math.isfinite, t.bracket))
+
+
+def _limit(m: Method, s: Search, name: str, status: str) -> Limit:
+    """The limit a search found: its certified end (``good``), or "undecided" when an
+    undecided bisection trial stopped it with a bracket wider than ``BRACKET_RTOL``; the
+    bracket goes into the notes either way."""
+    br = Bracket(s.bad, s.good, s.end(True).data,
+                 s.last.x if s.stopped == "undecided_while_bisecting" else None)
     if br.undecided_at is not None:
         m.notes.append(f"the iteration could not decide at {name} = {br.undecided_at:.9g}: "
                        f"{name}* is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
         if br.too_wide():
             m.notes.append(f"bracket wider than {BRACKET_RTOL:g} relative: undecided")
             return Limit("undecided", None, br.lower, br.upper)
-    return Limit(status, br.good, br.lower, br.upper, at=br.good_data or best)
+    return Limit(status, br.good, br.lower, br.upper, at=br.good_data)
 
 
 __all__ = ["BRACKET_ATOL", "BRACKET_RTOL", "Bracket", "bisect", "friction_by_bisection",

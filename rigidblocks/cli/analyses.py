@@ -13,6 +13,7 @@ from ..answer import answer_block
 from ..errors import InputError
 from ..io import read_scene
 from ..methods import METHODS, Progress
+from .options import add_rtol
 from .options import load_factor as load_factor_type
 from .progress import run_interruptible
 
@@ -57,6 +58,8 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                        help="vertex: one collapse mechanism, joints ranked by relative "
                        "velocity (default); blend: the interior-point mix of every "
                        "optimal mechanism")
+    if name in ("friction", "load"):
+        add_rtol(p, name)
     p.add_argument("--joints", nargs="?", const="-", default=None, metavar="CSV",
                    help="the per-joint table (N, T, eccentricity, |T|/N, mode): in the "
                    "JSON with --json, else printed, or written to the CSV file given")
@@ -76,6 +79,8 @@ def run(args: argparse.Namespace) -> int:
         _writable(csv_path)
     scene = read_scene(args.scene)
     options = {"mechanism": args.mechanism} if args.command == "load" else {}
+    if getattr(args, "rtol", None) is not None:
+        options["rtol"] = args.rtol
     # check reports the friction demand of its force state; the others compute a state
     # only for the joint table
     state = args.command == "check" or args.joints is not None

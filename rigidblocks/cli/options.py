@@ -2,6 +2,8 @@
 
 * :func:`finite_float`, the argparse type of every float option: ``inf`` and ``nan``
   are usage errors (exit 2), never a value;
+* :func:`add_rtol`, the ``--rtol`` option of every command that brackets a limit
+  (``friction``, ``load``, ``thickness``): the relative accuracy asked for;
 * :func:`~rigidblocks.io.paths.output_path`, the check of a file a command will write,
   made before any work (:func:`rigidblocks.cli.main.main` checks every command's
   ``-o``): an output whose folder does not exist, is a folder or cannot be written is
@@ -32,6 +34,32 @@ def load_factor(text: str) -> float:
     return v
 
 
+def relative_tolerance(text: str) -> float:
+    """argparse type: a relative accuracy, a number in (0, 1)."""
+    value = finite_float(text)
+    if not 0 < value < 1:
+        raise argparse.ArgumentTypeError(f"not a relative accuracy in (0, 1): {text!r}")
+    return value
+
+
+#: the default accuracy of each command's limit, as its help gives it
+RTOL_DEFAULTS = {
+    "friction": "1e-7 (1e-5 with --flow non-associative)",
+    "load": "1e-6 (1e-5 with --flow non-associative; the convex path's one solve is "
+            "at its tight tolerances whatever it is, and gives lambda*'s bracket where "
+            "its duals resolve it more coarsely)",
+    "thickness": "1e-4",
+}
+
+
+def add_rtol(parser: argparse.ArgumentParser, command: str,
+             default: float | None = None) -> None:
+    """The ``--rtol`` option of ``command`` (a key of :data:`RTOL_DEFAULTS`)."""
+    parser.add_argument("--rtol", type=relative_tolerance, default=default,
+                        help="relative accuracy of the limit (the width of its bracket "
+                        f"relative to it; default {RTOL_DEFAULTS[command]})")
+
+
 def use_finite_floats(parser: argparse.ArgumentParser) -> None:
     """Give every ``type=float`` option of ``parser`` the type :func:`finite_float`."""
     for action in parser._actions:
@@ -40,3 +68,7 @@ def use_finite_floats(parser: argparse.ArgumentParser) -> None:
 
 
 __all__ = ["finite_float", "load_factor", "output_path", "use_finite_floats"]
+
+
+__all__ = ["RTOL_DEFAULTS", "add_rtol", "finite_float", "output_path", "relative_tolerance",
+           "use_finite_floats"]

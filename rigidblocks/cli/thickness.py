@@ -6,7 +6,7 @@ import argparse
 import json
 
 from ..errors import InputError
-from .options import finite_float
+from .options import add_rtol, finite_float, relative_tolerance
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
@@ -15,7 +15,7 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                    "(default: thickness)")
     p.add_argument("--lo", type=finite_float, default=0.01, help="inadmissible lower bound")
     p.add_argument("--hi", type=finite_float, default=1.0, help="admissible upper bound")
-    p.add_argument("--rtol", type=finite_float, default=1e-4, help="relative bracket width")
+    add_rtol(p, "thickness", 1e-4)
     p.add_argument("--friction", default="infinite",
                    help='friction coefficient f, or "infinite" (default)')
     p.add_argument("--method", default="clarabel", help='"clarabel" or "distortion"')
@@ -54,7 +54,8 @@ def run(args: argparse.Namespace) -> int:
     return 3 if res.status == "undecided" else 0
 
 
-_OWN = {"--param": str, "--lo": finite_float, "--hi": finite_float, "--rtol": finite_float,
+_OWN = {"--param": str, "--lo": finite_float, "--hi": finite_float,
+        "--rtol": relative_tolerance,
         "--friction": str, "--method": str}
 
 
@@ -72,9 +73,8 @@ def _own_options(args: argparse.Namespace, tokens: list[str]) -> list[str]:
                 raise InputError(f"thickness: {tok} needs a value")
             try:
                 setattr(args, tok[2:], _OWN[tok](tokens[i + 1]))
-            except (ValueError, argparse.ArgumentTypeError):
-                raise InputError(f"thickness: {tok} must be a finite number, got "
-                                 f"{tokens[i + 1]!r}") from None
+            except (ValueError, argparse.ArgumentTypeError) as err:
+                raise InputError(f"thickness: {tok}: {err}") from None
             i += 2
         else:
             rest.append(tok)

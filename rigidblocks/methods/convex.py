@@ -23,6 +23,7 @@ import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -40,6 +41,7 @@ from ..results import ForceState
 from ..scene.model import Scene
 from ..solvers import INFEASIBLE, OPTIMAL, UNBOUNDED, Runner, SolverResult
 from ..solvers.policy import FINER_SETTINGS, LP_ONLY, VERIFY_TOL, describe
+from . import friction_rules, load_rules
 from .base import (
     ADMISSIBLE,
     INADMISSIBLE,
@@ -51,6 +53,8 @@ from .base import (
     Verdict,
     ranked_breaches,
 )
+from .engine import WIDE, Search, Trial, run
+from .friction_rules import AMENDS, STEPS, STOPS, UNDECIDED_KINDS
 from .vertex import vertex_dual
 
 #: a relaxation below this fraction of the largest force of its state counts as zero
@@ -90,41 +94,12 @@ CLEARLY = 10.0
 #: f = 1.2497654); below f* the values were 1.27 times it at f = 1.247, 18 and 330 times
 #: it on the plane wall
 SPREAD_MARGIN = 4.0
-#: the search for f* ends when a trial left at the threshold lies within this (relative)
-#: of the certified upper end and the bracket is narrower than :data:`WIDE`: closer,
-#: R(f) is below what the solver resolves
-NEAR_STOP = 1e-5
-#: a bracket of f* narrower than this (relative) whose lower end's Newton step lands
-#: about at the upper end is not probed just below the upper end where R is predicted
-#: below what the solver certifies (:func:`beyond_resolution`)
-NARROW = 1e-3
-#: a search for f* that ends with trials the solver could not decide gives a number only
-#: where they leave f* bracketed to this (relative) below the certified upper end
-WIDE = 1e-3
 #: in the search for f* on lambda*(f), a tight solve whose value resolves f to more
 #: than this fraction of :data:`WIDE` (its resolution over its slope) puts the later
 #: ones at :data:`~rigidblocks.solvers.policy.FINER_SETTINGS` first: the
 #: 20,093-block wall at f = 1.2877647 resolves lambda* to 1.2e-3 at VALUE_SETTINGS,
 #: about 1e-3 in f, where the bracket takes about 1/8 + 1.5 times that
 FINER_WHEN = 0.25
-#: an upper end is sought where lambda* is predicted this fraction of its resolution
-#: (SPREAD_MARGIN times the dual residual's work) above the load factor: about the
-#: work itself, by which the solver's lambda* falls short of lambda* (the 5,006-block
-#: wall at f = 1.25: 1.0002615 with dual residual work 9.4e-6 at VALUE_SETTINGS,
-#: 1.0002645 with 2.2e-6 at tolerances 1e-12)
-UP_REACH = 0.125
-#: a lower end is sought where lambda* is predicted this many times its resolution
-#: below the load factor: the largest resolution seen, as it varies twofold from trial
-#: to trial (2.4e-6 to 5.2e-6 on the 1,009-block wall near f*)
-LOW_REACH = 1.5
-#: in the search for f*, trials in a row whose relaxation has no checked answer (the
-#: solver failed, or its answer fails the check) before the search gives up: undecided
-#: with the bracket, or a failure where the solver failed before any upper end was
-#: certified
-MISSED_LIMIT = 4
-#: in the search for f*, trials left at the threshold (in all) after which it ends with
-#: the bracket it has
-THRESHOLD_TRIALS = 8
 #: the share of an inadmissibility certificate (|g|_1, :func:`certificate_shift`)
 #: that its friction rows must carry for the friction it holds at to be read: the
 #: certificates of f* on the catalogue carry 1.0 to 2.0, those of a block that tips
@@ -202,6 +177,17 @@ class Relaxation:
         times): a lower point of the f* search where its dual bound cannot certify it."""
         return self.far and self.R > SPREAD_MARGIN * self.spread
 
+    @property
+    def by_value_floor(self) -> float:
+        """The smallest value taken as a lower point on its value near this one
+        (:data:`CLEARLY` times its threshold, :data:`SPREAD_MARGIN` times its spread)."""
+        return max(CLEARLY * self.tol, SPREAD_MARGIN * self.spread)
+
+    @property
+    def shortfall(self) -> float:
+        """How far its dual bound falls short of its value."""
+        return self.R - self.low
+
 
 class ConvexMethod(Method):
     """The convex path with one back end (:mod:`rigidblocks.solvers`)."""
@@ -276,8 +262,14 @@ class ConvexMethod(Method):
         finally:
             self.timings.add("solve", self.runner.wall_time - w0, time.process_time() - c0)
 
-    def _run(self, problem: Any, what: str, tight: bool = False,
-             confirm: bool = False, refine: bool = True, stall: bool = True) -> SolverResult:
+    def solve(self, problem: Any, what: str, tight: bool = False,
+              confirm: bool = False, refine: bool = True, stall: bool = True) -> SolverResult:
+        """Solve ``problem`` (named ``what`` in notes) through the runner and its policy,
+        as the "solve" stage: at the tight tolerances (``tight``), the confirming ones
+        (``confirm``), with or without the policy's refined retry (``refine``) and stall
+        stop (``stall``); the notes say once where tolerances went out of reach or a
+        back end's answers were solved again. For problems built on this method's
+        system by other modules (the non-associative analysis)."""
         with self._solve_stage():
             n = len(self.runner.rejected)
             res = (self.runner.confirm(problem, what) if confirm
@@ -332,7 +324,7 @@ class ConvexMethod(Method):
         computed here) or its dual bound, which carries its dual residual, is above
         the threshold."""
         prob, jr = self._relaxation_problem(f, load_factor)
-        rx = self._read(prob, jr, self._run(prob, "relaxation", tight=True), f,
+        rx = self._read(prob, jr, self.solve(prob, "relaxation", tight=True), f,
                         self_certified)
         return self._confirmed(rx) if confirm else rx
 
@@ -340,7 +332,7 @@ class ConvexMethod(Method):
         """An undecided relaxation solved again at the confirming tolerances."""
         if rx.decided or rx.unresolved.startswith(FORCES_SPAN):
             return rx
-        again = self._read(rx.prob, rx.jr, self._run(rx.prob, "relaxation", confirm=True),
+        again = self._read(rx.prob, rx.jr, self.solve(rx.prob, "relaxation", confirm=True),
                            rx.f)
         return again if again.decided or not rx.unresolved else rx
 
@@ -496,7 +488,7 @@ class ConvexMethod(Method):
             prob, jr = energy_problem(self.system, self.vscaling, self.f_joint(f),
                                       load_factor, 0.0, self.pyramid)
         try:
-            res = self._run(prob, "force-state", refine=False)
+            res = self.solve(prob, "force-state", refine=False)
         except SolverFailure:
             return None
         if res.status != OPTIMAL or res.verified is False:
@@ -543,7 +535,7 @@ class ConvexMethod(Method):
             # solved once: where the interior-point iteration stalls near a limit, a
             # retry with other settings stalls too (5,006-block wall at f*: AlmostSolved
             # after 200 iterations, twice), and the solved problem's state serves
-            res = self._run(prob, "force-state", refine=False)
+            res = self.solve(prob, "force-state", refine=False)
             status = res.raw_status if res.status != OPTIMAL else None
             if status is None and res.verified is False:
                 status = f"{res.raw_status}, failing its check ({describe(res.residuals)})"
@@ -566,7 +558,8 @@ class ConvexMethod(Method):
         f >= f* and positive below. Starting from f = 0, Newton steps
         f <- f + R(f) / (-dR/df) use the derivative from the duals of the friction rows
         (dR/df = -sum_r y_r N_r, envelope theorem), with a bracket [lower, upper] and
-        bisection as a safeguard. Every step solves an always feasible LP (SOCP in 3D);
+        bisection as a safeguard (the rules of :mod:`.friction_rules` on the search
+        engine, :mod:`.engine`). Every step solves an always feasible LP (SOCP in 3D);
         a few solves reach ``rtol``. Under a live load at a load factor above 0, once
         R(0) > 0, f* is sought where lambda*(f) equals the load factor instead
         (:meth:`_friction_by_load`); this search on R(f) is for the dead load alone
@@ -581,7 +574,8 @@ class ConvexMethod(Method):
             if rx.R is None:
                 self.notes.append(NO_EQUILIBRIUM)
             return Limit("unstable")
-        lo, hi, at_hi = 0.0, math.inf, rx  # at_hi: the relaxation at the upper end
+        search = Search(0.0, math.inf, rtol, FRICTION_ATOL)
+        search.record(Trial(math.inf, True, "upper", data=rx))
         rx = self.relaxation(0.0, lf)
         if rx.unresolved or not rx.decided and rx.R is None:
             self.notes.append(f"at f = 0: {rx.unresolved or near_threshold(rx)}")
@@ -589,234 +583,123 @@ class ConvexMethod(Method):
         if rx.R is None:
             raise SolverFailure("the relaxation at f = 0 has no solution although infinite "
                                 "friction has one", self.solver, rx.res.raw_status)
-        last = None
-        if rx.zero:
-            hi, at_hi = 0.0, rx
-        else:
-            last = rx
-        R_lo, s_lo = rx.R, rx.slope
-        if last is not None and lf > 0 and np.any(self.system.live):
-            by_load = self._friction_by_load(lf, rtol, R_lo / s_lo if s_lo > 0 else 1.0)
+        search.record(Trial(0.0, True, "upper", data=rx) if rx.zero
+                      else Trial(0.0, False, "lower", rx.R, rx.slope, rx))
+        if not rx.zero and lf > 0 and np.any(self.system.live):
+            first = rx.R / rx.slope if rx.slope > 0 else 1.0
+            by_load = self._friction_by_load(lf, rtol, first)
             if by_load is not None:
                 return by_load
-        prev: tuple[float, float] | None = None  # (f, slope) of the previous lower point
-        probe_below_hi = True  # next time Newton lands on or past hi, probe just below hi
-        forced: float | None = None  # the next trial, after a relaxation the solver missed
-        undecided = ""  # the solver's status where it could not decide near f*
-        unresolved_below: float | None = None  # a trial whose forces are beyond resolution
-        at_threshold: list[float] = []  # every trial left near the threshold
-        step_up = rtol  # relative step above a trial left at the threshold
-        lower_primal = False  # a lower point rests on the relaxation's primal value
-        n_missed = 0  # trials in a row whose relaxation had no checked answer
-        missed_at: set[float] = set()  # trials whose relaxation had none or was undecided
+        run(search, lambda f: self._friction_trial(f, lf), STOPS, STEPS, AMENDS,
+            budget=friction_rules.BUDGET)
+        return self._friction_end(search, lf)
 
-        def past(trial: float, up: float) -> float | None:
-            """The next trial after one the solver left undecided (near the threshold, or
-            without a checked answer): close below the certified upper end, four times
-            further below it (None where that is below the lower end); elsewhere up to
-            ``up``, at least by a relative offset that grows fourfold at every such trial,
-            never past the midpoint to a certified upper end: a few solves reach a
-            certified point."""
-            nonlocal step_up
-            if math.isfinite(hi) and trial >= hi * (1.0 - 1e3 * rtol):
-                below = hi - 4.0 * (hi - trial)
-                return below if below > lo else None
-            nxt = max(trial * (1.0 + step_up), up)
-            step_up *= 4.0
-            return min(nxt, 0.5 * (trial + hi)) if math.isfinite(hi) else nxt
+    def _friction_trial(self, f: float, lf: float) -> Trial:
+        """The oracle of the search on R(f): one relaxation at ``f``, its kind of trial
+        (:mod:`.friction_rules`)."""
+        try:
+            rx = self.relaxation(f, lf, confirm=False, self_certified=True)
+        except SolverFailure as exc:
+            # near f* the relaxation can be too degenerate for the interior-point solver
+            return Trial(f, None, "missed", data=exc,
+                         why=f"{self.solver} ended with status {exc.status}")
+        if not rx.decided and rx.far:
+            if rx.by_value:
+                # far above the threshold and above what its duals' residual could
+                # account for, though its dual bound is too weak to certify it: a lower
+                # point (f* is reported at the certified upper end either way)
+                return Trial(f, False, "lower-by-value", rx.R, rx.slope, rx)
+            # within that spread the value may be that of an admissible state's
+            # neighbourhood: it decides nothing, as an answer that fails its check
+            return Trial(f, None, "missed", data=rx, why=(
+                f"the relaxation's value {rx.R:.1e} is within {SPREAD_MARGIN:g} times the "
+                f"{rx.spread:.1e} its duals' residual could account for"))
+        if rx.unresolved and not rx.unresolved.startswith(FORCES_SPAN):
+            return Trial(f, None, "missed", data=rx, why=rx.unresolved)
+        if not rx.decided:
+            if rx.unresolved:
+                return Trial(f, None, "forces-span", data=rx, why=rx.unresolved)
+            return Trial(f, None, "threshold", rx.R, rx.slope, rx)
+        if rx.R is None:
+            raise SolverFailure("relaxation problem lost its solution", self.solver,
+                                rx.res.raw_status)
+        if rx.zero:
+            return Trial(f, True, "upper", data=rx)
+        return Trial(f, False, "lower", rx.R, rx.slope, rx)
 
-        def resolved_below(end: float) -> float:
-            """Where R, predicted with the lower end's slope, is twice what is taken as a
-            lower point on its value below ``end`` (:func:`by_value_from`)."""
-            return end - 2.0 * by_value_from(last) / s_lo
-
-        for _ in range(100):
-            if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
-                break
-            newton = lo + _root_step(R_lo, s_lo, lo, prev) if s_lo > 0 else math.inf
-            inside = [t for t in at_threshold if lo < t < hi]
-            if inside and math.isfinite(hi):
-                gap = hi - max(inside)
-                if gap <= NEAR_STOP * hi and hi - lo <= WIDE * hi:
-                    # certified just above a trial at the threshold, where the solver's
-                    # resolution ends, and a lower end close below: f* is there (the
-                    # bracket goes into the notes)
-                    break
-                if gap <= 0.5 * WIDE * hi and hi - lo > WIDE * hi:
-                    # the upper end is certified close above such a trial (within half
-                    # the width that gives a number), but it bounds nothing from below (R
-                    # may be zero there with a state the solver cannot certify): the
-                    # search goes on below the lowest one, and ends where that is about
-                    # the lower end (undecided: the rest holds only such trials)
-                    below = min(inside)
-                    if below - lo <= WIDE * hi:
-                        break
-                    forced = 0.5 * (lo + below)
-                    if lo < newton < below * (1.0 - 0.5 * rtol):
-                        forced = newton
-                    elif last is not None and s_lo > 0:  # as below a certified upper end
-                        forced = max(forced, resolved_below(below))
-            if forced is not None:
-                trial, forced = forced, None
-            elif math.isinf(hi):
-                trial = newton if math.isfinite(newton) else max(2.0 * lo, 1.0)
-                if trial - lo <= 0.5 * rtol * trial:
-                    trial = trial * (1.0 + 0.5 * rtol)  # certify from above
-            elif lo < newton < hi * (1.0 - 0.5 * rtol):
-                trial = newton
-                if trial - lo <= 0.5 * rtol * trial:
-                    trial = min(trial * (1.0 + 0.5 * rtol), hi * (1.0 - 0.25 * rtol))
-            elif probe_below_hi:
-                trial = hi * (1.0 - 0.5 * rtol)
-                probe_below_hi = False
-                if (last is not None and hi - lo <= NARROW * hi and newton <= 2 * hi - lo
-                        and beyond_resolution(last, s_lo * (hi - trial))):
-                    # a narrow bracket whose lower end's Newton step lands about at the
-                    # upper end (R about linear across it); R just below the upper end,
-                    # estimated with that slope, is below what the solver can certify: a
-                    # probe there would end near the threshold
-                    self.notes.append(
-                        f"below the certified upper end f = {hi:.10g} the relaxation is "
-                        f"about {s_lo * (hi - trial):.1e} (slope {s_lo:.4g}), below what "
-                        f"the solver certifies there (its dual bound was "
-                        f"{last.R - last.low:.1e} short at f = {lo:.10g}): f* is "
-                        f"bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
-                        f"{(hi - lo) / hi:.1e}), reported at the upper end")
-                    break
-                if last is not None and newton <= 2 * hi - lo:
-                    # with that slope, where R is twice what is taken as a lower point on
-                    # its value: a probe at the upper end's round-off distance ends near
-                    # the threshold, or certifies a zero that moves the upper end by that
-                    # distance only, and the dual bound is weaker near f* than at the
-                    # lower end (Arpino gate: R = 1.65 (0.0905192 - f), and at
-                    # 0.0905191 - 2.5e-8, R = 4.1e-8 with a dual bound of -7.0e-8)
-                    trial = min(trial, resolved_below(hi))
-                    if trial <= 0.5 * (lo + hi):
-                        trial = 0.5 * (lo + hi)
-                        probe_below_hi = True
-            else:
-                trial = 0.5 * (lo + hi)
-                probe_below_hi = True
-            if _among(trial, missed_at):  # the solver decided nothing there before
-                if not math.isfinite(hi) or hi - lo <= WIDE * hi:
-                    break
-                # the midpoint, or where that is the same trial (a step past it to twice
-                # its distance from the lower end certified an upper end there) halfway
-                # on to the upper end (20,093-block wall: one 1e-9 relaxation stalled
-                # twice at the same f, 318 s each); neither new: the bracket stands
-                mid = 0.5 * (lo + hi)
-                trial = next((t for t in (mid, 0.5 * (mid + hi))
-                              if not _among(t, missed_at)), None)
-                if trial is None:
-                    break
-            uncertain = ""  # a value far above the threshold that decides nothing
-            try:
-                rx = self.relaxation(trial, lf, confirm=False, self_certified=True)
-                if not rx.decided and rx.far:
-                    if rx.by_value:
-                        # the relaxation's own value is far above the threshold and
-                        # above what its duals' residual could account for, though its
-                        # dual bound is too weak to certify it: a lower point for the
-                        # search (f* is reported at the certified upper end either way)
-                        lower_primal = True
-                        prev = (lo, s_lo)
-                        lo, R_lo, s_lo = trial, rx.R, rx.slope
-                        last = rx
-                        continue
-                    # within that spread the value may be that of an admissible state's
-                    # neighbourhood: it decides nothing, as an answer that fails its check
-                    uncertain = (f"the relaxation's value {rx.R:.1e} is within "
-                                 f"{SPREAD_MARGIN:g} times the {rx.spread:.1e} its duals' "
-                                 "residual could account for")
-            except SolverFailure as exc:
-                failure, missed = exc, exc.status
-            else:
-                failure, missed = None, ""
-                if uncertain:
-                    missed = f"{rx.res.raw_status}, its value within its duals' spread"
-                elif rx.unresolved and not rx.unresolved.startswith(FORCES_SPAN):
-                    missed = f"{rx.res.raw_status}, failing its check"
-            if missed:
-                # near f* the relaxation can be too degenerate for the interior-point
-                # solver (no answer, or none that passes its check): step past the trial
-                # (up by its distance from the lower end) towards a certified upper end
-                n_missed += 1
-                missed_at.add(trial)
-                if n_missed > MISSED_LIMIT:
-                    if failure is not None and not math.isfinite(hi):
-                        raise failure
-                    why = (uncertain or rx.unresolved) if failure is None else (
-                        f"{self.solver} ended with status {failure.status}")
-                    self.notes.append(f"at f = {trial:.10g}: {why}; f* is bracketed in "
-                                      f"[{lo:.10g}, {hi:.10g}]")
-                    return Limit("undecided", None, lo, hi if math.isfinite(hi) else None)
-                undecided = missed
-                forced = past(trial, 2.0 * trial - lo)
-                if forced is None:
-                    break
-                continue
-            n_missed = 0
-            if not rx.decided:
-                if rx.unresolved.startswith(FORCES_SPAN) and math.isfinite(hi):
-                    # below the certified upper end the states need forces beyond what
-                    # can be resolved: f* is an infimum approached by unbounded forces
-                    unresolved_below = trial
-                    break
-                if rx.unresolved:  # forces beyond resolution, no upper end: nothing to go on
-                    self.notes.append(f"at f = {trial:.10g}: {rx.unresolved}")
-                    return Limit("undecided", None, lo, hi if math.isfinite(hi) else None)
-                # a verdict near the threshold that a tighter solve did not settle: f* is
-                # about there; certify just above it, or (close below the certified upper
-                # end) probe further below, as for a failed solve
-                undecided = "undecided (near the threshold)"
-                at_threshold.append(trial)
-                missed_at.add(trial)
-                if len(at_threshold) > THRESHOLD_TRIALS:
-                    break
-                # above it, by twice its Newton step (R there is at most the value read)
-                forced = past(trial, trial + 2.0 * rx.R / rx.slope if rx.slope > 0
-                              else trial)
-                if forced is None:
-                    break
-                continue
-            if rx.R is None:
-                raise SolverFailure("relaxation problem lost its solution", self.solver,
-                                    rx.res.raw_status)
-            if rx.zero:
-                hi, at_hi = trial, rx
-            else:
-                prev = (lo, s_lo)
-                lo, R_lo, s_lo = trial, rx.R, rx.slope
-                last = rx
-        else:
-            raise SolverFailure("minimum friction did not converge in 100 solves",
-                                self.solver, "iteration limit")
-        if undecided:
-            # a trial left at the threshold bounds nothing: R may be zero there with a
-            # state the solver cannot certify (extruded 5,006-block wall: one at
-            # f = 1.2502445, where the plane wall certifies f* <= 1.2497654)
-            wide = not math.isfinite(hi) or hi - lo > WIDE * hi
-            under = [t for t in at_threshold if t < hi]
-            at = ""
-            if under and math.isfinite(hi):
-                top = max(under)
-                at = (f" (the last at f = {top:.10g}, {(hi - top) / hi:.1e} below the "
-                      f"certified upper end{'' if wide else ', which is reported'})")
-            self.notes.append(f"near f* some relaxations ended with status {undecided}{at}; "
-                              f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
-                              f"{(hi - lo) / hi:.1e})")
-            if wide:
-                self.notes.append(f"the bracket is wider than {WIDE:g} (relative): no "
-                                  "number is given")
-                return Limit("undecided", None, lo, hi if math.isfinite(hi) else None)
-        if lower_primal and lo > 0:
+    def _friction_end(self, search: Search, lf: float) -> Limit:
+        """The limit a search on R(f) found, with its notes, rendered from its record."""
+        lo, hi, last, why = search.bad, search.good, search.last, search.stopped
+        upper = hi if math.isfinite(hi) else None
+        if why == "budget":
+            raise SolverFailure(f"minimum friction did not converge in "
+                                f"{friction_rules.BUDGET} solves", self.solver,
+                                "iteration limit")
+        if why == "missed_too_often":
+            if isinstance(last.data, SolverFailure) and upper is None:
+                raise last.data
+            self.notes.append(f"at f = {last.x:.10g}: {last.why}; f* is bracketed in "
+                              f"[{lo:.10g}, {hi:.10g}]")
+            return Limit("undecided", None, lo, upper)
+        unresolved_below = None
+        if why == "forces_beyond_resolution":
+            if upper is None:  # forces beyond resolution, no upper end: nothing to go on
+                self.notes.append(f"at f = {last.x:.10g}: {last.why}")
+                return Limit("undecided", None, lo, None)
+            # below the certified upper end the states need forces beyond what can be
+            # resolved: f* is an infimum approached by unbounded forces
+            unresolved_below = last.x
+        lower = search.end(False)
+        if why == "resolution_reached":
+            rx, below = lower.data, lower.slope * 0.5 * search.rtol * hi
+            self.notes.append(
+                f"below the certified upper end f = {hi:.10g} the relaxation is about "
+                f"{below:.1e} (slope {lower.slope:.4g}), below what the solver certifies "
+                f"there (its dual bound was {rx.shortfall:.1e} short at f = {lo:.10g}): "
+                f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
+                f"{(hi - lo) / hi:.1e}), reported at the upper end")
+        if search.of_kind(*UNDECIDED_KINDS) and not self._bracket_note(search):
+            return Limit("undecided", None, lo, upper)
+        if search.of_kind("lower-by-value") and lo > 0:
             self.notes.append(f"the lower end of f*'s bracket ({lo:.10g}) rests on the "
                               "relaxation's value, far above the threshold but not "
                               "certified by its dual bound; f* is the certified upper end")
+        at_hi = search.end(True).data
         self._infimum_note(hi, lf, at_hi, lo, unresolved_below)
-        governing = self._governing(last.res, last.jr, last.prob) if last is not None \
-            else ()
+        governing = self._governing(lower.data.res, lower.data.jr, lower.data.prob) \
+            if lower is not None else ()
         return Limit("stable", hi, lo, hi, governing=governing, at=self._verdict(at_hi))
+
+    def _bracket_note(self, search: Search) -> bool:
+        """The note on f*'s bracket where trials near f* decided nothing (a trial left at
+        the threshold bounds nothing: R may be zero there with a state the solver cannot
+        certify; extruded 5,006-block wall: one at f = 1.2502445, where the plane wall
+        certifies f* <= 1.2497654); False where that leaves the bracket wider than WIDE
+        (no number)."""
+        lo, hi = search.bad, search.good
+        t = search.of_kind(*UNDECIDED_KINDS)[-1]
+        if t.kind == "threshold":
+            status = "undecided (near the threshold)"
+        elif isinstance(t.data, SolverFailure):
+            status = t.data.status
+        else:
+            status = (f"{t.data.res.raw_status}, "
+                      + ("failing its check" if t.data.unresolved
+                         else "its value within its duals' spread"))
+        wide = not math.isfinite(hi) or hi - lo > WIDE * hi
+        under = [u.x for u in search.of_kind("threshold") if u.x < hi]
+        at = ""
+        if under and math.isfinite(hi):
+            top = max(under)
+            at = (f" (the last at f = {top:.10g}, {(hi - top) / hi:.1e} below the "
+                  f"certified upper end{'' if wide else ', which is reported'})")
+        self.notes.append(f"near f* some relaxations ended with status {status}{at}; "
+                          f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
+                          f"{(hi - lo) / hi:.1e})")
+        if wide:
+            self.notes.append(f"the bracket is wider than {WIDE:g} (relative): no number "
+                              "is given")
+        return not wide
 
     def _friction_shares(self, res: SolverResult, jr: Any, prob: Any) -> np.ndarray:
         """Each friction row's share y_r N_r of the derivative with respect to the uniform
@@ -856,21 +739,22 @@ class ConvexMethod(Method):
                 res = self.runner.attempt(prob, "maximum load", FINER_SETTINGS)
             if res is not None and res.status in (OPTIMAL, INFEASIBLE) and res.verified:
                 return prob, jr, res
-        return prob, jr, self._run(prob, "maximum load", tight=tight, stall=not tight)
+        return prob, jr, self.solve(prob, "maximum load", tight=tight, stall=not tight)
 
     def _friction_by_load(self, lf: float, rtol: float, first: float) -> Limit | None:
-        """f* at load factor ``lf`` > 0 as the friction where lambda*(f) = ``lf``.
+        """f* at load factor ``lf`` > 0 as the friction where lambda*(f) = ``lf`` (the
+        rules of :mod:`.load_rules` on the search engine, :mod:`.engine`).
 
         lambda*(f), the largest admissible multiplier of the live load at friction f,
         grows with f; lf is admissible at f where lambda*(f) >= lf and the dead load
         alone is admissible (the admissible multipliers form an interval). Newton steps
         on lambda*(f) - lf from ``first`` use dlambda*/df from the duals of the
         friction rows (as dR/df for the relaxation), with the curvature model of
-        :func:`_root_step` where lambda* is concave (Newton falls short). Each step
-        solves the max-load LP, better conditioned near f* than the relaxation: on the
-        5,006-block wall its value near f* is resolved to 4e-5 (SPREAD_MARGIN times the
-        work of its dual residual on its state), where the relaxation's lower points
-        stopped 5.4e-4 below the certified upper end.
+        :func:`~.friction_rules.root_step` where lambda* is concave (Newton falls
+        short). Each step solves the max-load LP, better conditioned near f* than the
+        relaxation: on the 5,006-block wall its value near f* is resolved to 4e-5
+        (SPREAD_MARGIN times the work of its dual residual on its state), where the
+        relaxation's lower points stopped 5.4e-4 below the certified upper end.
 
         An upper end is a trial whose state carries the live load at lambda >= lf
         within the admissibility threshold (breach and equilibrium residual computed on
@@ -897,31 +781,29 @@ class ConvexMethod(Method):
         they did not, the notes give them), where no upper end is found in 40 solves,
         or where no trial gave a lower end and the bracket is wider than WIDE.
         """
-        lo, hi = 0.0, math.inf
-        lam_lo, s_lo, s_hi = math.nan, 0.0, 0.0
-        # lambda*'s resolution: the largest margin of the tight solves at their settings
-        reach = 0.0
-        at_lo = at_hi = None
-        queue: list[float] = []  # trials around one within lambda*'s resolution of lf
-        n_unresolved = 0  # trials within that resolution
-        below: float | None = None  # where a lower end by value is expected below it
-        prev: tuple[float, float] | None = None  # (f, slope) of the previous lower end
-        lo_by_value = False  # the lower end rests on lambda*'s value, not its dual bound
-        far: tuple[float, float] | None = None  # the first upper end, its largest force
-        trial = first
-        tight = False  # the first trial, far from f* as a rule, at the defaults first
+        search = Search(0.0, math.inf, rtol, FRICTION_ATOL)
+        run(search, lambda f: self._load_trial(f, lf, search), load_rules.STOPS,
+            (load_rules.start_at(first), *load_rules.STEPS), load_rules.AMENDS,
+            budget=load_rules.BUDGET)
+        if search.stopped in ("handed_back", "budget"):
+            return None
+        return self._by_load_end(search, lf)
 
-        def on_chord(value: float) -> float:
-            """Where the chord between the ends reaches lambda* = ``value`` (NaN where
-            there is none)."""
-            if not (math.isfinite(lam_lo) and at_hi[3] > lam_lo):
-                return math.nan
-            return lo + (value - lam_lo) * (hi - lo) / (at_hi[3] - lam_lo)
-
-        finer = False  # the tight solves at FINER_SETTINGS first
-        for _ in range(40):
+    def _load_trial(self, f: float, lf: float, search: Search) -> Trial:
+        """The oracle of the search on lambda*(f): the max-load LP at ``f`` and its kind
+        of trial (:mod:`.load_rules`). The first trial, far from f* as a rule, is
+        solved at the back end's defaults, and again at the tight tolerances where
+        that answer decides no end; once a tight solve resolves f more coarsely than
+        FINER_WHEN times WIDE, the later ones are solved at FINER_SETTINGS first."""
+        tight = bool(search.trials)
+        finer = any(t.data.finer for t in search.trials)
+        attempts = 0
+        while True:
+            attempts += 1
+            data = SimpleNamespace(attempts=attempts, tight=tight, margin=0.0, finer=False,
+                                   at=None, by_value=False)
             try:
-                prob, jr, res = self._max_load(trial, tight, finer)
+                prob, jr, res = self._max_load(f, tight, finer)
             except SolverFailure:
                 if tight:
                     raise
@@ -931,107 +813,42 @@ class ConvexMethod(Method):
                 if not tight:
                     tight = True
                     continue
-                return None
+                return Trial(f, None, "hand-back", data=data)
             if res.status == INFEASIBLE:  # no multiplier at all is admissible there
-                lo, lam_lo, s_lo, at_lo, prev = trial, -math.inf, 0.0, None, None
-                lo_by_value = False
-            else:
-                z, y = res.z, res.y
-                lam = float(z[prob.cols["lambda"]][0])
-                x = z[prob.cols["x"]]
-                tol = ADMISSIBLE_TOL * max(1.0, float(np.abs(x).max(initial=0.0)))
-                admissible = max(self._breach(prob, jr, z)) <= tol
-                allowance, spread = _dual_work(prob, res)
-                margin = SPREAD_MARGIN * spread
-                # the dual bound on lambda*, with the dual residual's work on forces up
-                # to the state's largest (as the relaxation's lower bound)
-                bound = float(prob.b @ y) + allowance
-                slope = float(np.sum(self._friction_shares(res, jr, prob)))
-                if tight:
-                    reach = max(reach, margin)
-                if tight and not finer and slope > 0 and \
-                        margin / slope > FINER_WHEN * WIDE * trial:
-                    # lambda* resolves f too coarsely here for a bracket within WIDE
-                    finer, reach = True, 0.0
-                if lam >= lf and admissible:
-                    hi, at_hi, s_hi = trial, (prob, jr, res, lam), slope
-                    if far is None:
-                        far = (trial, float(np.abs(self._per_block(x)).max(initial=0.0)))
-                elif lam + margin < lf:
-                    prev = (lo, s_lo) if s_lo > 0 else None
-                    lo, lam_lo, s_lo, at_lo = trial, lam, slope, (prob, jr, res)
-                    lo_by_value = bound >= lf
-                elif not tight:
-                    # the defaults' answer decides only ends away from lf: this trial again
-                    # at the tight tolerances
-                    tight = True
-                    continue
-                elif not admissible or slope <= 0:
-                    return None
-                elif n_unresolved < THRESHOLD_TRIALS:
-                    # within what lambda* resolves below lf: f* is about here. Above it
-                    # an upper end needs only a state at lambda >= lf (where lambda*,
-                    # predicted with this slope, is UP_REACH times the resolution above
-                    # lf, then certify above); below it a lower end needs lambda* below
-                    # lf by its resolution (where lambda* is predicted LOW_REACH times
-                    # it below lf), tried while the bracket is wider than WIDE
-                    if not n_unresolved:
-                        queue = [trial + (lf - lam + UP_REACH * reach) / slope
-                                 + 0.5 * rtol * trial]
-                    n_unresolved += 1
-                    below = trial - (lam - lf + LOW_REACH * max(reach, margin)) / slope
-            tight = True
-            if math.isfinite(hi) and hi - lo <= rtol * hi + FRICTION_ATOL:
-                break
-            queue = [t for t in queue if lo < t < hi]
-            if queue:
-                trial = queue.pop(0)
+                return Trial(f, False, "lower", -math.inf, 0.0, data)
+            z, y = res.z, res.y
+            lam = float(z[prob.cols["lambda"]][0])
+            x = z[prob.cols["x"]]
+            tol = ADMISSIBLE_TOL * max(1.0, float(np.abs(x).max(initial=0.0)))
+            admissible = max(self._breach(prob, jr, z)) <= tol
+            allowance, spread = _dual_work(prob, res)
+            slope = float(np.sum(self._friction_shares(res, jr, prob)))
+            data.margin, data.at = SPREAD_MARGIN * spread, (prob, jr, res)
+            # lambda* resolves f too coarsely here for a bracket within WIDE
+            data.finer = tight and not finer and slope > 0 and \
+                data.margin / slope > FINER_WHEN * WIDE * f
+            if lam >= lf and admissible:
+                return Trial(f, True, "upper", lam - lf, slope, data)
+            if lam + data.margin < lf:
+                # on its value where the dual bound on lambda*, with the dual residual's
+                # work on forces up to the state's largest, does not certify it
+                data.by_value = float(prob.b @ y) + allowance >= lf
+                return Trial(f, False, "lower", lam - lf, slope, data)
+            if not tight:  # the defaults' answer decides only ends away from lf
+                tight = True
                 continue
-            if n_unresolved:
-                if below is None or not lo < below < hi or hi - lo <= WIDE * hi:
-                    break
-                trial, below = below, None
-                continue
-            newton = lo + _root_step(lf - lam_lo, s_lo, lo, prev, convex=True) \
-                if s_lo > 0 else math.inf
-            if newton - lo <= 0.5 * rtol * newton:
-                newton = lo * (1.0 + 0.5 * rtol)  # certify from above
-            if not math.isfinite(hi):
-                trial = newton if math.isfinite(newton) else max(2.0 * trial, 1.0)
-                continue
-            if lo < newton < hi:
-                trial = newton
-            else:
-                # past the upper end: Newton's step down from it (below the root where
-                # lambda* is concave, as Newton's step up from the lower end falls short
-                # of it elsewhere: the chord between the ends would stay above it and
-                # move the upper end slowly), else the chord, else the midpoint
-                trial = 0.5 * (lo + hi)
-                down = hi - (at_hi[3] - lf) / s_hi if s_hi > 0 else -math.inf
-                chord = on_chord(lf)
-                trial = chord if lo < chord < hi else trial
-                if lo < down < hi:
-                    trial = down
-            if s_hi > 0 and trial > hi - (at_hi[3] - lf + reach) / s_hi:
-                # lambda* there, predicted with the upper end's slope, within its
-                # resolution of lf: no end to expect. Where the upper end is above lf by
-                # more than twice that, a trial where lambda* is predicted UP_REACH
-                # times it above lf (on the chord from the lower end, which stays below
-                # lambda* where it is concave), else one where it is predicted
-                # LOW_REACH times it below lf (on the tangent at the upper end, which
-                # stays above it); neither, where the ends are that close: the bracket
-                # stands
-                # (1,009-block wall: a trial 4.8e-8 below the upper end, lambda* 7e-8
-                # below lf with a resolution of 4.1e-6, decided nothing)
-                trial = on_chord(lf + UP_REACH * reach) if at_hi[3] - lf > 2.0 * reach \
-                    else math.nan
-                if not lo < trial < hi * (1.0 - 0.5 * rtol):
-                    trial = hi - (at_hi[3] - lf + LOW_REACH * reach) / s_hi
-                    if not lo * (1.0 + 0.5 * rtol) < trial < hi:
-                        break
-        else:
-            return None
-        if at_hi is None or at_lo is None and hi - lo > WIDE * hi:
+            if not admissible or slope <= 0:
+                return Trial(f, None, "hand-back", data=data)
+            # within what lambda* resolves of lf: f* is about here
+            return Trial(f, None, "unresolved", lam - lf, slope, data)
+
+    def _by_load_end(self, search: Search, lf: float) -> Limit | None:
+        """The limit a search on lambda*(f) found (None: the search on R(f) decides),
+        with the state at lf: theta (state at lambda) + (1 - theta) (dead load alone)."""
+        lo, hi = search.bad, search.good
+        upper, lower = search.end(True), search.end(False)
+        at_lo = lower.data.at if lower is not None else None
+        if upper is None or at_lo is None and hi - lo > WIDE * hi:
             return None
         if hi - lo > WIDE * hi:
             self.notes.append(
@@ -1041,9 +858,8 @@ class ConvexMethod(Method):
                 f"could account for of {lf:g}; the bracket is wider than {WIDE:g} "
                 "(relative): no number is given")
             return Limit("undecided", None, lo, hi)
-        prob, jr, res, lam = at_hi
-        # the state at lf: theta (state at lambda) + (1 - theta) (dead load alone)
-        theta = lf / lam
+        prob, jr, res = upper.data.at
+        theta = lf / (upper.value + lf)
         x = res.z[prob.cols["x"]]
         if theta < 1.0 and np.any(self.system.dead):
             rx0 = self.relaxation(hi, 0.0)
@@ -1052,32 +868,41 @@ class ConvexMethod(Method):
             x0 = self.vscaling.forces(rx0.res.z[rx0.prob.cols["x"]])
             x = theta * x + (1.0 - theta) * self.lscaling.scaled(x0)
         big = float(np.abs(self._per_block(x)).max(initial=0.0))
-        if big > FORCE_WARN:
-            # the structure's own scale, or an infimum's growth? (the relaxation search
-            # says whether f* is an infimum where this cannot tell)
-            if far is None or _infimum_growth(far, hi, lo, big):
-                return None
-            f_far, big_far = far
-            self.notes.append(
-                f"the state at f* carries forces up to {big:.1e} times the loads of the "
-                f"blocks they act on; at f = {f_far:.6g}, {(f_far - hi) / (hi - lo):.0f} "
-                f"times further above f* than the bracket's width, {big_far:.1e}: forces "
-                "that do not grow as f* is approached (not an infimum)")
+        if big > FORCE_WARN and not self._not_an_infimum(search, big):
+            return None
         z = res.z.copy()
         z[prob.cols["x"]] = x
         z[prob.cols["lambda"]] = lf
-        if lo_by_value:
+        if lower is not None and lower.data.by_value:
             self.notes.append(
                 f"f* is certified from above: at f = {hi:.10g} a state carries the load "
                 f"factor {lf:g} (f* from lambda*(f) = {lf:g}, the largest load "
                 f"multiplier at friction f). Below, f* is bracketed in [{lo:.10g}, "
                 f"{hi:.10g}] (relative width {(hi - lo) / hi:.1e}) by lambda*'s value at "
-                f"the lower end ({lam_lo:.10g}: below {lf:g} by more than "
+                f"the lower end ({lower.value + lf:.10g}: below {lf:g} by more than "
                 f"{SPREAD_MARGIN:g} times the solver's resolution there), not by a "
                 "certified bound")
         governing = self._governing(at_lo[2], at_lo[1], at_lo[0]) if at_lo else ()
         return Limit("stable", hi, lo, hi, governing=governing,
                      at=Verdict(ADMISSIBLE, 0.0, (), (replace(res, z=z), prob)))
+
+    def _not_an_infimum(self, search: Search, big: float) -> bool:
+        """Whether forces of ``big`` times the loads at f* are the structure's own scale
+        (they grew from the first upper end's less than an infimum's would, with a note),
+        or may be an infimum's growth (the relaxation search says whether f* is one)."""
+        lo, hi = search.bad, search.good
+        first = search.ends(True)[0]
+        prob, _, res = first.data.at
+        f_far = first.x
+        big_far = float(np.abs(self._per_block(res.z[prob.cols["x"]])).max(initial=0.0))
+        if _infimum_growth((f_far, big_far), hi, lo, big):
+            return False
+        self.notes.append(
+            f"the state at f* carries forces up to {big:.1e} times the loads of the "
+            f"blocks they act on; at f = {f_far:.6g}, {(f_far - hi) / (hi - lo):.0f} "
+            f"times further above f* than the bracket's width, {big_far:.1e}: forces "
+            "that do not grow as f* is approached (not an infimum)")
+        return True
 
     def _per_block(self, x: np.ndarray) -> np.ndarray:
         """Forces of a max-load state in units of the loads of the blocks they act on (as
@@ -1099,7 +924,7 @@ class ConvexMethod(Method):
                                   rx.R + STATE_SLACK, self.pyramid,
                                   reference=rx.res.z[rx.prob.cols["x"]])[0]
         try:
-            res = self._run(prob, "force-state")
+            res = self.solve(prob, "force-state")
         except SolverFailure:
             return big
         if res.status != OPTIMAL or res.verified is False:
@@ -1242,20 +1067,6 @@ def near_threshold(rx: Relaxation) -> str:
             "scale): undecided")
 
 
-def by_value_from(rx: Relaxation) -> float:
-    """The smallest relaxation value taken as a lower point on its value near the lower
-    point ``rx`` (:data:`CLEARLY` times its threshold, :data:`SPREAD_MARGIN` times its
-    spread)."""
-    return max(CLEARLY * rx.tol, SPREAD_MARGIN * rx.spread)
-
-
-def beyond_resolution(rx: Relaxation, value: float) -> bool:
-    """Whether a relaxation of about ``value`` can be neither certified positive (the dual
-    bound fell short of ``rx.R`` by more than that at the nearby lower point ``rx``) nor
-    taken as a lower point on its value (:func:`by_value_from`)."""
-    return value < by_value_from(rx) and value < rx.R - rx.low
-
-
 def certificate_shift(rx: Relaxation) -> tuple[float, float]:
     """Where the dual certificate of a relaxation at uniform friction f holds best, and
     the largest forces it excludes there.
@@ -1307,30 +1118,6 @@ def _infimum_growth(far: tuple[float, float], hi: float, lo: float, big: float) 
     if not (hi > lo and f_far > hi and big_far > 0):
         return True
     return (f_far - hi) / (hi - lo) < GROWTH_SPAN * big / big_far
-
-
-def _among(f: float, trials: set[float]) -> bool:
-    """Whether ``f`` is one of ``trials``, to round-off (a Newton step or a midpoint
-    computed again from the same bracket)."""
-    return any(abs(f - t) <= 1e-12 * max(abs(t), 1.0) for t in trials)
-
-
-def _root_step(R: float, s: float, f: float, prev: tuple[float, float] | None,
-               convex: bool = False) -> float:
-    """Step from a lower point (R(f) = R > 0, -dR/df = s > 0) to the estimated root.
-
-    Newton's step R / s, or, where the slope has grown since the previous lower point
-    (R concave there, so Newton overshoots), the root of the quadratic model
-    R - s d - c d^2 / 2 with the curvature c = ds/df from the two slopes. With
-    ``convex``, the same model where the slope has shrunk (R convex, so Newton falls
-    short), where it has a root.
-    """
-    if prev is not None and f > prev[0] and (s > prev[1] or convex and s < prev[1]):
-        c = (s - prev[1]) / (f - prev[0])
-        disc = s * s + 2.0 * c * R
-        if disc >= 0:
-            return 2.0 * R / (s + math.sqrt(disc))
-    return R / s
 
 
 __all__ = ["ADMISSIBLE_TOL", "ConvexMethod", "FRICTION_ATOL", "FRICTION_RTOL", "Relaxation",

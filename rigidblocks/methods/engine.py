@@ -1,0 +1,206 @@
+"""The limit-search engine: one loop (stop?, propose, evaluate, record) for every limit
+the package brackets.
+
+A search keeps a bracket [``bad``, ``good``] (either order: ``good`` is the end certified
+on the limit's safe side, f >= f* for a friction, lambda <= lambda* for a load) and the
+record of its trials. Each round the **stop rules** are asked in order (the first that
+answers ends the search, its name is :attr:`Search.stopped`); then the **step rules**
+in order (the first that proposes a point gives the trial; a rule may also end the search
+by returning a reason); then the **amend rules** may move or refuse that point; the
+**oracle** evaluates it (the only part that knows a solver) and the trial is recorded:
+a trial on the good side moves ``good``, one on the bad side ``bad``, an undecided one
+neither. A search that runs out of its budget stops with "budget".
+
+Rules are small named functions of the search (``Search -> answer | None``): a rule set
+is an ordered list of them next to their constants, and notes are rendered once from the
+record (:attr:`Search.trials`, each with the rule that proposed it and the oracle's kind).
+:func:`bisection` is the rule set of a bisection on a verdict.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+#: a search stopped short of its accuracy (by trials that decide nothing) still gives a
+#: number where its bracket is no wider than this, relative to its certified end
+WIDE = 1e-3
+
+
+@dataclass(eq=False)
+class Trial:
+    """One evaluation: where (``x``), on which side (True: good, False: bad, None: it
+    decides nothing), the oracle's kind of answer (its own word: "upper", "lower",
+    "threshold", "missed", ...), the residual it read there and its slope (for step
+    rules that model it), the oracle's data, why it decides nothing (where it does not),
+    and, filled in by the engine, the step rule that proposed it and the bracket it was
+    proposed in."""
+
+    x: float
+    side: bool | None
+    kind: str = ""
+    value: float = math.nan
+    slope: float = math.nan
+    data: Any = None
+    why: str = ""
+    rule: str = ""
+    bracket: tuple[float, float] = (math.nan, math.nan)
+
+
+@dataclass
+class Search:
+    """A bracket, its record of trials and the requested accuracy."""
+
+    bad: float
+    good: float
+    rtol: float
+    atol: float = 0.0
+    trials: list[Trial] = field(default_factory=list)
+    #: the name of the rule that ended the search ("" while it runs)
+    stopped: str = ""
+    #: the trial the ending rule was about to make, where a step or amend rule ended it
+    at: float | None = None
+
+    @property
+    def lower(self) -> float:
+        return min(self.bad, self.good)
+
+    @property
+    def upper(self) -> float:
+        return max(self.bad, self.good)
+
+    @property
+    def width(self) -> float:
+        return abs(self.good - self.bad)
+
+    @property
+    def last(self) -> Trial | None:
+        return self.trials[-1] if self.trials else None
+
+    def ends(self, side: bool) -> list[Trial]:
+        """The trials that moved the ``side`` end (True: good), in order."""
+        return [t for t in self.trials if t.side is side]
+
+    def end(self, side: bool) -> Trial | None:
+        """The trial at the ``side`` end (None while no trial moved it)."""
+        moved = self.ends(side)
+        return moved[-1] if moved else None
+
+    def after(self, t: Trial) -> list[Trial]:
+        """The trials recorded after ``t``."""
+        for i, u in enumerate(self.trials):
+            if u is t:
+                return self.trials[i + 1:]
+        return []
+
+    def of_kind(self, *kinds: str) -> list[Trial]:
+        return [t for t in self.trials if t.kind in kinds]
+
+    def trailing(self, kind: str, through: tuple[str, ...] = ()) -> int:
+        """How many trials of ``kind`` the latest ones hold in a row (trials of the
+        ``through`` kinds among them neither count nor break the row)."""
+        n = 0
+        for t in reversed(self.trials):
+            if t.kind == kind:
+                n += 1
+            elif t.kind not in through:
+                break
+        return n
+
+    def narrow(self) -> bool:
+        """|good - bad| <= rtol max(|good|, |bad|) + atol (never with an infinite end)."""
+        scale = max(abs(self.good), abs(self.bad), 1e-300)
+        return math.isfinite(self.width) and self.width <= self.rtol * scale + self.atol
+
+    def record(self, t: Trial) -> None:
+        """Keep ``t`` and move the end on its side."""
+        if t.side is True:
+            self.good = t.x
+        elif t.side is False:
+            self.bad = t.x
+        self.trials.append(t)
+
+
+#: a rule: Search -> None (pass) or its answer (stop: a reason; step: a point or a
+#: reason to stop)
+StopRule = Callable[[Search], "str | bool | None"]
+StepRule = Callable[[Search], "float | str | None"]
+#: an amend rule: (Search, proposed point) -> the point to try, or a reason to stop
+AmendRule = Callable[[Search, float], "float | str"]
+Oracle = Callable[[float], Trial]
+
+
+def run(search: Search, oracle: Oracle, stops: Sequence[StopRule],
+        steps: Sequence[StepRule], amends: Sequence[AmendRule] = (),
+        budget: int = 200) -> Search:
+    """Run ``search`` to its end (see the module docstring); returns it."""
+    for _ in range(budget):
+        for stop in stops:
+            if stop(search):
+                search.stopped = stop.__name__
+                return search
+        point, rule = _propose(search, steps, amends)
+        if isinstance(point, str):
+            search.stopped = point
+            return search
+        before = (search.bad, search.good)
+        t = oracle(point)
+        t.rule, t.bracket = rule, before
+        search.record(t)
+    search.stopped = "budget"
+    return search
+
+
+def _propose(search: Search, steps: Sequence[StepRule],
+             amends: Sequence[AmendRule]) -> tuple[float | str, str]:
+    """The first step rule's answer, through the amend rules, and its rule's name."""
+    for step in steps:
+        point = step(search)
+        if point is not None:
+            break
+    else:
+        return "no step", ""
+    if isinstance(point, str):
+        return point, step.__name__
+    for amend in amends:
+        moved = amend(search, point)
+        if isinstance(moved, str):
+            search.at = point
+            return moved, step.__name__
+        point = moved
+    return point, step.__name__
+
+
+# -- bisection: one step rule, two stop rules --------------------------------------------
+def narrow_enough(s: Search) -> bool:
+    """The bracket meets the requested accuracy."""
+    return s.narrow()
+
+
+def undecided_trial(s: Search) -> bool:
+    """The last trial decided nothing: the bracket stands as it is."""
+    return s.last is not None and s.last.side is None
+
+
+def midpoint(s: Search) -> float:
+    """Halve the bracket."""
+    return 0.5 * (s.bad + s.good)
+
+
+def bisection(decide: Callable[[float], tuple[bool | None, Any]], bad: float, good: float,
+              rtol: float, atol: float = 0.0, steps: int = 200) -> Search:
+    """Halve [bad, good] (either order) on ``decide(x) -> (True: good, False: bad, None:
+    undecided; data)`` until it is :meth:`Search.narrow` (stop "narrow_enough"), at most
+    ``steps`` times (stop "budget"); an undecided trial stops it ("undecided_trial")."""
+    def oracle(x: float) -> Trial:
+        side, data = decide(x)
+        return Trial(x, side, data=data)
+
+    return run(Search(bad, good, rtol, atol), oracle, (undecided_trial, narrow_enough),
+               (midpoint,), budget=steps)
+
+
+__all__ = ["WIDE", "AmendRule", "Oracle", "Search", "StepRule", "StopRule", "Trial", "bisection",
+           "midpoint", "narrow_enough", "run", "undecided_trial"]
