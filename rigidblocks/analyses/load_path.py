@@ -46,6 +46,9 @@ EXTRAPOLATE = 1e-4
 #: an undecided run within this (relative) of an admissible load puts the collapse at
 #: that load, with a note; farther above it, the path is undecided
 LIMIT_RTOL = 1e-6
+#: the reason of an admissible iterate that is not the settled state (associative flow)
+UNSETTLED = ("an admissible iterate (the structure stands), not the settled state, whose "
+             "events are not read: ")
 
 Joint = tuple[str, str]
 
@@ -149,10 +152,16 @@ class _Path:
         """A run at ``lam``; without dilatancy, an admissible iterate that has not
         settled on its fixed point is undecided (the state is not the one reached)."""
         r = self.w.run(self.laws(), lam, tol=self.tol)
-        if r.status == "admissible" and r.reason.startswith(_UNSETTLED) and \
-                self.marked.any():
-            r.status = "undecided"
-            r.reason = "the iteration did not settle on its fixed point: " + r.reason
+        if self.marked.any():
+            if r.status == "admissible" and r.reason.startswith(_UNSETTLED):
+                r.status = "undecided"
+                r.reason = "the iteration did not settle on its fixed point: " + r.reason
+        elif r.status == "undecided":
+            # associative: any admissible iterate certifies that the structure stands
+            q = self.w.run(self.laws(), lam, tol=self.tol, optimal=False)
+            if q.status == "admissible":
+                q.reason = UNSETTLED + r.reason
+                return q
         return r
 
     def crack_margins(self, r: Run) -> np.ndarray:
@@ -184,6 +193,8 @@ class _Path:
         return [], [j for j in self.at_threshold(r) if j not in self.seen]
 
     def happens(self, r: Run) -> bool:
+        if r.reason.startswith(UNSETTLED):
+            return False  # admissible, but its state is not the one that shows events
         return r.status != "admissible" or any(self.new(r))
 
     # -- locating an event --------------------------------------------------------------
@@ -293,7 +304,9 @@ class _Path:
             r = self.solve(b)
             if r.status == "failure":
                 raise self.failed(r, b)
-            if r.status == "admissible" and not any(self.new(r)):
+            if not self.happens(r):
+                if r.reason.startswith(UNSETTLED):
+                    self.w.notes.append(f"at lambda = {b:.9g}: {r.reason}")
                 return r
             lo, hi, rh = self.locate(a, b)
             rh = rh if rh is not None else r
