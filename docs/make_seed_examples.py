@@ -26,6 +26,8 @@ EXAMPLE_FILES: dict[str, tuple[str, dict[str, Any]]] = {
     "arch.json": ("arch", {}),
     "reference.json": ("reference", {}),
     "reference_self_weight.json": ("reference", {"self_weight": True}),
+    "fig4a_bonded.json": ("reference", {"friction": 0.5, "bond_tensile_strength": 400.0,
+                                        "bond_cohesion": 400.0}),
     "flat_arch_vertical.json": ("flat_arch", {"joints": "vertical"}),
     "flat_arch_radial.json": ("flat_arch", {"joints": "radial"}),
     "stocky_arch.json": ("stocky_arch", {}),
@@ -36,6 +38,28 @@ EXAMPLE_FILES: dict[str, tuple[str, dict[str, Any]]] = {
     "segmental_arch.json": ("arch", {"shape": "segmental", "springing": "piers"}),
     "wall.json": ("wall", {"courses": 4, "blocks_per_course": 4}),
 }
+
+
+#: which method is the seed's (the readings section)
+WHICH_METHOD = (
+    "Which method is the seed's: `--method distortion` is the distortion iteration of "
+    "its Eq. 1-4. With the associative law (the default flow) it computes the convex "
+    "path's state by another algorithm, a cross-check of the convex path; with "
+    "`--flow non-associative` (shear links capped at f N, normal links unchanged: Eq. 4) "
+    "it is the seed's procedure, the last column of the table below.")
+
+#: the seed's Fig. 4b-c load path on examples/fig4a_bonded.json (docs/methods.md)
+FIG4_PATH = (
+    "The seed's test on this model (Fig. 4b-c: the vertical joint cracks when the pull "
+    "overcomes its tensile strength, then the horizontal joints plasticise and the "
+    "structure fails) is `rigidblocks path examples/fig4a_bonded.json`: the vertical "
+    "joint bonded by a tensile strength and a cohesion of 400 N/m^2 (5 N per link), "
+    "f = 0.5. It prints the crack of left-right at lambda = 0.4 (pull 20 N), the four "
+    "horizontal joints at their threshold at lambda = 1 (pull 50 N = f P) and the "
+    "collapse there; `--sliding coulomb` (the shear drops to zero after a slip, Fig. 2a) "
+    "and `--flow non-associative` give the same sequence and loads on this model, "
+    "tests/test_load_path.py. Without cohesion a tensile strength gives the joint no net "
+    "tension (the shear row |T| <= f (N1 + N2) + c keeps N1 + N2 >= 0): docs/methods.md.")
 
 
 def write_examples() -> list[str]:
@@ -373,6 +397,8 @@ def readings_section() -> list[str]:
       "non-associative iteration, so the non-associative f is at most the demand where "
       "the verdicts change once along f.")
     w("")
+    w(WHICH_METHOD)
+    w("")
     table, got = readings_table()
     L.extend(markdown(table))
     w("")
@@ -441,6 +467,8 @@ def page() -> str:
     L.extend(markdown(table))
     w("")
     w(f"Governing joints: {gov(ref['no self-weight']['convex'])}.")
+    w("")
+    w(FIG4_PATH)
     w("")
     # -- flat arch
     w("## Flat arch (seed Fig. 6)")

@@ -1,16 +1,28 @@
-"""The load path: the live load increased step by step, the state at every step the
+"""The load path: the live load increased step by step, the state at every load the
 distortion iteration's (the admissible state closest to the elastic one) under the joint
 laws as the history has left them.
 
 Joint behaviours for :func:`load_path` (the seed's Fig. 2 and 5):
 
 * normal links are rigid-brittle: with a tensile strength they carry tension up to
-  it; at the load step where a link reaches it, the joint cracks and from then on it
-  carries no tension and no cohesion (compression only);
-* shear links are rigid-plastic (Drucker, ``sliding="plastic"``): the shear is capped
-  at the threshold f N + c a and stays there while the joint plasticises; or they follow
-  Coulomb's sliding friction (``sliding="coulomb"``): once a joint reaches the threshold
-  the block slides and the joint's shear drops to zero for the rest of the path.
+  it; at the load where a link reaches it, the joint cracks and from then on it
+  carries no tension and no cohesion (compression only). The shear row
+  |T| <= f (N1 + N2) + c a keeps the joint's net normal force N1 + N2 >= -c a / f: a
+  tensile strength without cohesion lets one link pull while the other pushes (a
+  bending capacity), not a net tension; with cohesion the joint carries a net tension
+  up to c a / f (and up to the links' tensile strengths);
+* shear links are Heyman's (f infinite: never at a threshold), rigid-plastic
+  (Drucker, ``sliding="plastic"``: the shear is capped at the threshold f N + c a and
+  stays there while the joint plasticises), or follow Coulomb's sliding friction
+  (``sliding="coulomb"``: once a joint reaches the threshold the block slides and the
+  joint's shear drops to zero for the rest of the path);
+* ``flow``: "non-associative" caps the shear links without changing the normal links
+  (the seed's Eq. 4, its procedure), "associative" projects onto the Coulomb set
+  (normality, a cross-check of the convex path); None: the scene's.
+
+Events are located at the load that causes them: the loads between two steps are
+bisected, and a crack or a threshold is placed where its margin, affine in lambda
+while no other link changes state, reaches zero.
 """
 
 from __future__ import annotations
@@ -24,7 +36,21 @@ from ..errors import InputError
 from ..methods import open_method
 from ..scene.model import Scene, friction_label, friction_value
 from ..solvers.distortion import TOL, Run
+from .nonassociative import _UNSETTLED, flow_mask
 from .search import bisect
+
+#: a joint is at its threshold when its shear is within this fraction of it
+AT_THRESHOLD = 1e-5
+#: relative step below an event's bracket over which its margin is extrapolated
+EXTRAPOLATE = 1e-4
+#: an undecided run within this (relative) of an admissible load puts the collapse at
+#: that load, with a note; farther above it, the path is undecided
+LIMIT_RTOL = 1e-6
+#: the reason of an admissible iterate that is not the settled state (associative flow)
+UNSETTLED = ("an admissible iterate (the structure stands), not the settled state, whose "
+             "events are not read: ")
+
+Joint = tuple[str, str]
 
 
 @dataclass(frozen=True)
@@ -34,12 +60,13 @@ class PathEvent:
     ``kind``: "crack" (a normal link reached its tensile strength and broke),
     "plastic" (a shear link reached its friction threshold), "slide" (Coulomb option:
     the shear dropped to zero), "collapse" (no admissible state beyond this load; the
-    joints listed are those at their threshold in the last admissible state).
+    joints listed are those of the event that caused it and those at their threshold
+    in the last admissible state).
     """
 
     kind: str
     load_factor: float
-    joints: tuple[tuple[str, str], ...]
+    joints: tuple[Joint, ...]
 
 
 @dataclass(frozen=True)
@@ -48,15 +75,16 @@ class PathStep:
 
     load_factor: float
     status: str
-    cracked: tuple[tuple[str, str], ...]
-    at_threshold: tuple[tuple[str, str], ...]
+    cracked: tuple[Joint, ...]
+    at_threshold: tuple[Joint, ...]
     iterations: int
 
 
 @dataclass(frozen=True)
 class PathResult:
     """A load path: status "collapse" (with ``collapse_load``), "standing" (admissible up
-    to the last step), "undecided" or "failure" (reason in ``notes``)."""
+    to the last step), "undecided" (with ``bracket``: admissible at its lower end, not
+    decided at its upper end) or "failure" (reason in ``notes``)."""
 
     status: str
     sliding: str
@@ -68,13 +96,16 @@ class PathResult:
     iterations: int
     solve_time: float
     notes: tuple[str, ...] = ()
+    flow: str = "associative"
+    bracket: tuple[float, float] | None = None
 
     def first(self, kind: str) -> PathEvent | None:
         return next((e for e in self.events if e.kind == kind), None)
 
     def to_dict(self) -> dict[str, Any]:
-        return {"status": self.status, "sliding": self.sliding,
+        return {"status": self.status, "sliding": self.sliding, "flow": self.flow,
                 "friction": friction_label(self.friction), "collapse_load": self.collapse_load,
+                "bracket": list(self.bracket) if self.bracket else None,
                 "events": [{"kind": e.kind, "load_factor": e.load_factor,
                             "joints": [list(j) for j in e.joints]} for e in self.events],
                 "steps": [{"load_factor": s.load_factor, "status": s.status,
@@ -86,24 +117,261 @@ class PathResult:
                 "notes": list(self.notes)}
 
 
+class _End(Exception):
+    """The path ends: ``status`` "collapse", "undecided" or "failure" at ``load``."""
+
+    def __init__(self, status: str, load: float, bracket: tuple[float, float] | None = None):
+        super().__init__(status)
+        self.status, self.load, self.bracket = status, load, bracket
+
+
+class _Path:
+    """The joint laws as the history has left them, and the runs under them."""
+
+    def __init__(self, scene: Scene, f: float, flow: str | None, sliding: str,
+                 refine: int, tol: float):
+        self.w = open_method(scene, "distortion")
+        self.ds = ds = self.w.solver_
+        self.c = c = ds.system.contacts
+        self.names = [(c.block_ids[a], c.block_ids[b]) for a, b in c.pairs]
+        self.fj = self.w.f_joint(f).astype(float)
+        self.tension = c.tensile_strength.astype(float).copy()
+        self.cohesion = c.cohesion.astype(float).copy()
+        self.marked = flow_mask(scene, c, flow)
+        self.sliding, self.refine, self.tol = sliding, refine, tol
+        self.events: list[PathEvent] = []
+        self.steps: list[PathStep] = []
+        self.seen: set[int] = set()
+
+    # -- runs and what they show -------------------------------------------------------
+    def laws(self) -> Any:
+        return self.ds.laws(self.fj, self.tension, self.cohesion,
+                            nonassociative=self.marked)
+
+    def solve(self, lam: float) -> Run:
+        """A run at ``lam``; without dilatancy, an admissible iterate that has not
+        settled on its fixed point is undecided (the state is not the one reached)."""
+        r = self.w.run(self.laws(), lam, tol=self.tol)
+        if self.marked.any():
+            if r.status == "admissible" and r.reason.startswith(_UNSETTLED):
+                r.status = "undecided"
+                r.reason = "the iteration did not settle on its fixed point: " + r.reason
+        elif r.status == "undecided":
+            # associative: any admissible iterate certifies that the structure stands
+            q = self.w.run(self.laws(), lam, tol=self.tol, optimal=False)
+            if q.status == "admissible":
+                q.reason = UNSETTLED + r.reason
+                return q
+        return r
+
+    def crack_margins(self, r: Run) -> np.ndarray:
+        """Per contact point: N + cap (<= 0 at its tensile strength), +inf without one."""
+        cap = self.tension[self.c.point_joint] * self.c.point_areas / self.ds.scaling.force
+        return np.where(cap > 0, r.x[:self.ds.P] + cap, np.inf)
+
+    def cracks(self, r: Run) -> list[int]:
+        cap = self.tension[self.c.point_joint] * self.c.point_areas / self.ds.scaling.force
+        hit = self.crack_margins(r) <= AT_THRESHOLD * cap
+        return sorted({int(j) for j in self.c.point_joint[hit]})
+
+    def threshold_margins(self, r: Run) -> np.ndarray:
+        """Per joint: |T| - (f (N1 + N2) + c a) (0 at the threshold), -inf where f is
+        infinite."""
+        v = self.ds.gather(r.x)
+        fin = np.isfinite(self.fj)
+        thr = np.where(fin, self.fj, 0.0) * (v[:, 0] + v[:, 1]) + self.laws().h[:, 2]
+        return np.where(fin, np.abs(v[:, 2]) - thr, -np.inf)
+
+    def at_threshold(self, r: Run) -> list[int]:
+        return list(self.w.at_threshold(r, 0.0, AT_THRESHOLD, laws=self.laws()))
+
+    def new(self, r: Run) -> tuple[list[int], list[int]]:
+        """(joints that crack, joints newly at their threshold) in the state of ``r``."""
+        cracks = self.cracks(r)
+        if cracks:
+            return cracks, []
+        return [], [j for j in self.at_threshold(r) if j not in self.seen]
+
+    def happens(self, r: Run) -> bool:
+        if r.reason.startswith(UNSETTLED):
+            return False  # admissible, but its state is not the one that shows events
+        return r.status != "admissible" or any(self.new(r))
+
+    # -- locating an event --------------------------------------------------------------
+    def locate(self, a: float, b: float) -> tuple[float, float, Run | None]:
+        """(lo, hi, run at hi): the first load in (a, b] where something happens is in
+        [lo, hi]; nothing happens at lo. An undecided trial ends the path."""
+        def decide(lam: float) -> tuple[bool | None, Run]:
+            q = self.solve(lam)
+            if q.status == "failure":
+                raise self.failed(q, lam)
+            return (None if q.status == "undecided" else self.happens(q)), q
+
+        br = bisect(decide, a, b, 0.0, steps=self.refine)
+        u = br.undecided_at
+        if u is not None:
+            why = f"at lambda = {u:.9g}: {self.solve(u).reason}"
+            if u - br.bad > LIMIT_RTOL * u:
+                self.w.notes.append(why)
+                raise _End("undecided", br.bad, (br.bad, u))
+            self.w.notes.append(f"the collapse load is located to {LIMIT_RTOL:g} (relative): "
+                                f"admissible at {br.bad:.9g}, undecided {why}")
+            raise self.collapse(br.bad, [], self.solve(br.bad))
+        return br.bad, br.good, br.good_data
+
+    def extrapolate(self, lo: float, hi: float, top: float, cracks: list[int],
+                    joints: list[int]) -> float:
+        """The load where the margins of the event's links reach zero, extrapolated from
+        two states below the event (affine in lambda while no link changes state). The
+        bisection's ``hi`` counts a link within ``AT_THRESHOLD`` of its limit as there,
+        so the event may lie above it, up to ``top`` (the step's end)."""
+        if not self.refine or lo <= 0:
+            return hi
+        h = max(hi - lo, EXTRAPOLATE * hi)
+        a = max(lo - h, 0.0)
+        ra, rb = self.solve(a), self.solve(lo)
+        if ra.status != "admissible" or rb.status != "admissible" or a >= lo:
+            return hi
+
+        def margins(r: Run) -> np.ndarray:
+            pts = np.isin(self.c.point_joint, cracks)
+            return np.concatenate([-self.crack_margins(r)[pts],
+                                   self.threshold_margins(r)[joints]])
+
+        ma, mb = margins(ra), margins(rb)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            roots = lo - mb * (lo - a) / (mb - ma)
+        roots = roots[np.isfinite(roots) & (mb > ma)]
+        return float(np.clip(roots.min(), a, top)) if roots.size else hi
+
+    def failed(self, r: Run, lam: float) -> _End:
+        self.w.notes.append(f"at lambda = {lam:.9g}: {r.reason}")
+        return _End("failure", lam)
+
+    # -- the path -----------------------------------------------------------------------
+    def apply(self, lam: float, cracks: list[int], joints: list[int]) -> bool:
+        """Record the events at ``lam`` and change the laws; True if they changed."""
+        n = self.names
+        if cracks:
+            self.events.append(PathEvent("crack", lam, tuple(n[j] for j in cracks)))
+            self.tension[cracks] = 0.0
+            self.cohesion[cracks] = 0.0
+            return True
+        self.events.append(PathEvent("plastic", lam, tuple(n[j] for j in joints)))
+        self.seen.update(joints)
+        if self.sliding != "coulomb":
+            return False
+        self.events.append(PathEvent("slide", lam, tuple(n[j] for j in joints)))
+        self.fj[joints] = 0.0
+        self.cohesion[joints] = 0.0
+        return True
+
+    def collapse(self, lam: float, cause: list[int], last: Run | None) -> _End:
+        gov = list(cause) + [j for j in (self.at_threshold(last) if last else [])
+                             if j not in cause]
+        new = [j for j in gov if j not in self.seen]
+        if new:
+            self.events.append(PathEvent("plastic", lam, tuple(self.names[j] for j in new)))
+        self.events.append(PathEvent("collapse", lam, tuple(self.names[j] for j in gov)))
+        return _End("collapse", lam)
+
+    def cascade(self, lam: float, r: Run, last: Run | None,
+                cause: list[int] | None = None) -> Run:
+        """Apply the events of the state ``r`` at ``lam`` and solve again, until the
+        state shows no new event; a lost admissibility is a collapse at ``lam``
+        (``cause``: the joints of the event that changed the laws before ``r``)."""
+        cause = list(cause or [])
+        for _ in range(self.ds.m + 2):
+            if r.status == "failure":
+                raise self.failed(r, lam)
+            if r.status == "undecided":
+                self.w.notes.append(f"at lambda = {lam:.9g}, after the events there: "
+                                    f"{r.reason}")
+                raise _End("undecided", lam, (lam, lam))
+            if r.status != "admissible":
+                raise self.collapse(lam, cause, last)
+            cracks, joints = self.new(r)
+            if not (cracks or joints) or not self.apply(lam, cracks, joints):
+                return r
+            cause = cracks or joints
+            last, r = r, self.solve(lam)
+        return r
+
+    def advance(self, a: float, b: float) -> Run:
+        """From the settled state at ``a`` to ``b``: every event in between located,
+        applied at its load and followed to its cascade; the state at ``b``."""
+        while True:
+            r = self.solve(b)
+            if r.status == "failure":
+                raise self.failed(r, b)
+            if not self.happens(r):
+                if r.reason.startswith(UNSETTLED):
+                    self.w.notes.append(f"at lambda = {b:.9g}: {r.reason}")
+                return r
+            lo, hi, rh = self.locate(a, b)
+            rh = rh if rh is not None else r
+            if rh.status != "admissible":
+                raise self.collapse(lo, [], self.solve(lo))
+            cracks, joints = self.new(rh)
+            lam = self.extrapolate(lo, hi, b, cracks, joints)
+            if self.apply(lam, cracks, joints):
+                self.cascade(lam, self.solve(lam), rh, cracks or joints)
+                a = lam
+            else:
+                a = max(hi, lam)
+
+    def step(self, lam: float, r: Run, its: int) -> None:
+        cracked = tuple(self.names[j] for j in range(self.ds.m)
+                        if self.tension[j] == 0 and self.c.tensile_strength[j] > 0)
+        self.steps.append(PathStep(lam, r.status, cracked,
+                                   tuple(self.names[j] for j in self.at_threshold(r)), its))
+
+
 def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: Any = None,
               method: str = "distortion", sliding: str = "plastic", refine: int = 30,
-              tol: float = TOL) -> PathResult:
+              tol: float = TOL, flow: str | None = None) -> PathResult:
     """Increase the live load in ``steps`` equal steps up to ``max_load`` x live.
 
-    At every step the state is the distortion iteration's (the admissible state closest
-    to the elastic one) under the joint laws as the history has left them: a joint whose
-    normal link reached its tensile strength has cracked (brittle: no tension and no
-    cohesion from then on); with ``sliding="coulomb"`` a joint that reached its friction
-    threshold has slid and carries no shear from then on, while with
-    ``sliding="plastic"`` (Drucker) its shear stays capped at the threshold. Every change
-    of law is followed by a new iteration at the same load, so that cascades show up at
-    the step they happen. The load of each event is refined by ``refine`` bisection
-    steps inside its load step. The path stops at the first load with no admissible
-    state ("collapse"). These states depend on the order of events (which joints
+    At every load the state is the distortion iteration's (the admissible state closest
+    to the elastic one) under the joint laws as the history has left them (see the
+    module docstring): cracked joints carry no tension and no cohesion; with
+    ``sliding="coulomb"`` a joint that reached its friction threshold carries no shear.
+    Every event is located at the load that causes it (``refine`` bisection steps,
+    then the margins extrapolated to zero) and followed by a new iteration at that
+    load, so that cascades show up where they happen. The path stops at the first load
+    with no admissible state ("collapse") or where a run cannot decide ("undecided",
+    with the bracket). These states depend on the order of events (which joints
     cracked or slid before): a single convex problem, which only asks whether some
     admissible state exists, cannot express that.
     """
+    f = _check_args(scene, steps, max_load, friction, method, sliding)
+    p = _Path(scene, f, flow, sliding, refine, tol)
+    status, collapse, bracket = "standing", None, None
+    try:
+        p.cascade(0.0, _at_zero(p), None)
+        prev = 0.0
+        for k in range(1, steps + 1):
+            lam, its = max_load * k / steps, p.w.iterations
+            p.step(lam, p.advance(prev, lam), p.w.iterations - its)
+            prev = lam
+    except _End as end:
+        status, bracket = end.status, end.bracket
+        collapse = end.load if end.status == "collapse" else None
+    flow_name = "non-associative" if p.marked.any() else "associative"
+    return PathResult(status, sliding, friction_label(f), tuple(p.steps), tuple(p.events),
+                      collapse, p.w.n_solves, p.w.iterations, p.w.solve_time,
+                      tuple(p.w.notes), flow_name, bracket)
+
+
+def _at_zero(p: _Path) -> Run:
+    r = p.solve(0.0)
+    if r.status == "inadmissible":
+        p.w.notes.append("the dead load alone has no admissible state")
+    return r
+
+
+def _check_args(scene: Scene, steps: int, max_load: float, friction: Any, method: str,
+                sliding: str) -> float:
     if method != "distortion":
         raise InputError(f'load_path supports method="distortion" only, got {method!r}')
     if sliding not in ("plastic", "coulomb"):
@@ -113,118 +381,4 @@ def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: An
     if not scene.has_live_load:
         raise InputError("the scene has no live load: there is nothing to increase",
                          scene.source)
-    f = friction_value(scene.effective_friction if friction is None else friction)
-    w = open_method(scene, "distortion")
-    ds = w.solver_
-    c = ds.system.contacts
-    ids = c.block_ids
-    F = ds.scaling.force
-    names = [(ids[a], ids[b]) for a, b in c.pairs]
-    fj = w.f_joint(f).astype(float)
-    tension = c.tensile_strength.astype(float).copy()
-    cohesion = c.cohesion.astype(float).copy()
-    events: list[PathEvent] = []
-    out_steps: list[PathStep] = []
-    plastic_seen: set[int] = set()
-    slid: set[int] = set()
-
-    def solve_at(lam: float) -> Run:
-        return w.run(ds.laws(fj, tension, cohesion), lam, tol=tol)
-
-    def at_cap(r: Run) -> list[int]:
-        cap = tension[c.point_joint] * c.point_areas / F
-        n = r.x[:ds.P]
-        hit = (cap > 0) & (n <= -cap * (1 - 1e-6))
-        return sorted({int(j) for j in c.point_joint[hit]})
-
-    def at_threshold(r: Run) -> list[int]:
-        laws = ds.laws(fj, tension, cohesion)
-        v = ds.gather(r.x)
-        thr = np.abs(fj * (v[:, 0] + v[:, 1]) + laws.h[:, 2])
-        thr = np.where(np.isfinite(fj), thr, np.inf)
-        gap = np.where(np.isfinite(fj), laws.rows(v)[:, 2:].max(axis=1), -np.inf)
-        big = float(np.abs(v).max(initial=0.0))
-        hit = (gap >= -1e-5 * np.maximum(thr, 1e-9 * big)) & (thr > 1e-6 * big)
-        return [int(j) for j in np.flatnonzero(hit)]
-
-    def refine_load(a: float, b: float, pred) -> float:
-        """Smallest load in (a, b] where pred(run) holds (pred false at a, true at b)."""
-        def decide(lam: float) -> tuple[bool | None, Run]:
-            r = solve_at(lam)
-            return (None if r.status == "undecided" else bool(pred(r))), r
-
-        return bisect(decide, a, b, 0.0, steps=refine).good
-
-    def ok(r: Run) -> bool:
-        return r.status == "admissible"
-
-    prev = 0.0
-    r = solve_at(0.0)
-    status = ""
-    collapse = None
-    if r.status == "failure":
-        w.notes.append(r.reason)
-        status = "failure"
-    elif not ok(r):
-        w.notes.append("the dead load alone has no admissible state")
-        status = "collapse"
-        collapse = 0.0
-    for k in range(1, steps + 1) if not status else ():
-        lam = max_load * k / steps
-        its0 = w.iterations
-        for _cascade in range(ds.m + 2):
-            r = solve_at(lam)
-            if not ok(r):
-                break
-            cracks = [j for j in at_cap(r)]
-            if cracks:
-                lam_e = refine_load(prev, lam, lambda q: not ok(q) or bool(at_cap(q)))
-                events.append(PathEvent("crack", lam_e, tuple(names[j] for j in cracks)))
-                tension[cracks] = 0.0
-                cohesion[cracks] = 0.0
-                continue
-            new = [j for j in at_threshold(r) if j not in plastic_seen and j not in slid]
-            if new:
-                events.append(PathEvent("plastic", lam, tuple(names[j] for j in new)))
-                plastic_seen.update(new)
-                if sliding == "coulomb":
-                    events.append(PathEvent("slide", lam, tuple(names[j] for j in new)))
-                    slid.update(new)
-                    fj[new] = 0.0
-                    cohesion[new] = 0.0
-                    continue
-            break
-        if r.status == "failure":
-            w.notes.append(r.reason)
-            status = "failure"
-            break
-        if not ok(r):
-            last = solve_at(prev)
-            lam_c = prev
-            if refine and ok(last):
-                def decide(lam: float) -> tuple[bool | None, Run]:
-                    q = solve_at(lam)
-                    return (None if q.status == "undecided" else ok(q)), q
-
-                br = bisect(decide, lam, prev, 0.0, steps=refine)
-                lam_c, last = br.good, br.good_data or last
-            gov = at_threshold(last) if ok(last) else []
-            new = [j for j in gov if j not in plastic_seen]
-            if new:
-                events.append(PathEvent("plastic", lam_c, tuple(names[j] for j in new)))
-            events.append(PathEvent("collapse", lam_c, tuple(names[j] for j in gov)))
-            out_steps.append(PathStep(lam, r.status, (), (), w.iterations - its0))
-            if r.status != "inadmissible":
-                w.notes.append(f"at load {lam:.6g}: {r.reason}")
-            status, collapse = "collapse", lam_c
-            break
-        cracked = tuple(names[j] for j in range(ds.m) if tension[j] == 0 and
-                        c.tensile_strength[j] > 0)
-        out_steps.append(PathStep(lam, r.status, cracked,
-                                  tuple(names[j] for j in at_threshold(r)),
-                                  w.iterations - its0))
-        prev = lam
-    if not status:
-        status = "standing"
-    return PathResult(status, sliding, friction_label(f), tuple(out_steps), tuple(events),
-                      collapse, w.n_solves, w.iterations, w.solve_time, tuple(w.notes))
+    return friction_value(scene.effective_friction if friction is None else friction)

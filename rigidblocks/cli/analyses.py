@@ -32,7 +32,9 @@ def add_question_args(p: argparse.ArgumentParser, takes: tuple[str, ...]) -> Non
                        "load_factor, or 1)")
     p.add_argument("--method", default=None,
                    help=" or ".join(f'"{m}"' for m in METHODS)
-                   + ' (default "clarabel": the convex path)')
+                   + ' (default "clarabel": the convex path; "distortion": the seed\'s '
+                   "impressed-distortion iteration, its procedure with --flow "
+                   "non-associative, a cross-check of the convex path otherwise)")
     p.add_argument("--solver", default=None,
                    help="back end of the convex path: clarabel, highs, scs, ecos, "
                    "cvxpy-NAME")

@@ -1,4 +1,4 @@
-"""``path``: the load path of the distortion solver (cracks, plasticity, collapse)."""
+"""``path``: the load path of the distortion method (cracks, plasticity, collapse)."""
 
 from __future__ import annotations
 
@@ -17,10 +17,15 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("--max-load", type=finite_float, default=2.0,
                    help="largest live-load multiplier of the path (default 2)")
     p.add_argument("--friction", help='friction coefficient f, or "infinite" '
-                   "(default: the scene's)")
+                   "(Heyman: no sliding; default: the scene's)")
     p.add_argument("--sliding", choices=("plastic", "coulomb"), default="plastic",
-                   help="shear links: plastic (Drucker, default) or coulomb (shear drops "
-                   "to zero after sliding)")
+                   help="shear links at their threshold: plastic (Drucker: the shear "
+                   "stays at f N + c, default) or coulomb (sliding friction: the shear "
+                   "drops to zero for the rest of the path)")
+    p.add_argument("--flow", choices=("associative", "non-associative"), default=None,
+                   help="non-associative: shear capped without changing the normal "
+                   "forces, the seed's procedure; associative: a cross-check of the "
+                   "convex path (default: the scene's flow, else associative)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--verbose", "-v", action="store_true",
                    help="also print the work done and the solver's notes")
@@ -29,37 +34,54 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
 def run(args: argparse.Namespace) -> int:
     scene = read_scene(args.scene)
     res = load_path(scene, steps=args.steps, max_load=args.max_load, friction=args.friction,
-                    sliding=args.sliding)
+                    sliding=args.sliding, flow=args.flow)
     if args.json:
         print(json.dumps(_jsonable(res.to_dict())))
         return EXIT.get(res.status, 0)
-    from ..answer import live_load_size, live_load_text
+    print("\n".join(_lines(scene, res, args)))
+    return EXIT.get(res.status, 0)
+
+
+def _lines(scene, res, args: argparse.Namespace) -> list[str]:
+    from ..answer import live_load_size, live_load_text, split_notes
 
     fu = scene.force_unit or "force units"
     live = live_load_size(scene)
+    flow = ("non-associative flow (no dilatancy: the seed's procedure)"
+            if res.flow == "non-associative" else "associative flow")
     lines = [f"scene      {scene.name or scene.source}",
              f"asked      the load path of the distortion method from lambda = 0 to "
              f"{args.max_load:g} in {args.steps} steps, lambda multiplying the live load "
-             f"({live_load_text(scene)}); {res.sliding} sliding, friction {res.friction}",
-             f"status     {res.status.upper()}"
-             + (f" at lambda = {res.collapse_load:.6g}: {res.collapse_load:.4g} x "
-                f"{live:.4g} {fu} = {res.collapse_load * live:.4g} {fu}"
-                if res.collapse_load is not None else "")]
+             f"({live_load_text(scene)}); {res.sliding} sliding, {flow}, friction "
+             f"{res.friction}",
+             f"status     {res.status.upper()}" + _status_tail(res, live, fu)]
     if res.events:
-        lines.append(f"  {'lambda [-]':>12}  {'live [' + fu + ']':>12}  {'event':8s}  "
+        lines.append(f"  {'lambda [-]':>14}  {'live [' + fu + ']':>12}  {'event':8s}  "
                      "joints (blocks a-b)")
     for e in res.events:
         joints = ", ".join(f"{a}-{b}" for a, b in e.joints) or "-"
-        lines.append(f"  {e.load_factor:12.6g}  {e.load_factor * live:12.4g}  "
+        lines.append(f"  {e.load_factor:14.9g}  {e.load_factor * live:12.6g}  "
                      f"{e.kind:8s}  {joints}")
     if args.verbose:
         lines.append(f"work       {res.n_solves} runs, {res.iterations} iterations, "
                      f"{res.solve_time:.3g} s")
-    from ..answer import split_notes
-
     reasons, notes = split_notes(res.notes)
     lines.extend(f"why        {n}" for n in reasons)
     if args.verbose:
         lines.extend(f"note       {n}" for n in notes)
-    print("\n".join(lines))
-    return EXIT.get(res.status, 0)
+    return lines
+
+
+def _status_tail(res, live: float, fu: str) -> str:
+    if res.collapse_load is not None:
+        lam = res.collapse_load
+        return f" at lambda = {lam:.9g}: {lam:.6g} x {live:.6g} {fu} = {lam * live:.6g} {fu}"
+    if res.status == "undecided" and res.bracket:
+        lo, hi = res.bracket
+        if hi > lo:
+            return (f": admissible up to lambda = {lo:.9g}, not decided at {hi:.9g} "
+                    "(no verdict beyond)")
+        return f": not decided at lambda = {lo:.9g} (no verdict beyond)"
+    if res.status == "standing" and res.steps:
+        return f" up to lambda = {res.steps[-1].load_factor:g} (the end of the path)"
+    return ""

@@ -30,7 +30,8 @@ from .arches import block, make_scene, non_negative, positive
 def reference(P: float = 100.0, H: float = 50.0, self_weight: bool = False,
               unit_weight: float = 20000.0, block_width: float = 0.1,
               block_height: float = 0.1, top_height: float = 0.05, depth: float = 0.25,
-              friction: float | str = 0.6) -> Scene:
+              friction: float | str = 0.6, bond_tensile_strength: float = 0.0,
+              bond_cohesion: float = 0.0) -> Scene:
     """The four-block reference model (forces in N, lengths in m).
 
     Args:
@@ -39,6 +40,9 @@ def reference(P: float = 100.0, H: float = 50.0, self_weight: bool = False,
         self_weight: include the blocks' weight (``unit_weight`` in N/m^3).
         block_width, block_height: size of each central block; the top block is
             2 ``block_width`` wide and ``top_height`` high.
+        bond_tensile_strength, bond_cohesion: a bonded vertical joint between the
+            central blocks (stresses in N/m^2 over its area; 0: a dry joint), the
+            seed's Fig. 4b: it cracks when the pull overcomes its tensile strength.
     """
     g = "reference"
     P, H = non_negative("P", P, g), non_negative("H", H, g)
@@ -67,8 +71,15 @@ def reference(P: float = 100.0, H: float = 50.0, self_weight: bool = False,
     ]
     name = f"four-block reference model, P = {P:g} N, H = {H:g} N" + (
         ", with self-weight" if self_weight else ", no self-weight")
+    bt = non_negative("bond_tensile_strength", bond_tensile_strength, g)
+    bc = non_negative("bond_cohesion", bond_cohesion, g)
+    joints = None
+    if bt or bc:
+        name += f", bonded vertical joint (tensile strength {bt:g}, cohesion {bc:g} N/m^2)"
+        joints = [{"blocks": ["left", "right"], "tensile_strength": bt, "cohesion": bc}]
     return make_scene(name, blocks, unit_weight=uw, friction=fr, depth=d, loads=loads,
-                      live_body_force=None, units={"length": "m", "force": "N"})
+                      live_body_force=None, units={"length": "m", "force": "N"},
+                      joints=joints)
 
 
 __all__ = ["reference"]

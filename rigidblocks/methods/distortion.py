@@ -120,11 +120,14 @@ class DistortionMethod(Method):
             return self.admissible(f, load_factor, for_state=True)
         return verdict
 
-    def at_threshold(self, r: Run, f: float, rel: float = 1e-5) -> tuple[int, ...]:
-        """Loaded joints whose shear is at the friction threshold (within ``rel``)."""
-        fj = self.f_joint(f)
+    def at_threshold(self, r: Run, f: float, rel: float = 1e-5,
+                     laws: Any = None) -> tuple[int, ...]:
+        """Loaded joints whose shear is at the friction threshold (within ``rel``), under
+        uniform friction ``f`` or, given, the joint ``laws`` of the run (``f`` unused);
+        joints with infinite friction (Heyman) have no threshold."""
         ds = self.solver_
-        laws = ds.laws(fj)
+        laws = ds.laws(self.f_joint(f)) if laws is None else laws
+        fj = laws.f
         v = ds.gather(r.x)
         fin = np.isfinite(fj)
         thr = np.where(fin, np.abs(np.where(fin, fj, 0.0) * (v[:, 0] + v[:, 1])

@@ -1,0 +1,184 @@
+"""The load path (`load_path`, `rigidblocks path`) under every joint law of the seed
+(Heyman, Coulomb's sliding friction, Drucker's plastic shearing: its Fig. 2) and both
+flow rules, against closed forms and the convex path.
+
+Closed forms (docs/validation.md; rigidblocks/generators/seed.py for the reference
+model): a b x h block under a horizontal body force lambda x weight slides at
+lambda = f and tips at b / h; the four-block reference model (seed Fig. 4a, P = 100 N
+on the top block, H = 50 N pulling each central block out) collapses when
+H lambda = f (P + W_t + W_c), i.e. at lambda = f P / H = 1 at f = 0.5 without
+self-weight and at 2 with self-weight (W_t = W_c = 50 N). Events are located to 1e-6
+relative (issue 30, item 5).
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from conftest import EXAMPLES
+
+import rigidblocks as rb
+from rigidblocks.analyses import load_path
+from rigidblocks.cli.main import main
+
+EV = 1e-6  # relative accuracy of an event's load
+LAWS = [(s, fl) for s in ("plastic", "coulomb") for fl in ("associative", "non-associative")]
+
+
+def kinds(p):
+    return [e.kind for e in p.events]
+
+
+def joints(e):
+    return {frozenset(j) for j in e.joints}
+
+
+@pytest.mark.parametrize("sliding, flow", LAWS)
+def test_single_block_slides_at_f(block_on_base, sliding, flow):
+    """validation.md: lambda* = min(f, b/h); b/h = 0.5 and f = 0.3: it slides at
+    lambda = f = 0.3, its bed joint reaching the threshold there."""
+    p = load_path(block_on_base(1.0, 2.0, 0.3), steps=7, max_load=1.0, sliding=sliding,
+                  flow=flow)
+    assert p.status == "collapse" and p.collapse_load == pytest.approx(0.3, rel=EV)
+    assert p.first("plastic").load_factor == pytest.approx(0.3, rel=EV)
+    assert joints(p.first("collapse")) == {frozenset(("base", "B"))}
+
+
+@pytest.mark.parametrize("flow", ["associative", "non-associative"])
+def test_heyman_block_tips_at_b_over_h_with_no_plastic_joint(block_on_base, flow):
+    """Heyman (friction infinite: T unbounded): the block cannot slide and tips at
+    lambda = b/h = 0.5 (validation.md); no joint ever has a shear threshold (before:
+    every joint was plastic at the first step, a comparison of -inf with -inf)."""
+    p = load_path(block_on_base(1.0, 2.0, "infinite"), steps=7, max_load=1.0, flow=flow)
+    assert "plastic" not in kinds(p)
+    assert p.status == "collapse" and p.collapse_load == pytest.approx(0.5, rel=EV)
+    ref = load_path(rb.read_scene(EXAMPLES / "reference_self_weight.json"),
+                    friction="infinite", flow=flow)
+    assert ref.status == "standing" and ref.events == ()
+    assert all(s.at_threshold == () for s in ref.steps)
+
+
+@pytest.mark.parametrize("sliding, flow", LAWS)
+def test_reference_model_collapses_at_f_p_over_h(sliding, flow):
+    """Seed Fig. 4a without self-weight at f = 0.5: the four bed joints reach the
+    threshold together and the central blocks slip at lambda = f P / H = 1."""
+    scene = rb.read_scene(EXAMPLES / "reference.json")
+    p = load_path(scene, friction=0.5, steps=13, sliding=sliding, flow=flow)
+    assert p.status == "collapse" and p.collapse_load == pytest.approx(1.0, rel=EV)
+    assert p.first("plastic").load_factor == pytest.approx(1.0, rel=EV)
+    assert len(joints(p.first("collapse"))) == 4
+
+
+def test_coulomb_slide_with_self_weight_collapses_where_it_slides():
+    """Reference model with self-weight at f = 0.5. The least-energy state's friction
+    demand at lambda = 1 (convex path, `check --friction infinite`: 1/3 at left-top)
+    puts the top joints' threshold at lambda_s = f / demand = 1.5. With Coulomb's
+    sliding friction their shear drops to zero there; each central block then holds
+    H lambda_s = 75 N on its bed joint alone, whose capacity is f N_bottom =
+    0.5 (75 + 50) = 62.5 N: collapse at lambda_s, naming the joints that slid (before:
+    collapse at 1.45, one step early, no joint named)."""
+    scene = rb.read_scene(EXAMPLES / "reference_self_weight.json")
+    demand = rb.check(scene, friction="infinite", load_factor=1.0).friction_demand[0]
+    lam_s = 0.5 / demand
+    assert lam_s == pytest.approx(1.5, rel=1e-6)
+    for flow in ("associative", "non-associative"):
+        p = load_path(scene, friction=0.5, sliding="coulomb", flow=flow)
+        assert kinds(p) == ["plastic", "slide", "collapse"], flow
+        assert p.collapse_load == pytest.approx(lam_s, rel=EV)
+        top = {frozenset(("left", "top")), frozenset(("right", "top"))}
+        assert joints(p.first("slide")) == top and top <= joints(p.first("collapse"))
+
+
+@pytest.mark.parametrize("steps", [7, 13, 40])
+def test_plastic_shearing_with_self_weight_events_at_their_loads(steps):
+    """Drucker: the top joints plasticise at lambda_s = 1.5 (as above) and stay at their
+    threshold; the structure collapses at the static multiplier
+    f (P + W_t + W_c) / H = 0.5 x 200 / 50 = 2 (generators/seed.py), whatever the step
+    (before: 1.53846 with 13 steps, the end of the step)."""
+    scene = rb.read_scene(EXAMPLES / "reference_self_weight.json")
+    p = load_path(scene, friction=0.5, steps=steps, max_load=2.5)
+    first = p.first("plastic")
+    assert first.load_factor == pytest.approx(1.5, rel=EV)
+    assert joints(first) == {frozenset(("left", "top")), frozenset(("right", "top"))}
+    assert p.status == "collapse" and p.collapse_load == pytest.approx(2.0, rel=EV)
+
+
+def test_fig4a_bonded_cracks_then_plasticises_then_collapses(capsys):
+    """examples/fig4a_bonded.json, seed Fig. 4b-c: "When the force F overcomes the
+    tensile strength of the vertical joint, a crack occurs ... Subsequently, when force
+    F equals the value of the friction reaction, horizontal joints undergo a
+    plasticization process and the structure fails". Tensile strength 400 N/m^2 over
+    each link's half of the 0.1 x 0.25 m joint: 5 N per link. Below the crack the state
+    is the least-energy one, linear in lambda (the dead load puts no normal force on
+    the vertical joint): the crack is at 5 / |N(lambda = 0.2)| x 0.2, N from the convex
+    path's least-energy state (QP to its default tolerance: 1e-3). After it the model
+    is the dry one: collapse at f P / H = 1."""
+    path = EXAMPLES / "fig4a_bonded.json"
+    scene = rb.read_scene(path)
+    p = load_path(scene)
+    assert kinds(p) == ["crack", "plastic", "collapse"]
+    crack, plastic = p.first("crack"), p.first("plastic")
+    assert joints(crack) == {frozenset(("left", "right"))}
+    assert joints(plastic) == {frozenset(j) for j in (("support", "left"),
+                               ("support", "right"), ("left", "top"), ("right", "top"))}
+    st = rb.check(scene, load_factor=0.2).state
+    n_v = st.normal[scene_points(scene, "left", "right")].min()
+    assert crack.load_factor == pytest.approx(0.2 * 5.0 / -n_v, rel=1e-3)
+    assert p.collapse_load == pytest.approx(1.0, rel=EV)
+    assert plastic.load_factor == pytest.approx(1.0, rel=EV)
+    assert main(["path", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "lambda [-]" in out and "live [N]" in out
+    rows = [ln.split()[2] for ln in out.splitlines() if ln.startswith("  ") and
+            ln.split()[0][0].isdigit()]
+    assert rows == ["crack", "plastic", "collapse"]
+
+
+def scene_points(scene, a, b):
+    """The contact points of the joint between blocks a and b."""
+    from rigidblocks.methods import open_method
+
+    c = open_method(scene, "distortion").contacts
+    ids = c.block_ids
+    k = next(k for k, (i, j) in enumerate(c.pairs) if {ids[i], ids[j]} == {a, b})
+    return [int(i) for i in range(len(c.point_joint)) if c.point_joint[i] == k]
+
+
+def test_undecided_is_said_with_exit_3(tmp_path, capsys):
+    """Tensile strength without cohesion on the vertical joint: the shear row
+    |T| <= f (N1 + N2) keeps the joint's net force compressive, so the static collapse
+    is the dry one, lambda = f P / H = 1 (the convex path: below). The distortion
+    iteration cannot certify the collapse there: the path must say undecided (exit 3,
+    with its bracket, which holds 1), or collapse at 1 (before: "COLLAPSE at 0.99375")."""
+    scene = rb.read_scene(EXAMPLES / "reference.json")
+    from rigidblocks.io import write_scene
+    from rigidblocks.io.scene_file import dumps_scene, loads_json, scene_from_dict
+
+    doc = loads_json(dumps_scene(scene))
+    doc["friction"] = 0.5
+    doc["joints"] = [{"blocks": ["left", "right"], "tensile_strength": 400.0}]
+    dry = scene_from_dict(doc)
+    assert rb.max_load_multiplier(dry).load_multiplier == pytest.approx(1.0, rel=1e-6)
+    f = tmp_path / "t.json"
+    write_scene(dry, f)
+    code = main(["path", str(f), "--json"])
+    res = json.loads(capsys.readouterr().out)
+    if res["status"] == "collapse":
+        assert code == 0 and res["collapse_load"] == pytest.approx(1.0, rel=EV)
+    else:
+        assert res["status"] == "undecided" and code == 3
+        lo, hi = res["bracket"]
+        assert lo <= 1.0 <= hi * (1 + EV) and res["collapse_load"] is None
+        assert main(["path", str(f)]) == 3
+        assert "UNDECIDED: admissible up to lambda" in capsys.readouterr().out
+
+
+def test_cli_flow_option_and_json(capsys):
+    f = str(EXAMPLES / "reference.json")
+    assert main(["path", f, "--flow", "non-associative", "--friction", "0.5", "--json"]) == 0
+    res = json.loads(capsys.readouterr().out)
+    assert res["flow"] == "non-associative" and res["collapse_load"] == pytest.approx(1.0)
+    main(["path", f, "--flow", "non-associative"])
+    assert "non-associative flow (no dilatancy: the seed's procedure)" in \
+        capsys.readouterr().out
