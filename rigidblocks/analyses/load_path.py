@@ -110,6 +110,10 @@ def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: An
         raise InputError(f'sliding must be "plastic" or "coulomb", got {sliding!r}')
     if steps < 1 or not (max_load > 0):
         raise InputError("load_path needs steps >= 1 and max_load > 0")
+    if scene.dimension != 2:
+        raise InputError("the load path follows the distortion method, which is 2D only; "
+                         "for a 3D scene, lambda* and its mechanism are the maximum load "
+                         "multiplier's (`rigidblocks load`)", scene.source)
     if not scene.has_live_load:
         raise InputError("the scene has no live load: there is nothing to increase",
                          scene.source)
