@@ -234,3 +234,20 @@ def test_path_table_has_headers_with_units(capsys):
     assert "live [kN]" in lines[header] and "event" in lines[header]
     lam, live = (float(x) for x in lines[header + 1].split()[:2])
     assert live == pytest.approx(lam * 37.69, rel=1e-3)
+
+
+def test_path_standing_at_its_end_says_how_far_it_went(capsys):
+    """The reference model with self-weight carries more than the path's default end,
+    lambda = 2 (the convex path's lambda*, checked here, is 2.4), so its path ends
+    standing: the status says at which lambda, and the live load that means in the
+    force unit (2 x 100 N, the two 50 N pulls)."""
+    from rigidblocks import max_load_multiplier
+
+    scene = read_scene(EXAMPLES / "reference_self_weight.json")
+    assert max_load_multiplier(scene).load_multiplier > 2.0
+    capsys.readouterr()
+    assert main(["path", str(EXAMPLES / "reference_self_weight.json")]) == 0
+    status = next(ln for ln in capsys.readouterr().out.splitlines()
+                  if ln.startswith("status"))
+    assert status.startswith("status     STANDING at lambda = 2 (200 N), the end of the "
+                             "path")

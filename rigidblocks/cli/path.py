@@ -26,6 +26,18 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                    help="also print the work done and the solver's notes")
 
 
+def _status_tail(res, max_load: float, live: float, fu: str) -> str:
+    """What the status line says after the status: the collapse load, or the end of the
+    path a structure still standing has reached."""
+    if res.collapse_load is not None:
+        return (f" at lambda = {res.collapse_load:.6g}: {res.collapse_load:.4g} x "
+                f"{live:.4g} {fu} = {res.collapse_load * live:.4g} {fu}")
+    if res.status == "standing":
+        return (f" at lambda = {max_load:g} ({max_load * live:.4g} {fu}), the end of the "
+                "path (--max-load goes further)")
+    return ""
+
+
 def run(args: argparse.Namespace) -> int:
     scene = read_scene(args.scene)
     res = load_path(scene, steps=args.steps, max_load=args.max_load, friction=args.friction,
@@ -41,10 +53,7 @@ def run(args: argparse.Namespace) -> int:
              f"asked      the load path of the distortion method from lambda = 0 to "
              f"{args.max_load:g} in {args.steps} steps, lambda multiplying the live load "
              f"({live_load_text(scene)}); {res.sliding} sliding, friction {res.friction}",
-             f"status     {res.status.upper()}"
-             + (f" at lambda = {res.collapse_load:.6g}: {res.collapse_load:.4g} x "
-                f"{live:.4g} {fu} = {res.collapse_load * live:.4g} {fu}"
-                if res.collapse_load is not None else "")]
+             f"status     {res.status.upper()}" + _status_tail(res, args.max_load, live, fu)]
     if res.events:
         lines.append(f"  {'lambda [-]':>12}  {'live [' + fu + ']':>12}  {'event':8s}  "
                      "joints (blocks a-b)")
