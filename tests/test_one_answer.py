@@ -251,3 +251,23 @@ def test_path_standing_at_its_end_says_how_far_it_went(capsys):
                   if ln.startswith("status"))
     assert status.startswith("status     STANDING at lambda = 2 (200 N), the end of the "
                              "path")
+
+
+def test_check_friction_demand_is_not_called_what_the_structure_needs(capsys):
+    """The flat arch with vertical joints: the state of least complementary energy
+    reaches |T|/N = f = 0.6 at a pier, while f* = 0.4714 (`friction`, below 0.6): the
+    structure does not need 0.6, and `check` must not say it does; `friction` names its
+    one governing joint in the singular when it has one."""
+    path = EXAMPLES / "flat_arch_vertical.json"
+    fstar = min_friction(read_scene(path)).friction_factor
+    capsys.readouterr()
+    assert main(["check", str(path)]) == 0
+    why = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("why")]
+    demand = float(re.search(r"\|T\|/N reaches ([0-9.]+)", why[0]).group(1))
+    assert fstar < demand - 0.1
+    assert "needs |T|/N" not in why[0] and "the least friction any state needs is f*" \
+        in why[0]
+    assert main(["friction", str(EXAMPLES / "arch.json"), "--load-factor", "0.1"]) == 0
+    gov = next(ln for ln in capsys.readouterr().out.splitlines()
+               if ln.startswith("governing"))
+    assert gov.endswith("v1-abutment_r (at its friction limit)")
