@@ -187,6 +187,7 @@ def test_barrel_vault_stack_bond_equals_plane_arch(rings):
     f3 = rb.min_friction(s3, load_factor=0.0, state=False).friction_factor
     f2 = rb.min_friction(s2, load_factor=0.0, state=False).friction_factor
     assert f3 == pytest.approx(f2, rel=1e-5)
+    assert f"{rings} {'ring' if rings == 1 else 'rings'} x 9 voussoirs" in s3.name
 
 
 def test_barrel_vault_running_bond_at_least_its_rings():
