@@ -56,7 +56,8 @@ class PathStep:
 @dataclass(frozen=True)
 class PathResult:
     """A load path: status "collapse" (with ``collapse_load``), "standing" (admissible up
-    to the last step), "undecided" or "failure" (reason in ``notes``)."""
+    to the last step), "unstable" (no admissible state under the dead load alone: no
+    path), "undecided" or "failure" (reason in ``notes``)."""
 
     status: str
     sliding: str
@@ -171,8 +172,7 @@ def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: An
         status = "failure"
     elif not ok(r):
         w.notes.append("the dead load alone has no admissible state")
-        status = "collapse"
-        collapse = 0.0
+        status = "unstable"  # the word of max_load_multiplier for the same finding
     for k in range(1, steps + 1) if not status else ():
         lam = max_load * k / steps
         its0 = w.iterations
