@@ -65,6 +65,8 @@ def test_quirky_drawing_is_repaired_and_reported(tmp_path):
     b = {tuple(p) for p in sc.blocks[2].vertices}
     assert len(a & b) == 2
     assert "4 blocks" in rep.summary() and "snapped" in rep.summary()
+    assert "(1 support: b1)" in rep.summary() and rep.reoriented >= 1
+    assert f"turned {rep.reoriented} clockwise outlines counter-clockwise" in rep.summary()
     # A + B tip together about the toe (1, 0): lambda* = b / h = 1 / 3
     res = rb.max_load_multiplier(sc)
     assert res.load_multiplier == pytest.approx(1 / 3, rel=1e-6)
