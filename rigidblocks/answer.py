@@ -265,10 +265,12 @@ class _Words:
             fd = res.friction_demand
             if fd is not None and fd[0] > 1e-9:
                 a, b = res.joint_name(fd[1])
-                why.append(f"the state of least complementary energy needs |T|/N up to "
-                           f"{fd[0]:.4g} (joint {a}-{b})")
+                # not "needs": another admissible state may do with less (f*)
+                why.append(f"in the state of least complementary energy |T|/N reaches "
+                           f"{fd[0]:.4g} (joint {a}-{b}); the least friction any state "
+                           "needs is f* (`rigidblocks friction`)")
             elif fd is not None:
-                why.append("the state of least complementary energy needs no friction")
+                why.append("the state of least complementary energy uses no friction")
             return ("ADMISSIBLE: it stands (an equilibrium state with every joint in "
                     "compression and within friction exists)", "", "", why)
         number = ""
@@ -296,7 +298,8 @@ class _Words:
             why.append(f"the scene's friction f = {float(f):g} is {enough}")
         names = [f"{a}-{b}" for a, b in res.governing_joints]
         return ("STANDS with friction f >= f*", number,
-                joint_list(names) + (" (at their friction limit)" if names else ""), why)
+                joint_list(names) + ((" (at its friction limit)" if len(names) == 1 else
+                                      " (at their friction limit)") if names else ""), why)
 
     def load(self, res: Any) -> tuple[str, str, str, list[str]]:
         if res.status == "unbounded":

@@ -15,7 +15,7 @@ import math
 import ezdxf
 import numpy as np
 import pytest
-from conftest import SHARED, require_shared
+from conftest import EXAMPLES, SHARED, require_shared
 
 import rigidblocks as rb
 from rigidblocks.cli.main import main
@@ -65,6 +65,8 @@ def test_quirky_drawing_is_repaired_and_reported(tmp_path):
     b = {tuple(p) for p in sc.blocks[2].vertices}
     assert len(a & b) == 2
     assert "4 blocks" in rep.summary() and "snapped" in rep.summary()
+    assert "(1 support: b1)" in rep.summary() and rep.reoriented >= 1
+    assert f"turned {rep.reoriented} clockwise outlines counter-clockwise" in rep.summary()
     # A + B tip together about the toe (1, 0): lambda* = b / h = 1 / 3
     res = rb.max_load_multiplier(sc)
     assert res.load_multiplier == pytest.approx(1 / 3, rel=1e-6)
@@ -274,3 +276,19 @@ def test_import_without_unit_weight_warns_and_every_analysis_says_so(tmp_path, c
     assert any("weigh nothing" in n for n in json.loads(capsys.readouterr().out)["notes"])
     sc2 = rb.read_dxf(path, unit_weight=20.0)
     assert not any("weigh nothing" in n for n in rb.check(sc2, load_factor=0).notes)
+
+
+def test_export_of_a_3d_scene_is_refused_before_its_analysis(tmp_path, capsys, monkeypatch):
+    """`export-dxf` of a 3D scene: one line, exit 2, and no analysis run first (it
+    took the corbel dome's load analysis, 1.1 s CPU against 0.5 s, to say no)."""
+    import rigidblocks.cli.plot as cli_plot
+
+    def analyse(*args, **kwargs):
+        raise AssertionError("the analysis ran before the refusal")
+
+    monkeypatch.setattr(cli_plot, "analyse", analyse)
+    assert main(["export-dxf", str(EXAMPLES / "box_stack_3d.json"), "--analysis", "load",
+                 "-o", str(tmp_path / "a.dxf")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.endswith("DXF export is for 2D scenes") and len(err.splitlines()) == 1
+    assert not (tmp_path / "a.dxf").exists()

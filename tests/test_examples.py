@@ -63,6 +63,17 @@ def test_unknown_generator():
         build("cathedral")
 
 
+def test_cli_list_names_no_empty_or_none_default(capsys):
+    """`example --list` prints no "(default None)" or "(default )": such a parameter's
+    help says what happens without it; the arch's voussoirs default to 15, 16 pointed."""
+    assert main(["example", "--list"]) == 0
+    out = capsys.readouterr().out
+    assert "(default None)" not in out and "(default )" not in out
+    assert "--voussoirs  number of voussoirs (default 15, 16 for a pointed arch)" in out
+    assert len(build("arch").blocks) == 15 + 2
+    assert len(build("arch", shape="pointed").blocks) == 16 + 2
+
+
 def test_cli_list_and_write(tmp_path, capsys):
     assert main(["example", "--list"]) == 0
     out = capsys.readouterr().out

@@ -134,7 +134,8 @@ def test_a_sweep_over_the_examples_gives_the_same_answers(answers):
 def test_the_load_path_ends_where_load_says(answers, capsys):
     """2D examples: `path` collapses at lambda* to 1 % (never above it: its states are
     admissible), does not collapse within its range (2) where lambda* is beyond it,
-    and collapses at once where the dead load alone stands on no admissible state."""
+    and is unstable, as `load` says, where the dead load alone stands on no admissible
+    state (it read "COLLAPSE at lambda = 0" where `load` read "UNSTABLE")."""
     for path in FILES:
         if read_scene(path).dimension != 2:
             continue
@@ -142,7 +143,7 @@ def test_the_load_path_ends_where_load_says(answers, capsys):
         res = run_json(capsys, ["path", str(path)])
         lam = ref["load_multiplier"]
         if ref["status"] == "unstable":
-            assert res["status"] == "collapse" and res["collapse_load"] == 0, path.name
+            assert res["status"] == "unstable" and res["collapse_load"] is None, path.name
         elif lam > 2.0:
             assert res["status"] == "standing", path.name
         elif res["status"] == "undecided":
@@ -258,3 +259,40 @@ def test_path_table_has_headers_with_units(capsys):
     assert "live [kN]" in lines[header] and "event" in lines[header]
     lam, live = (float(x) for x in lines[header + 1].split()[:2])
     assert live == pytest.approx(lam * 37.69, rel=1e-3)
+
+
+def test_path_standing_at_its_end_says_how_far_it_went(capsys):
+    """The reference model with self-weight carries more than the path's default end,
+    lambda = 2 (the convex path's lambda*, checked here, is 2.4), so its path ends
+    standing: the status says at which lambda, and the live load that means in the
+    force unit (2 x 100 N, the two 50 N pulls)."""
+    from rigidblocks import max_load_multiplier
+
+    scene = read_scene(EXAMPLES / "reference_self_weight.json")
+    assert max_load_multiplier(scene).load_multiplier > 2.0
+    capsys.readouterr()
+    assert main(["path", str(EXAMPLES / "reference_self_weight.json")]) == 0
+    status = next(ln for ln in capsys.readouterr().out.splitlines()
+                  if ln.startswith("status"))
+    assert status.startswith("status     STANDING at lambda = 2 (200 N), the end of the "
+                             "path")
+
+
+def test_check_friction_demand_is_not_called_what_the_structure_needs(capsys):
+    """The flat arch with vertical joints: the state of least complementary energy
+    reaches |T|/N = f = 0.6 at a pier, while f* = 0.4714 (`friction`, below 0.6): the
+    structure does not need 0.6, and `check` must not say it does; `friction` names its
+    one governing joint in the singular when it has one."""
+    path = EXAMPLES / "flat_arch_vertical.json"
+    fstar = min_friction(read_scene(path)).friction_factor
+    capsys.readouterr()
+    assert main(["check", str(path)]) == 0
+    why = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("why")]
+    demand = float(re.search(r"\|T\|/N reaches ([0-9.]+)", why[0]).group(1))
+    assert fstar < demand - 0.1
+    assert "needs |T|/N" not in why[0] and "the least friction any state needs is f*" \
+        in why[0]
+    assert main(["friction", str(EXAMPLES / "arch.json"), "--load-factor", "0.1"]) == 0
+    gov = next(ln for ln in capsys.readouterr().out.splitlines()
+               if ln.startswith("governing"))
+    assert gov.endswith("v1-abutment_r (at its friction limit)")

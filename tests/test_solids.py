@@ -187,6 +187,7 @@ def test_barrel_vault_stack_bond_equals_plane_arch(rings):
     f3 = rb.min_friction(s3, load_factor=0.0, state=False).friction_factor
     f2 = rb.min_friction(s2, load_factor=0.0, state=False).friction_factor
     assert f3 == pytest.approx(f2, rel=1e-5)
+    assert f"{rings} {'ring' if rings == 1 else 'rings'} x 9 voussoirs" in s3.name
 
 
 def test_barrel_vault_running_bond_at_least_its_rings():
@@ -243,8 +244,8 @@ def test_distortion_method_refuses_3d_scenes(tmp_path, capsys):
     for run in (lambda: rb.check(s, method="distortion"),
                 lambda: rb.min_friction(s, method="distortion"),
                 lambda: rb.max_load_multiplier(s, method="distortion")):
-        with pytest.raises(InputError, match="not supported for 3D scenes; use "
-                                             "method='clarabel'"):
+        with pytest.raises(InputError, match="not supported for 3D scenes; use the "
+                                             'convex path \\(method "clarabel"'):
             run()
     path = tmp_path / "stack.json"
     rb.write_scene(s, path)
@@ -254,6 +255,11 @@ def test_distortion_method_refuses_3d_scenes(tmp_path, capsys):
         err = capsys.readouterr().err.strip()
         assert "not supported for 3D scenes" in err and "Traceback" not in err
         assert len(err.splitlines()) == 1
+    # `path` has no convex path to turn to: it names the command that answers in 3D
+    assert main(["path", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "2D only" in err and "`rigidblocks load`" in err and "clarabel" not in err
+    assert len(err.splitlines()) == 1
 
 
 @pytest.mark.parametrize("fname, gen, params", [

@@ -56,3 +56,22 @@ def test_cli(capsys):
     doc = json.loads(out)
     assert doc["param"] == "thickness" and 0.1 < doc["min_thickness"] < CLASSICAL * 1.005
     assert main(["thickness", "arch", "--param", "colour"]) == 2
+
+
+def test_cli_help_gives_the_bounds_defaults(capsys):
+    """`thickness --help` says what --lo, --hi and --rtol default to (the values
+    min_thickness takes), and which bound must stand."""
+    import inspect
+
+    defaults = inspect.signature(min_thickness).parameters
+    with pytest.raises(SystemExit):
+        main(["thickness", "--help"])
+    out = " ".join(capsys.readouterr().out.split())
+    for name in ("lo", "hi"):
+        assert f"(default {defaults[name].default:g})" in out
+    # --rtol's help gives its default as written in RTOL_DEFAULTS (1e-4)
+    from rigidblocks.cli.options import RTOL_DEFAULTS
+
+    assert float(RTOL_DEFAULTS["thickness"]) == defaults["rtol"].default
+    assert f"default {RTOL_DEFAULTS['thickness']})" in out
+    assert "does not stand (default 0.01)" in out and "it stands (default 1)" in out

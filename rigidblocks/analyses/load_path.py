@@ -82,7 +82,8 @@ class PathStep:
 
 @dataclass(frozen=True)
 class PathResult:
-    """A load path: status "collapse" (with ``collapse_load``), "standing" (admissible up
+    """A load path: status "collapse" (with ``collapse_load``), "unstable" (no admissible
+    state under the dead load alone: no path), "standing" (admissible up
     to the last step), "undecided" (with ``bracket``: admissible at its lower end, not
     decided at its upper end) or "failure" (reason in ``notes``)."""
 
@@ -118,7 +119,8 @@ class PathResult:
 
 
 class _End(Exception):
-    """The path ends: ``status`` "collapse", "undecided" or "failure" at ``load``."""
+    """The path ends: ``status`` "collapse", "unstable", "undecided" or "failure" at
+    ``load``."""
 
     def __init__(self, status: str, load: float, bracket: tuple[float, float] | None = None):
         super().__init__(status)
@@ -365,8 +367,9 @@ def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: An
 
 def _at_zero(p: _Path) -> Run:
     r = p.solve(0.0)
-    if r.status == "inadmissible":
+    if r.status == "inadmissible":  # no path: the word of max_load_multiplier
         p.w.notes.append("the dead load alone has no admissible state")
+        raise _End("unstable", 0.0)
     return r
 
 
@@ -378,6 +381,10 @@ def _check_args(scene: Scene, steps: int, max_load: float, friction: Any, method
         raise InputError(f'sliding must be "plastic" or "coulomb", got {sliding!r}')
     if steps < 1 or not (max_load > 0):
         raise InputError("load_path needs steps >= 1 and max_load > 0")
+    if scene.dimension != 2:
+        raise InputError("the load path follows the distortion method, which is 2D only; "
+                         "for a 3D scene, lambda* and its mechanism are the maximum load "
+                         "multiplier's (`rigidblocks load`)", scene.source)
     if not scene.has_live_load:
         raise InputError("the scene has no live load: there is nothing to increase",
                          scene.source)

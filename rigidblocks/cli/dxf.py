@@ -76,7 +76,7 @@ def _friction(text: str | None):
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io.dxf import read_dxf, write_dxf
+    from ..io.dxf import read_dxf, require_2d, write_dxf
 
     if args.command == "import-dxf":
         units = None
@@ -100,6 +100,7 @@ def run(args: argparse.Namespace) -> int:
     from .plot import analyse
 
     scene = read_scene(args.scene)
+    require_2d(scene)  # before the analysis, which a 3D scene would wait for in vain
     result = analyse(scene, args.analysis, question(args))
     if result is not None and getattr(result, "state", None) is None and args.analysis:
         print(f"{args.analysis}: {result.status}, no force state to draw")

@@ -89,7 +89,9 @@ def describe(gen) -> str:
     """A generator's name, summary and parameters (with their defaults)."""
     lines = [f"{gen.name}: {gen.summary}"]
     for p in gen.params:
-        default = "" if p.default in ((), []) else f" (default {p.default})"
+        # None and empty defaults mean "none" or "see the help": not printed as such
+        shown = p.default is not None and p.default not in ((), [], "")
+        default = f" (default {p.default})" if shown else ""
         lines.append(f"    --{p.name}{default}  {p.help}".rstrip())
     return "\n".join(lines)
 

@@ -26,12 +26,12 @@ COMMANDS: dict[str, tuple[str, str]] = {
     **{a.command: ("analyses", a.help) for a in ANALYSES.values()},
     "example": ("example", "list the structure generators, or write a generated scene file"),
     "thickness": ("thickness", "minimum thickness of a generator's family (bisection)"),
-    "path": ("path", "load path of the distortion method (the seed's procedure with --flow "
-             "non-associative): cracks, plastic joints, collapse"),
+    "path": ("path", "load path of the distortion method (2D; the seed's procedure with "
+             "--flow non-associative): cracks, plastic joints, collapse"),
     "plot": ("plot", "draw a scene and an analysis result (png, svg, pdf)"),
     "report": ("report", "one self-contained HTML report: answer, pictures, 3D view, joints"),
     "import-dxf": ("dxf", "read a DXF drawing (closed polylines) into a scene file"),
-    "export-dxf": ("dxf", "write a scene, its thrust line and forces to DXF"),
+    "export-dxf": ("dxf", "write a 2D scene, its thrust line and forces to DXF"),
     "import-compas": ("compas", "read a COMPAS Assembly or BlockModel (JSON) into a scene "
                       "file"),
     "extrude": ("extrude", "turn a 2D scene into the 3D scene of its prisms"),

@@ -73,6 +73,8 @@ def _lines(scene, res, args: argparse.Namespace) -> list[str]:
 
 
 def _status_tail(res, live: float, fu: str) -> str:
+    """What the status line says after the status: the collapse load, the bracket of an
+    undecided run, or the end of the path a structure still standing has reached."""
     if res.collapse_load is not None:
         lam = res.collapse_load
         return f" at lambda = {lam:.9g}: {lam:.6g} x {live:.6g} {fu} = {lam * live:.6g} {fu}"
@@ -83,5 +85,7 @@ def _status_tail(res, live: float, fu: str) -> str:
                     "(no verdict beyond)")
         return f": not decided at lambda = {lo:.9g} (no verdict beyond)"
     if res.status == "standing" and res.steps:
-        return f" up to lambda = {res.steps[-1].load_factor:g} (the end of the path)"
+        end = res.steps[-1].load_factor
+        return (f" at lambda = {end:g} ({end * live:.4g} {fu}), the end of the path "
+                "(--max-load goes further)")
     return ""

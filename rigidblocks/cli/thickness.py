@@ -13,12 +13,14 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("generator", help="generator name (see `rigidblocks example --list`)")
     p.add_argument("--param", default="thickness", help="parameter to bisect "
                    "(default: thickness)")
-    p.add_argument("--lo", type=finite_float, default=0.01, help="inadmissible lower bound")
-    p.add_argument("--hi", type=finite_float, default=1.0, help="admissible upper bound")
+    p.add_argument("--lo", type=finite_float, default=0.01,
+                   help="a value at which the structure does not stand (default %(default)g)")
+    p.add_argument("--hi", type=finite_float, default=1.0,
+                   help="a value at which it stands (default %(default)g)")
     add_rtol(p, "thickness", 1e-4)
     p.add_argument("--friction", default="infinite",
                    help='friction coefficient f, or "infinite" (default)')
-    p.add_argument("--method", default="clarabel", help='"clarabel" or "distortion"')
+    p.add_argument("--method", default="clarabel", help='"clarabel" (default) or "distortion"')
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("params", nargs=argparse.REMAINDER,
                    help="--PARAM VALUE pairs of the generator")

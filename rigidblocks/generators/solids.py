@@ -370,7 +370,8 @@ def barrel_vault(voussoirs: int = 9, thickness: float = 0.15, radius: float = 2.
             f"abutment_{side}", prism([(x, 0.0, z) for x, z in poly],
                                       [(x, ln, z) for x, z in poly]), support=True))
     kind = "semicircular" if abs(a - math.pi / 2) < 1e-12 else "segmental"
-    return make_scene3d(f"{kind} barrel vault, {m} rings x {n} voussoirs, {bond} bond",
+    rings_word = "ring" if m == 1 else "rings"
+    return make_scene3d(f"{kind} barrel vault, {m} {rings_word} x {n} voussoirs, {bond} bond",
                         blocks, unit_weight=uw, friction=fr)
 
 

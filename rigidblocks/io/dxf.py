@@ -362,6 +362,12 @@ def _chunks(text: str) -> list[str]:
     return [text[k:k + _CHUNK] for k in range(0, len(text), _CHUNK)] or [""]
 
 
+def require_2d(scene: Scene) -> None:
+    """Refuse a 3D scene: a drawing holds 2D blocks (callers check before analysing)."""
+    if scene.dimension != 2:
+        raise InputError("DXF export is for 2D scenes", scene.source)
+
+
 def write_dxf(scene: Scene, path: str | os.PathLike, result: Any = None, *,
               force_scale: float | None = None) -> None:
     """Write the scene's blocks and metadata and, if ``result`` has a force state, its
@@ -380,8 +386,7 @@ def write_dxf(scene: Scene, path: str | os.PathLike, result: Any = None, *,
     ezdxf = _ezdxf()
     from .scene_file import scene_to_dict
 
-    if scene.dimension != 2:
-        raise InputError("DXF export is for 2D scenes", scene.source)
+    require_2d(scene)
     doc = ezdxf.new("R2010")
     doc.header["$INSUNITS"] = {"mm": 4, "cm": 5, "m": 6}.get(scene.length_unit, 0)
     doc.appids.add(APPID)

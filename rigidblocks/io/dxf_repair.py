@@ -71,13 +71,15 @@ class DxfReport:
         """One line: what was read and what was repaired."""
         skipped = ", ".join(f"{n} {k}" for k, n in sorted(self.skipped.items())) or "none"
         restored = " (scene restored from its rigidblocks metadata)" if self.restored else ""
-        return (f"{self.source}{restored}: {self.n_blocks} blocks ({len(self.supports)} support: "
+        ns = len(self.supports)
+        return (f"{self.source}{restored}: {self.n_blocks} blocks ({ns} "
+                f"{'support' if ns == 1 else 'supports'}: "
                 f"{', '.join(self.supports)}); snapped {self.vertices_snapped} corners and "
                 f"{self.edges_snapped} T-junction vertices (largest move {self.max_move:.3g}, "
                 f"tolerance {self.tol:.3g}); closed {len(self.closed_by_snap)} polylines by "
                 f"snapping ({len(self.retraced)} retracing); dropped "
-                f"{self.duplicates_dropped} repeated vertices; {self.reoriented} clockwise; "
-                f"skipped {skipped}")
+                f"{self.duplicates_dropped} repeated vertices; turned {self.reoriented} "
+                f"clockwise outlines counter-clockwise; skipped {skipped}")
 
 
 @dataclass

@@ -29,7 +29,7 @@ from .base import (
     Verdict,
 )
 from .convex import ConvexMethod
-from .distortion import DistortionMethod
+from .distortion import NOT_3D, DistortionMethod
 
 #: the methods by name, with what each is
 METHODS: dict[str, str] = {
@@ -96,8 +96,7 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
                              f"{', '.join(unknown)} (it takes "
                              f"{', '.join(DistortionMethod.setting_keys)})")
         if scene.dimension != 2:
-            raise InputError("the distortion method is not supported for 3D scenes; use "
-                             "method='clarabel' (the convex path)", scene.source)
+            raise InputError(NOT_3D, scene.source)
     timings = Timings()
     kw = {}
     if contact_tol is not None:

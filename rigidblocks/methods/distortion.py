@@ -20,12 +20,15 @@ from ..scene.model import Scene
 from ..solvers.distortion import MAX_ITER, TOL, DistortionSolver, Run
 from .base import ADMISSIBLE, Method, Progress, Timings, Verdict, ranked_breaches
 
+#: the refusal of a 3D scene, in words for the API and the command line alike
+NOT_3D = ("the distortion method is not supported for 3D scenes; use the convex path "
+          '(method "clarabel", the default)')
+
 
 def distortion_solver(scene: Scene, system: EquilibriumSystem) -> DistortionSolver:
     """The distortion solver of a scene's system, after the checks of its model."""
     if scene.dimension != 2:
-        raise InputError("the distortion method is not supported for 3D scenes; use "
-                         "method='clarabel' (the convex path)", scene.source)
+        raise InputError(NOT_3D, scene.source)
     if np.any(np.diff(system.contacts.joint_start) != 2):
         raise InputError("the distortion method needs two contact points per joint",
                          scene.source)
