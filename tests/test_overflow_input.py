@@ -106,6 +106,23 @@ def test_deeply_nested_json_is_bad_input(tmp_path, capsys):
     one_line_error(*run(tmp_path, capsys, d), "block 'B'", "vertices")
 
 
+def test_brackets_inside_strings_are_not_nesting(tmp_path, capsys):
+    """The nesting is counted on the brackets outside string literals: ids and a name
+    that hold 40 opening brackets, closing ones and escaped quotes are read as they are
+    (a scene nests 5 levels)."""
+    deep = "[" * 40 + '\\"{' * 40
+    d = doc([{**BASE, "id": deep}, {**BLOCK, "id": "]" * 40 + '"}'}], name=deep)
+    code = main(["check", str(_write(tmp_path, d)), "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 0 and out["status"] == "admissible", out
+
+
+def _write(tmp_path, document):
+    p = tmp_path / "scene.json"
+    p.write_text(json.dumps(document))
+    return p
+
+
 @pytest.mark.parametrize("bad_id", ["B\nx", "B\rx", "B\tx"])
 def test_ids_with_control_characters_make_one_line_errors(tmp_path, capsys, bad_id):
     """Ids are printed with repr: a newline in one made a two-line error."""
