@@ -6,7 +6,7 @@ dead load alone where it has a live load), on every scene of the catalogue
 (:mod:`rigidblocks.generators.catalogue`, at its own load factor), and on the 106-block
 running-bond wall (2D and extruded to 3D) at load factor 1. Run as
 
-    python benchmarks/bench_searches.py OUT.json [--compare BEFORE.json]
+    python benchmarks/bench_searches.py OUT.json [--compare BEFORE.json] [--rtol R]
 
 It writes status, f*, bracket and solves per case; with ``--compare`` it prints the
 cases whose f* moved by more than 1e-7 relative or whose solves differ by more than one.
@@ -50,9 +50,10 @@ def scenes() -> list[tuple[str, Any, float | None]]:
     return out
 
 
-def run(name: str, scene: Any, lf: float | None) -> dict[str, Any]:
+def run(name: str, scene: Any, lf: float | None, rtol: float | None = None
+        ) -> dict[str, Any]:
     try:
-        r = rb.min_friction(scene, load_factor=lf, state=False)
+        r = rb.min_friction(scene, load_factor=lf, state=False, rtol=rtol)
     except Exception as exc:  # noqa: BLE001 - recorded as the case's outcome
         return {"name": name, "status": f"error: {type(exc).__name__}: {exc}"}
     return {"name": name, "status": r.status, "f": r.friction_factor,
@@ -91,10 +92,12 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("out")
     ap.add_argument("--compare", default=None)
+    ap.add_argument("--rtol", type=float, default=None,
+                    help="the requested accuracy (default: the analysis's)")
     a = ap.parse_args(argv)
     rows = []
     for name, scene, lf in scenes():
-        rows.append(run(name, scene, lf))
+        rows.append(run(name, scene, lf, a.rtol))
         print(json.dumps(rows[-1]), flush=True)
     Path(a.out).write_text(json.dumps(rows, indent=1))
     if a.compare:

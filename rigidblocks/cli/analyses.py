@@ -170,6 +170,7 @@ def report(scene, res, joints: bool = False) -> str:
             lines.append(f"f*         {res.friction_factor:.6g}   (friction angle "
                          f"{res.friction_angle_deg:.4f} deg)")
             lines.append(f"governing  {_joint_list(res.governing_joints)}")
+            lines += _accuracy(res)
         else:
             lines.append(f"verdict    {headline(res).upper()}")
             if res.status == "unstable":
@@ -179,6 +180,7 @@ def report(scene, res, joints: bool = False) -> str:
             tilt = (f"   (tilt angle theta* = atan(lambda* a) = {res.tilt_angle_deg:.4f} deg)"
                     if res.tilt_angle_deg is not None else "")
             lines.append(f"lambda*    {res.load_multiplier:.6g}{tilt}")
+            lines += _accuracy(res)
             mech = d.get("mechanism")
             if mech is not None:
                 for key in ("hinges", "sliding", "open"):
@@ -207,8 +209,19 @@ def _undecided(res) -> list[str]:
            "no number)"]
     if res.bracket is not None:
         what = {"min_friction": "f*", "max_load_multiplier": "lambda*"}.get(res.analysis, "")
-        out.append(f"bracket    {what} in [{res.bracket[0]:.6g}, {res.bracket[1]:.6g}]")
-    return out
+        out.append(f"bracket    {what} in [{res.bracket[0]:.10g}, {res.bracket[1]:.10g}]")
+    return out + _accuracy(res)
+
+
+def _accuracy(res) -> list[str]:
+    """The accuracy reached (the bracket's relative width) against the one requested."""
+    if res.accuracy is None or res.rtol is None:
+        return []
+    if res.bracket is not None and res.decided:
+        where = f"bracket [{res.bracket[0]:.10g}, {res.bracket[1]:.10g}], "
+    else:
+        where = ""
+    return [f"accuracy   {res.accuracy:.1e} ({where}relative width; requested {res.rtol:.0e})"]
 
 
 def _table(res) -> list[str]:
