@@ -29,6 +29,17 @@ not count. Times are CPU seconds of the process (``time.process_time``: the mach
 shared, and a busy neighbour stretches wall-clock times but not the work done), the
 best of 3 to 30 runs (more runs until 0.2 s have accumulated) after one untimed
 warm-up call per scene and quantity; a run longer than 5 s is timed once.
+
+``--rtol-sweep`` charts the accuracy the engineer asks for instead: f* and lambda* at
+every requested accuracy ``rtol`` of :data:`RTOLS` (1e-2 to 1e-8) with the default
+settings, on every catalogue case with a closed form and on running-bond walls of about
+1,000 and 5,000 blocks (``--blocks``; 20,000 where time allows), each run once from
+the scene object to the answer (CPU seconds, the 1-minute load average recorded at its
+start and end). Per run: the status (a number, or UNDECIDED where the certified bracket
+does not meet ``rtol``), the accuracy reached (the bracket's relative width) and, where
+there is an exact reference (the catalogue's closed forms; HiGHS' simplex on the
+1,009-block wall), the error against it. ``--docs`` writes its table and chart into
+docs/methods.md between the markers of :data:`DOCS_MARK`.
 """
 
 from __future__ import annotations
@@ -43,9 +54,11 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from common import markdown_table, out_dir, write_results  # noqa: E402
+from common import load_average, machine, markdown_table, out_dir, write_results  # noqa: E402
 
 from rigidblocks.analyses import max_load_multiplier, min_friction  # noqa: E402
+from rigidblocks.analyses.core import F_RTOL_FLOOR  # noqa: E402
+from rigidblocks.errors import InputError  # noqa: E402
 from rigidblocks.generators import build  # noqa: E402
 from rigidblocks.io.scene_file import read_scene  # noqa: E402
 from rigidblocks.scene.model import Scene  # noqa: E402
@@ -157,7 +170,9 @@ def reference(scene: Scene, qty: str, lf: float) -> tuple[float, float, str]:
     def value(method: str, settings: dict[str, float]) -> float | None:
         try:
             if qty == "f*":
-                return min_friction(scene, lf, method=method, state=False, rtol=1e-10,
+                # the simplex certifies f* to 1e-10; Clarabel to F_RTOL_FLOOR
+                return min_friction(scene, lf, method=method, state=False,
+                                    rtol=1e-10 if method == "highs" else F_RTOL_FLOOR,
                                     settings=settings).friction_factor
             return max_load_multiplier(scene, method=method, state=False,
                                        settings=settings).load_multiplier
@@ -290,7 +305,210 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     return data
 
 
+# -- the requested accuracy (rtol): time against the accuracy reached ---------------------
+RTOLS = (1e-2, 2e-3, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
+SWEEP = "bench_accuracy_rtol"
+DOCS = ROOT / "docs" / "methods.md"
+DOCS_MARK = ("<!-- bench_accuracy --rtol-sweep: begin -->",
+             "<!-- bench_accuracy --rtol-sweep: end -->")
+
+
+def sweep_cases(blocks: tuple[int, ...], catalogue: bool) -> list[dict[str, Any]]:
+    """(name, scene factory, quantity, options, exact reference or None, its source)."""
+    from rigidblocks.generators import catalogue as cat
+    from rigidblocks.generators.walls import running_bond_wall
+
+    out: list[dict[str, Any]] = []
+    if catalogue:
+        for case in cat.CASES.values():
+            if case.analysis == "check" or case.value is None:
+                continue
+            qty = "f*" if case.analysis == "min_friction" else "lambda*"
+            out.append(dict(name=f"cat:{case.name}", scene=case.scene, qty=qty,
+                            kw=case.kwargs, ref=case.value, ref_source="closed form",
+                            group="catalogue"))
+    for n in blocks:
+        courses = max(1, round(math.sqrt(n)))
+        per = max(1, round(n / courses))
+        for qty, kw in (("f*", {"load_factor": 1.0}), ("lambda*", {})):
+            out.append(dict(name=f"wall {courses}x{per}", qty=qty, kw=kw, ref=None,
+                            ref_source="", group=f"wall ~{n}",
+                            scene=lambda c=courses, p=per: running_bond_wall(c, p)))
+    return out
+
+
+def sweep_run(case: dict[str, Any], scene: Scene, rtol: float) -> dict[str, Any]:
+    """One analysis at ``rtol``: status, value, bracket, accuracy, solves, CPU s, load."""
+    load0, t0 = load_average(), time.process_time()
+    try:
+        if case["qty"] == "f*":
+            r = min_friction(scene, state=False, rtol=rtol, **case["kw"])
+            val = r.friction_factor
+        else:
+            r = max_load_multiplier(scene, state=False, rtol=rtol, **case["kw"])
+            val = r.load_multiplier
+        row = dict(status=r.status, value=val, bracket=r.bracket, accuracy=r.accuracy,
+                   n_solves=r.n_solves)
+    except InputError:  # finer than the back end certifies (F_RTOL_FLOOR): refused
+        row = dict(status="refused", value=None, bracket=None, accuracy=None,
+                   n_solves=None)
+    except Exception as e:  # noqa: BLE001 - a failure is a data point
+        row = dict(status=f"error: {type(e).__name__}", value=None, bracket=None,
+                   accuracy=None, n_solves=None)
+    row.update(seconds=time.process_time() - t0, load=(load0, load_average()))
+    ref = case["ref"]
+    row["error"] = (abs(val - ref) / max(abs(ref), 1e-300) if ref else abs(val - ref)) \
+        if (val is not None and ref is not None) else None
+    return row
+
+
+def highs_reference(case: dict[str, Any], scene: Scene) -> tuple[float | None, str]:
+    """HiGHS' simplex lambda* (an exact vertex up to round-off: one LP), where it
+    finishes; f* on a wall (a search of several such LPs, minutes each at 1,000
+    blocks on this machine) has none."""
+    if case["qty"] != "lambda*":
+        return None, ""
+    try:
+        return (max_load_multiplier(scene, state=False, solver="highs",
+                                    settings=HIGHS_TIGHT, rtol=0.5,
+                                    **case["kw"]).load_multiplier, "HiGHS simplex (lambda*)")
+    except Exception:  # noqa: BLE001 - no reference
+        return None, ""
+
+
+def sweep_chart(rows: list[dict[str, Any]], path: Path) -> None:
+    """CPU seconds against the accuracy reached (left: bracket width; right: error
+    against the exact reference), one line per case through its rtols; undecided runs
+    hollow, the default rtol ringed."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rigidblocks.methods.convex import FRICTION_RTOL
+
+    fig, axes = plt.subplots(2, 2, figsize=(12, 9))
+    groups = list(dict.fromkeys(r["group"] for r in rows))
+    colours = dict(zip(groups, plt.rcParams["axes.prop_cycle"].by_key()["color"],
+                       strict=False))
+    for i, qty in enumerate(("f*", "lambda*")):
+        for j, key in enumerate(("accuracy", "error")):
+            ax = axes[i, j]
+            cases = dict.fromkeys(r["name"] for r in rows if r["qty"] == qty)
+            for name in cases:
+                rs = [r for r in rows if r["qty"] == qty and r["name"] == name
+                      and r.get(key) is not None]
+                if not rs:
+                    continue
+                c = colours[rs[0]["group"]]
+                xs = [max(r[key], 1e-16) for r in rs]
+                ys = [max(r["seconds"], 1e-4) for r in rs]
+                ax.plot(xs, ys, "-", color=c, lw=0.6, alpha=0.5)
+                for r, x, y in zip(rs, xs, ys, strict=True):
+                    decided = r["value"] is not None
+                    ax.plot(x, y, "o", color=c, mfc=c if decided else "none", ms=5)
+                    if r["rtol"] == FRICTION_RTOL:
+                        ax.plot(x, y, "o", color="k", mfc="none", ms=12, mew=1.5)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.grid(True, which="both", lw=0.3)
+            what = "accuracy reached (bracket's relative width)" if key == "accuracy" \
+                else "relative error against the exact reference"
+            ax.set_xlabel(what)
+            ax.set_ylabel("CPU seconds, scene to answer")
+            ax.set_title(f"{qty}: time against {key}")
+    from matplotlib.lines import Line2D
+    handles = [Line2D([], [], marker="o", ls="none", color=colours[g], label=g)
+               for g in groups]
+    handles += [Line2D([], [], marker="o", ls="none", color="grey", mfc="none",
+                       label="undecided (bracket short of rtol)"),
+                Line2D([], [], marker="o", ls="none", color="k", mfc="none", ms=12,
+                       label=f"default rtol {FRICTION_RTOL:g}")]
+    axes[0, 1].legend(handles=handles, fontsize=8, loc="upper right")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def sweep_markdown(rows: list[dict[str, Any]], meta: dict[str, Any]) -> str:
+    """The table of the sweep: per group, quantity and rtol, the cases decided, the
+    largest accuracy reached and error, and the CPU seconds (sum over the group)."""
+    keys = list(dict.fromkeys((r["group"], r["qty"], r["rtol"]) for r in rows))
+    table = []
+    for g, q, rt in keys:
+        rs = [r for r in rows if (r["group"], r["qty"], r["rtol"]) == (g, q, rt)]
+        dec = [r for r in rs if r["value"] is not None]
+        acc = [r["accuracy"] for r in rs if r["accuracy"] is not None]
+        err = [r["error"] for r in dec if r["error"] is not None]
+        load = [x for r in rs for x in r["load"]]
+        table.append([g, q, f"{rt:.0e}", f"{len(dec)}/{len(rs)}",
+                      f"{max(acc):.1e}" if acc else "-", f"{max(err):.1e}" if err else "-",
+                      sum(r["n_solves"] or 0 for r in rs), f"{sum(r['seconds'] for r in rs):.3g}",
+                      f"{min(load):.1f}-{max(load):.1f}"])
+    head = ["cases", "qty", "rtol", "numbers", "worst accuracy reached", "worst error",
+            "solves", "CPU s", "load"]
+    m = meta["machine"]
+    return (f"![time against accuracy]({meta['png']})\n\n"
+            f"Measured {meta['date']} on {m['cpu']} ({m['cores']} cores, shared; the "
+            f"1-minute load average per group in the last column), Clarabel "
+            f"{m['clarabel']}, each run once (CPU seconds, scene to answer, no force "
+            f"state). Exact references: {meta['references']}. \"numbers\": runs whose "
+            "certified bracket met rtol (the others are undecided, with the accuracy "
+            "they reached).\n\n" + markdown_table(head, table))
+
+
+def sweep(argv: list[str]) -> dict[str, Any]:
+    p = argparse.ArgumentParser(description="time against the requested accuracy")
+    p.add_argument("--rtol-sweep", action="store_true")
+    p.add_argument("--out", default=None)
+    p.add_argument("--blocks", default="1000,5000",
+                   help="wall sizes (comma separated; empty: none)")
+    p.add_argument("--no-catalogue", action="store_true")
+    p.add_argument("--no-highs", action="store_true", help="no HiGHS reference on walls")
+    p.add_argument("--merge", action="store_true",
+                   help="add to the rows of an earlier run (same cases replaced)")
+    p.add_argument("--docs", action="store_true", help="write the section of methods.md")
+    a = p.parse_args(argv)
+    d = out_dir(a.out)
+    blocks = tuple(int(b) for b in a.blocks.split(",") if b)
+    rows: list[dict[str, Any]] = []
+    refs: dict[str, Any] = {}
+    if a.merge and (d / f"{SWEEP}.json").exists():
+        import json
+        old = json.loads((d / f"{SWEEP}.json").read_text())
+        rows, refs = old["rows"], old.get("references", {})
+    for case in sweep_cases(blocks, not a.no_catalogue):
+        scene = case["scene"]()
+        key = f"{case['name']} {case['qty']}"
+        if case["ref"] is None and not a.no_highs and len(scene.blocks) <= 1100:
+            case["ref"], case["ref_source"] = highs_reference(case, scene)
+        refs[key] = {"value": case["ref"], "source": case["ref_source"]}
+        rows = [r for r in rows if (r["name"], r["qty"]) != (case["name"], case["qty"])]
+        for rtol in RTOLS:
+            row = dict(name=case["name"], qty=case["qty"], group=case["group"],
+                       blocks=len(scene.blocks), rtol=rtol, reference=case["ref"],
+                       **sweep_run(case, scene, rtol))
+            rows.append(row)
+            print(f"{key} rtol {rtol:.0e}: {row['status']} {row['value']} acc "
+                  f"{row['accuracy']} err {row['error']} {row['n_solves']} solves "
+                  f"{row['seconds']:.3g} s load {row['load']}", flush=True)
+    sources = sorted({v["source"] for v in refs.values() if v["source"]})
+    meta = dict(date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), machine=machine(),
+                png=f"../benchmarks/results/{SWEEP}.png",
+                references=", ".join(sources) or "none")
+    sweep_chart(rows, d / f"{SWEEP}.png")
+    md = sweep_markdown(rows, meta)
+    write_results(a.out, SWEEP, {"rows": rows, "references": refs, "meta": meta}, md)
+    if a.docs:
+        text = DOCS.read_text()
+        i, j = text.index(DOCS_MARK[0]), text.index(DOCS_MARK[1])
+        DOCS.write_text(text[:i + len(DOCS_MARK[0])] + "\n\n" + md + "\n\n" + text[j:])
+    return {"rows": rows}
+
+
 if __name__ == "__main__":
+    if "--rtol-sweep" in sys.argv[1:]:
+        sweep(sys.argv[1:])
+        sys.exit(0)
     res = main()
     for v in res["pareto"]:
         print(v["scene"], v["quantity"], "on front" if v["on_front"] else

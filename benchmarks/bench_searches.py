@@ -6,10 +6,16 @@ dead load alone where it has a live load), on every scene of the catalogue
 (:mod:`rigidblocks.generators.catalogue`, at its own load factor), and on the 106-block
 running-bond wall (2D and extruded to 3D) at load factor 1. Run as
 
-    python benchmarks/bench_searches.py OUT.json [--compare BEFORE.json]
+    python benchmarks/bench_searches.py OUT.json [--compare BEFORE.json] [--rtol R]
 
 It writes status, f*, bracket and solves per case; with ``--compare`` it prints the
 cases whose f* moved by more than 1e-7 relative or whose solves differ by more than one.
+``--without RULE`` runs them with that rule of the f* searches left out (a stop, step
+or amend rule of :mod:`rigidblocks.methods.friction_rules` or
+:mod:`rigidblocks.methods.load_rules`, by name); ``--ablate`` runs every such rule left
+out in turn and writes, per rule, the cases whose answer changed (status, or f* by more
+than the requested accuracy), the solves and the CPU seconds against the full rule set:
+what each rule earns.
 """
 
 from __future__ import annotations
@@ -30,6 +36,11 @@ from rigidblocks.scene.extrude import extrude
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 
+#: ``--big``: the 1,009-block running-bond wall too, at load factors 1 and 0.5, where
+#: the solver's resolution near f* steers the searches (3 to 4 s each)
+BIG = False
+
+
 def scenes() -> list[tuple[str, Any, float | None]]:
     """(name, scene, load factor or None for the scene's own)."""
     out: list[tuple[str, Any, float | None]] = []
@@ -47,12 +58,16 @@ def scenes() -> list[tuple[str, Any, float | None]]:
         out.append((f"cat:{case.name}", case.scene(), lf))
     wall = running_bond_wall(10, 10)
     out += [("wall106", wall, 1.0), ("wall106-3d", extrude(wall), 1.0)]
+    if BIG:
+        big = running_bond_wall(32, 31)
+        out += [("wall1009", big, 1.0), ("wall1009@0.5", big, 0.5)]
     return out
 
 
-def run(name: str, scene: Any, lf: float | None) -> dict[str, Any]:
+def run(name: str, scene: Any, lf: float | None, rtol: float | None = None
+        ) -> dict[str, Any]:
     try:
-        r = rb.min_friction(scene, load_factor=lf, state=False)
+        r = rb.min_friction(scene, load_factor=lf, state=False, rtol=rtol)
     except Exception as exc:  # noqa: BLE001 - recorded as the case's outcome
         return {"name": name, "status": f"error: {type(exc).__name__}: {exc}"}
     return {"name": name, "status": r.status, "f": r.friction_factor,
@@ -87,14 +102,114 @@ def compare(now: list[dict], before: list[dict]) -> int:
     return bad
 
 
+def _rule_sets() -> list[tuple[Any, str]]:
+    """(module, attribute) of every rule tuple the f* searches read at run time."""
+    from rigidblocks.methods import convex, load_rules
+    return [(convex, "STOPS"), (convex, "STEPS"), (convex, "AMENDS"),
+            (load_rules, "STOPS"), (load_rules, "STEPS"), (load_rules, "AMENDS")]
+
+
+def rule_names() -> list[str]:
+    """The rules that may be left out (not the accuracy stop or the midpoint, which
+    every search needs to end and to converge)."""
+    keep = {"narrow_enough", "midpoint", "midpoint_resolvable"}
+    names = [f.__name__ for m, a in _rule_sets() for f in getattr(m, a)]
+    return [n for n in dict.fromkeys(names) if n not in keep]
+
+
+def without(name: str | None) -> None:
+    """Leave the rule ``name`` out of every rule set (None: restore them all)."""
+    for m, a in _rule_sets():
+        full = getattr(m, f"_FULL_{a}", None) or getattr(m, a)
+        setattr(m, f"_FULL_{a}", full)
+        setattr(m, a, tuple(f for f in full if f.__name__ != name))
+
+
+def sweep_cases(rtol: float | None) -> list[dict[str, Any]]:
+    import time
+    rows = []
+    for name, scene, lf in scenes():
+        t0 = time.process_time()
+        rows.append({**run(name, scene, lf, rtol), "seconds": time.process_time() - t0})
+    return rows
+
+
+def ablate(rtol: float | None, out: str) -> None:
+    """Every rule left out in turn against the full set (see the module docstring)."""
+    base = sweep_cases(rtol)
+    tol = rtol or 2e-3
+    report = {"rtol": rtol, "base": {"solves": sum(c.get("n_solves") or 0 for c in base),
+                                     "seconds": sum(c["seconds"] for c in base)}, "rules": {}}
+    for name in rule_names():
+        without(name)
+        rows = sweep_cases(rtol)
+        without(None)
+        changed = []
+        for b, c in zip(base, rows, strict=True):
+            moved = b["status"] != c["status"]
+            if b.get("f") is not None and c.get("f") is not None:
+                moved |= abs(b["f"] - c["f"]) > tol * max(abs(b["f"]), 1e-9)
+            if moved:
+                changed.append(f"{c['name']}: {b['status']} {b.get('f')} -> {c['status']} "
+                               f"{c.get('f')}")
+        report["rules"][name] = {
+            "solves": sum(c.get("n_solves") or 0 for c in rows),
+            "seconds": sum(c["seconds"] for c in rows), "changed": changed}
+        print(name, json.dumps(report["rules"][name]), flush=True)
+        Path(out).write_text(json.dumps(report, indent=1))
+
+
+def ablation_table(report: dict[str, Any]) -> str:
+    """The markdown table of an ``--ablate`` report: per rule, its search and kind, the
+    case it serves (its docstring's first sentence) and what leaving it out costs."""
+    from rigidblocks.methods import convex
+
+    where: dict[str, list[tuple[str, str, str]]] = {}
+    for m, a in _rule_sets():
+        search = "R(f)" if m is convex else "lambda*(f)"
+        for f in getattr(m, a):
+            doc = " ".join((f.__doc__ or "").split())
+            where.setdefault(f.__name__, []).append(
+                (search, a.lower()[:-1], doc.split(". ")[0].rstrip(".")))
+    base = report["base"]
+    rows = []
+    for name, r in report["rules"].items():
+        ds, dt = r["solves"] - base["solves"], r["seconds"] - base["seconds"]
+        answers = f"{len(r['changed'])} changed" if r["changed"] else "same"
+        for search, kind, case in where.get(name, []):
+            rows.append(f"| `{name}` | {search} {kind} | {case} | {ds:+d} | {dt:+.2f} | "
+                        f"{answers} |")
+    head = ("| rule | search, kind | the case it serves | solves without it | CPU s "
+            "without it | answers without it |\n|---|---|---|---|---|---|")
+    return head + "\n" + "\n".join(rows)
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("out")
     ap.add_argument("--compare", default=None)
+    ap.add_argument("--rtol", type=float, default=None,
+                    help="the requested accuracy (default: the analysis's)")
+    ap.add_argument("--without", default=None, help="a rule of the f* searches to leave out")
+    ap.add_argument("--ablate", action="store_true",
+                    help="leave every rule out in turn; OUT gets what each one earns")
+    ap.add_argument("--table", action="store_true",
+                    help="print the markdown table of an --ablate report OUT")
+    ap.add_argument("--big", action="store_true", help="the 1,009-block wall too")
     a = ap.parse_args(argv)
+    global BIG
+    BIG = a.big
+    if a.table:
+        print(ablation_table(json.loads(Path(a.out).read_text())))
+        return 0
+    if a.ablate:
+        ablate(a.rtol, a.out)
+        return 0
+    if a.without:
+        without(a.without)
     rows = []
     for name, scene, lf in scenes():
-        rows.append(run(name, scene, lf))
+        rows.append(run(name, scene, lf, a.rtol))
         print(json.dumps(rows[-1]), flush=True)
     Path(a.out).write_text(json.dumps(rows, indent=1))
     if a.compare:

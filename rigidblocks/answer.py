@@ -256,7 +256,7 @@ class _Words:
         br = getattr(result, "bracket", None)
         what = {"min_friction": "f*", "max_load_multiplier": f"{self.lam}*"}.get(
             getattr(result, "analysis", ""), "")
-        number = f"{what} in [{br[0]:.6g}, {br[1]:.6g}]" if br is not None else ""
+        number = f"{what} in [{br[0]:.10g}, {br[1]:.10g}]" if br is not None else ""
         return verdict, number
 
     def check(self, res: Any) -> tuple[str, str, str, list[str]]:

@@ -118,6 +118,13 @@ class Result:
     notes: tuple[str, ...] = ()
     #: [lower, upper] around the answer where the method bracketed it (None otherwise)
     bracket: tuple[float, float] | None = None
+    #: the relative accuracy asked for (``rtol``; None for an analysis that brackets
+    #: nothing) and the one reached: the certified bracket's width relative to its
+    #: larger end (:func:`relative_width`; for lambda* from one LP, what the duals'
+    #: residual leaves open above it). A number is given only where ``accuracy <=
+    #: rtol``; an undecided answer gives the accuracy its bracket reached
+    rtol: float | None = None
+    accuracy: float | None = None
     #: seconds per stage (contacts, assembly, build, solve, state), wall clock and CPU
     timings: dict[str, float] = field(default_factory=dict, repr=False)
     cpu_timings: dict[str, float] = field(default_factory=dict, repr=False)
@@ -189,6 +196,7 @@ class Result:
     def _common(self) -> dict[str, Any]:
         return {"status": self.status, "notes": list(self.notes),
                 "bracket": list(self.bracket) if self.bracket is not None else None,
+                "rtol": self.rtol, "accuracy": _finite_or_none(self.accuracy),
                 "solver": self.solver, "n_solves": self.n_solves,
                 "solve_time": self.solve_time, "answered_by": list(self.answered_by),
                 "rejected": list(self.rejected)}
@@ -243,6 +251,23 @@ def max_demand(st: ForceState | None) -> tuple[float, int] | None:
     k = int(np.flatnonzero(d >= top * (1.0 - DEMAND_TIE))[0]) if np.isfinite(top) \
         else int(np.argmax(d))
     return float(d[k]), k
+
+
+def relative_width(lower: float | None, upper: float | None) -> float | None:
+    """The accuracy a bracket [lower, upper] holds its limit to: its width relative to
+    its larger end (0 for a point, inf where an end is infinite; None without ends)."""
+    if lower is None or upper is None:
+        return None
+    lo, hi = float(lower), float(upper)
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        return math.inf
+    scale = max(abs(lo), abs(hi))
+    return abs(hi - lo) / scale if scale > 0 else 0.0
+
+
+def _finite_or_none(x: float | None) -> float | None:
+    """JSON has no infinity: an unbounded accuracy reads null."""
+    return x if x is not None and math.isfinite(x) else None
 
 
 def headline(result: Any, symbols: bool = False) -> str:

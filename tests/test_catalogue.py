@@ -82,7 +82,9 @@ def test_catalogue(case: Case, method: str, solver: str | None):
     kw = {"method": method, **case.kwargs}
     if solver is not None:
         kw["solver"] = solver
-    r = ANALYSES[case.analysis](case.scene(), **kw)
+    # the closed forms hold to 1e-6: the limits are asked for 1e-7
+    accuracy = {} if case.analysis == "check" else {"rtol": 1e-7}
+    r = ANALYSES[case.analysis](case.scene(), **kw, **accuracy)
     if solver is not None:
         answered_itself(r, solver)
     value = value_of(r, case.analysis)
@@ -225,11 +227,11 @@ def test_min_friction_of_thick_arches_in_few_solves(voussoirs, thickness):
     from rigidblocks.generators import build
 
     arch = build("arch", voussoirs=voussoirs, thickness=thickness)
-    r = min_friction(arch, load_factor=0.0, state=False)
+    r = min_friction(arch, load_factor=0.0, state=False, rtol=1e-4)
     assert r.status == "stable" and r.n_solves <= 10
     f = r.friction_factor
     assert check(arch, friction=f * (1 + 1e-6), load_factor=0.0, state=False).admissible
-    assert not check(arch, friction=f * (1 - 1e-6), load_factor=0.0, state=False).admissible
+    assert not check(arch, friction=f * (1 - 1e-4), load_factor=0.0, state=False).admissible
 
 
 @pytest.mark.slow

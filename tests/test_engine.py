@@ -129,18 +129,23 @@ def test_a_concave_R_converges_from_below_in_a_few_steps():
     assert len(s.trials) - 2 <= 12
 
 
+def _noisy(fs: float, band: float):
+    """R = (f* - f)+ that the solver leaves at the threshold within ``band`` of f*."""
+    def oracle(f):
+        R = max(0.0, fs - f)
+        if 0 < R <= band or 0 < f - fs <= band:
+            return Trial(f, None, "threshold", R + band, 1.0, None)
+        return _trial(f, R, 1.0, spread=band)
+    return oracle
+
+
 def test_a_noisy_solver_ends_at_its_resolution_with_a_bracket():
     """A solver whose R carries 3e-6 of noise (its duals' spread says so) and that
     cannot decide within it of f* = 0.3 (trials at the threshold): the search ends where
     R below the upper end is predicted below that resolution, with f* in a bracket
     within WIDE, no trial repeated, in a few solves."""
     fs, band = 0.3, 3e-6
-
-    def oracle(f):
-        R = max(0.0, fs - f)
-        if 0 < R <= band or 0 < f - fs <= band:
-            return Trial(f, None, "threshold", R + band, 1.0, None)
-        return _trial(f, R, 1.0, spread=band)
+    oracle = _noisy(fs, band)
 
     s = newton_search(oracle, fs, 1.0, spread=band)
     assert s.stopped == "resolution_reached"
@@ -249,3 +254,65 @@ def test_no_admissible_multiplier_below_f_star_is_followed_by_doubling():
     assert s.stopped == "narrow_enough" and s.bad < 0.4 <= s.good
     assert s.trials[1].x == 1.0 and s.trials[1].rule == "first_upper_end"
     assert len(s.trials) == 4
+
+
+# -- the requested accuracy: the search's target and what a number is certified to ------
+@pytest.mark.parametrize("rtol", [1e-2, 1e-4, 1e-7])
+def test_the_requested_accuracy_is_the_target_of_the_newton_search(rtol):
+    """R(f) = (f* - f)(f* + f + 1/2), f* = 0.7 (concave): the search ends at the
+    requested accuracy, with the accuracy reached (the bracket's relative width) within
+    it, in fewer trials for a coarser accuracy."""
+    fs = 0.7
+
+    def oracle(f):
+        return _trial(f, max(0.0, (fs - f) * (fs + f + 0.5)), 2.0 * f + 0.5)
+
+    s = newton_search(oracle, fs * (fs + 0.5), 0.5, rtol=rtol)
+    fine = newton_search(oracle, fs * (fs + 0.5), 0.5, rtol=1e-9)
+    assert s.stopped == "narrow_enough" and s.narrow() and s.accuracy <= rtol
+    assert s.bad < fs <= s.good and s.accuracy == pytest.approx(s.width / s.good)
+    assert len(s.trials) <= len(fine.trials)
+
+
+def test_a_search_stopped_at_its_solver_resolution_reports_the_accuracy_reached():
+    """The noisy solver of above (R resolved to 3e-6 about f* = 0.3): asked for 1e-7
+    the search ends short of it (not narrow: the analyses give no number) with the
+    accuracy it reached; asked for 1e-3, the accuracy it reaches, it ends narrow."""
+    fs, band = 0.3, 3e-6
+    oracle = _noisy(fs, band)
+
+    tight = newton_search(oracle, fs, 1.0, spread=band)
+    assert not tight.narrow() and 1e-7 < tight.accuracy <= WIDE
+    assert tight.bad < fs <= tight.good
+    coarse = newton_search(oracle, fs, 1.0, rtol=1e-3, spread=band)
+    assert coarse.stopped == "narrow_enough" and coarse.accuracy <= 1e-3
+    assert coarse.bad < fs <= coarse.good
+
+
+def test_a_lambda_star_resolved_coarsely_decides_at_an_accuracy_it_reaches():
+    """lambda*(f) = f resolved to 1e-4, lf = 0.5: asked for 1e-7 the search ends short
+    (accuracy above 1e-7); asked for 1e-2 it ends narrow, f* = 0.5 in the bracket."""
+    tight = load_search(lambda f: f, lambda f: 1.0, 0.5, 0.1, margin=1e-4)
+    assert not tight.narrow() and tight.accuracy > 1e-7
+    coarse = load_search(lambda f: f, lambda f: 1.0, 0.5, 0.1, margin=1e-4, rtol=1e-2)
+    assert coarse.narrow() and coarse.accuracy <= 1e-2
+    assert coarse.bad < 0.5 <= coarse.good
+
+
+def test_a_number_only_where_the_bracket_meets_the_requested_accuracy():
+    """The analyses' rule on a limit a method found (analyses.core.certified): f* = 1.0
+    bracketed in [0.999, 1.0] (accuracy 1e-3) is a number at rtol = 2e-3, and undecided
+    with its bracket at 1e-4, the note giving both accuracies; a point (f* = 0 found at
+    f = 0) and a bracket within the absolute floor are numbers."""
+    from rigidblocks.analyses.core import certified
+    from rigidblocks.methods import Limit
+
+    m = SimpleNamespace(notes=[])
+    lim = Limit("stable", 1.0, 0.999, 1.0)
+    assert certified(m, lim, 2e-3, "f*") is lim and not m.notes
+    out = certified(m, lim, 1e-4, "f*")
+    assert out.status == "undecided" and out.value is None
+    assert (out.lower, out.upper) == (0.999, 1.0) and out.accuracy == pytest.approx(1e-3)
+    assert "accuracy 1.0e-03 reached, 1.0e-04 requested" in m.notes[-1]
+    assert certified(m, Limit("stable", 0.0, 0.0, 0.0), 1e-9, "f*").value == 0.0
+    assert certified(m, Limit("stable", 1e-9, 0.0, 1e-9), 1e-3, "f*", 1e-9).value == 1e-9

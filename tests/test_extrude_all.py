@@ -132,8 +132,11 @@ def test_extruded_scene_gives_the_plane_answers(case):
         f2 = rb.min_friction(s2, load_factor=lf, state=False)
         f3 = rb.min_friction(s3, load_factor=lf, state=False)
         assert f3.status == f2.status, (case, lf)
-        assert _same(f3.friction_factor, f2.friction_factor), (case, lf, f2.friction_factor,
-                                                               f3.friction_factor)
+        if f2.friction_factor is not None:  # both to the default accuracy, 2e-3
+            assert f3.lower <= f2.upper * (1 + RTOL) and f2.lower <= f3.upper * (1 + RTOL)
+            assert math.isclose(f3.friction_factor, f2.friction_factor, rel_tol=2e-3,
+                                abs_tol=1e-8), (case, lf, f2.friction_factor,
+                                                f3.friction_factor)
     if s2.has_live_load:
         l2 = rb.max_load_multiplier(s2, state=False)
         l3 = rb.max_load_multiplier(s3, state=False)

@@ -123,7 +123,7 @@ def in_mm_and_N(d):
 
 
 def fstar(d) -> float:
-    r = min_friction(scene_from_dict(d), state=False)
+    r = min_friction(scene_from_dict(d), state=False, rtol=RTOL / 10)
     assert r.status == "stable"
     return r.friction_factor
 

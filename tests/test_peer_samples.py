@@ -78,7 +78,9 @@ def test_h_static_infimum_and_no_nonassociative_friction():
     of 2e-5 W the state problems leave at the bound N = 0)."""
     sc = sample_h()
     st = rb.min_friction(sc, load_factor=0.0, state=False)
-    assert st.status == "stable" and st.friction_factor < 1e-5
+    # bracketed in [0, ~1e-7] where the forces go beyond what the solver resolves: no
+    # number at a relative accuracy, the bracket says it needs no friction
+    assert st.bracket[0] == 0.0 and st.bracket[1] < 1e-5
     assert any("infimum" in n for n in st.notes)
     na = rb.min_friction(sc, load_factor=0.0, state=False, flow=NA)
     assert na.status == "unstable" and na.friction_factor is None
@@ -97,7 +99,7 @@ def test_a_inverted_wedge_falls_without_dilatancy():
     faces; with none, N = 0 there and the capped laws carry nothing whatever f (a drop
     of the block opens both joints): "unstable", with the same breach at every f."""
     sc = sample_a()
-    st = rb.min_friction(sc, load_factor=0.0, state=False)
+    st = rb.min_friction(sc, load_factor=0.0, state=False, rtol=1e-5)
     assert st.status == "stable"
     assert st.friction_factor == pytest.approx(math.tan(math.radians(30)), rel=1e-5)
     na = rb.min_friction(sc, load_factor=0.0, state=False, flow=NA)
@@ -115,7 +117,7 @@ def test_wedge_c_topples_without_dilatancy():
     0.577 per unit of slip), and without dilatancy the opening contact carries nothing:
     the least-energy state has N = 0 on the upper face at every f, "unstable"."""
     sc = sample_wedge_c()
-    st = rb.min_friction(sc, load_factor=0.0, state=False)
+    st = rb.min_friction(sc, load_factor=0.0, state=False, rtol=1e-5)
     assert st.status == "stable"
     assert st.friction_factor == pytest.approx(S3, rel=1e-5)
     na = rb.min_friction(sc, load_factor=0.0, state=False, flow=NA)

@@ -24,13 +24,48 @@ ARPINO = 0.0905191  # f* of the Arpino gate to 7 figures (the default accuracy)
 @pytest.mark.parametrize("rtol", [1e-3, 1e-5])
 def test_a_coarser_accuracy_brackets_f_star_to_it_in_fewer_solves(rtol):
     scene = rb.read_scene(EXAMPLES / "arpino_gate.json")
-    fine = rb.min_friction(scene, state=False)
+    fine = rb.min_friction(scene, state=False, rtol=1e-6 if rtol > 1e-5 else 2e-6)
     r = rb.min_friction(scene, state=False, rtol=rtol)
     assert r.status == "stable" and r.friction_factor == r.upper
-    assert r.lower <= fine.friction_factor <= r.upper  # the fine f* is in the bracket
+    assert r.lower <= fine.lower and fine.upper <= r.upper  # brackets nest
     assert r.upper - r.lower <= rtol * r.upper + 1e-9
+    assert r.rtol == rtol and r.accuracy == pytest.approx((r.upper - r.lower) / r.upper)
     assert abs(r.friction_factor - ARPINO) <= rtol * ARPINO + 1e-7
     assert r.n_solves < fine.n_solves
+
+
+def test_a_number_only_where_the_certified_bracket_meets_the_requested_accuracy():
+    """The Arpino gate's relaxations resolve f* to 1.4e-6 (R below the certified upper
+    end falls under what the solver certifies): asked for 1e-7 it is undecided, with the
+    bracket (which holds f*) and the accuracy it reached; asked for 1e-5 it is a number
+    certified to that; at the default, three significant figures."""
+    scene = rb.read_scene(EXAMPLES / "arpino_gate.json")
+    r = rb.min_friction(scene, state=False, rtol=1e-7)
+    assert r.status == "undecided" and r.friction_factor is None
+    lo, hi = r.bracket
+    assert lo <= ARPINO * (1 + 1e-7) and ARPINO * (1 - 1e-7) <= hi
+    assert r.accuracy == pytest.approx((hi - lo) / hi) and 1e-7 < r.accuracy < 1e-5
+    assert any("requested (rtol): no number is given" in n for n in r.notes)
+    r = rb.min_friction(scene, state=False, rtol=1e-5)
+    assert r.status == "stable" and r.accuracy <= 1e-5
+    r = rb.min_friction(scene, state=False)
+    assert r.status == "stable" and r.rtol == 2e-3 and r.accuracy <= 2e-3
+    assert abs(r.friction_factor - ARPINO) <= 2e-3 * ARPINO
+
+
+def test_lambda_star_open_by_more_than_the_requested_accuracy_is_no_number():
+    """lambda* = 1.2 of the seed's reference model (numerical example 1) from one LP:
+    its duals leave it open by about 4e-10 above the solver's answer; asked for 1e-11
+    it is undecided with that bracket, asked for the default it is a number whose
+    accuracy is that resolution."""
+    scene = rb.read_scene(EXAMPLES / "reference.json")
+    r = rb.max_load_multiplier(scene, state=False)
+    assert r.status == "collapse" and abs(r.load_multiplier - 1.2) <= 1e-8
+    assert 0 < r.accuracy <= 1e-9
+    tight = rb.max_load_multiplier(scene, state=False, rtol=min(r.accuracy / 10, 1e-11))
+    assert tight.status == "undecided" and tight.load_multiplier is None
+    lo, hi = tight.bracket
+    assert lo <= 1.2 + 1e-8 and hi - lo == pytest.approx(r.accuracy * max(lo, 1.0))
 
 
 def test_the_non_associative_friction_search_takes_the_accuracy():
@@ -57,6 +92,7 @@ def test_friction_and_load_take_rtol_on_the_command_line(capsys):
     d = json.loads(capsys.readouterr().out)
     lower, upper = d["bracket"]
     assert upper - lower <= 1e-3 * upper + 1e-9 and d["friction_factor"] == upper
+    assert d["rtol"] == 1e-3 and d["accuracy"] <= 1e-3
     assert abs(d["friction_factor"] - ARPINO) <= 1e-3 * ARPINO + 1e-7
     ref = str(EXAMPLES / "reference.json")
     assert main(["load", ref, "--rtol", "1e-3", "--json"]) == 0
@@ -73,3 +109,35 @@ def test_a_bad_rtol_on_the_command_line_is_a_one_line_error(capsys, argv):
     assert main(argv) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert "--rtol" in err[-1] and "Traceback" not in "\n".join(err)
+
+
+def test_the_command_prints_the_accuracy_reached_and_requested(capsys):
+    """A number with its accuracy line; an undecided answer with its bracket and the
+    accuracy it reached (the Arpino gate resolves f* to 1.4e-6, asked for 1e-7)."""
+    path = str(EXAMPLES / "arpino_gate.json")
+    assert main(["friction", path, "--rtol", "1e-5"]) == 0
+    out = capsys.readouterr().out
+    assert "answer     f* = 0.09051" in out
+    assert any(line.startswith("accuracy") and "requested 1e-05" in line
+               for line in out.splitlines())
+    main(["friction", path, "--rtol", "1e-7"])
+    out = capsys.readouterr().out
+    assert "UNDECIDED" in out and "answer     f* in [0.0905190" in out
+    assert any(line.startswith("accuracy   1.4e-06") and "requested 1e-07" in line
+               for line in out.splitlines())
+
+
+def test_an_accuracy_finer_than_the_interior_point_verdicts_is_refused():
+    """f* finer than 1e-7 is refused with Clarabel (its verdicts hold to 1e-9 of the
+    largest force: asked for 1e-8, the 3D box on a 20 degree slope came out 1.06e-7
+    below tan 20 degrees, docs/methods.md), on the command line too (exit 2), and
+    given by the simplex, whose verdicts are exact: the reference model's f* = 0.5
+    (seed paper, docs/seed-examples.md) to 1e-9."""
+    from rigidblocks.cli.main import main
+
+    scene = rb.read_scene(EXAMPLES / "reference.json")
+    with pytest.raises(rb.InputError, match="finer than an interior-point solver"):
+        rb.min_friction(scene, state=False, rtol=1e-8)
+    r = rb.min_friction(scene, state=False, rtol=1e-9, solver="highs")
+    assert r.status == "stable" and abs(r.friction_factor - 0.5) <= 1e-9
+    assert main(["friction", str(EXAMPLES / "reference.json"), "--rtol", "1e-8"]) == 2

@@ -16,8 +16,8 @@ from typing import Any
 
 from ..errors import InputError, finite_number
 from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_method
-from ..methods.convex import FRICTION_RTOL
-from ..results import CheckResult, FrictionResult, LoadResult
+from ..methods.convex import FRICTION_ATOL, FRICTION_RTOL
+from ..results import CheckResult, FrictionResult, LoadResult, relative_width
 from ..scene.model import Scene, friction_label, friction_value
 from ..scene.validate import check_load_factor
 from .nonassociative import (
@@ -29,8 +29,18 @@ from .nonassociative import (
 )
 from .search import friction_by_bisection, load_by_bisection
 
-#: relative accuracy of lambda* where it is bisected (methods without a fast path)
-LOAD_RTOL = 1e-6
+#: the default accuracy of lambda*, as f*'s (FRICTION_RTOL, chosen from the chart)
+LOAD_RTOL = FRICTION_RTOL
+
+
+#: the finest f* an interior-point back end certifies: a certified end is admissible to
+#: the verdict's threshold (1e-9 of the largest force), coarser in f than 1e-8 (the 3D
+#: box on a 20 degree slope asked for 1e-8 came out with a 1.2e-8 bracket 1.06e-7 below
+#: tan 20 degrees; the extruded 106-block wall at 1e-7 certified an end 5.6e-8 below
+#: f* = 1, within it)
+F_RTOL_FLOOR = 1e-7
+#: the back ends whose answers are vertices (the simplex): exact verdicts, no floor
+SIMPLEX = ("highs", "cvxpy-highs")
 
 
 def requested_rtol(rtol: float | None, default: float) -> float:
@@ -67,6 +77,36 @@ def _load_factor(scene: Scene, value: Any) -> float:
             raise InputError(f"load factor must be >= 0, got {value!r}")
     check_load_factor(scene, lf)
     return lf
+
+
+def certified(m: Method, lim: Limit, rtol: float, what: str, atol: float = 0.0) -> Limit:
+    """The honesty rule of every limit: a number only where its certified bracket holds
+    it to the requested accuracy (no wider than ``rtol`` times its larger end plus
+    ``atol``, as the searches stop: :meth:`~rigidblocks.methods.engine.Search.narrow`;
+    a limit with a :attr:`~rigidblocks.methods.Limit.resolution` of its own, that no
+    larger than ``rtol``); otherwise "undecided" with the bracket and the accuracy it
+    reached, said in the notes. The methods' searches aim at ``rtol`` but may end short
+    of it at their solver's resolution."""
+    reached = lim.accuracy
+    if lim.value is None or reached is None:
+        return lim
+    if lim.resolution is not None:
+        if reached <= rtol:
+            return lim
+    else:
+        lo, hi = float(lim.lower), float(lim.upper)
+        if hi - lo <= rtol * max(abs(lo), abs(hi)) + atol:
+            return lim
+    m.notes.append(f"{what} is bracketed in [{lim.lower:.10g}, {lim.upper:.10g}]: accuracy "
+                   f"{reached:.1e} reached, {rtol:.1e} requested (rtol): no number is "
+                   "given")
+    return replace(lim, status="undecided", value=None, at=None)
+
+
+def _reached(res: Any, rtol: float) -> Any:
+    """A result with the accuracy asked for and the one its bracket reached."""
+    b = res.bracket
+    return replace(res, rtol=rtol, accuracy=relative_width(*b) if b else None)
 
 
 def _bracket(lim: Limit) -> tuple[float, float] | None:
@@ -169,9 +209,13 @@ def min_friction(scene: Scene, load_factor: float | None = None,
     structure fails by hinging; "undecided" or "failure" where the method says so.
 
     Notes:
-        ``rtol``: the relative accuracy of f* (the width of its bracket relative to
-        f*); default FRICTION_RTOL = 1e-7 on the convex path and on bisection, NA_RTOL =
-        1e-5 for the non-associative analysis.
+        ``rtol``: the relative accuracy of f*, both the search's target and what a
+        number is certified to: f* is given only where its certified bracket is no
+        wider than ``rtol`` relative, else the status is "undecided" with the bracket
+        and the accuracy it reached (``accuracy``); default FRICTION_RTOL = 2e-3 (three
+        significant figures, chosen from the speed-accuracy chart of docs/methods.md)
+        on the convex path and on bisection, NA_RTOL = 1e-5 for the non-associative
+        analysis.
         Convex path: Newton steps on the relaxation R(f), or under a live load on
         lambda*(f) = ``load_factor`` (a few solves reach ``rtol``, see
         :meth:`rigidblocks.methods.convex.ConvexMethod.friction_limit`). Other
@@ -180,21 +224,28 @@ def min_friction(scene: Scene, load_factor: float | None = None,
     """
     lf = _load_factor(scene, load_factor)
     if is_nonassociative(scene, flow):
-        return min_friction_nonassociative(scene, lf, method, flow=flow, state=state,
-                                           solver=solver, settings=settings,
-                                           pyramid=pyramid, contact_tol=contact_tol,
-                                           progress=progress,
-                                           rtol=requested_rtol(rtol, NA_RTOL))
+        rtol = requested_rtol(rtol, NA_RTOL)
+        return _reached(min_friction_nonassociative(
+            scene, lf, method, flow=flow, state=state, solver=solver, settings=settings,
+            pyramid=pyramid, contact_tol=contact_tol, progress=progress, rtol=rtol), rtol)
     rtol = requested_rtol(rtol, FRICTION_RTOL)
+    if rtol < F_RTOL_FLOOR and method != "distortion" and (solver or method) not in SIMPLEX:
+        raise InputError(f"rtol {rtol:g} is finer than an interior-point solver certifies f*: "
+                         f"its verdicts hold to 1e-9 of the largest force, about "
+                         f"{F_RTOL_FLOOR:g} in f (ask for {F_RTOL_FLOOR:g} or coarser, or "
+                         "solver highs in 2D)", scene.source)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol, progress=progress)
     if m.contacts.n_joints and not m.uniform.any():
         raise InputError("every joint has its own friction override: there is no uniform "
                          "friction to minimise", scene.source)
     lim = m.friction_limit(lf, rtol) or friction_by_bisection(m, lf, max(rtol, 1e-9))
+    lim = certified(m, lim, rtol, "f*", FRICTION_ATOL)
+    reached = dict(rtol=rtol, accuracy=lim.accuracy)
     if lim.status != "stable":
         return FrictionResult(**_fields(m, "min_friction", lim.status, None, lf),
-                              lower=lim.lower, upper=lim.upper, bracket=_bracket(lim))
+                              lower=lim.lower, upper=lim.upper, bracket=_bracket(lim),
+                              **reached)
     fstar = float(lim.value)
     at = m.at_limit(fstar, lf, lim.at, state)
     gov = lim.governing
@@ -205,7 +256,8 @@ def min_friction(scene: Scene, load_factor: float | None = None,
     return FrictionResult(**_fields(m, "min_friction", "stable", fstar, lf), state=st,
                           governing=gov, friction_factor=fstar,
                           friction_angle_deg=math.degrees(math.atan(fstar)),
-                          lower=lim.lower, upper=lim.upper, bracket=_bracket(lim))
+                          lower=lim.lower, upper=lim.upper, bracket=_bracket(lim),
+                          **reached)
 
 
 def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clarabel", *,
@@ -222,10 +274,11 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     has no admissible state; "undecided" or "failure" where the method says so.
 
     Notes:
-        ``rtol``: the relative accuracy of lambda*; default LOAD_RTOL = 1e-6 (the
-        convex path's one solve is at its tight tolerances whatever it is: above it, the
-        result gives lambda*'s bracket by the duals' residual), NA_RTOL = 1e-5 for the
-        non-associative analysis.
+        ``rtol``: the relative accuracy of lambda*; default LOAD_RTOL = 2e-3 (as f*'s),
+        NA_RTOL = 1e-5 for the non-associative analysis. The convex path's one solve is
+        at its tight tolerances whatever it is; where what its duals' residual could
+        account for leaves lambda* open by more than ``rtol``, the status is
+        "undecided" with that bracket and accuracy.
         Convex path: one LP (SOCP in 3D), max lambda s.t. A x + F_dead + lambda F_live
         = 0 and the joint laws; its duals on the equilibrium rows are the mechanism (see
         :meth:`rigidblocks.methods.convex.ConvexMethod.load_limit`). Other methods:
@@ -241,11 +294,11 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         raise InputError("the scene has no live load (no \"live\": true load and no "
                          "live_body_force): there is nothing to multiply", scene.source)
     if is_nonassociative(scene, flow):
-        res = max_load_nonassociative(scene, friction, method, flow=flow, state=state,
-                                      solver=solver, settings=settings, pyramid=pyramid,
-                                      contact_tol=contact_tol, progress=progress,
-                                      mechanism=mechanism,
-                                      rtol=requested_rtol(rtol, NA_RTOL))
+        na_rtol = requested_rtol(rtol, NA_RTOL)
+        res = _reached(max_load_nonassociative(
+            scene, friction, method, flow=flow, state=state, solver=solver,
+            settings=settings, pyramid=pyramid, contact_tol=contact_tol, progress=progress,
+            mechanism=mechanism, rtol=na_rtol), na_rtol)
         return replace(res, tilt_angle_deg=tilt_angle_deg(scene, res.load_multiplier)
                        if res.status == "collapse" else None)
     rtol = requested_rtol(rtol, LOAD_RTOL)
@@ -253,9 +306,11 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol, progress=progress)
     lim: Limit = m.load_limit(f, rtol, mechanism) or load_by_bisection(m, f, rtol)
+    lim = certified(m, lim, rtol, "lambda*")
+    reached = dict(rtol=rtol, accuracy=lim.accuracy)
     if lim.status != "collapse":
         return LoadResult(**_fields(m, "max_load_multiplier", lim.status, f, None),
-                          bracket=_bracket(lim))
+                          bracket=_bracket(lim), **reached)
     # a multiplier within round-off below 0 (the methods call one below -1e-9 unstable)
     # is 0: the dead load alone is at its limit (a frictionless block on a level base:
     # -3.4e-11 from Clarabel, -4.8e-10 from OSQP)
@@ -272,7 +327,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     return LoadResult(**_fields(m, "max_load_multiplier", "collapse", f, lam), state=st,
                       governing=gov, load_multiplier=lam, mechanism=lim.mechanism,
                       bracket=_bracket(lim) if lim.lower != lim.upper else None,
-                      tilt_angle_deg=tilt_angle_deg(scene, lam))
+                      tilt_angle_deg=tilt_angle_deg(scene, lam), **reached)
 
 
 __all__ = ["check", "max_load_multiplier", "min_friction"]

@@ -27,9 +27,9 @@ from ..methods.engine import (
     run,
 )
 
-#: a bisection stopped by an undecided trial with a bracket wider than BRACKET_RTOL
-#: relative plus BRACKET_ATOL gives no number (the floor: f* or lambda* = 0); the
-#: engine's WIDE, as for every search
+#: a bisection stopped by an undecided trial with a bracket wider than the requested
+#: accuracy (relative) plus BRACKET_ATOL gives no number (the floor: f* or lambda* = 0);
+#: BRACKET_RTOL, the engine's WIDE, is the default of :meth:`Bracket.too_wide`
 BRACKET_RTOL = WIDE
 BRACKET_ATOL = 1e-6
 #: largest friction tried when bracketing f* from above
@@ -139,7 +139,7 @@ def friction_by_bisection(m: Method, load_factor: float, rtol: float) -> Limit:
     lower end), then bisection to ``rtol`` (the engine's rules :data:`STOPS` and
     :func:`doubling`). An undecided trial ends the bisection: f* is the upper
     (certified admissible) end of the bracket, which goes into ``lower``, ``upper`` and
-    the notes; if it is wider than ``BRACKET_RTOL`` relative (plus ``BRACKET_ATOL``)
+    the notes; if it is wider than ``rtol`` relative (plus ``BRACKET_ATOL``)
     the status is "undecided" and no f* is given.
     """
     lf = load_factor
@@ -178,7 +178,7 @@ def load_by_bisection(m: Method, f: float, rtol: float) -> Limit:
     then bisected to ``rtol``; lambda* is the lower (certified admissible) end. Where a
     trial is undecided the status says so, with the reason in the notes and no number:
     at lambda = 0, while doubling (no inadmissible upper end), or when an undecided
-    bisection trial leaves a bracket wider than ``BRACKET_RTOL`` relative plus
+    bisection trial leaves a bracket wider than ``rtol`` relative plus
     ``BRACKET_ATOL`` (a narrower one is reported in the notes).
     """
     decide = _verdicts(m, lambda lam: m.admissible(f, lam))
@@ -210,15 +210,16 @@ def _bracket_trial(t: Trial) -> bool:
 
 def _limit(m: Method, s: Search, name: str, status: str) -> Limit:
     """The limit a search found: its certified end (``good``), or "undecided" when an
-    undecided bisection trial stopped it with a bracket wider than ``BRACKET_RTOL``; the
-    bracket goes into the notes either way."""
+    undecided bisection trial stopped it with a bracket wider than the requested
+    accuracy (plus ``BRACKET_ATOL``); the bracket goes into the notes either way."""
     br = Bracket(s.bad, s.good, s.end(True).data,
                  s.last.x if s.stopped == "undecided_while_bisecting" else None)
     if br.undecided_at is not None:
         m.notes.append(f"the iteration could not decide at {name} = {br.undecided_at:.9g}: "
                        f"{name}* is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
-        if br.too_wide():
-            m.notes.append(f"bracket wider than {BRACKET_RTOL:g} relative: undecided")
+        if br.too_wide(max(s.rtol, BRACKET_RTOL)):
+            m.notes.append(f"accuracy {s.accuracy:.1e} reached, {s.rtol:.1e} requested "
+                           "(rtol): undecided")
             return Limit("undecided", None, br.lower, br.upper)
     return Limit(status, br.good, br.lower, br.upper, at=br.good_data)
 

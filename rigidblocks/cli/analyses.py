@@ -143,9 +143,10 @@ def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
     and the pictures give it); ``joints``: with the joint table; ``verbose``: with the
     solver's and the accuracy's notes."""
     lines = [f"scene      {scene.name or scene.source}",
-             f"blocks     {len(scene.blocks)} ({int(scene.support_mask.sum())} supports), "
+             f"blocks     {len(scene.blocks)} ({_count(int(scene.support_mask.sum()), 'support')}), "
              f"joints {res.contacts.n_joints}"]
     lines += answer_block(scene, res).lines(verbose)
+    lines += _accuracy(res)
     if res.flow != "associative":
         lines += _flow_lines(res)
     if joints:
@@ -154,6 +155,21 @@ def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
         lines.append(f"solver     {res.solver}, {res.n_solves} solve(s), "
                      f"{res.solve_time:.3g} s")
     return "\n".join(lines)
+
+
+def _count(n: int, word: str) -> str:
+    return f"{n} {word}" + ("" if n == 1 else "s")
+
+
+def _accuracy(res) -> list[str]:
+    """The accuracy reached (the bracket's relative width) against the one requested."""
+    if res.accuracy is None or res.rtol is None:
+        return []
+    if res.bracket is not None and res.decided:
+        where = f"bracket [{res.bracket[0]:.10g}, {res.bracket[1]:.10g}], "
+    else:
+        where = ""
+    return [f"accuracy   {res.accuracy:.1e} ({where}relative width; requested {res.rtol:.0e})"]
 
 
 def _table(res, scene) -> list[str]:

@@ -44,10 +44,10 @@ def relative_tolerance(text: str) -> float:
 
 #: the default accuracy of each command's limit, as its help gives it
 RTOL_DEFAULTS = {
-    "friction": "1e-7 (1e-5 with --flow non-associative)",
-    "load": "1e-6 (1e-5 with --flow non-associative; the convex path's one solve is "
-            "at its tight tolerances whatever it is, and gives lambda*'s bracket where "
-            "its duals resolve it more coarsely)",
+    "friction": "2e-3, three significant figures (1e-5 with --flow non-associative)",
+    "load": "2e-3 (1e-5 with --flow non-associative; the convex path's one solve is "
+            "at its tight tolerances whatever it is, and its duals tell how far lambda* "
+            "may lie above its answer)",
     "thickness": "1e-4",
 }
 
@@ -56,8 +56,10 @@ def add_rtol(parser: argparse.ArgumentParser, command: str,
              default: float | None = None) -> None:
     """The ``--rtol`` option of ``command`` (a key of :data:`RTOL_DEFAULTS`)."""
     parser.add_argument("--rtol", type=relative_tolerance, default=default,
-                        help="relative accuracy of the limit (the width of its bracket "
-                        f"relative to it; default {RTOL_DEFAULTS[command]})")
+                        help="relative accuracy of the limit: the search's target, and a "
+                        "number is given only where its certified bracket is this narrow "
+                        "(relative), else UNDECIDED with the bracket and the accuracy "
+                        f"reached; default {RTOL_DEFAULTS[command]}")
 
 
 def use_finite_floats(parser: argparse.ArgumentParser) -> None:

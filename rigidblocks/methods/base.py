@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from ..equilibrium import EquilibriumSystem, joint_breaches
-from ..results import ForceState, Mechanism
+from ..results import ForceState, Mechanism, relative_width
 from ..scene.model import Scene
 
 ADMISSIBLE = "admissible"
@@ -64,7 +64,9 @@ class Limit:
     failure; max_load_multiplier: collapse, unbounded, unstable, undecided, failure).
     ``value``: f* or lambda* (None unless decided); ``lower``/``upper``: its bracket;
     ``at``: the verdict at the value (an admissible one, for the force state);
-    ``state_hint``: the relaxation level the state may use (convex path).
+    ``state_hint``: the relaxation level the state may use (convex path);
+    ``resolution``: the accuracy reached where it is not the bracket's width (lambda*
+    from one LP: what its duals' residual leaves open above it), see :attr:`accuracy`.
     """
 
     status: str
@@ -74,6 +76,15 @@ class Limit:
     governing: tuple[int, ...] = ()
     mechanism: Mechanism | None = None
     at: Verdict | None = None
+    resolution: float | None = None
+
+    @property
+    def accuracy(self) -> float | None:
+        """The relative accuracy reached: the bracket's :func:`relative_width` (or
+        :attr:`resolution` where given); None where nothing was bracketed."""
+        if self.resolution is not None:
+            return self.resolution
+        return relative_width(self.lower, self.upper)
 
 
 class Timings:

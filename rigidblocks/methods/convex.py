@@ -67,8 +67,11 @@ ADMISSIBLE_TOL = 1e-9
 #: 5,006-block wall above f*, the states solved at 1e-9 breach the laws by 1.1e-9 to
 #: 1.6e-9 of the largest force)
 NEAR_ADMISSIBLE_TOL = 1e-8
-#: relative accuracy of the minimum friction
-FRICTION_RTOL = 1e-7
+#: the default accuracy of f* and lambda* (``rtol``: a number only where its certified
+#: bracket is this narrow, relative): three significant figures, the tightest accuracy
+#: at which every wall of the speed-accuracy chart gets a number (docs/methods.md: the
+#: 20,051-block wall at load factor 0.2 reaches 1.1e-3 at its solver's resolution)
+FRICTION_RTOL = 2e-3
 #: absolute accuracy of the minimum friction: a structure that stands with f <= 1e-9
 #: needs no friction (round-off keeps R(0) just above the threshold)
 FRICTION_ATOL = 1e-9
@@ -662,7 +665,7 @@ class ConvexMethod(Method):
                 f"{below:.1e} (slope {lower.slope:.4g}), below what the solver certifies "
                 f"there (its dual bound was {rx.shortfall:.1e} short at f = {lo:.10g}): "
                 f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
-                f"{(hi - lo) / hi:.1e}), reported at the upper end")
+                f"{(hi - lo) / hi:.1e}), certified at the upper end")
         if search.of_kind(*UNDECIDED_KINDS) and not self._bracket_note(search):
             return Limit("undecided", None, lo, upper)
         if search.of_kind("lower-by-value") and lo > 0:
@@ -679,8 +682,8 @@ class ConvexMethod(Method):
         """The note on f*'s bracket where trials near f* decided nothing (a trial left at
         the threshold bounds nothing: R may be zero there with a state the solver cannot
         certify; extruded 5,006-block wall: one at f = 1.2502445, where the plane wall
-        certifies f* <= 1.2497654); False where that leaves the bracket wider than WIDE
-        (no number)."""
+        certifies f* <= 1.2497654); False where that leaves the bracket wider than the
+        requested accuracy and WIDE (no number)."""
         lo, hi = search.bad, search.good
         t = search.of_kind(*UNDECIDED_KINDS)[-1]
         if t.kind == "threshold":
@@ -691,7 +694,7 @@ class ConvexMethod(Method):
             status = (f"{t.data.res.raw_status}, "
                       + ("failing its check" if t.data.unresolved
                          else "its value within its duals' spread"))
-        wide = not math.isfinite(hi) or hi - lo > WIDE * hi
+        wide = not search.narrow(WIDE)
         under = [u.x for u in search.of_kind("threshold") if u.x < hi]
         at = ""
         if under and math.isfinite(hi):
@@ -702,8 +705,8 @@ class ConvexMethod(Method):
                           f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
                           f"{(hi - lo) / hi:.1e})")
         if wide:
-            self.notes.append(f"the bracket is wider than {WIDE:g} (relative): no number "
-                              "is given")
+            self.notes.append(f"the bracket is wider than {max(search.rtol, WIDE):g} "
+                              "(relative): no number is given")
         return not wide
 
     def _friction_shares(self, res: SolverResult, jr: Any, prob: Any) -> np.ndarray:
@@ -855,7 +858,7 @@ class ConvexMethod(Method):
         at_lo = lower.data.at if lower is not None else None
         if upper is None or at_lo is None and hi - lo > WIDE * hi:
             return None
-        if hi - lo > WIDE * hi:
+        if not search.narrow(WIDE):
             self.notes.append(
                 f"f* from lambda*(f) = {lf:g} (the maximum-load LP): f* is bracketed in "
                 f"[{lo:.10g}, {hi:.10g}] (relative width {(hi - lo) / hi:.1e}), where "
@@ -1007,8 +1010,9 @@ class ConvexMethod(Method):
         # result gives the bracket and says so (the 50,065-block wall: 0.3679 with
         # Clarabel's default regularisation, 0.3790 with VALUE_SETTINGS)
         reach = SPREAD_MARGIN * _dual_work(prob, res)[1]
+        scale = max(abs(lam), 1.0)
         upper = lam
-        if reach > rtol * max(abs(lam), 1.0):
+        if reach > rtol * scale:
             upper = lam + reach
             self.notes.append(
                 f"lambda* = {lam:.7g} is the solver's answer (its state carries it); "
@@ -1017,7 +1021,7 @@ class ConvexMethod(Method):
                 f"lambda* is in [{lam:.7g}, {upper:.7g}], the upper end by value, not "
                 "certified")
         return Limit("collapse", lam, lam, upper, governing=sliding, mechanism=mech,
-                     at=Verdict(ADMISSIBLE, 0.0, (), (res, prob)))
+                     at=Verdict(ADMISSIBLE, 0.0, (), (res, prob)), resolution=reach / scale)
 
     def mechanism_duals(self, prob: Any, res: SolverResult, lam: float, kind: str,
                         what: str) -> tuple[np.ndarray, str]:

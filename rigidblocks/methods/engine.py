@@ -24,8 +24,11 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-#: a search stopped short of its accuracy (by trials that decide nothing) still gives a
-#: number where its bracket is no wider than this, relative to its certified end
+#: the effort bound at the solver's resolution: where trials near the limit decide
+#: nothing, a bracket this narrow (relative) is not narrowed further by stepping past
+#: them, and the method gives its certified end with the bracket. Whether that is a
+#: number for the engineer is the requested accuracy's call (the analyses give one
+#: only where the bracket meets ``rtol``)
 WIDE = 1e-3
 
 
@@ -109,10 +112,21 @@ class Search:
                 break
         return n
 
-    def narrow(self) -> bool:
-        """|good - bad| <= rtol max(|good|, |bad|) + atol (never with an infinite end)."""
+    @property
+    def accuracy(self) -> float:
+        """The accuracy reached: the bracket's width relative to its larger end (inf
+        while an end is infinite)."""
+        if not math.isfinite(self.width):
+            return math.inf
+        scale = max(abs(self.good), abs(self.bad))
+        return self.width / scale if scale > 0 else 0.0
+
+    def narrow(self, loosest: float = 0.0) -> bool:
+        """|good - bad| <= rtol max(|good|, |bad|) + atol (never with an infinite end);
+        with ``loosest``, max(rtol, loosest) in place of rtol."""
         scale = max(abs(self.good), abs(self.bad), 1e-300)
-        return math.isfinite(self.width) and self.width <= self.rtol * scale + self.atol
+        return math.isfinite(self.width) and \
+            self.width <= max(self.rtol, loosest) * scale + self.atol
 
     def record(self, t: Trial) -> None:
         """Keep ``t`` and move the end on its side."""

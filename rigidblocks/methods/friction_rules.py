@@ -47,9 +47,11 @@ BUDGET = 100
 #: requested accuracy: a Newton step that lands this close to the lower end is moved up
 #: by it (to certify from above), a probe goes this far below the upper end
 CERTIFY_OFFSET = 0.5
-#: a trial the solver left undecided this close (in units of the requested accuracy)
-#: below the certified upper end is followed below it, not above
-CLOSE_BELOW = 1e3
+#: a trial the solver left undecided this close (relative) below the certified upper
+#: end is followed below it, not above (1e3 times the requested accuracy when that was
+#: 1e-7: in units of a coarse accuracy it took every such trial as close, and the
+#: 4-voussoir arch of thickness 0.3 ended undecided, bracketed to 4e-2, at 1e-3)
+CLOSE_BELOW = 1e-4
 #: each trial followed above one the solver left undecided goes this many times further
 #: than the previous one
 PAST_GROWTH = 4.0
@@ -119,9 +121,9 @@ def _past(s: Search, t: Trial) -> float | None:
 
 
 def _close_below(s: Search, t: Trial) -> bool:
-    """``t`` lay within CLOSE_BELOW x rtol below the certified upper end of its time."""
+    """``t`` lay within CLOSE_BELOW below the certified upper end of its time."""
     hi = t.bracket[1]
-    return math.isfinite(hi) and t.x >= hi * (1.0 - CLOSE_BELOW * s.rtol)
+    return math.isfinite(hi) and t.x >= hi * (1.0 - CLOSE_BELOW)
 
 
 def _among(f: float, trials: list[float]) -> bool:
