@@ -142,8 +142,9 @@ def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
     """The answer in words (:func:`rigidblocks.answer.answer_block`, as the HTML report
     and the pictures give it); ``joints``: with the joint table; ``verbose``: with the
     solver's and the accuracy's notes."""
+    supports = _count(int(scene.support_mask.sum()), "support")
     lines = [f"scene      {scene.name or scene.source}",
-             f"blocks     {len(scene.blocks)} ({_count(int(scene.support_mask.sum()), 'support')}), "
+             f"blocks     {len(scene.blocks)} ({supports}), "
              f"joints {res.contacts.n_joints}"]
     lines += answer_block(scene, res).lines(verbose)
     lines += _accuracy(res)
