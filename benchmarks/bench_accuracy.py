@@ -340,6 +340,7 @@ def sweep_cases(blocks: tuple[int, ...], catalogue: bool) -> list[dict[str, Any]
 def sweep_run(case: dict[str, Any], scene: Scene, rtol: float) -> dict[str, Any]:
     """One analysis at ``rtol``: status, value, bracket, accuracy, solves, CPU s, load."""
     load0, t0 = load_average(), time.process_time()
+    val = None
     try:
         if case["qty"] == "f*":
             r = min_friction(scene, state=False, rtol=rtol, **case["kw"])

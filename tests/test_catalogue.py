@@ -82,8 +82,8 @@ def test_catalogue(case: Case, method: str, solver: str | None):
     kw = {"method": method, **case.kwargs}
     if solver is not None:
         kw["solver"] = solver
-    # the closed forms hold to 1e-6: the limits are asked for 1e-7
-    accuracy = {} if case.analysis == "check" else {"rtol": 1e-7}
+    # the closed forms hold to 1e-6 (RTOL): the limits are asked for that accuracy
+    accuracy = {} if case.analysis == "check" else {"rtol": RTOL}
     r = ANALYSES[case.analysis](case.scene(), **kw, **accuracy)
     if solver is not None:
         answered_itself(r, solver)

@@ -146,9 +146,12 @@ def test_cli_check_above_an_infimum_exits_undecided_with_the_reason(tmp_path, ca
 
 
 def test_friction_on_the_wedge_reports_the_infimum():
-    """The same scene's f* comes with the bracket from 1 and the infimum note."""
+    """The same scene's f* comes with the bracket from 1 and the infimum note; the
+    bracket (6.7e-3 wide: beyond it the forces exceed what the solver resolves) does
+    not meet the default accuracy (2e-3), so no number is given."""
     r = min_friction(wedge(1e4), state=False)
-    assert r.status == "stable" and r.bracket[0] >= 1.0 - 1e-7 and r.bracket[1] > 1.0
+    assert r.bracket[0] >= 1.0 - 1e-7 and r.bracket[1] > 1.0
+    assert r.status == ("stable" if r.accuracy <= 2e-3 else "undecided")
     assert any("infimum" in n for n in r.notes)
 
 
@@ -235,7 +238,7 @@ def test_nonassociative_friction_of_a_block_on_an_incline_is_tan_theta(name):
     from rigidblocks.generators.catalogue import CASES
 
     case = CASES[name]
-    static = min_friction(case.scene(), state=False)
+    static = min_friction(case.scene(), state=False, rtol=1e-7)  # as the analysis asks
     r = min_friction(case.scene(), flow="non-associative", state=False)
     assert r.status == "stable"
     assert r.friction_factor == pytest.approx(case.value, rel=1e-6)
@@ -268,7 +271,7 @@ def test_the_json_answer_names_the_back_ends_that_answered(tmp_path, capsys):
 
     path = tmp_path / "seed.json"
     path.write_text(dumps_scene(CASES["seed_model"].scene()))
-    assert main(["friction", str(path), "--solver", "scs", "--json"]) == 0
+    assert main(["friction", str(path), "--solver", "scs", "--json", "--rtol", "1e-4"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["answered_by"] == ["scs"] and out["rejected"] == []
-    assert out["friction_factor"] == pytest.approx(0.5, rel=1e-6)
+    assert out["friction_factor"] == pytest.approx(0.5, rel=1e-4)  # as asked (--rtol)

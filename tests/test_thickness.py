@@ -73,5 +73,5 @@ def test_cli_help_gives_the_bounds_defaults(capsys):
     from rigidblocks.cli.options import RTOL_DEFAULTS
 
     assert float(RTOL_DEFAULTS["thickness"]) == defaults["rtol"].default
-    assert f"default {RTOL_DEFAULTS['thickness']})" in out
+    assert f"default {RTOL_DEFAULTS['thickness']}" in out
     assert "does not stand (default 0.01)" in out and "it stands (default 1)" in out

@@ -16,7 +16,7 @@ from typing import Any
 
 from ..errors import InputError, finite_number
 from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_method
-from ..methods.convex import FRICTION_ATOL, FRICTION_RTOL
+from ..methods.convex import FRICTION_ATOL, FRICTION_RTOL, VERDICT_RTOL
 from ..results import CheckResult, FrictionResult, LoadResult, relative_width
 from ..scene.model import Scene, friction_label, friction_value
 from ..scene.validate import check_load_factor
@@ -33,12 +33,8 @@ from .search import friction_by_bisection, load_by_bisection
 LOAD_RTOL = FRICTION_RTOL
 
 
-#: the finest f* an interior-point back end certifies: a certified end is admissible to
-#: the verdict's threshold (1e-9 of the largest force), coarser in f than 1e-8 (the 3D
-#: box on a 20 degree slope asked for 1e-8 came out with a 1.2e-8 bracket 1.06e-7 below
-#: tan 20 degrees; the extruded 106-block wall at 1e-7 certified an end 5.6e-8 below
-#: f* = 1, within it)
-F_RTOL_FLOOR = 1e-7
+#: the finest f* an interior-point back end certifies (its verdicts' resolution)
+F_RTOL_FLOOR = VERDICT_RTOL
 #: the back ends whose answers are vertices (the simplex): exact verdicts, no floor
 SIMPLEX = ("highs", "cvxpy-highs")
 

@@ -61,7 +61,7 @@ import scipy.sparse as sp
 from ..equilibrium import force_state
 from ..errors import InputError, SolverFailure
 from ..methods import ADMISSIBLE, FAILURE, INADMISSIBLE, UNDECIDED, Method, Verdict
-from ..methods.convex import ADMISSIBLE_TOL, FRICTION_RTOL, STATE_SLACK, ConvexMethod
+from ..methods.convex import ADMISSIBLE_TOL, STATE_SLACK, VERDICT_RTOL, ConvexMethod
 from ..methods.distortion import DistortionMethod
 from ..problems.formulation import build_energy_qp, build_max_load, build_relaxation, flexibility
 from ..results import CheckResult, ForceState, FrictionResult, LoadResult
@@ -663,7 +663,7 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
     trials: list[dict[str, Any]] = []
     # the static f* as the associative analysis gives it (same accuracy, same solves):
     # where the answer equals it, the two print the same number
-    lim = cv.friction_limit(lf, FRICTION_RTOL)
+    lim = cv.friction_limit(lf, VERDICT_RTOL)
 
     def out(status: str, fstar: float | None = None, v: Verdict | None = None,
             lower: float | None = None, upper: float | None = None,

@@ -75,6 +75,14 @@ FRICTION_RTOL = 2e-3
 #: absolute accuracy of the minimum friction: a structure that stands with f <= 1e-9
 #: needs no friction (round-off keeps R(0) just above the threshold)
 FRICTION_ATOL = 1e-9
+#: the finest relative accuracy in f that the interior-point verdicts resolve: a
+#: certified end is admissible to ADMISSIBLE_TOL of the largest force, coarser in f than
+#: 1e-8 (the 3D box on a 20 degree slope asked for 1e-8 came out with a 1.2e-8 bracket
+#: 1.06e-7 below tan 20 degrees; the extruded 106-block wall at 1e-7 certified an end
+#: 5.6e-8 below f* = 1, within it). An inadmissibility certificate that holds only more
+#: than this below f is no verdict (:meth:`ConvexMethod._certificate_checked`: the
+#: 1,000-block wall's sits 6.9e-9 below f)
+VERDICT_RTOL = 1e-7
 #: slack (reference-force units) granted to the force-state QP at a limit state, where
 #: the admissible set shrinks to a point and round-off would make it empty
 STATE_SLACK = 1e-9
@@ -451,12 +459,12 @@ class ConvexMethod(Method):
     def _certificate_checked(self, v: Verdict, rx: Relaxation) -> Verdict:
         """An inadmissible verdict from the relaxation's dual bound, checked against the
         friction its certificate holds at (:func:`certificate_shift`): undecided where
-        that lies below f by more than f*'s own accuracy (FRICTION_RTOL f +
+        that lies below f by more than the verdicts resolve (VERDICT_RTOL f +
         FRICTION_ATOL), as above a limit approached with ever larger forces (an
         infimum), where an admissible state needs forces the certificate does not
         exclude."""
         shift, scale = certificate_shift(rx)
-        if -shift <= FRICTION_RTOL * rx.f + FRICTION_ATOL:
+        if -shift <= VERDICT_RTOL * rx.f + FRICTION_ATOL:
             return v
         why = (f"the certificate of inadmissibility (the relaxation's duals) holds at "
                f"f = {rx.f + shift:.10g}, {-shift / rx.f:.1e} (relative) below the friction "
@@ -1131,4 +1139,4 @@ def _infimum_growth(far: tuple[float, float], hi: float, lo: float, big: float) 
 
 
 __all__ = ["ADMISSIBLE_TOL", "ConvexMethod", "FRICTION_ATOL", "FRICTION_RTOL", "Relaxation",
-           "STATE_SLACK"]
+           "STATE_SLACK", "VERDICT_RTOL"]
