@@ -78,3 +78,45 @@ def test_corbel_dome_mechanism_is_drawn_and_read_not_every_joint_both():
     assert len(marked) == MOST_MARKED_3D
     motion = np.asarray(res.mechanism.rates)
     assert min(motion[list(marked)]) >= max(np.delete(motion, list(marked)))
+
+
+def test_vertex_search_is_bounded_by_work_not_time(monkeypatch):
+    """The same command gives the same mechanism at any load of the machine: the vertex
+    search passes its solvers iteration budgets and no time limit, and a clock that
+    runs 1,000 s per reading (a machine so loaded that any time limit would pass) leaves
+    the corbel dome's mechanism as it is (one of the face, with the same rates)."""
+    import time
+
+    import scipy.optimize
+
+    import rigidblocks.methods.vertex as vertex
+
+    sc = build("corbel_dome")
+    first = rb.max_load_multiplier(sc)
+    seen: list[dict] = []
+    linprog, solve = scipy.optimize.linprog, vertex.solve
+
+    def lp(*a, **k):
+        seen.append(k.get("options", {}))
+        return linprog(*a, **k)
+
+    def cone(p, name, **k):
+        seen.append(k)
+        return solve(p, name, **k)
+
+    clock = [time.perf_counter()]
+
+    def slow() -> float:
+        clock[0] += 1000.0
+        return clock[0]
+
+    monkeypatch.setattr(scipy.optimize, "linprog", lp)
+    monkeypatch.setattr(vertex, "solve", cone)
+    monkeypatch.setattr(time, "perf_counter", slow)
+    monkeypatch.setattr(time, "monotonic", slow)
+    again = rb.max_load_multiplier(sc)
+    assert seen and not any("time_limit" in s for s in seen)
+    assert {s.get("maxiter", s.get("max_iter")) for s in seen} <= {
+        vertex.LP_ITERATIONS, vertex.CONE_ITERATIONS}
+    assert again.mechanism.kind == first.mechanism.kind != "blend"
+    np.testing.assert_array_equal(again.mechanism.rates, first.mechanism.rates)
