@@ -326,7 +326,7 @@ class _Words:
             return ("COLLAPSE", number,
                     ("joints at their friction limit: " + joint_list(names)) if names
                     else "", why)
-        body = bodies_text(res)
+        body = bodies_text(res, self.scene)
         return "COLLAPSE", number, mechanism_text(res), ([body] if body else []) + why
 
     def live_hint(self, res: Any) -> list[str]:
@@ -388,20 +388,51 @@ def rigid_bodies(res: Any) -> list[list[int]]:
     return sorted(groups.values(), key=len, reverse=True)
 
 
-def bodies_text(res: Any) -> str:
-    """How the moving blocks move, in words: as how many rigid bodies."""
+def block_reach(scene: Scene, velocities: np.ndarray, centroids: np.ndarray | None = None
+                ) -> np.ndarray:
+    """(n,) each block's largest point speed in a mechanism (an upper bound): |u| +
+    |omega| r, with u its centroid's velocity, omega its rotation rate and r the
+    distance of its farthest vertex from its centroid."""
+    vel = np.asarray(velocities, dtype=float)
+    d = scene.dimension
+    if centroids is None:
+        centroids = scene_weights(scene)[1]
+    out = np.zeros(len(scene.blocks))
+    for i, (b, c, v) in enumerate(zip(scene.blocks, centroids, vel, strict=True)):
+        r = np.linalg.norm(b.points - c, axis=1).max()
+        out[i] = float(np.linalg.norm(v[:d]) + np.linalg.norm(v[d:]) * r)
+    return out
+
+
+def bodies_text(res: Any, scene: Scene | None = None) -> str:
+    """How the moving blocks move, in words: as how many rigid bodies, and (given the
+    ``scene``) which: the fastest blocks first, with "and N more"."""
     groups = rigid_bodies(res)
     if not groups:
         return ""
     n = sum(len(g) for g in groups)
     if len(groups) == 1:
         return f"the {n} moving block{'s' if n > 1 else ''} move as one rigid body"
+    speed = None if scene is None else block_reach(scene, res.mechanism.velocities)
+    ids = res.contacts.block_ids
+
+    def fastest(blocks: list[int]) -> list[str]:
+        return [ids[i] for i in sorted(blocks, key=lambda i: -speed[i])]
+
     if len(groups) == n:
-        return f"the {n} moving blocks move each on its own (no two together)"
-    sizes = ", ".join(str(len(g)) for g in groups[:FIRST])
-    more = f", and {len(groups) - FIRST} more" if len(groups) > FIRST else ""
-    return (f"the {n} moving blocks form {len(groups)} rigid bodies (of {sizes} "
-            f"blocks{more})")
+        text = f"the {n} moving blocks move each on its own (no two together)"
+        if speed is None:
+            return text
+        return text + "; fastest: " + joint_list(fastest([g[0] for g in groups]))
+    if speed is None:
+        sizes = ", ".join(str(len(g)) for g in groups[:FIRST])
+        more = f", and {len(groups) - FIRST} more" if len(groups) > FIRST else ""
+        return (f"the {n} moving blocks form {len(groups)} rigid bodies (of {sizes} "
+                f"blocks{more})")
+    named = [joint_list(fastest(g), 2) for g in groups[:FIRST]]
+    more = f"; and {len(groups) - FIRST} more bodies" if len(groups) > FIRST else ""
+    return (f"the {n} moving blocks form {len(groups)} rigid bodies, each named by its "
+            f"fastest blocks: " + "; ".join(named) + more)
 
 
 def mechanism_text(res: Any) -> str:
@@ -425,6 +456,6 @@ def mechanism_text(res: Any) -> str:
             + f" and {len(order) - FIRST} more")
 
 
-__all__ = ["AnswerBlock", "answer_block", "bodies_text", "joint_list", "live_load_size",
-           "live_load_text", "mechanism_groups", "mechanism_text", "rigid_bodies",
+__all__ = ["AnswerBlock", "answer_block", "block_reach", "bodies_text", "joint_list",
+           "live_load_size", "live_load_text", "mechanism_groups", "mechanism_text", "rigid_bodies",
            "split_notes"]

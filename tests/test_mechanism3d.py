@@ -78,3 +78,115 @@ def test_corbel_dome_mechanism_is_drawn_and_read_not_every_joint_both():
     assert len(marked) == MOST_MARKED_3D
     motion = np.asarray(res.mechanism.rates)
     assert min(motion[list(marked)]) >= max(np.delete(motion, list(marked)))
+
+
+def test_vertex_search_is_bounded_by_work_not_time(monkeypatch):
+    """The same command gives the same mechanism at any load of the machine: the vertex
+    search passes its solvers iteration budgets and no time limit, and a clock that
+    runs 1,000 s per reading (a machine so loaded that any time limit would pass) leaves
+    the corbel dome's mechanism as it is (one of the face, with the same rates)."""
+    import time
+
+    import scipy.optimize
+
+    import rigidblocks.methods.vertex as vertex
+
+    sc = build("corbel_dome")
+    first = rb.max_load_multiplier(sc)
+    seen: list[dict] = []
+    linprog, solve = scipy.optimize.linprog, vertex.solve
+
+    def lp(*a, **k):
+        seen.append(k.get("options", {}))
+        return linprog(*a, **k)
+
+    def cone(p, name, **k):
+        seen.append(k)
+        return solve(p, name, **k)
+
+    clock = [time.perf_counter()]
+
+    def slow() -> float:
+        clock[0] += 1000.0
+        return clock[0]
+
+    monkeypatch.setattr(scipy.optimize, "linprog", lp)
+    monkeypatch.setattr(vertex, "solve", cone)
+    monkeypatch.setattr(time, "perf_counter", slow)
+    monkeypatch.setattr(time, "monotonic", slow)
+    again = rb.max_load_multiplier(sc)
+    assert seen and not any("time_limit" in s for s in seen)
+    assert {s.get("maxiter", s.get("max_iter")) for s in seen} <= {
+        vertex.LP_ITERATIONS, vertex.CONE_ITERATIONS}
+    assert again.mechanism.kind == first.mechanism.kind != "blend"
+    np.testing.assert_array_equal(again.mechanism.rates, first.mechanism.rates)
+
+
+def test_dome_blocks_coloured_by_speed_and_named_fastest_first():
+    """The dome's 61 blocks each move on their own: 61 body colours could not be told
+    apart, so each block is coloured by its speed (pale for the slowest, SPEED_COLOURS'
+    last for the fastest), the legend gives the scale, and the answer names the fastest
+    blocks, with "and N more", the same block first as the legend."""
+    from rigidblocks.answer import answer_block, block_reach
+    from rigidblocks.plotting.marks import SPEED_COLOURS, mechanism_colours, speed_colour
+    from rigidblocks.scene.geometry import scene_weights
+
+    sc = build("corbel_dome")
+    res = rb.max_load_multiplier(sc)
+    cen = scene_weights(sc)[1]
+    colours, legend = mechanism_colours(sc, res, cen)
+    reach = block_reach(sc, res.mechanism.velocities, cen)
+    fastest = int(np.argmax(reach))
+    assert colours[fastest] == SPEED_COLOURS[-1] == speed_colour(1.0)
+    assert colours[int(np.flatnonzero(sc.support_mask)[0])] is None
+    assert len({c for c in colours if c}) > 10  # a scale, not one colour
+    assert [lab.split(" %")[0] for _, lab in legend] == [
+        "block speed 10", "block speed 50", "block speed 100"]
+    assert sc.blocks[fastest].id in legend[-1][1]
+    (why,) = [r for r in answer_block(sc, res).reasons if "on its own" in r]
+    assert why.split("fastest: ")[1].startswith(sc.blocks[fastest].id + ", ")
+    assert why.endswith(" and 56 more")
+
+
+def test_few_bodies_coloured_each_and_named():
+    """The arch's three bodies (Heyman's four-hinge mechanism) get three colours, the
+    answer names each by its two fastest blocks; the box stack's one body is one colour."""
+    from rigidblocks.answer import block_reach, bodies_text
+    from rigidblocks.plotting.marks import BODY_COLOURS, mechanism_colours
+    from rigidblocks.scene.geometry import scene_weights
+
+    sc = rb.read_scene(EXAMPLES / "arch.json")
+    res = rb.max_load_multiplier(sc)
+    colours, legend = mechanism_colours(sc, res, scene_weights(sc)[1])
+    bodies = rigid_bodies(res)
+    assert [c for c, _ in legend] == list(BODY_COLOURS[:3])
+    for k, body in enumerate(bodies):
+        assert {colours[i] for i in body} == {BODY_COLOURS[k]}
+    text = bodies_text(res, sc)
+    assert text.count(";") == 2 and "3 rigid bodies" in text
+    reach = block_reach(sc, res.mechanism.velocities)
+    for named, body in zip(text.split(": ", 1)[1].split("; "), bodies, strict=True):
+        fastest = sc.blocks[max(body, key=lambda i: reach[i])].id
+        assert named.startswith(fastest + ", ")
+        assert named.endswith(f" and {len(body) - 2} more") or len(body) == 2
+    box = rb.read_scene(EXAMPLES / "box_stack_3d.json")
+    rbox = rb.max_load_multiplier(box)
+    colours, legend = mechanism_colours(box, rbox, scene_weights(box)[1])
+    assert len(legend) == 1 and "one rigid body" in legend[0][1]
+    assert {c for c in colours if c} == {BODY_COLOURS[0]}
+
+
+def test_report_legend_and_view_colour_the_dome_by_speed():
+    """The report's 3D view gets each block's colour and its legend the speed scale."""
+    from rigidblocks.reporting.html import render
+    from rigidblocks.reporting.view3d import view_data
+
+    sc = build("corbel_dome")
+    res = rb.max_load_multiplier(sc)
+    m = view_data(sc, res)["mechanism"]
+    assert len(m["colours"]) == len(sc.blocks) and m["colours"][0] is None  # the slab
+    assert m["moving"] == [c is not None for c in m["colours"]]
+    page = render(sc, res)
+    for colour, label in m["legend"]:
+        assert f'background:{colour}"></span>{label.replace(chr(39), "&#x27;")}' in page
+    assert "moving block (mechanism)" not in page

@@ -122,11 +122,6 @@ FORCES_SPAN = "forces span"
 #: blocks they act on is noted: the limit is an ill-conditioned infimum (the forces grow
 #: without bound as the limit is approached), not a value with moderate forces
 FORCE_WARN = 1e4
-#: the least wall-clock time (s) the vertex search of a mechanism is given: the README's
-#: 62-block corbel dome needs 0.4-0.7 s of CPU, 0.8-1.4 s of wall time at a load average
-#: of 6.7 on 2 cores, so a floor of 1 s drew the blend instead on a busy machine (a
-#: different answer to the same command, and a failing test)
-VERTEX_TIME_FLOOR = 5.0
 #: forces of the state at f* found from lambda*(f) above FORCE_WARN are the structure's
 #: scale, not an infimum's, where they grew from the first upper end's by at least this
 #: many times less than an infimum's 1 / (f - f*) growth would
@@ -1043,10 +1038,7 @@ class ConvexMethod(Method):
             return res.y[eq], "blend"
         self.progress.stage = "vertex mechanism"
         with self.timings.stage("mechanism"):
-            # a vertex is worth at most the limit problem's own time again, and never
-            # less than VERTEX_TIME_FLOOR
-            vd = vertex_dual(prob, res, eq, self.system.dofs,
-                             time_limit=max(VERTEX_TIME_FLOOR, res.solve_time))
+            vd = vertex_dual(prob, res, eq, self.system.dofs)
         if vd is None:
             self.notes.append("mechanism: the blend of the optimal face (no vertex could "
                               "be found)")

@@ -25,8 +25,6 @@ dome).
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 import scipy.sparse as sp
 
@@ -52,14 +50,25 @@ APEX_TOL = 1e-7
 APEX_EDGES = 16
 #: weight of the multipliers' sum after b^T y in the second objective (relative)
 LEX_WEIGHT = 1e-3
+#: the search is bounded by work, not by time, so that its answer does not depend on
+#: the machine's load: HiGHS' iterations (simplex, and interior point where it checks
+#: feasibility) per linear program. Measured (CPU): the 62-block corbel dome's cone LP
+#: ends without a solution after 1,804 dual simplex iterations (0.15 s; the cone
+#: problems answer), the 127-block 3D wall's after 20 (0.02 s), the 1,009-block 3D
+#: wall's (32 courses x 31) after 62 (0.15 s, 2.4 ms an iteration), the 2D arch's in
+#: presolve; the 1,009-block 2D wall's interior-point check after 2
+LP_ITERATIONS = 5_000
+#: ... and Clarabel's iterations per cone problem: the corbel dome's two take 9 and 19
+CONE_ITERATIONS = 100
 
 
 def vertex_dual(prob: ConicProblem, res: SolverResult, eq_rows: slice, dofs: int,
-                time_limit: float = 60.0) -> tuple[np.ndarray, str] | None:
+                ) -> tuple[np.ndarray, str] | None:
     """Duals at a vertex (LP) or extreme point (cones) of the optimal face, and which
     ("vertex" or "extreme"); None when the restricted problem cannot be solved or its
     solution's objective exceeds the interior-point dual's by more than OPTIMAL_GAP
-    (relative), or when the search needs more than ``time_limit`` seconds. The
+    (relative), or when a solve reaches its budget (LP_ITERATIONS, CONE_ITERATIONS:
+    work, never time, so the answer is the same on a loaded machine). The
     objective b^T y of the duals is the multiplier at which their mechanism's work
     balances: compare it with lambda*.
 
@@ -111,28 +120,23 @@ def vertex_dual(prob: ConicProblem, res: SolverResult, eq_rows: slice, dofs: int
     n_eq_k = int(np.sum(idx < ne))
     n_lin_k = int(np.sum((idx >= ne) & (idx < ne + nl)))
     if not prob.soc:
-        yv = _linear_vertex(prob, idx, n_eq_k, At, rhs, bound, time_limit)
+        yv = _linear_vertex(prob, idx, n_eq_k, At, rhs, bound)
         return None if yv is None else (yv, "vertex")
-    # the time is shared: half for the LP, the rest for the cone problems
-    t0 = time.perf_counter()
-    lp = _cone_lp(prob, idx, n_eq_k, n_lin_k, cone_rows, At, rhs, s, bound, time_limit / 2)
+    lp = _cone_lp(prob, idx, n_eq_k, n_lin_k, cone_rows, At, rhs, s, bound)
     if lp is not None:
         return lp, "vertex"
-    left = time_limit - (time.perf_counter() - t0)
-    if left <= 0:
-        return None
-    return _cone_extreme(prob, idx, n_eq_k, n_lin_k, cone_rows, At, rhs, bound, y, left)
+    return _cone_extreme(prob, idx, n_eq_k, n_lin_k, cone_rows, At, rhs, bound, y)
 
 
 def _linear_vertex(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, At: sp.csc_matrix,
-                   rhs: np.ndarray, bound: float, time_limit: float) -> np.ndarray | None:
+                   rhs: np.ndarray, bound: float) -> np.ndarray | None:
     """The restricted dual of a linear program by HiGHS' dual simplex: a vertex."""
     from scipy.optimize import linprog
 
     w = np.concatenate([np.zeros(n_eq_k), np.ones(len(idx) - n_eq_k)])
     bounds = [(None, None)] * n_eq_k + [(0, None)] * (len(idx) - n_eq_k)
     lp = dict(A_ub=prob.b[idx][None, :], b_ub=[bound + BOUND_TOL * max(1.0, abs(bound))],
-              A_eq=At, b_eq=rhs, bounds=bounds, options={"time_limit": time_limit})
+              A_eq=At, b_eq=rhs, bounds=bounds, options={"maxiter": LP_ITERATIONS})
     # where the active set taken at the interior point's tolerances leaves the
     # restricted problem without a solution (large walls), HiGHS' interior-point
     # method says so in a fraction of the simplex's time (1,009-block wall: 0.08 s
@@ -165,7 +169,7 @@ def _cone_directions(s: np.ndarray, rows: np.ndarray, scale: float) -> np.ndarra
 
 def _cone_lp(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int,
              cone_rows: list[np.ndarray], At: sp.csc_matrix, rhs: np.ndarray,
-             s: np.ndarray, bound: float, time_limit: float) -> np.ndarray | None:
+             s: np.ndarray, bound: float) -> np.ndarray | None:
     """The restricted dual as a linear program: each active cone's dual is a
     non-negative combination of the directions :func:`_cone_directions` allows
     (complementarity y . s = 0 leaves one where the slack is on the cone's boundary),
@@ -196,7 +200,7 @@ def _cone_lp(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int,
     bounds = [(None, None)] * n_eq_k + [(0, None)] * (n_lin_k + n_g)
     out = linprog(w, A_ub=b_row[None, :], b_ub=[bound + BOUND_TOL * max(1.0, abs(bound))],
                   A_eq=A_eq, b_eq=rhs, bounds=bounds, method="highs-ds",
-                  options={"time_limit": time_limit})
+                  options={"maxiter": LP_ITERATIONS})
     if out.status != 0:
         return None
     y = np.zeros(len(prob.b))
@@ -210,8 +214,7 @@ def _cone_lp(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int,
 
 def _cone_extreme(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int,
                   cone_rows: list[np.ndarray], At: sp.csc_matrix, rhs: np.ndarray,
-                  bound: float, y_ip: np.ndarray, time_limit: float,
-                  ) -> tuple[np.ndarray, str] | None:
+                  bound: float, y_ip: np.ndarray) -> tuple[np.ndarray, str] | None:
     """The restricted dual with its cones, solved by Clarabel: an extreme point of the
     face where the minimiser is unique. First the sum of the multipliers alone; where
     its minimiser lies off the optimal face (its multiplier b^T y more than
@@ -238,15 +241,11 @@ def _cone_extreme(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int
     A = sp.vstack(blocks, format="csc")
     lex = prob.b[idx] / max(abs(bound), 1e-300) + \
         LEX_WEIGHT * w / (float(w @ np.abs(y_ip[idx])) or 1.0)
-    t0 = time.perf_counter()
     for objective in (w, lex):
-        left = time_limit - (time.perf_counter() - t0)
-        if left <= 0:
-            return None
         dual = ConicProblem(c=objective, A=A, b=np.concatenate(rhs_all),
                             n_eq=At.shape[0], n_nonneg=n_lin_k,
                             soc=tuple(len(c) for c in cones))
-        r = solve(dual, "clarabel", time_limit=left)
+        r = solve(dual, "clarabel", max_iter=CONE_ITERATIONS)
         if r.status != OPTIMAL:
             continue
         yv = np.zeros(len(prob.b))

@@ -33,6 +33,16 @@ MOST_MARKED_3D = 12
 #: joint, or a joint's end that carries nothing): interior-point force states leave
 #: round-off of about 1e-5 of the largest force where the exact state has zero
 ZERO_FORCE = 1e-4
+#: a 3D mechanism of at most this many rigid bodies colours each body (BODY_COLOURS);
+#: one of more bodies is coloured by the blocks' speed (a distributed mechanism, a
+#: corbel dome's, moves its 61 blocks each on its own: 61 colours cannot be told apart)
+MOST_BODIES_COLOURED = 6
+BODY_COLOURS = (MOVING_COLOUR, "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#bcbd22")
+#: a block's speed colour runs through these, from the slowest moving block's (pale)
+#: to the fastest's (dark): hinge (red) and sliding (blue) marks stay visible on both
+SPEED_COLOURS = ("#fff3e0", "#f2a35e", "#7a3410")
+#: the speeds (share of the fastest) the legend shows a swatch of
+SPEED_LEGEND = (0.1, 0.5, 1.0)
 LAMBDA = "\N{GREEK SMALL LETTER LAMDA}"
 TIMES = "\N{MULTIPLICATION SIGN}"
 
@@ -133,6 +143,49 @@ def marked_joints(result: Any, most: int | None = None) -> dict[str, np.ndarray]
            "open": np.flatnonzero(big & (modes == "open")),
            "left_out": np.flatnonzero(moving & ~big)}
     return out
+
+
+def speed_colour(share: float) -> str:
+    """The colour of a block moving at ``share`` (0 to 1) of the fastest's speed."""
+    rgb = [[int(h[k:k + 2], 16) for k in (1, 3, 5)] for h in SPEED_COLOURS]
+    t = min(max(share, 0.0), 1.0) * (len(rgb) - 1)
+    i = min(int(t), len(rgb) - 2)
+    mix = [a + (t - i) * (b - a) for a, b in zip(rgb[i], rgb[i + 1], strict=True)]
+    return "#" + "".join(f"{round(x):02x}" for x in mix)
+
+
+def mechanism_colours(scene: Scene, result: Any, centroids: np.ndarray
+                      ) -> tuple[list[str | None], list[tuple[str, str]]]:
+    """The colour of each block in a 3D mechanism picture (None: at rest) and the
+    legend's (colour, label) rows: each rigid body its own colour where there are at
+    most MOST_BODIES_COLOURED, else each block by its speed (share of the fastest's)."""
+    from ..answer import block_reach, rigid_bodies
+
+    reach = block_reach(scene, result.mechanism.velocities, centroids)
+    top = float(reach.max(initial=0.0))
+    bodies = rigid_bodies(result)
+    out: list[str | None] = [None] * len(scene.blocks)
+    if not bodies or top <= 0:
+        return out, []
+    ids = [b.id for b in scene.blocks]
+    if len(bodies) <= MOST_BODIES_COLOURED:
+        legend = []
+        for k, body in enumerate(bodies):
+            colour = BODY_COLOURS[k]
+            for i in body:
+                out[i] = colour
+            fast = ids[max(body, key=lambda i: reach[i])]
+            what = f"{len(body)} blocks, fastest {fast}" if len(body) > 1 else fast
+            legend.append((colour, f"rigid body {k + 1} ({what})" if len(bodies) > 1
+                           else f"moving blocks: one rigid body ({what})"))
+        return out, legend
+    for body in bodies:
+        for i in body:
+            out[i] = speed_colour(reach[i] / top)
+    fastest = ids[int(np.argmax(reach))]
+    legend = [(speed_colour(f), f"block speed {100 * f:.0f} % of the fastest's"
+               + (f" ({fastest})" if f == 1 else "")) for f in SPEED_LEGEND]
+    return out, legend
 
 
 def new_axes(dimension: int, n_blocks: int) -> Any:

@@ -30,6 +30,7 @@ from typing import Any
 
 import numpy as np
 
+from ..answer import block_reach
 from ..scene.geometry import scene_size
 from ..scene.model import Scene
 from ..scene.polyhedra import outward_faces, polyhedron_volume_centroid
@@ -38,13 +39,13 @@ from .marks import (
     HINGE_COLOUR,
     LIVE_COLOUR,
     MOST_MARKED_3D,
-    MOVING_COLOUR,
     OPEN_COLOUR,
     SLIDE_COLOUR,
     line_handle,
     load_legend,
     load_marks,
     marked_joints,
+    mechanism_colours,
     new_axes,
     place_legend,
 )
@@ -330,34 +331,33 @@ def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, s
                     extra: list[Any]) -> np.ndarray | None:
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
-    mech = result.mechanism
-    vel = np.asarray(mech.velocities, dtype=float)
-    reach = np.zeros(len(scene.blocks))
-    for i, (b, c, v) in enumerate(zip(scene.blocks, centroids, vel, strict=True)):
-        r = np.linalg.norm(b.points - c, axis=1).max()
-        reach[i] = float(np.linalg.norm(v[:3]) + np.linalg.norm(v[3:6]) * r)
+    vel = np.asarray(result.mechanism.velocities, dtype=float)
+    reach = block_reach(scene, vel, centroids)
     top = float(reach.max(initial=0.0))
     s = displacement_scale if displacement_scale is not None else (
         DISPLACEMENT_FRACTION * size / top if top > 0 else 0.0)
     moved = displaced_vertices(scene, vel, s, centroids)
     free = np.flatnonzero(~scene.support_mask)
-    moving = (reach > 0.01 * top) if top > 0 else np.zeros(len(reach), dtype=bool)
+    colour_of, legend = mechanism_colours(scene, result, centroids)
     faces, colours = [], []
     for i in free:
         fs = _faces(scene, np.array([i]), moved)
         faces.extend(fs)
-        colours.extend([MOVING_COLOUR if moving[i] else FREE_COLOUR] * len(fs))
+        colours.extend([colour_of[i] or FREE_COLOUR] * len(fs))
     fc = np.concatenate([_shade([f], col) for f, col in zip(faces, colours, strict=True)]) \
         if faces else np.zeros((0, 4))
     pc = Poly3DCollection(faces, facecolors=fc, edgecolors=(0, 0, 0, 0.7), linewidths=0.4,
                           zorder=3)
     pc.set_gid("rb-displaced")
-    pc.set_label("collapse mechanism (displaced)")
+    # the moving blocks' colours have their own legend rows (a swatch of the
+    # collection would show the colour of its first face only)
+    pc.set_label("_collapse mechanism (displaced)" if legend else
+                 "collapse mechanism (displaced)")
     ax.add_collection3d(pc)
-    if moving[free].any():
+    if legend:
         from matplotlib.patches import Patch
 
-        extra.append(Patch(facecolor=MOVING_COLOUR, edgecolor="k", label="moving block"))
+        extra.extend(Patch(facecolor=col, edgecolor="k", label=lab) for col, lab in legend)
     styles = {"hinge": (HINGE_COLOUR, 3.0, "hinge line", "rb-hinges"),
               "slide": (SLIDE_COLOUR, 1.8, "sliding joint (outline)", "rb-sliding"),
               "open": (OPEN_COLOUR, 1.8, "opening joint (outline)", "rb-open")}

@@ -134,12 +134,16 @@ def _answer_html(ans: content.Answer) -> str:
             + (f"<ul>{items}</ul>" if items else "") + "</div>")
 
 
-def _view3d_html(mechanism: bool) -> str:
+def _view3d_html(mechanism: bool, moving: list[tuple[str, str]] | None = None) -> str:
+    """The 3D view's canvas, legend and layer switches; ``moving``: the legend's rows of
+    the moving blocks' colours (:func:`rigidblocks.plotting.marks.mechanism_colours`)."""
+    rows = moving or [("#e39a5b", "moving block (mechanism)")]
     legend = (
         '<div class="rb-legend">'
         '<div><span class="sw" style="background:#d9c7a7"></span>block</div>'
         '<div><span class="sw" style="background:#8a8a8a"></span>support</div>'
-        '<div><span class="sw" style="background:#e39a5b"></span>moving block (mechanism)</div>'
+        + "".join(f'<div><span class="sw" style="background:{_e(c)}"></span>{_e(t)}</div>'
+                  for c, t in rows) +
         '<div><span class="ln" style="border-color:#d62728"></span>hinge line (dots at its '
         'ends)</div>'
         '<div><span class="ln" style="border-color:#1f77b4"></span>sliding joint / joint '
@@ -216,10 +220,11 @@ def render(scene: Scene, result: Any = None, *, title: str | None = None) -> str
     else:
         from .view3d import view_data
 
-        parts.append(_view3d_html(getattr(result, "mechanism", None) is not None))
+        data = view_data(scene, result)
+        parts.append(_view3d_html(getattr(result, "mechanism", None) is not None,
+                                  data.get("mechanism", {}).get("legend")))
         scripts += [
-            f'<script type="application/json" id="rb-view-data">'
-            f"{_json(view_data(scene, result))}</script>",
+            f'<script type="application/json" id="rb-view-data">{_json(data)}</script>',
             f"<script>{three_script()}</script>",
             f"<script>{asset('assets/viewer.js')}</script>",
             f"<script>{LAUNCH_3D}</script>",

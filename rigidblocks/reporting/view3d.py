@@ -19,7 +19,14 @@ from typing import Any
 
 import numpy as np
 
-from ..plotting.marks import MOST_MARKED_3D, load_marks, marked_joints, scene_weights
+from ..answer import block_reach
+from ..plotting.marks import (
+    MOST_MARKED_3D,
+    load_marks,
+    marked_joints,
+    mechanism_colours,
+    scene_weights,
+)
 from ..plotting.plot2d import DISPLACEMENT_FRACTION, MIN_ARROW_FRACTION
 from ..plotting.plot3d import joint_force_vectors_3d, mechanism_joints
 from ..scene.geometry import scene_size
@@ -125,10 +132,8 @@ def _mechanism(scene: Scene, result: Any, centroids: np.ndarray, size: float
                ) -> dict[str, Any]:
     mech = result.mechanism
     vel = np.asarray(mech.velocities, dtype=float)
-    reach = np.zeros(len(scene.blocks))
-    for i, (b, cc, v) in enumerate(zip(scene.blocks, centroids, vel, strict=True)):
-        r = np.linalg.norm(b.points - cc, axis=1).max()
-        reach[i] = float(np.linalg.norm(v[:3]) + np.linalg.norm(v[3:6]) * r)
+    reach = block_reach(scene, vel, centroids)
+    colours, legend = mechanism_colours(scene, result, centroids)
     top = float(reach.max(initial=0.0))
     s = DISPLACEMENT_FRACTION * size / top if top > 0 else 0.0
     marks = mechanism_joints(scene, result)
@@ -140,8 +145,8 @@ def _mechanism(scene: Scene, result: Any, centroids: np.ndarray, size: float
             follow.append((own, own))
             kind.append(code[name])
     return {"velocities": f32(vel), "scale": s,
-            "moving": [bool(r > 0.01 * top) for r in reach] if top > 0 else
-            [False] * len(reach),
+            "moving": [c is not None for c in colours],
+            "colours": colours, "legend": [list(r) for r in legend],
             "segments": f32(np.asarray(segs).reshape(-1, 3) if segs else np.zeros((0, 3))),
             "segment_block": u32(np.asarray(follow).ravel() if follow else np.zeros(0)),
             "segment_kind": u32(np.asarray(kind)),

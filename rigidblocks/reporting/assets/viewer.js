@@ -111,7 +111,8 @@
     const cFree = new THREE.Color(0xd9c7a7), cSup = new THREE.Color(0x8a8a8a),
       cMove = new THREE.Color(0xe39a5b);
     for (let i = 0; i < n; i++) {
-      const c = D.support[i] ? cSup : (M && M.moving[i] ? cMove : cFree);
+      const c = D.support[i] ? cSup : (M && M.moving[i] ?
+        (M.colours && M.colours[i] ? new THREE.Color(M.colours[i]) : cMove) : cFree);
       for (let v = vstart[i]; v < vstart[i + 1]; v++) {
         colours[3 * v] = c.r; colours[3 * v + 1] = c.g; colours[3 * v + 2] = c.b;
       }
