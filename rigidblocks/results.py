@@ -265,6 +265,15 @@ def relative_width(lower: float | None, upper: float | None) -> float | None:
     return abs(hi - lo) / scale if scale > 0 else 0.0
 
 
+def within(lower: float, upper: float, rtol: float, atol: float = 0.0) -> bool:
+    """Whether the bracket [lower, upper] (either order) is no wider than ``rtol`` times
+    its larger end plus ``atol``: the accuracy test of the searches' stop and of the
+    numbers they give (never met with an infinite end)."""
+    lo, hi = float(lower), float(upper)
+    width = abs(hi - lo)
+    return math.isfinite(width) and width <= rtol * max(abs(lo), abs(hi), 1e-300) + atol
+
+
 def _finite_or_none(x: float | None) -> float | None:
     """JSON has no infinity: an unbounded accuracy reads null."""
     return x if x is not None and math.isfinite(x) else None

@@ -17,7 +17,7 @@ from typing import Any
 from ..errors import InputError, finite_number
 from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_method
 from ..methods.convex import FRICTION_ATOL, FRICTION_RTOL, VERDICT_RTOL
-from ..results import CheckResult, FrictionResult, LoadResult, relative_width
+from ..results import CheckResult, FrictionResult, LoadResult, relative_width, within
 from ..scene.model import Scene, friction_label, friction_value
 from ..scene.validate import check_load_factor
 from .nonassociative import (
@@ -78,7 +78,7 @@ def _load_factor(scene: Scene, value: Any) -> float:
 def certified(m: Method, lim: Limit, rtol: float, what: str, atol: float = 0.0) -> Limit:
     """The honesty rule of every limit: a number only where its certified bracket holds
     it to the requested accuracy (no wider than ``rtol`` times its larger end plus
-    ``atol``, as the searches stop: :meth:`~rigidblocks.methods.engine.Search.narrow`;
+    ``atol``: :func:`~rigidblocks.results.within`, as the searches stop;
     a limit with a :attr:`~rigidblocks.methods.Limit.resolution` of its own, that no
     larger than ``rtol``); otherwise "undecided" with the bracket and the accuracy it
     reached, said in the notes. The methods' searches aim at ``rtol`` but may end short
@@ -89,10 +89,8 @@ def certified(m: Method, lim: Limit, rtol: float, what: str, atol: float = 0.0) 
     if lim.resolution is not None:
         if reached <= rtol:
             return lim
-    else:
-        lo, hi = float(lim.lower), float(lim.upper)
-        if hi - lo <= rtol * max(abs(lo), abs(hi)) + atol:
-            return lim
+    elif within(lim.lower, lim.upper, rtol, atol):
+        return lim
     m.notes.append(f"{what} is bracketed in [{lim.lower:.10g}, {lim.upper:.10g}]: accuracy "
                    f"{reached:.1e} reached, {rtol:.1e} requested (rtol): no number is "
                    "given")

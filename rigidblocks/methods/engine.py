@@ -24,6 +24,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..results import within
+
 #: the effort bound at the solver's resolution: where trials near the limit decide
 #: nothing, a bracket this narrow (relative) is not narrowed further by stepping past
 #: them, and the method gives its certified end with the bracket. Whether that is a
@@ -124,9 +126,7 @@ class Search:
     def narrow(self, loosest: float = 0.0) -> bool:
         """|good - bad| <= rtol max(|good|, |bad|) + atol (never with an infinite end);
         with ``loosest``, max(rtol, loosest) in place of rtol."""
-        scale = max(abs(self.good), abs(self.bad), 1e-300)
-        return math.isfinite(self.width) and \
-            self.width <= max(self.rtol, loosest) * scale + self.atol
+        return within(self.good, self.bad, max(self.rtol, loosest), self.atol)
 
     def record(self, t: Trial) -> None:
         """Keep ``t`` and move the end on its side."""
