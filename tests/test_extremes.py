@@ -368,7 +368,7 @@ def test_friction_trial_failing_on_its_duals_alone_steers_by_value(monkeypatch,
     duals leaves the dual bound below 0 and a spread of 0.066: R is 3 times that, not a
     lower point (with a margin of 2 it would be); 0.1 added, a spread of 0.22: nothing
     either way. A state that misses equilibrium is never read by value."""
-    from rigidblocks.methods import convex
+    from rigidblocks.methods import relaxation
 
     clean = policy.solve
 
@@ -383,7 +383,7 @@ def test_friction_trial_failing_on_its_duals_alone_steers_by_value(monkeypatch,
     assert rx.res.verified is False and r["dual"] > 1e-2
     assert max(r["primal"], r["gap"]) < 1e-9
     assert rx.unresolved and not rx.by_value  # 3 times its spread
-    monkeypatch.setattr(convex, "SPREAD_MARGIN", 2.0)
+    monkeypatch.setattr(relaxation, "SPREAD_MARGIN", 2.0)
     m, rx = read(0.03)
     assert not rx.positive and rx.by_value and not rx.unresolved
     assert rx.R == pytest.approx(0.2, rel=1e-6) and rx.spread == pytest.approx(0.066, rel=1e-3)
@@ -877,16 +877,16 @@ def test_the_energy_is_scaled_at_limit_states_only(monkeypatch, block_on_base):
     lambda*, where unscaled Clarabel stalled on a 5,006-block wall (200 iterations
     against 71), and not for a verdict away from a limit, where scaling costs an
     iteration or two (13 against 15 on the same wall at f = 0.6)."""
-    from rigidblocks.methods import convex
+    from rigidblocks.methods import force_state
 
     given = []
-    build = convex.energy_problem
+    build = force_state.energy_problem
 
     def recording(*args, reference=None, **kw):
         given.append(reference is not None)
         return build(*args, reference=reference, **kw)
 
-    monkeypatch.setattr(convex, "energy_problem", recording)
+    monkeypatch.setattr(force_state, "energy_problem", recording)
     scene = block_on_base(1.0, 2.0, 0.5)
     for run, at_limit in ((lambda: check(scene, load_factor=0.2), False),
                           (lambda: min_friction(scene, load_factor=0.2), True),
@@ -965,13 +965,13 @@ def test_forces_that_grow_as_towards_an_infimum_are_told_from_a_structures_scale
     stay about the same there (the structure's own scale: a tall wall's base) are not,
     nor those that grew 10 times, far less than that; with no upper end further above,
     nothing tells them apart."""
-    from rigidblocks.methods.convex import _infimum_growth
+    from rigidblocks.methods.load_search import infimum_growth
 
     lo, hi, f_far = 1.0, 1.0001, 1.5
-    assert _infimum_growth((f_far, 1.0 / (f_far - lo)), hi, lo, 1.0 / (hi - lo))
-    assert not _infimum_growth((f_far, 1.0e4), hi, lo, 1.4e4)
-    assert not _infimum_growth((f_far, 1.0e4), hi, lo, 1.0e5)
-    assert _infimum_growth((hi, 1.0e4), hi, lo, 1.0e4)
+    assert infimum_growth((f_far, 1.0 / (f_far - lo)), hi, lo, 1.0 / (hi - lo))
+    assert not infimum_growth((f_far, 1.0e4), hi, lo, 1.4e4)
+    assert not infimum_growth((f_far, 1.0e4), hi, lo, 1.0e5)
+    assert infimum_growth((hi, 1.0e4), hi, lo, 1.0e4)
 
 
 def test_governing_joints_are_ranked_by_their_share():
