@@ -130,6 +130,25 @@ ADAPT = 20
 RCOND_MIN = 1e-12
 
 
+@dataclass(eq=False)
+class _Iterate:
+    """The state of a run between iterations, from which a partial run is resumed
+    (``first_ok`` and the acceleration's memory ``aa`` start afresh with each call)."""
+
+    z: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+    rho: float
+    hist: list[float]
+    k: int = 0
+    next_adapt: int = ADAPT
+    last_ok: np.ndarray | None = None
+    step: float = math.inf
+    dual: float = math.inf
+    first_ok: int | None = None
+    aa: dict[str, Any] = field(default_factory=dict)
+
+
 @dataclass
 class Run:
     """One iteration run at fixed joint laws and load factor (scaled units).
@@ -148,7 +167,7 @@ class Run:
     reason: str = ""
     history: list[float] = field(default_factory=list)
     time: float = 0.0
-    resume: dict[str, Any] | None = field(default=None, repr=False)
+    resume: _Iterate | None = field(default=None, repr=False)
 
 
 class DistortionSolver:
@@ -391,7 +410,7 @@ class DistortionSolver:
     def _iterate(self, laws: _Laws, load_factor: float, tol: float, max_iter: int,
                  window: int, keep_history: bool, optimal: bool, rho: float,
                  alpha: float, anderson: int, decide: bool, partial: bool = False,
-                 resume: dict[str, Any] | None = None) -> Run:
+                 resume: _Iterate | None = None) -> Run:
         """The (accelerated) distortion iteration from the elastic solution.
 
         See the module docstring. ``optimal=False`` stops at the first iterate that is
@@ -402,10 +421,35 @@ class DistortionSolver:
         (``resume=``, ``max_iter`` counted from the start) goes on.
         """
         stol = max(tol, STATE_TOL)
-        last_ok = None
         t0 = time.perf_counter()
-        n = self.P + self.m
         b = self.rhs(load_factor)
+        v0 = self._elastic_start(b, t0)
+        if isinstance(v0, Run):
+            return v0
+        viol = laws.violation(v0)
+        status, reason = ("admissible" if viol <= tol else ""), ""
+        it = resume if resume is not None else _Iterate(laws.project(v0), np.zeros_like(v0),
+                                                        v0, rho, [viol])
+        it.first_ok, it.aa = None, {"S": [], "G": [], "g": math.inf, "restarts": 0}
+        while not status and it.k < max_iter:
+            viol, du = self._iteration(it, laws, v0, alpha, anderson)
+            if self._admissible_at(it, viol, b, tol) and \
+                    (not optimal or (it.step <= stol and it.dual <= stol)):
+                status = "admissible"
+                break
+            if anderson and self._acceleration_spent(it, window):
+                break
+            if it.k == it.next_adapt and not anderson:  # the accelerated phase keeps rho
+                self._balance(it)
+            if decide and it.k % window == 0 and it.k >= 2 * window:
+                status, reason = self._gap_verdict(laws, it, viol, du, b, v0, tol)
+        return self._ended(it, laws, b, status, reason, viol, max_iter, partial,
+                           keep_history, t0)
+
+    def _elastic_start(self, b: np.ndarray, t0: float) -> np.ndarray | Run:
+        """The elastic solution's joint forces (gathered), or the run that ends before
+        any iteration: a mechanism, or an elastic solution out of equilibrium."""
+        n = self.P + self.m
         if self.mechanism:
             if self.loose_rows.any() and np.any(b[self.loose_rows] != 0):
                 # a loaded block without joints: no equilibrium state at all
@@ -420,98 +464,113 @@ class DistortionSolver:
             return Run("failure", x0, 0, math.inf, res0, "mechanism: the elastic solution "
                        "does not meet the equilibrium equations (A C^-1 A^T nearly singular)",
                        time=time.perf_counter() - t0)
-        v0 = self.gather(x0)
-        v = v0
-        z = laws.project(v0)
-        u = np.zeros_like(v0)
-        viol = laws.violation(v)
-        hist = [viol]
-        status, reason, k = "", "", 0
-        if viol <= tol:
-            status = "admissible"
-        next_adapt = ADAPT
-        step = dual = math.inf
-        first_ok: int | None = None
-        if resume is not None:
-            z, u, v, rho, hist = resume["z"], resume["u"], resume["v"], resume["rho"], \
-                resume["hist"]
-            k, next_adapt, last_ok = resume["k"], resume["next_adapt"], resume["last_ok"]
-            step, dual = resume["step"], resume["dual"]
-        aa: dict[str, Any] = {"S": [], "G": [], "g": math.inf, "restarts": 0}
-        while not status and k < max_iter:
-            # distortion delta = rho/(1+rho) (z - u - X0); its self-stress via the projector
-            delta = self.scatter(rho / (1.0 + rho) * (z - u - v0))
-            xs = self.project_equilibrium(delta, np.zeros(self.As.shape[0]))
-            vn = v0 + self.gather(xs)
-            vh = alpha * vn + (1.0 - alpha) * z
-            zn = laws.project(vh + u)
-            du = vh - zn
-            dual = rho * float(np.abs(zn - z).max(initial=0.0))
-            step = float(np.abs(vn - v).max(initial=0.0))
-            z, u = self._anderson(aa, z, u, zn, u + du, anderson)
-            v = vn
-            viol = laws.violation(v)
-            k += 1
-            hist.append(viol)
-            if viol <= tol and float(np.abs(self.As @ self.scatter(v) - b).max()) <= \
-                    1e-9 * (1.0 + float(np.abs(b).max(initial=0.0))):
-                last_ok = v
-                first_ok = k if first_ok is None else first_ok
-                if not optimal or (step <= stol and dual <= stol):
-                    status = "admissible"
-                    break
-            if anderson and first_ok is not None and k - first_ok >= PLAIN_FIRST:
-                break  # admissible but not settling: the plain iteration settles it
-            if anderson and k % window == 0 and k >= AA_GIVE_UP and \
-                    min(hist[k // 2:]) > 0.5 * min(hist[:k // 2 + 1]):
-                break  # the best violation has not halved since k/2: no help from here
-            if k == next_adapt and not anderson:  # the accelerated phase keeps rho
-                # residual balancing: the projector does not depend on rho (same metric)
-                prim = float(np.abs(v - z).max(initial=0.0))
-                if dual > 0 and prim > 0 and not 0.2 < prim / dual < 5.0:
-                    new = min(max(rho * math.sqrt(prim / dual), 1e-4), 1e4)
-                    u *= rho / new
-                    rho = new
-                    aa["S"].clear()
-                    aa["G"].clear()
-                next_adapt = 2 * next_adapt if next_adapt < ADAPT_LAST else -1
-            if decide and k % window == 0 and k >= 2 * window:
-                half = hist[k // 2]
-                # the limit of the violation if it fell like 1/sqrt(k) (slower than the
-                # iteration does when the sets meet): a positive limit is a gap
-                limit = (SQRT2 * viol - half) / (SQRT2 - 1.0)
-                scale = max(1.0, float(np.abs(v).max(initial=0.0)),
-                            float(np.abs(v0).max(initial=0.0)))
-                cert = (self.mechanism_of(laws, du, b, scale)
-                        if viol > GAP * tol and limit > 0.5 * viol else None)
-                if cert is not None:
-                    status = "inadmissible"
-                    reason = (f"the violation tends to {limit:.3g} > 0 (reference-force "
-                              f"units; {half:.3g} at iteration {k // 2}, {viol:.3g} at {k}) "
-                              f"and the loads do net work {cert[0]:.3g} on a virtual motion "
-                              "whose breach of the flow rule leaves no admissible state "
-                              f"with forces below {cert[1]:.2g} times those of the "
-                              "iteration: equilibrium and joint laws do not meet")
-                elif viol <= GAP * tol and viol > STALL * half:
-                    status = "undecided"
-                    reason = (f"stalled: the violation stays at {viol:.3g}, within {GAP:g} "
-                              "x tol of admissibility: a limit state the method cannot "
-                              "decide")
+        return self.gather(x0)
+
+    def _iteration(self, it: _Iterate, laws: _Laws, v0: np.ndarray, alpha: float,
+                   anderson: int) -> tuple[float, np.ndarray]:
+        """One iteration of ``it`` (its step and dual residual recorded): the violation
+        of the new state and the step of the scaled duals."""
+        rho, z, u = it.rho, it.z, it.u
+        # distortion delta = rho/(1+rho) (z - u - X0); its self-stress via the projector
+        delta = self.scatter(rho / (1.0 + rho) * (z - u - v0))
+        xs = self.project_equilibrium(delta, np.zeros(self.As.shape[0]))
+        vn = v0 + self.gather(xs)
+        vh = alpha * vn + (1.0 - alpha) * z
+        zn = laws.project(vh + u)
+        du = vh - zn
+        it.dual = rho * float(np.abs(zn - z).max(initial=0.0))
+        it.step = float(np.abs(vn - it.v).max(initial=0.0))
+        it.z, it.u = self._anderson(it.aa, z, u, zn, u + du, anderson)
+        it.v = vn
+        viol = laws.violation(vn)
+        it.k += 1
+        it.hist.append(viol)
+        return viol, du
+
+    def _admissible_at(self, it: _Iterate, viol: float, b: np.ndarray, tol: float) -> bool:
+        """Whether the state of ``it`` is admissible (within ``tol`` of the joint laws, in
+        equilibrium), recorded as its last admissible state."""
+        if viol <= tol and float(np.abs(self.As @ self.scatter(it.v) - b).max()) <= \
+                1e-9 * (1.0 + float(np.abs(b).max(initial=0.0))):
+            it.last_ok = it.v
+            it.first_ok = it.k if it.first_ok is None else it.first_ok
+            return True
+        return False
+
+    @staticmethod
+    def _acceleration_spent(it: _Iterate, window: int) -> bool:
+        """The accelerated phase ends: admissible but not settling (the plain iteration
+        settles it), or its best violation has not halved since k/2 (no help from
+        here)."""
+        k, hist = it.k, it.hist
+        if it.first_ok is not None and k - it.first_ok >= PLAIN_FIRST:
+            return True
+        return k % window == 0 and k >= AA_GIVE_UP and \
+            min(hist[k // 2:]) > 0.5 * min(hist[:k // 2 + 1])
+
+    @staticmethod
+    def _balance(it: _Iterate) -> None:
+        """Residual balancing of rho (the projector does not depend on rho: same
+        metric), at the iterations ADAPT, 2 ADAPT, ... up to ADAPT_LAST."""
+        prim = float(np.abs(it.v - it.z).max(initial=0.0))
+        dual, rho = it.dual, it.rho
+        if dual > 0 and prim > 0 and not 0.2 < prim / dual < 5.0:
+            new = min(max(rho * math.sqrt(prim / dual), 1e-4), 1e4)
+            it.u *= rho / new
+            it.rho = new
+            it.aa["S"].clear()
+            it.aa["G"].clear()
+        it.next_adapt = 2 * it.next_adapt if it.next_adapt < ADAPT_LAST else -1
+
+    def _gap_verdict(self, laws: _Laws, it: _Iterate, viol: float, du: np.ndarray,
+                     b: np.ndarray, v0: np.ndarray, tol: float) -> tuple[str, str]:
+        """The verdict of a run that has not reached admissibility, with its reason:
+        "inadmissible" where the violation tends to a positive limit and a mechanism
+        certifies it, "undecided" where it stalls within GAP x tol, else none ("")."""
+        k, v = it.k, it.v
+        half = it.hist[k // 2]
+        # the limit of the violation if it fell like 1/sqrt(k) (slower than the
+        # iteration does when the sets meet): a positive limit is a gap
+        limit = (SQRT2 * viol - half) / (SQRT2 - 1.0)
+        scale = max(1.0, float(np.abs(v).max(initial=0.0)),
+                    float(np.abs(v0).max(initial=0.0)))
+        cert = (self.mechanism_of(laws, du, b, scale)
+                if viol > GAP * tol and limit > 0.5 * viol else None)
+        if cert is not None:
+            return "inadmissible", (
+                f"the violation tends to {limit:.3g} > 0 (reference-force "
+                f"units; {half:.3g} at iteration {k // 2}, {viol:.3g} at {k}) "
+                f"and the loads do net work {cert[0]:.3g} on a virtual motion "
+                "whose breach of the flow rule leaves no admissible state "
+                f"with forces below {cert[1]:.2g} times those of the "
+                "iteration: equilibrium and joint laws do not meet")
+        if viol <= GAP * tol and viol > STALL * half:
+            return "undecided", (
+                f"stalled: the violation stays at {viol:.3g}, within {GAP:g} "
+                "x tol of admissibility: a limit state the method cannot "
+                "decide")
+        return "", ""
+
+    def _ended(self, it: _Iterate, laws: _Laws, b: np.ndarray, status: str, reason: str,
+               viol: float, max_iter: int, partial: bool, keep_history: bool,
+               t0: float) -> Run:
+        """The run of ``it`` as it ended: undecided at its budget (with its state to
+        resume where ``partial``), or admissible at its last admissible state where it
+        did not settle."""
+        v, k, hist = it.v, it.k, it.hist
         x = self.scatter(v)
         residual = float(np.abs(self.As @ x - b).max(initial=0.0))
         if partial and not status:
-            state = {"z": z, "u": u, "v": v, "rho": rho, "hist": hist, "k": k,
-                     "next_adapt": next_adapt, "last_ok": last_ok, "step": step,
-                     "dual": dual}
             return Run("", x, k, viol, residual, "", list(hist) if keep_history else [],
-                       time.perf_counter() - t0, resume=state)
-        if not status and last_ok is not None:
-            status, v = "admissible", last_ok
+                       time.perf_counter() - t0, resume=it)
+        if not status and it.last_ok is not None:
+            status, v = "admissible", it.last_ok
             x = self.scatter(v)
             viol = laws.violation(v)
             residual = float(np.abs(self.As @ x - b).max(initial=0.0))
             reason = (f"admissible; the iteration budget ({max_iter}) ended before the "
-                      f"state settled (last step {step:.2g}, dual residual {dual:.2g})")
+                      f"state settled (last step {it.step:.2g}, dual residual "
+                      f"{it.dual:.2g})")
         if not status:
             status = "undecided"
             reason = (f"no convergence within the iteration budget ({max_iter} iterations, "
