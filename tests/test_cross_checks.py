@@ -203,10 +203,11 @@ def test_every_back_end_certifies_its_own_statuses(solver, kind):
     solved again by Clarabel: before, every back end but Clarabel and OSQP's
     infeasible ones came without one."""
     from rigidblocks.solvers import Runner
+    from rigidblocks.solvers.policy import VERDICT
 
     prob = tiny(*(INFEASIBLE_LP if kind == "infeasible" else UNBOUNDED_LP))
     runner = Runner(solver)
-    res = runner.run(prob, "tiny", tight=True)
+    res = runner.run(prob, "tiny", VERDICT)
     assert res.status == kind
     assert not runner.rejected and runner.answered_by == [solver], runner.rejected
     if solver != "clarabel" or kind == "infeasible":  # Clarabel's rays are its own

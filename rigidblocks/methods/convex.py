@@ -24,7 +24,7 @@ from ..errors import InputError
 from ..problems.formulation import Scaling
 from ..scene.model import Scene
 from ..solvers import INFEASIBLE, UNBOUNDED, Runner, SolverResult
-from ..solvers.policy import describe
+from ..solvers.policy import Ladder, describe, ladder_of
 from .base import ADMISSIBLE, Limit, Method, Progress, Timings, Verdict
 from .force_state import STATE_SLACK, ForceStates
 from .friction_search import FrictionSearch
@@ -122,18 +122,19 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
         finally:
             self.timings.add("solve", self.runner.wall_time - w0, time.process_time() - c0)
 
-    def solve(self, problem: Any, what: str, tight: bool = False,
-              confirm: bool = False, refine: bool = True, stall: bool = True) -> SolverResult:
-        """Solve ``problem`` (named ``what`` in notes) through the runner and its policy,
-        as the "solve" stage: at the tight tolerances (``tight``), the confirming ones
-        (``confirm``), with or without the policy's refined retry (``refine``) and stall
-        stop (``stall``); the notes say once where tolerances went out of reach or a
-        back end's answers were solved again. For problems built on this method's
-        system by other modules (the non-associative analysis)."""
+    def solve(self, problem: Any, what: str, ladder: Ladder | None = None, *,
+              tight: bool = False, stall: bool = True) -> SolverResult:
+        """Solve ``problem`` (named ``what`` in notes) through the runner up the rungs of
+        ``ladder`` (:class:`~rigidblocks.solvers.policy.Ladder`; where it is not given,
+        the one of the flags ``tight`` and ``stall``,
+        :func:`~rigidblocks.solvers.policy.ladder_of`), as the "solve" stage; the notes
+        say once where tolerances went out of reach or a back end's answers were solved
+        again. For problems built on this method's system by other modules too (the
+        non-associative analysis)."""
+        ladder = ladder or ladder_of(tight, stall)
         with self._solve_stage():
             n = len(self.runner.rejected)
-            res = (self.runner.confirm(problem, what) if confirm
-                   else self.runner.run(problem, what, tight, refine=refine, stall=stall))
+            res = self.runner.run(problem, what, ladder)
             if self.runner.out_of_reach and not self._near_noted:
                 self._near_noted = True
                 # the back end that went on at 1e-9 (the fallback's, where another

@@ -10,7 +10,7 @@ from ..errors import SolverFailure
 from ..problems.formulation import energy_problem
 from ..results import ForceState
 from ..solvers import OPTIMAL
-from ..solvers.policy import LP_ONLY, describe
+from ..solvers.policy import ESTIMATE, LP_ONLY, STATE, describe
 from .base import Verdict
 from .relaxation import FORCE_WARN, Relaxation
 
@@ -45,7 +45,7 @@ class ForceStates:
             prob, jr = energy_problem(self.system, self.vscaling, self.f_joint(f),
                                       load_factor, 0.0, self.pyramid)
         try:
-            res = self.solve(prob, "force-state", refine=False)
+            res = self.solve(prob, "force-state", STATE)
         except SolverFailure:
             return None
         if res.status != OPTIMAL or res.verified is False:
@@ -92,7 +92,7 @@ class ForceStates:
             # solved once: where the interior-point iteration stalls near a limit, a
             # retry with other settings stalls too (5,006-block wall at f*: AlmostSolved
             # after 200 iterations, twice), and the solved problem's state serves
-            res = self.solve(prob, "force-state", refine=False)
+            res = self.solve(prob, "force-state", STATE)
             status = res.raw_status if res.status != OPTIMAL else None
             if status is None and res.verified is False:
                 status = f"{res.raw_status}, failing its check ({describe(res.residuals)})"
@@ -122,7 +122,7 @@ class ForceStates:
                                   rx.R + STATE_SLACK, self.pyramid,
                                   reference=rx.res.z[rx.prob.cols["x"]])[0]
         try:
-            res = self.solve(prob, "force-state")
+            res = self.solve(prob, "force-state", ESTIMATE)
         except SolverFailure:
             return big
         if res.status != OPTIMAL or res.verified is False:

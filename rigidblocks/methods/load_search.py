@@ -13,8 +13,8 @@ import numpy as np
 
 from ..errors import SolverFailure
 from ..problems.formulation import build_max_load
-from ..solvers import INFEASIBLE, OPTIMAL, UNBOUNDED, SolverResult
-from ..solvers.policy import FINER_SETTINGS
+from ..solvers import INFEASIBLE, UNBOUNDED, SolverResult
+from ..solvers.policy import ESTIMATE, FINER_VALUE, VALUE, Ladder
 from . import load_rules
 from .base import ADMISSIBLE, Limit, Verdict
 from .engine import WIDE, Search, Trial, run
@@ -42,22 +42,17 @@ class LoadSearch:
     """The search for f* of :class:`~rigidblocks.methods.convex.ConvexMethod` on
     lambda*(f) (a part of it)."""
 
-    def _max_load(self, f: float, tight: bool = True,
-                  finer: bool = False) -> tuple[Any, Any, SolverResult]:
-        """The max-load LP (SOCP) at uniform friction ``f``, solved and checked: lambda* is
-        read from it, at the tight tolerances and without a stall stop (``tight``), else
-        at the back end's defaults; with ``finer``, first at
-        :data:`~rigidblocks.solvers.policy.FINER_SETTINGS` (where that solve ends short
-        of a checked optimum, as usual after it)."""
+    def _max_load(self, f: float,
+                  ladder: Ladder = VALUE) -> tuple[Any, Any, SolverResult]:
+        """The max-load LP (SOCP) at uniform friction ``f``, solved up ``ladder`` and
+        checked: lambda* is read from it (:data:`~rigidblocks.solvers.policy.VALUE`;
+        :data:`~rigidblocks.solvers.policy.FINER_VALUE` where a search's values need
+        finer settings, :data:`~rigidblocks.solvers.policy.ESTIMATE` for the first
+        trial of a search, far from f* as a rule)."""
         with self.timings.stage("build"):
             prob, jr = build_max_load(self.system, self.lscaling, self.f_joint(f),
                                       self.pyramid)
-        if tight and finer:
-            with self._solve_stage():
-                res = self.runner.attempt(prob, "maximum load", FINER_SETTINGS)
-            if res is not None and res.status in (OPTIMAL, INFEASIBLE) and res.verified:
-                return prob, jr, res
-        return prob, jr, self.solve(prob, "maximum load", tight=tight, stall=not tight)
+        return prob, jr, self.solve(prob, "maximum load", ladder)
 
     def _friction_by_load(self, lf: float, rtol: float, first: float) -> Limit | None:
         """f* at load factor ``lf`` > 0 as the friction where lambda*(f) = ``lf`` (the
@@ -121,7 +116,8 @@ class LoadSearch:
             data = SimpleNamespace(attempts=attempts, tight=tight, margin=0.0, finer=False,
                                    at=None, by_value=False)
             try:
-                prob, jr, res = self._max_load(f, tight, finer)
+                prob, jr, res = self._max_load(f, (FINER_VALUE if finer else VALUE)
+                                               if tight else ESTIMATE)
             except SolverFailure:
                 if tight:
                     raise

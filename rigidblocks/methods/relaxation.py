@@ -22,7 +22,7 @@ import numpy as np
 
 from ..problems.formulation import build_relaxation, joint_violations
 from ..solvers import OPTIMAL, SolverResult
-from ..solvers.policy import VERIFY_TOL, describe
+from ..solvers.policy import CONFIRMATION, VERDICT, VERIFY_TOL, describe
 from .base import ADMISSIBLE, INADMISSIBLE, UNDECIDED, Verdict, ranked_breaches
 
 #: a relaxation below this fraction of the largest force of its state counts as zero
@@ -186,7 +186,7 @@ class Verdicts:
         computed here) or its dual bound, which carries its dual residual, is above
         the threshold."""
         prob, jr = self._relaxation_problem(f, load_factor)
-        rx = self._read(prob, jr, self.solve(prob, "relaxation", tight=True), f,
+        rx = self._read(prob, jr, self.solve(prob, "relaxation", VERDICT), f,
                         self_certified)
         return self._confirmed(rx) if confirm else rx
 
@@ -194,7 +194,7 @@ class Verdicts:
         """An undecided relaxation solved again at the confirming tolerances."""
         if rx.decided or rx.unresolved.startswith(FORCES_SPAN):
             return rx
-        again = self._read(rx.prob, rx.jr, self.solve(rx.prob, "relaxation", confirm=True),
+        again = self._read(rx.prob, rx.jr, self.solve(rx.prob, "relaxation", CONFIRMATION),
                            rx.f)
         return again if again.decided or not rx.unresolved else rx
 

@@ -19,6 +19,11 @@ back end is driven to that answer is decided here, in one place:
   the next of those settings with each solve: where its iteration stalls, or ends, with
   an iterate that meets their tolerances, that is the next solve's answer
   (:mod:`~rigidblocks.solvers.clarabel_backend`), and that solve is not needed;
+* **ladders**: which of these settings and retries a solve climbs through is declared
+  once per intent (:class:`Ladder`): :data:`VERDICT` (the relaxations), :data:`VALUE`
+  and :data:`FINER_VALUE` (lambda*), :data:`CONFIRMATION` (a verdict near its
+  threshold), :data:`STATE` (the least-energy QP) and :data:`ESTIMATE` (the back end's
+  defaults);
 * **verification**: every answer is checked against the problem itself before it is
   passed on (:func:`~rigidblocks.solvers.base.residuals`: an optimal answer's primal and
   dual residuals and duality gap, an infeasibility certificate's residual and margin)
@@ -71,7 +76,7 @@ TIGHT_SETTINGS = {
 NEAR_TIGHT_SETTINGS = {"clarabel": {"tol_gap_abs": 1e-9, "tol_gap_rel": 1e-9,
                                     "tol_feas": 1e-9}}
 #: KKT regularisation of the tight solves whose answer is read as a number (lambda*,
-#: ``stall=False`` in :meth:`Runner.run`): Clarabel's static regularisation (default 1e-8)
+#: the :data:`VALUE` ladder): Clarabel's static regularisation (default 1e-8)
 #: bounds the dual residual its answers reach, and the dual residual, times forces of
 #: thousands of block loads, the accuracy of the objective. The max-load LP of a
 #: 1,009-block wall at f = 1.18372: lambda* 0.9999956 with the default (dual residual
@@ -130,6 +135,64 @@ _DONE = (OPTIMAL, INFEASIBLE, UNBOUNDED)
 VERIFY_TOL = 1e-6
 #: smallest relative margin -b'y of a verified infeasibility certificate
 CERT_MARGIN = 1e-9
+
+
+@dataclass(frozen=True)
+class Ladder:
+    """The settings a solve climbs through for one intent (:meth:`Runner.run`): the
+    retries of the module docstring, declared once per intent.
+
+    ``tight``: first at :data:`TIGHT_SETTINGS` (at :data:`NEAR_TIGHT_SETTINGS` once
+    those were out of the back end's reach), then at 1e-9, then at the back end's
+    defaults; else at the defaults alone. ``value``: a number is read from the answer:
+    the tight rungs take :data:`VALUE_SETTINGS` (retried once without them) and are not
+    stopped where they stall with an iterate that meets the next rung's tolerances.
+    ``finer``: one checked solve at :data:`FINER_SETTINGS` first
+    (:meth:`Runner.attempt`). ``refine``: an end short of optimal within
+    :data:`REFINE_WITHIN` iterations is retried at :data:`REFINE_SETTINGS`.
+    ``confirm``: at the back end's entry of :data:`CONFIRM_BY` (:meth:`Runner.confirm`).
+    Every answer is checked, whatever the ladder (module docstring)."""
+
+    intent: str
+    tight: bool = False
+    value: bool = False
+    finer: bool = False
+    refine: bool = True
+    confirm: bool = False
+
+    @property
+    def stall(self) -> bool:
+        """Whether a solve is stopped where it stalls with an iterate that meets the next
+        rung's tolerances (not for a value: see :data:`VALUE`)."""
+        return not self.value
+
+
+#: a verdict against a threshold (the relaxations): tight, refined, stopped where stalled
+VERDICT = Ladder("verdict", tight=True)
+#: a number read from the answer (lambda* from the max-load LP): tight with the finer
+#: KKT regularisation, never stopped where stalled (on the 20,093- and 50,065-block walls
+#: lambda* so stopped at 1e-9 was 1.3e-3 and 4.8e-3 below the 1e-10 answer)
+VALUE = Ladder("value", tight=True, value=True)
+#: the same, at FINER_SETTINGS first: the max-load LPs of a search whose values
+#: VALUE_SETTINGS resolve too coarsely
+FINER_VALUE = Ladder("value", tight=True, value=True, finer=True)
+#: a verdict left near its threshold, solved again tighter
+CONFIRMATION = Ladder("confirmation", confirm=True)
+#: the least-energy force state: the back end's defaults, solved once (where the
+#: interior-point iteration stalls near a limit, a refined retry stalls too: the
+#: 5,006-block wall at f*, AlmostSolved after 200 iterations twice)
+STATE = Ladder("state", refine=False)
+#: an estimate at the back end's defaults, with the refined retry: the first max-load LP
+#: of a search (far from f* as a rule), a bound on the forces of a state
+ESTIMATE = Ladder("estimate")
+
+
+def ladder_of(tight: bool = False, stall: bool = True) -> Ladder:
+    """The ladder of a solve asked for by flags: :data:`VERDICT` (``tight``),
+    :data:`VALUE` (``tight`` without ``stall``) or :data:`ESTIMATE`."""
+    if not tight:
+        return ESTIMATE
+    return VERDICT if stall else VALUE
 
 
 def check_solver(name: str) -> str:
@@ -202,27 +265,25 @@ class Runner:
             self.progress.iterations = self.iterations
         return res
 
-    def run(self, problem: ConicProblem, what: str, tight: bool = False,
-            verify: bool = True, refine: bool = True, stall: bool = True) -> SolverResult:
-        """Solve ``problem`` (named ``what`` in errors): optimal, infeasible or unbounded;
-        anything else raises :class:`SolverFailure` with the back end's status. With
-        ``verify`` the answer is checked (module docstring): a failed check is solved
-        again by :data:`FALLBACK`, and what still fails comes back ``verified=False``.
-        Without ``refine``, a solve that ends short of optimal is not retried with
-        :data:`REFINE_SETTINGS` (where the caller has an answer of its own to fall back
-        on). Without ``stall``, a solve is not stopped where it stalls short of its
-        tolerances with an iterate that meets the next solve's: for a number read from
-        the answer (lambda*), not a verdict against a threshold that follows the
-        tolerances (on the 20,093- and 50,065-block walls lambda* so stopped at 1e-9 was
-        1.3e-3 and 4.8e-3 below the 1e-10 answer); such a solve also takes
-        :data:`VALUE_SETTINGS`, as the accuracy of that number rests on its dual
-        residual."""
+    def run(self, problem: ConicProblem, what: str, ladder: Ladder = ESTIMATE,
+            verify: bool = True) -> SolverResult:
+        """Solve ``problem`` (named ``what`` in errors) up the rungs of ``ladder``:
+        optimal, infeasible or unbounded; anything else raises :class:`SolverFailure`
+        with the back end's status. With ``verify`` the answer is checked (module
+        docstring): a failed check is solved again by :data:`FALLBACK` at the tight
+        tolerances, and what still fails comes back ``verified=False``."""
+        if ladder.confirm:
+            return self.confirm(problem, what)
+        if ladder.finer:
+            res = self.attempt(problem, what, FINER_SETTINGS)
+            if res is not None and res.status in (OPTIMAL, INFEASIBLE) and res.verified:
+                return res
         if self.progress is not None:
             self.progress.stage = f"{what} problem"
         check = verify and self.verify
         res = None
         try:
-            res = self._run(problem, what, tight, self.solver, self.settings, refine, stall)
+            res = self._run(problem, what, ladder, self.solver, self.settings)
         except SolverFailure as exc:
             if not check or self.solver == FALLBACK:
                 raise
@@ -232,12 +293,12 @@ class Runner:
             if not check:
                 return res
             res = verified(problem, self._certified(problem, what, res))
-            if res.verified or (res.solver == FALLBACK and tight and not self.settings):
+            if res.verified or (res.solver == FALLBACK and ladder.tight and not self.settings):
                 return res
             rejected = f"{res.solver} {res.status}: {describe(res.residuals)}"
         try:
-            again = verified(problem, self._run(problem, what, True, FALLBACK, {}, refine,
-                                                stall))
+            again = verified(problem, self._run(problem, what, replace(ladder, tight=True),
+                                                FALLBACK, {}))
         except SolverFailure:
             if res is None:
                 raise
@@ -259,7 +320,7 @@ class Runner:
         if cp is None:
             return res
         try:
-            ans = self._run(cp, f"{what} certificate", True, self.solver, self.settings)
+            ans = self._run(cp, f"{what} certificate", VERDICT, self.solver, self.settings)
         except SolverFailure:
             return res
         if ans.status != OPTIMAL or not ans.objective < 0:
@@ -290,19 +351,21 @@ class Runner:
         its check."""
         extra = CONFIRM_BY.get(self.solver)
         if extra is None:
-            return self.run(problem, what, tight=True)
+            return self.run(problem, what, VERDICT)
         # Clarabel confirms at its confirming settings alone, whatever the user's
         own = {} if self.solver == FALLBACK else self.settings
         res = self._solve(problem, self.solver, {**own, **extra})
         if res.status not in _DONE:
-            res = self._run(problem, what, True, self.solver, own)
+            res = self._run(problem, what, VERDICT, self.solver, own)
         res = verified(problem, res)
         if res.verified or self.solver == FALLBACK:
             return res
-        return self.run(problem, what, tight=True)
+        return self.run(problem, what, VERDICT)
 
-    def _run(self, problem: ConicProblem, what: str, tight: bool, solver: str,
-             base: dict, retry: bool = True, stall: bool = True) -> SolverResult:
+    def _run(self, problem: ConicProblem, what: str, ladder: Ladder, solver: str,
+             base: dict) -> SolverResult:
+        """The rungs of ``ladder`` with ``solver`` on top of the settings ``base``."""
+        tight, stall = ladder.tight, ladder.stall
         if problem.P is not None and solver in LP_ONLY:
             solver, base = FALLBACK, {}
         settings = base
@@ -319,7 +382,8 @@ class Runner:
             base if settings is not base else None)
         res = self._solve(problem, solver, settings, after)
         refine = REFINE_SETTINGS.get(solver, {})
-        if (res.status not in _DONE and retry and refine and res.iterations < REFINE_WITHIN
+        if (res.status not in _DONE and ladder.refine and refine
+                and res.iterations < REFINE_WITHIN
                 and not refine.keys() & base.keys()):
             # not given the next solve: its regularised iterates are not the ones that
             # solve would go through (the extruded 1,009-block wall near f*: one that met
@@ -400,8 +464,8 @@ def describe(r: dict) -> str:
     return ", ".join(parts) or "nothing to check"
 
 
-__all__ = ["CERT_MARGIN", "CONFIRM_SETTINGS", "FALLBACK", "FINER_SETTINGS", "LP_ONLY",
-           "REFINE_SETTINGS",
-           "REFINE_WITHIN", "RELAX_SETTINGS", "TIGHT_SETTINGS", "VALUE_SETTINGS",
-           "VERIFY_TOL", "Runner",
-           "check_solver", "describe", "verified"]
+__all__ = ["CERT_MARGIN", "CONFIRMATION", "CONFIRM_SETTINGS", "ESTIMATE", "FALLBACK",
+           "FINER_SETTINGS", "FINER_VALUE", "LP_ONLY", "REFINE_SETTINGS", "REFINE_WITHIN",
+           "RELAX_SETTINGS", "STATE", "TIGHT_SETTINGS", "VALUE", "VALUE_SETTINGS", "VERDICT",
+           "VERIFY_TOL", "Ladder", "Runner", "check_solver", "describe", "ladder_of",
+           "verified"]
