@@ -19,7 +19,13 @@ from rigidblocks import check, max_load_multiplier, min_friction
 from rigidblocks.generators.solids import box, solid
 from rigidblocks.generators.walls import running_bond_wall
 from rigidblocks.io import read_scene, scene_from_dict
+from rigidblocks.methods import friction_rules as fr
 from rigidblocks.methods import open_method
+from rigidblocks.methods.convex import FRICTION_ATOL, FRICTION_RTOL
+from rigidblocks.methods.engine import WIDE, Search, Trial, run
+from rigidblocks.methods.friction_search import GOVERNING_SHARE, trial_of
+from rigidblocks.methods.relaxation import SPREAD_MARGIN, Relaxation
+from rigidblocks.scene.model import Load
 from rigidblocks.solvers import policy
 from rigidblocks.solvers.base import SolverResult, normalised
 from rigidblocks.solvers.clarabel_backend import (
@@ -230,7 +236,7 @@ def test_a_stalled_clarabel_solve_answers_at_the_next_solves_tolerances():
     ({}: whole settings, not changes to the 1e-12 ones), with one that meets 1e-8; where
     it ends short by itself, it carries its last iterate where that meets them."""
     m = open_method(running_bond_wall(20, 20))
-    prob, _ = m._relaxation_problem(1.0, 1.0)
+    prob, _ = m.relaxation_problem(1.0, 1.0)
     tight = {"tol_feas": 1e-12, "tol_gap_abs": 1e-12, "tol_gap_rel": 1e-12}
     alone = solve_clarabel(prob, **tight)
     assert alone.status == "failure" and alone.iterations >= 100 and not alone.next_met
@@ -418,39 +424,69 @@ def test_duals_off_by_a_scale_are_normalised_not_rejected(monkeypatch, block_on_
         assert rx.res.residuals["dual"] < 1e-9
         assert rx.R == pytest.approx(clean[f].R, abs=1e-9)
         assert rx.low == pytest.approx(clean[f].low, rel=1e-6, abs=1e-9)
-    prob, _ = m._relaxation_problem(0.1, 0.3)
+    prob, _ = m.relaxation_problem(0.1, 0.3)
     two = type(prob)(**{**prob.__dict__, "c": prob.c + 1.0})
     assert normalised(two, scaled(prob)) is None
 
 
-def test_a_relaxation_value_within_its_spread_is_no_lower_point(monkeypatch,
-                                                                block_on_base):
+TOL = 1e-9  # the threshold of the synthetic relaxations below
+
+
+def _rx(f: float, R: float | None, low: float = -1.0, spread: float = 0.0,
+        unresolved: str = "") -> Relaxation:
+    """The numbers of a relaxation at f (no solve): value R, dual bound ``low``, slope 1
+    (R = f* - f below f*), threshold TOL."""
+    return Relaxation(R, 1.0, None, None, None, TOL, f, low, 0.0, unresolved, spread)
+
+
+def _certified(fs: float):
+    """R(f) = (fs - f)+ with slope 1, every trial certified (an admissible state above
+    fs, the dual bound at R below)."""
+    def relax(f: float) -> Relaxation:
+        R = max(0.0, fs - f)
+        return _rx(f, R, low=R)
+    return relax
+
+
+def r_search(relax, rtol: float = 1e-7) -> Search:
+    """The search on R(f) of ConvexMethod.friction_limit on the relaxations ``relax(f)``
+    (infinite friction admissible, f = 0 from ``relax``), each read by trial_of."""
+    s = Search(0.0, math.inf, rtol, FRICTION_ATOL)
+    s.record(Trial(math.inf, True, "upper"))
+    s.record(trial_of(0.0, relax(0.0)))
+    return run(s, lambda f: trial_of(f, relax(f)), fr.STOPS, fr.STEPS, fr.AMENDS,
+               budget=fr.BUDGET)
+
+
+def test_a_relaxation_value_within_its_spread_is_no_lower_point():
     """The f* search takes a relaxation's value far above the threshold for a lower
     point even where the dual bound cannot certify it, but not where the duals'
     residual could account for that value (its spread, sum |d_j z_j| on the state): on
     the extruded 5,006-block wall at 1e-9, R = 8.4e-4 = 51 thresholds where the plane
-    wall's state of R = 0 exists, with a spread of 6.0e-3. Here the b = 1, h = 2 block
-    under 0.3 times its weight (f* = 0.3, see above) has its relaxations on
-    [0.3, 0.45] spoilt so: 100 thresholds, no dual bound, a spread of 1. The bracket
-    given still holds f* = 0.3 (taking them as lower points would bracket f* at 0.45),
-    they are read as trials that decide nothing, and the search ends undecided with the
-    bracket and the reason."""
-    from rigidblocks.methods import convex
+    wall's state of R = 0 exists, with a spread of 6.0e-3. A value of 100 thresholds
+    with no dual bound is a lower point by value where it exceeds SPREAD_MARGIN times its
+    spread, and decides nothing within it (with the reason). R(f) = (0.3 - f)+ with such
+    values on [0.3, 0.45]: the bracket still holds f* = 0.3 (taking them as lower
+    points would bracket f* at 0.45), they are trials that decide nothing, and the
+    search ends without a bracket narrow enough for a number."""
+    far = 100 * TOL
+    within = trial_of(0.4, _rx(0.4, far, spread=far / SPREAD_MARGIN * 1.01))
+    assert within.side is None and within.kind == "missed"
+    assert "its duals' residual could account for" in within.why
+    beyond = trial_of(0.4, _rx(0.4, far, spread=far / SPREAD_MARGIN * 0.99))
+    assert beyond.side is False and beyond.kind == "lower-by-value"
+    assert trial_of(0.4, _rx(0.4, far, low=2 * TOL, spread=1.0)).kind == "lower"
+    assert trial_of(0.4, _rx(0.4, 5 * TOL, spread=0.0)).kind == "threshold"  # not far
 
-    read = convex.ConvexMethod._read
+    exact = _certified(0.3)
 
-    def patched(self, prob, jr, res, f, *rest):
-        rx = read(self, prob, jr, res, f, *rest)
-        if 0.3 - 1e-9 <= f <= 0.45 and rx.R is not None:
-            return replace(rx, R=100 * rx.tol, low=-1.0, spread=1.0)
-        return rx
+    def relax(f):
+        return _rx(f, far, spread=1.0) if 0.3 - 1e-9 <= f <= 0.45 else exact(f)
 
-    monkeypatch.setattr(convex.ConvexMethod, "_read", patched)
-    r = min_friction(block_on_base(1.0, 2.0, 0.5), load_factor=0.3, state=False)
-    assert r.bracket[0] is not None and r.bracket[0] <= 0.3 < 0.45 < r.bracket[1]
-    assert r.status == "undecided" and r.friction_factor is None
-    assert any("its duals' residual could account for" in n for n in r.notes)
-    assert not any("rests on the relaxation's value" in n for n in r.notes)
+    s = r_search(relax)
+    assert s.bad <= 0.3 < 0.45 < s.good
+    assert s.of_kind("missed") and not s.of_kind("lower-by-value")
+    assert s.stopped == "missed_too_often" or not s.narrow(WIDE)
 
 
 def test_osqp_at_its_defaults_is_checked():
@@ -681,26 +717,28 @@ def test_top_block_limits_bound_lambda_star_on_walls(courses, per_course):
         assert r.load_multiplier <= bound * (1 + 1e-7)
 
 
-@pytest.fixture
-def relaxation_search(monkeypatch):
-    """The f* search on the relaxation R(f) alone: the search there is at load factor 0
-    or without a live load, and where the search on lambda*(f) hands over."""
-    from rigidblocks.methods import convex
+def as_dead(scene, load_factor: float):
+    """``scene`` with its live body force times ``load_factor`` applied as dead loads at
+    the blocks' centroids (the same loads): its f* is sought on R(f) alone, as under
+    the dead load (the search on lambda*(f) is for live loads)."""
+    system = open_method(scene).system
+    v = np.asarray(scene.live_body_force, float)
+    dead = tuple(Load(scene.blocks[b].id, tuple(float(system.weights[b] * load_factor) * v),
+                      live=False) for b in system.free_blocks)
+    return scene.with_changes(loads=scene.loads + dead, live_body_force=None)
 
-    monkeypatch.setattr(convex.ConvexMethod, "_friction_by_load", lambda *a, **k: None)
 
-
-def test_friction_bracket_ends_where_the_solver_stops_resolving(relaxation_search):
-    """A 17 x 18 running-bond wall under its horizontal live load at full value: Newton's
-    steps on R(f) end with a narrow bracket whose lower end is not certified by the dual
-    bound; just below the certified upper end R is predicted under what the solver
-    certifies, so the search stops there and says so instead of a last probe that could
-    not decide. The answer agrees with the simplex back end (HiGHS: exact duals, so its
-    bracket is tight): f* = 1.0753988 there, and our certified upper end lies within
-    1e-6 above it; lambda* by HiGHS at f = 1.075399 is >= 1 (the wall stands), at
-    1.07539 below 1."""
+def test_friction_bracket_ends_where_the_solver_stops_resolving():
+    """A 17 x 18 running-bond wall under its horizontal body force at full value (as a
+    dead load, so f* is sought on R(f)): Newton's steps on R(f) end with a narrow
+    bracket whose lower end is not certified by the dual bound; just below the
+    certified upper end R is predicted under what the solver certifies, so the search
+    stops there and says so instead of a last probe that could not decide. The answer
+    agrees with the simplex back end (HiGHS: exact duals, so its bracket is tight):
+    f* = 1.0753989 there, and our certified upper end lies within 1e-6 above it; lambda*
+    by HiGHS at f = 1.075399 is >= 1 (the wall stands), at 1.07539 below 1."""
     wall = running_bond_wall(17, 18)
-    r = min_friction(wall, load_factor=1.0, state=False, rtol=1e-7)
+    r = min_friction(as_dead(wall, 1.0), load_factor=0.0, state=False, rtol=1e-7)
     exact = min_friction(wall, load_factor=1.0, state=False, solver="highs", rtol=1e-7)
     assert exact.answered_by == ("highs",) and not exact.rejected  # a real cross-check
     lo, hi = exact.bracket
@@ -709,87 +747,63 @@ def test_friction_bracket_ends_where_the_solver_stops_resolving(relaxation_searc
     assert r.bracket[0] <= lo and r.bracket[1] == r.upper
     assert r.status == ("stable" if r.accuracy <= 1e-7 else "undecided")
     assert any("below what the solver certifies" in n for n in r.notes)
+    assert not any("lambda*(f)" in n for n in r.notes)  # found on R(f)
     assert r.n_solves <= 6
 
 
-def _unchecked_at(monkeypatch, spoil, spoilt=None):
-    """Relaxations at the frictions ``spoil(f)`` picks come back without a checked
-    answer, as when the solver's answer fails its check near a degenerate f*; each such
-    f is appended to the list ``spoilt``."""
-    from rigidblocks.methods import convex
-
-    read = convex.ConvexMethod._read
-
-    def patched(self, prob, jr, res, f, *rest):
-        if spoil(f):
-            if spoilt is not None:
-                spoilt.append(f)
-            return convex.Relaxation(None, 0.0, res, jr, prob, convex.ADMISSIBLE_TOL, f,
-                                     unresolved="the answer fails its check (spoilt)")
-        return read(self, prob, jr, res, f, *rest)
-
-    monkeypatch.setattr(convex.ConvexMethod, "_read", patched)
-
-
-def test_friction_search_steps_past_a_trial_without_a_checked_answer(
-        monkeypatch, block_on_base, relaxation_search):
-    """A b = 1, h = 2 block under a horizontal body force of 0.3 times its weight needs
-    f* = 0.3 (it slides; it would tip at b/h = 0.5). Newton's first step from f = 0
-    lands on 0.3, where the relaxation is made to come back without a checked answer:
-    the search steps up to a certified upper end and closes the bracket around the
-    unsolved trial, so f* is given within 1e-3 with the bracket and the reason in the
-    notes, and the unsolved trial is not solved again (Newton's step from f = 0 and the
-    midpoint of the bracket [0, 0.6] both land on it again); where no trial has a
-    checked answer, it is undecided, never a number."""
-    s = block_on_base(1.0, 2.0, 0.5)
+def test_friction_search_steps_past_a_trial_without_a_checked_answer():
+    """R(f) = (0.3 - f)+ (a b = 1, h = 2 block under 0.3 times its weight slides at
+    f* = 0.3; it would tip at b/h = 0.5). Newton's first step from f = 0 lands on 0.3,
+    where the relaxation comes back without a checked answer (as when the solver's
+    answer fails its check near a degenerate f*): the search steps up to a certified
+    upper end and closes the bracket around the unsolved trial, so f* is bracketed
+    within 1e-3 (a number at the default accuracy), and the unsolved trial is not
+    solved again (Newton's step from f = 0 and the midpoint of the bracket [0, 0.6]
+    both land on it again); where no trial has a checked answer, the search gives up
+    with no certified upper end: never a number."""
+    exact = _certified(0.3)
     spoilt: list[float] = []
-    _unchecked_at(monkeypatch, lambda f: abs(f - 0.3) < 1e-12, spoilt)
-    r = min_friction(s, load_factor=0.3, state=False)
-    assert len(spoilt) == 1
-    assert r.status == "stable"
-    assert 0.3 <= r.friction_factor <= 0.3 * (1 + 1e-3)
-    assert r.bracket[0] <= 0.3 <= r.bracket[1]
-    assert any("failing its check" in n for n in r.notes)
-    _unchecked_at(monkeypatch, lambda f: 0 < f < math.inf)
-    r = min_friction(s, load_factor=0.3, state=False)
-    assert r.status == "undecided" and r.friction_factor is None
-    assert any("spoilt" in n for n in r.notes)
+
+    def relax(f):
+        if abs(f - 0.3) < 1e-12:
+            spoilt.append(f)
+            return _rx(f, None, unresolved="the answer fails its check (spoilt)")
+        return exact(f)
+
+    s = r_search(relax, rtol=FRICTION_RTOL)
+    assert len(spoilt) == 1 and s.of_kind("missed")[0].x == spoilt[0]
+    assert s.bad <= 0.3 <= s.good <= 0.3 * (1 + 1e-3)
+    assert s.narrow() and s.narrow(WIDE) and s.stopped == "narrow_enough"
+    s = r_search(lambda f: _rx(f, None, unresolved="spoilt") if 0 < f < math.inf
+                 else exact(f), rtol=FRICTION_RTOL)
+    assert s.stopped == "missed_too_often" and s.good == math.inf
+    assert "spoilt" in s.last.why
 
 
 @pytest.mark.parametrize("top", [0.30001, 0.3015, 0.33, 0.6])
-def test_a_trial_left_at_the_threshold_bounds_nothing(monkeypatch, block_on_base, top,
-                                                     relaxation_search):
+def test_a_trial_left_at_the_threshold_bounds_nothing(top):
     """A trial the solver leaves at the threshold (its state's breach above the
     threshold, its dual bound below) does not bracket f* from below: R may be zero there
     with a state the solver cannot certify. On the extruded 5,006-block wall one such
     trial at f = 1.2502445, 7.8e-4 below the certified upper end 1.2512172, made that
-    upper end the reported f* where the plane wall certifies f* <= 1.2497654. Here the
-    b = 1, h = 2 block under 0.3 times its weight (closed form: it slides at f* = 0.3,
-    before it tips at b/h = 0.5) has its relaxations on [0.3, top] left so (twice the
-    threshold, no dual bound). The bracket holds f* = 0.3; f is reported only where it
-    is narrower than 1e-3 (top = 0.30001), and the search ends in a few solves however
+    upper end the reported f* where the plane wall certifies f* <= 1.2497654. Here
+    R(f) = (0.3 - f)+ (the b = 1, h = 2 block under 0.3 times its weight: it slides at
+    f* = 0.3, before it tips at b/h = 0.5) is left so on [0.3, top] (twice the
+    threshold, no dual bound). The bracket holds f* = 0.3; it is narrower than 1e-3
+    only where the band is (top = 0.30001), and the search ends in a few solves however
     wide the band is."""
-    from rigidblocks.methods import convex
+    exact = _certified(0.3)
 
-    read = convex.ConvexMethod._read
+    def relax(f):
+        return _rx(f, 2 * TOL) if 0.3 - 1e-9 <= f <= top else exact(f)
 
-    def patched(self, prob, jr, res, f, *rest):
-        rx = read(self, prob, jr, res, f, *rest)
-        if 0.3 - 1e-9 <= f <= top and rx.R is not None:
-            return replace(rx, R=2 * rx.tol, low=-1.0, spread=0.0)
-        return rx
-
-    monkeypatch.setattr(convex.ConvexMethod, "_read", patched)
-    r = min_friction(block_on_base(1.0, 2.0, 0.5), load_factor=0.3, state=False, rtol=1e-7)
-    lo, hi = r.bracket
-    assert lo <= 0.3 < top < hi and r.n_solves <= 20
+    s = r_search(relax)
+    assert s.bad <= 0.3 < top < s.good and len(s.trials) <= 20
+    assert s.of_kind("threshold") and not s.narrow()  # short of 1e-7
     if top - 0.3 < 1e-3 * 0.3:  # bracketed within 1e-3, short of 1e-7
-        assert r.status == "undecided" and hi < 0.3 * (1 + 1e-3)
-        assert 1e-7 < r.accuracy <= 1e-3
-    else:
-        assert r.status == "undecided" and r.friction_factor is None
-        assert any("no number is given" in n for n in r.notes)
-        assert not any("which is reported" in n for n in r.notes)
+        assert s.good < 0.3 * (1 + 1e-3) and 1e-7 < s.accuracy <= 1e-3
+    else:  # wider than WIDE: no number
+        assert not s.narrow(WIDE)
 
 
 def test_the_probe_below_the_upper_end_lands_where_the_solver_resolves():
@@ -888,11 +902,11 @@ def test_the_energy_is_scaled_at_limit_states_only(monkeypatch, block_on_base):
 
     monkeypatch.setattr(force_state, "energy_problem", recording)
     scene = block_on_base(1.0, 2.0, 0.5)
-    for run, at_limit in ((lambda: check(scene, load_factor=0.2), False),
-                          (lambda: min_friction(scene, load_factor=0.2), True),
-                          (lambda: max_load_multiplier(scene), True)):
+    for analysis, at_limit in ((lambda: check(scene, load_factor=0.2), False),
+                               (lambda: min_friction(scene, load_factor=0.2), True),
+                               (lambda: max_load_multiplier(scene), True)):
         given.clear()
-        assert run().state is not None
+        assert analysis().state is not None
         assert given == [at_limit]
 
 
@@ -920,34 +934,23 @@ def test_the_state_at_f_star_from_lambda_star_carries_the_load_factor(monkeypatc
     """The upper end of the search on lambda*(f) has a state at lambda* >= the load
     factor; the state reported at f* is combined with one under the dead load alone
     (theta = lf / lambda*), so it carries the load factor itself. Shown where the
-    least-energy QP fails and that state is reported: on the 17 x 18 running-bond wall
-    at load factor 1 (live load: the blocks' weights, horizontal), the joints on the
-    support carry a shear of 1 times their normal force, where the upper end's own
-    state carries lambda* = 1 + 7.0e-8 (found there)."""
-    from rigidblocks.errors import SolverFailure
-    from rigidblocks.methods import convex
+    least-energy QP fails (a back end that refuses every QP) and that state is
+    reported: on the 17 x 18 running-bond wall at load factor 1 (live load: the blocks'
+    weights, horizontal), the joints on the support carry a shear of 1 times their
+    normal force, where lambda* at the f* reported is above 1 (1 + 7.0e-8 when found)."""
+    policy_solve = policy.solve
 
-    run = convex.ConvexMethod.solve
+    def no_qp(problem, solver="clarabel", **settings):
+        if problem.P is not None:
+            return SolverResult("failure", None, None, math.nan, solver, "refused")
+        return policy_solve(problem, solver, **settings)
 
-    def no_qp(self, problem, what, *args, **kw):
-        if what == "force-state":
-            raise SolverFailure("QP refused", "clarabel", "refused")
-        return run(self, problem, what, *args, **kw)
-
-    monkeypatch.setattr(convex.ConvexMethod, "solve", no_qp)
-    limits = []
-    max_load = convex.ConvexMethod._max_load
-
-    def recorded(self, f, *args):
-        out = max_load(self, f, *args)
-        limits.append((f, out[2].z[out[0].cols["lambda"]][0]))
-        return out
-
-    monkeypatch.setattr(convex.ConvexMethod, "_max_load", recorded)
+    monkeypatch.setattr(policy, "solve", no_qp)
     wall = running_bond_wall(17, 18)
     r = min_friction(wall, load_factor=1.0)
-    at_hi = dict(limits)[r.friction_factor]
-    assert at_hi > 1 + 1e-8
+    monkeypatch.setattr(policy, "solve", policy_solve)
+    at_hi = max_load_multiplier(wall, friction=r.friction_factor, state=False)
+    assert at_hi.load_multiplier > 1 + 1e-8
     st = r.state
     assert st.method == "solution of the limit problem"
     pairs = open_method(wall).system.contacts.pairs
@@ -979,16 +982,14 @@ def test_governing_joints_are_ranked_by_their_share():
     friction rows' duals times their normal forces), largest first: a long list (the
     19-block example wall under a horizontal load at 0.3: 28 joints) is read from its
     head, not in the order of the joints' numbers."""
-    from rigidblocks.methods import open_method
-
     wall = read_scene(EXAMPLES / "wall.json")
     r = min_friction(wall, load_factor=0.3, state=False)
     gov = r.governing
     assert len(gov) > 12 and list(gov) != sorted(gov)
     m = open_method(wall)
-    prob, jr, res = m._max_load(r.bracket[0])
-    w = m._friction_shares(res, jr, prob)
-    strong = w > 1e-3 * w.max()
+    prob, jr, res = m.max_load(r.bracket[0])
+    w = m.friction_shares(res, jr, prob)
+    strong = w > GOVERNING_SHARE * w.max()
     share = np.bincount(jr.fric_joint[strong], w[strong], minlength=m.system.contacts.n_joints)
     assert set(gov) == set(np.flatnonzero(share))
     rank = np.round(share / share.max(), 6)

@@ -167,7 +167,7 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
         ``mechanism_kind``: "vertex" (default) picks one mechanism of the optimal face
         (:func:`~rigidblocks.methods.vertex.vertex_dual`); "blend" keeps the
         interior-point duals (the centre of the face)."""
-        prob, jr, res = self._max_load(f)
+        prob, jr, res = self.max_load(f)
         if res.verified is False:
             self.notes.append(f"the {res.solver} answer to the maximum-load problem "
                               f"({res.status}) fails its check against the problem: "

@@ -25,6 +25,10 @@ from .relaxation import (
     near_threshold,
 )
 
+#: a uniform joint governs f* where its share of dR/df (or dlambda*/df) exceeds this
+#: fraction of the largest joint's
+GOVERNING_SHARE = 1e-3
+
 
 class FrictionSearch:
     """The search for f* of :class:`~rigidblocks.methods.convex.ConvexMethod` on R(f)
@@ -82,29 +86,7 @@ class FrictionSearch:
             # near f* the relaxation can be too degenerate for the interior-point solver
             return Trial(f, None, "missed", data=exc,
                          why=f"{self.solver} ended with status {exc.status}")
-        if not rx.decided and rx.far:
-            if rx.by_value:
-                # far above the threshold and above what its duals' residual could
-                # account for, though its dual bound is too weak to certify it: a lower
-                # point (f* is reported at the certified upper end either way)
-                return Trial(f, False, "lower-by-value", rx.R, rx.slope, rx)
-            # within that spread the value may be that of an admissible state's
-            # neighbourhood: it decides nothing, as an answer that fails its check
-            return Trial(f, None, "missed", data=rx, why=(
-                f"the relaxation's value {rx.R:.1e} is within {SPREAD_MARGIN:g} times the "
-                f"{rx.spread:.1e} its duals' residual could account for"))
-        if rx.unresolved and not rx.unresolved.startswith(FORCES_SPAN):
-            return Trial(f, None, "missed", data=rx, why=rx.unresolved)
-        if not rx.decided:
-            if rx.unresolved:
-                return Trial(f, None, "forces-span", data=rx, why=rx.unresolved)
-            return Trial(f, None, "threshold", rx.R, rx.slope, rx)
-        if rx.R is None:
-            raise SolverFailure("relaxation problem lost its solution", self.solver,
-                                rx.res.raw_status)
-        if rx.zero:
-            return Trial(f, True, "upper", data=rx)
-        return Trial(f, False, "lower", rx.R, rx.slope, rx)
+        return trial_of(f, rx, self.solver)
 
     def _friction_end(self, search: Search, lf: float) -> Limit:
         """The limit a search on R(f) found, with its notes, rendered from its record."""
@@ -130,7 +112,7 @@ class FrictionSearch:
             unresolved_below = last.x
         lower = search.end(False)
         if why == "resolution_reached":
-            rx, below = lower.data, lower.slope * 0.5 * search.rtol * hi
+            rx, below = lower.data, lower.slope * friction_rules.CERTIFY_OFFSET * search.rtol * hi
             self.notes.append(
                 f"below the certified upper end f = {hi:.10g} the relaxation is about "
                 f"{below:.1e} (slope {lower.slope:.4g}), below what the solver certifies "
@@ -180,7 +162,7 @@ class FrictionSearch:
                               "(relative): no number is given")
         return not wide
 
-    def _friction_shares(self, res: SolverResult, jr: Any, prob: Any) -> np.ndarray:
+    def friction_shares(self, res: SolverResult, jr: Any, prob: Any) -> np.ndarray:
         """Each friction row's share y_r N_r of the derivative with respect to the uniform
         friction of a solved problem's objective (-dR/df, or dlambda*/df; envelope
         theorem), 0 on joints with friction of their own."""
@@ -189,14 +171,14 @@ class FrictionSearch:
 
     def _governing(self, res: SolverResult, jr: Any, prob: Any) -> tuple[int, ...]:
         """The uniform joints that govern f* below it, ranked by their share of
-        :meth:`_friction_shares` (largest first: a long list is read from its head;
-        shares equal to 1e-6 of the largest in the joints' order), those above 1e-3 of
+        :meth:`friction_shares` (largest first: a long list is read from its head;
+        shares equal to 1e-6 of the largest in the joints' order), those above GOVERNING_SHARE of
         the largest; a joint whose normal force vanishes (an opening joint carrying only
         a relaxation's slack) does not govern."""
-        w = self._friction_shares(res, jr, prob)
+        w = self.friction_shares(res, jr, prob)
         if not (w.size and w.max() > 0):
             return ()
-        strong = w > 1e-3 * w.max()
+        strong = w > GOVERNING_SHARE * w.max()
         share = np.bincount(jr.fric_joint[strong], w[strong])
         joints = np.flatnonzero(share)
         # shares equal to 1e-6 (symmetric joints, round-off apart) keep the joints' order
@@ -225,4 +207,38 @@ class FrictionSearch:
                 "states with forces growing without bound)")
 
 
-__all__ = ["FrictionSearch"]
+def trial_of(f: float, rx: Relaxation, solver: str = "") -> Trial:
+    """The trial a relaxation ``rx`` at friction ``f`` makes in the search on R(f)
+    (the kinds of :mod:`.friction_rules`): "upper" (an admissible state), "lower" (R
+    certified positive by the dual bound), "lower-by-value" (R far above the threshold
+    and :data:`~.relaxation.SPREAD_MARGIN` times what its duals' residual could
+    account for), "missed" (no checked answer, or a far value within that spread),
+    "forces-span" (forces beyond what the solver resolves) or "threshold" (near the
+    threshold). A relaxation without a solution that counts as decided raises
+    :class:`SolverFailure` (of ``solver``)."""
+    if not rx.decided and rx.far:
+        if rx.by_value:
+            # far above the threshold and above what its duals' residual could
+            # account for, though its dual bound is too weak to certify it: a lower
+            # point (f* is reported at the certified upper end either way)
+            return Trial(f, False, "lower-by-value", rx.R, rx.slope, rx)
+        # within that spread the value may be that of an admissible state's
+        # neighbourhood: it decides nothing, as an answer that fails its check
+        return Trial(f, None, "missed", data=rx, why=(
+            f"the relaxation's value {rx.R:.1e} is within {SPREAD_MARGIN:g} times the "
+            f"{rx.spread:.1e} its duals' residual could account for"))
+    if rx.unresolved and not rx.unresolved.startswith(FORCES_SPAN):
+        return Trial(f, None, "missed", data=rx, why=rx.unresolved)
+    if not rx.decided:
+        if rx.unresolved:
+            return Trial(f, None, "forces-span", data=rx, why=rx.unresolved)
+        return Trial(f, None, "threshold", rx.R, rx.slope, rx)
+    if rx.R is None:
+        raise SolverFailure("relaxation problem lost its solution", solver,
+                            rx.res.raw_status)
+    if rx.zero:
+        return Trial(f, True, "upper", data=rx)
+    return Trial(f, False, "lower", rx.R, rx.slope, rx)
+
+
+__all__ = ["GOVERNING_SHARE", "FrictionSearch", "trial_of"]

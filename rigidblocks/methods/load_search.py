@@ -19,11 +19,11 @@ from . import load_rules
 from .base import ADMISSIBLE, Limit, Verdict
 from .engine import WIDE, Search, Trial, run
 from .relaxation import (
-    ADMISSIBLE_TOL,
     FORCE_WARN,
     FRICTION_ATOL,
     SPREAD_MARGIN,
     dual_work,
+    threshold,
 )
 
 #: in the search for f* on lambda*(f), a tight solve whose value resolves f to more
@@ -42,7 +42,7 @@ class LoadSearch:
     """The search for f* of :class:`~rigidblocks.methods.convex.ConvexMethod` on
     lambda*(f) (a part of it)."""
 
-    def _max_load(self, f: float,
+    def max_load(self, f: float,
                   ladder: Ladder = VALUE) -> tuple[Any, Any, SolverResult]:
         """The max-load LP (SOCP) at uniform friction ``f``, solved up ``ladder`` and
         checked: lambda* is read from it (:data:`~rigidblocks.solvers.policy.VALUE`;
@@ -116,7 +116,7 @@ class LoadSearch:
             data = SimpleNamespace(attempts=attempts, tight=tight, margin=0.0, finer=False,
                                    at=None, by_value=False)
             try:
-                prob, jr, res = self._max_load(f, (FINER_VALUE if finer else VALUE)
+                prob, jr, res = self.max_load(f, (FINER_VALUE if finer else VALUE)
                                                if tight else ESTIMATE)
             except SolverFailure:
                 if tight:
@@ -133,10 +133,9 @@ class LoadSearch:
             z, y = res.z, res.y
             lam = float(z[prob.cols["lambda"]][0])
             x = z[prob.cols["x"]]
-            tol = ADMISSIBLE_TOL * max(1.0, float(np.abs(x).max(initial=0.0)))
-            admissible = max(self._breach(prob, jr, z)) <= tol
+            admissible = max(self._breach(prob, jr, z)) <= threshold(x)
             allowance, spread = dual_work(prob, res)
-            slope = float(np.sum(self._friction_shares(res, jr, prob)))
+            slope = float(np.sum(self.friction_shares(res, jr, prob)))
             data.margin, data.at = SPREAD_MARGIN * spread, (prob, jr, res)
             # lambda* resolves f too coarsely here for a bracket within WIDE
             data.finer = tight and not finer and slope > 0 and \

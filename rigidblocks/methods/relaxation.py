@@ -154,7 +154,7 @@ class Verdicts:
     """The verdicts of :class:`~rigidblocks.methods.convex.ConvexMethod` (a part of it):
     the relaxation at (f, lambda), solved, checked and read."""
 
-    def _relaxation_problem(self, f: float, load_factor: float) -> tuple[Any, Any]:
+    def relaxation_problem(self, f: float, load_factor: float) -> tuple[Any, Any]:
         """The relaxation at uniform friction ``f``: built once per load factor with the
         uniform friction as a parameter of the problem (its -f N coefficients), so that
         later values of f only set those entries."""
@@ -185,7 +185,7 @@ class Verdicts:
         where it decides by itself: its state is admissible (breach and residual
         computed here) or its dual bound, which carries its dual residual, is above
         the threshold."""
-        prob, jr = self._relaxation_problem(f, load_factor)
+        prob, jr = self.relaxation_problem(f, load_factor)
         rx = self._read(prob, jr, self.solve(prob, "relaxation", VERDICT), f,
                         self_certified)
         return self._confirmed(rx) if confirm else rx
@@ -231,7 +231,7 @@ class Verdicts:
         near = NEAR_ADMISSIBLE_TOL / ADMISSIBLE_TOL if res.solver in self.runner.out_of_reach \
             else 1.0
         tol, unresolved = self._resolution(x)
-        slope = float(np.sum(self._friction_shares(res, jr, prob)))
+        slope = float(np.sum(self.friction_shares(res, jr, prob)))
         return Relaxation(R, slope, res, jr, prob, near * tol, f, low, residual, unresolved,
                           spread)
 
@@ -240,7 +240,7 @@ class Verdicts:
         force, and why a verdict on it cannot be decided ("" where it can; noted where
         the lightest blocks are resolved coarsely)."""
         big = float(np.max(np.abs(x), initial=0.0))
-        tol = ADMISSIBLE_TOL * max(1.0, big)
+        tol = threshold(x)
         unresolved = ""
         if tol > RESOLVE_NOTE and not self._coarse_noted:
             self._coarse_noted = True
@@ -328,6 +328,12 @@ class Verdicts:
         return ranked_breaches(self.system, x, self.f_joint(f))
 
 
+def threshold(x: np.ndarray) -> float:
+    """The admissibility threshold of a state ``x`` (scaled forces): ADMISSIBLE_TOL times
+    its largest force, and no less than ADMISSIBLE_TOL."""
+    return ADMISSIBLE_TOL * max(1.0, float(np.max(np.abs(x), initial=0.0)))
+
+
 def near_threshold(rx: Relaxation) -> str:
     """Why a relaxation near the admissibility threshold decides nothing."""
     return (f"near the admissibility threshold even after a tighter solve: the state "
@@ -379,4 +385,5 @@ def dual_work(prob: Any, res: SolverResult) -> tuple[float, float]:
 
 __all__ = ["ADMISSIBLE_TOL", "CLEARLY", "FORCE_WARN", "FORCES_SPAN", "FRICTION_ATOL",
            "NEAR_ADMISSIBLE_TOL", "NO_EQUILIBRIUM", "Relaxation", "SPREAD_MARGIN",
-           "VERDICT_RTOL", "Verdicts", "certificate_shift", "dual_work", "near_threshold"]
+           "VERDICT_RTOL", "Verdicts", "certificate_shift", "dual_work", "near_threshold",
+           "threshold"]
