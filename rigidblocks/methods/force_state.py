@@ -3,14 +3,16 @@ energy (a QP), and how large the forces of an admissible state must be."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ..equilibrium import force_state
 from ..errors import SolverFailure
 from ..problems.formulation import energy_problem
 from ..results import ForceState
-from ..solvers import OPTIMAL
-from ..solvers.policy import ESTIMATE, LP_ONLY, STATE, describe
+from ..solvers import OPTIMAL, SolverResult
+from ..solvers.policy import ESTIMATE, LP_ONLY, STATE, Ladder, describe
 from .base import Verdict
 from .relaxation import FORCE_WARN, Relaxation
 
@@ -44,11 +46,8 @@ class ForceStates:
         with self.timings.stage("build"):
             prob, jr = energy_problem(self.system, self.vscaling, self.f_joint(f),
                                       load_factor, 0.0, self.pyramid)
-        try:
-            res = self.solve(prob, "force-state", STATE)
-        except SolverFailure:
-            return None
-        if res.status != OPTIMAL or res.verified is False:
+        res = self._checked_state(prob, STATE)
+        if res is None:
             return None
         breach, residual = self._breach(prob, jr, res.z)
         tol, unresolved = self._resolution(res.z[prob.cols["x"]])
@@ -121,13 +120,19 @@ class ForceStates:
             prob = energy_problem(self.system, self.vscaling, self.f_joint(f), load_factor,
                                   rx.R + STATE_SLACK, self.pyramid,
                                   reference=rx.res.z[rx.prob.cols["x"]])[0]
-        try:
-            res = self.solve(prob, "force-state", ESTIMATE)
-        except SolverFailure:
-            return big
-        if res.status != OPTIMAL or res.verified is False:
+        res = self._checked_state(prob, ESTIMATE)
+        if res is None:
             return big
         return min(big, float(np.abs(res.z[prob.cols["x"]]).max(initial=0.0)))
+
+    def _checked_state(self, prob: Any, ladder: Ladder) -> SolverResult | None:
+        """The force-state QP ``prob`` solved up ``ladder``: its answer where that is a
+        checked optimum, else None."""
+        try:
+            res = self.solve(prob, "force-state", ladder)
+        except SolverFailure:
+            return None
+        return res if res.status == OPTIMAL and res.verified is not False else None
 
 
 __all__ = ["STATE_SLACK", "ForceStates"]
