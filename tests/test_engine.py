@@ -192,7 +192,7 @@ def test_an_infimum_stops_where_forces_go_beyond_resolution():
 # -- the rules of f* on lambda*(f) (rigidblocks.methods.load_rules) ----------------------
 def load_search(lam, dlam, lf: float, first: float, margin: float = 0.0,
                 rtol: float = 1e-7) -> Search:
-    """The search of ConvexMethod._friction_by_load on a synthetic lambda*(f) whose
+    """The search of LoadSearch._friction_by_load on a synthetic lambda*(f) whose
     solver resolves it to ``margin``."""
     def oracle(f):
         data = SimpleNamespace(attempts=1, tight=True, margin=margin, finer=False,

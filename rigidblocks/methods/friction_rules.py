@@ -4,7 +4,7 @@ R(f), the smallest violation of the joint laws at friction f, is zero for f >= f
 positive below. The search (:mod:`.engine`) keeps [lower, upper] = [bad, good]: an
 **upper** trial has an admissible state, a **lower** one a certified R > 0 (or, "lower
 by value", a value far above what its duals could account for). Its oracle
-(:meth:`~rigidblocks.methods.convex.ConvexMethod.friction_limit`) names the other kinds
+(:func:`~rigidblocks.methods.friction_search.trial_of`) names the other kinds
 of trial: **threshold** (near the admissibility threshold after a tighter solve),
 **missed** (no checked answer, or a value within its duals' spread) and
 **forces-span** (forces beyond what the solver resolves). Each trial carries R and

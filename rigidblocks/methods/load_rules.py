@@ -4,7 +4,7 @@ Under a live load at a load factor lf > 0, f* is where lambda*(f), the largest
 admissible multiplier of the live load at friction f, reaches lf. The search
 (:mod:`.engine`) keeps [lower, upper] = [bad, good]; each trial carries the residual
 lambda*(f) - lf (``value``) and dlambda*/df (``slope``), and its oracle
-(:meth:`~rigidblocks.methods.convex.ConvexMethod.friction_limit`) names it: **upper**
+(:mod:`~rigidblocks.methods.load_search`, the max-load LP) names it: **upper**
 (a state carries the live load at lambda >= lf), **lower** (lambda* below lf by more
 than its resolution; -inf where no multiplier is admissible), **unresolved** (within
 that resolution: f* is about there) or **hand-back** (an answer that cannot be used:

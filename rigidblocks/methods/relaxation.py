@@ -43,7 +43,7 @@ FRICTION_ATOL = 1e-9
 #: 1e-8 (the 3D box on a 20 degree slope asked for 1e-8 came out with a 1.2e-8 bracket
 #: 1.06e-7 below tan 20 degrees; the extruded 106-block wall at 1e-7 certified an end
 #: 5.6e-8 below f* = 1, within it). An inadmissibility certificate that holds only more
-#: than this below f is no verdict (:meth:`ConvexMethod._certificate_checked`: the
+#: than this below f is no verdict (:meth:`Verdicts._certificate_checked`: the
 #: 1,000-block wall's sits 6.9e-9 below f)
 VERDICT_RTOL = 1e-7
 #: a verdict whose threshold ADMISSIBLE_TOL x (largest scaled force) exceeds this
@@ -110,7 +110,7 @@ class Relaxation:
     #: 5,006-block wall at 1e-9, R = 8.4e-4 (51 times the threshold) where a state of
     #: R = 0 exists (the plane wall's at f = 1.2497654), with a spread of 6.0e-3
     spread: float = 0.0
-    #: the state is the least-energy QP's (:meth:`ConvexMethod.least_energy`), not a
+    #: the state is the least-energy QP's (:meth:`ForceStates.least_energy`), not a
     #: relaxation's: R is its breach of the laws, and it is the force state
     least_energy: bool = False
 
