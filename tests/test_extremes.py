@@ -198,6 +198,22 @@ def test_tight_tolerances_out_of_reach_go_on_at_1e_9(monkeypatch, block_on_base)
     assert m.relaxation(1.0, 0.3).tol == pytest.approx(10 * before)
 
 
+def test_the_flags_of_a_solve_name_its_ladder():
+    """A solve asked for by flags (ConvexMethod.solve's tight, stall, refine, confirm, as
+    the non-associative analysis asks) climbs the ladder declared for that intent: a
+    verdict (tight), a value (tight, no stall stop), a confirmation, a force state (no
+    refined retry), an estimate at the back end's defaults; a tight solve without the
+    refined retry is its ladder without it."""
+    assert policy.ladder_of(tight=True) is policy.VERDICT
+    assert policy.ladder_of(tight=True, stall=False) is policy.VALUE
+    assert policy.ladder_of(confirm=True) is policy.CONFIRMATION
+    assert policy.ladder_of(refine=False) is policy.STATE
+    assert policy.ladder_of() is policy.ESTIMATE
+    bare = policy.ladder_of(tight=True, refine=False)
+    assert bare.tight and bare.stall and not bare.refine
+    assert not policy.VALUE.stall and policy.VERDICT.stall and not policy.STATE.refine
+
+
 def _info(iterations, res, gap=None, ktratio=0.0):
     """What Clarabel's termination callback is given, with both residuals ``res``."""
     gap = res if gap is None else gap

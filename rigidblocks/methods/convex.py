@@ -123,15 +123,16 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
             self.timings.add("solve", self.runner.wall_time - w0, time.process_time() - c0)
 
     def solve(self, problem: Any, what: str, ladder: Ladder | None = None, *,
-              tight: bool = False, stall: bool = True) -> SolverResult:
+              tight: bool = False, stall: bool = True, refine: bool = True,
+              confirm: bool = False) -> SolverResult:
         """Solve ``problem`` (named ``what`` in notes) through the runner up the rungs of
         ``ladder`` (:class:`~rigidblocks.solvers.policy.Ladder`; where it is not given,
-        the one of the flags ``tight`` and ``stall``,
+        the one of the flags ``tight``, ``stall``, ``refine`` and ``confirm``,
         :func:`~rigidblocks.solvers.policy.ladder_of`), as the "solve" stage; the notes
         say once where tolerances went out of reach or a back end's answers were solved
         again. For problems built on this method's system by other modules too (the
         non-associative analysis)."""
-        ladder = ladder or ladder_of(tight, stall)
+        ladder = ladder or ladder_of(tight, stall, refine, confirm)
         with self._solve_stage():
             n = len(self.runner.rejected)
             res = self.runner.run(problem, what, ladder)

@@ -187,12 +187,18 @@ STATE = Ladder("state", refine=False)
 ESTIMATE = Ladder("estimate")
 
 
-def ladder_of(tight: bool = False, stall: bool = True) -> Ladder:
-    """The ladder of a solve asked for by flags: :data:`VERDICT` (``tight``),
-    :data:`VALUE` (``tight`` without ``stall``) or :data:`ESTIMATE`."""
+def ladder_of(tight: bool = False, stall: bool = True, refine: bool = True,
+              confirm: bool = False) -> Ladder:
+    """The ladder of a solve asked for by flags: :data:`CONFIRMATION` (``confirm``),
+    :data:`VERDICT` (``tight``), :data:`VALUE` (``tight`` without ``stall``),
+    :data:`ESTIMATE`, or :data:`STATE` (without ``refine``); a tight one without
+    ``refine`` is that ladder without its refined retry."""
+    if confirm:
+        return CONFIRMATION
     if not tight:
-        return ESTIMATE
-    return VERDICT if stall else VALUE
+        return ESTIMATE if refine else STATE
+    ladder = VERDICT if stall else VALUE
+    return ladder if refine else replace(ladder, refine=False)
 
 
 def check_solver(name: str) -> str:
