@@ -1,20 +1,13 @@
-"""rigidblocks.sparse against scipy.sparse (the reference implementation of every
-operation it has), and the check of a scene without scipy imported."""
+"""rigidblocks.sparse against scipy.sparse, the reference implementation of every
+operation it has (test_cli_analyses: a check runs without scipy imported)."""
 
 from __future__ import annotations
-
-import os
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 import scipy.sparse as sp
 
 from rigidblocks.sparse import CscMatrix, as_csc, hstack, vstack
-
-ROOT = Path(__file__).resolve().parents[1]
 
 
 def _random(m: int, n: int, k: int, seed: int) -> tuple[np.ndarray, ...]:
@@ -93,24 +86,3 @@ def test_scipys_matrices_convert_both_ways():
     np.testing.assert_array_equal(ours[2:5].toarray(), ref[2:5].toarray())  # scipy's
     with pytest.raises(ValueError, match="outside the shape"):
         CscMatrix.from_triplets([1.0], [9], [0], (9, 7))
-
-
-def test_a_check_imports_no_scipy():
-    """The check of a 2D wall and of its extrusion, with the force state, as the command
-    line runs it, in a fresh interpreter: scipy (0.1 CPU s to import scipy.sparse) is
-    not imported."""
-    code = (
-        "import sys\n"
-        "from rigidblocks import check\n"
-        "from rigidblocks.generators.walls import running_bond_wall\n"
-        "from rigidblocks.scene.extrude import extrude\n"
-        "s = running_bond_wall(4, 4)\n"
-        "for scene in (s, extrude(s)):\n"
-        "    r = check(scene, load_factor=0.0, state=True)\n"
-        "    assert r.status == 'admissible' and r.state is not None, r.status\n"
-        "print(sorted(m for m in sys.modules if m.split('.')[0] == 'scipy'))\n")
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         env=env, cwd=ROOT, timeout=120)
-    assert out.returncode == 0, out.stderr
-    assert out.stdout.strip() == "[]"
