@@ -27,7 +27,7 @@ import numpy as np
 from ..errors import InputError
 from ..scene.geometry import scene_size
 from ..scene.model import Scene
-from ..scene.polyhedra import block_planes, candidate_pairs, shape
+from ..scene.polyhedra import block_planes, blocks_in, candidate_pairs, shape
 from .detect2d import joint_laws
 from .model import Contacts
 
@@ -211,7 +211,7 @@ def _facing_faces(scene: Scene, shapes: list, pairs: np.ndarray, pks: np.ndarray
     the order of the pairs and, per pair, of i's and j's faces; each with its plane's
     frame and both faces' vertices in it (see :func:`_clip_faces`). None if there are
     none."""
-    used = np.unique(pairs)
+    used = blocks_in(pairs, len(scene.blocks))
     tab = _face_table(scene, shapes, used)
     N, D, has = tab["N"], tab["D"], tab["has"]
     origins = np.zeros((len(scene.blocks), 3))
