@@ -261,13 +261,14 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
 
     L = scene_size(scene)
     eps = tol * L
-    for b in scene.blocks:
-        size = float(np.ptp(b.points, axis=0).max())
-        if size <= eps:
-            raise InputError(f"the block ({size:.3g} across) is smaller than the contact "
-                             f"tolerance {eps:.3g} (relative tolerance x scene size): "
-                             "enlarge or remove it, or analyse it in a scene of its own "
-                             "size", f"block {b.id!r}")
+    pts = np.concatenate([b.points for b in scene.blocks])
+    starts = np.cumsum([0] + [len(b.points) for b in scene.blocks[:-1]])
+    across = (np.maximum.reduceat(pts, starts) - np.minimum.reduceat(pts, starts)).max(axis=1)
+    for k in np.flatnonzero(across <= eps)[:1]:
+        raise InputError(f"the block ({across[k]:.3g} across) is smaller than the contact "
+                         f"tolerance {eps:.3g} (relative tolerance x scene size): "
+                         "enlarge or remove it, or analyse it in a scene of its own "
+                         f"size", f"block {scene.blocks[k].id!r}")
     planes = [block_planes(b) for b in scene.blocks]
     shapes = [shape(b) for b in scene.blocks]
     pairs, normals, tangents, polys, areas, order = [], [], [], [], [], []
