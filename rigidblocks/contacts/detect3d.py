@@ -26,7 +26,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..scene.geometry import scene_size
-from ..scene.model import Scene
+from ..scene.model import Scene, block_boxes
 from ..scene.polyhedra import block_planes, blocks_in, candidate_pairs, shape
 from .detect2d import joint_laws
 from .model import Contacts
@@ -261,9 +261,8 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
 
     L = scene_size(scene)
     eps = tol * L
-    pts = np.concatenate([b.points for b in scene.blocks])
-    starts = np.cumsum([0] + [len(b.points) for b in scene.blocks[:-1]])
-    across = (np.maximum.reduceat(pts, starts) - np.minimum.reduceat(pts, starts)).max(axis=1)
+    lo, hi = block_boxes(scene)
+    across = (hi - lo).max(axis=1)
     for k in np.flatnonzero(across <= eps)[:1]:
         raise InputError(f"the block ({across[k]:.3g} across) is smaller than the contact "
                          f"tolerance {eps:.3g} (relative tolerance x scene size): "

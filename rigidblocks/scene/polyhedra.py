@@ -37,7 +37,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError
-from .model import Block, Scene, scene_size
+from .model import Block, Scene, block_boxes, scene_size
 
 #: relative tolerance for planarity and convexity (times the block's size)
 POLY_TOL = 1e-7
@@ -493,8 +493,8 @@ def candidate_pairs(scene: Scene, pad: float) -> np.ndarray:
     """Block pairs (i < j) whose bounding boxes, grown by ``pad``, intersect."""
     import shapely
 
-    lo = np.array([b.points.min(axis=0) for b in scene.blocks]) - pad
-    hi = np.array([b.points.max(axis=0) for b in scene.blocks]) + pad
+    lo, hi = block_boxes(scene)
+    lo, hi = lo - pad, hi + pad
     boxes = shapely.box(lo[:, 0], lo[:, 1], hi[:, 0], hi[:, 1])
     tree = shapely.STRtree(boxes)
     i, j = tree.query(boxes, predicate="intersects")
