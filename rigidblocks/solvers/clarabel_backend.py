@@ -99,6 +99,21 @@ class _Stall:
         return self.stopped
 
 
+class _Listed:
+    """A CSC matrix as Clarabel's Python interface reads it, its arrays as lists: it
+    copies them element by element through Python's sequence protocol, which takes a
+    list's numbers as they are but builds a numpy scalar for each element of an array
+    (the extruded 1,041-block wall's least-energy problem: 1.6e8 instructions fewer,
+    1 % of its whole check)."""
+
+    has_canonical_format = True
+
+    def __init__(self, m: CscMatrix):
+        self.shape = m.shape
+        self.data, self.indices, self.indptr = (m.data.tolist(), m.indices.tolist(),
+                                                m.indptr.tolist())
+
+
 def cones(problem: ConicProblem) -> list:
     import clarabel
 
@@ -126,8 +141,9 @@ def solve_clarabel(problem: ConicProblem, after: dict | None = None,
     A = as_csc(problem.A)
     own = clarabel_settings(**settings)
     t0 = time.perf_counter()
-    solver = clarabel.DefaultSolver(P, np.asarray(problem.c, float), A,
-                                    np.asarray(problem.b, float), cones(problem), own)
+    solver = clarabel.DefaultSolver(_Listed(P), np.asarray(problem.c, float).tolist(),
+                                    _Listed(A), np.asarray(problem.b, float).tolist(),
+                                    cones(problem), own)
     stall = None
     if after is not None:
         nxt = clarabel_settings(**after)
