@@ -132,7 +132,7 @@ def bare_max_load(scene, tight: bool = False) -> dict[str, Any]:
     f = np.where(np.isnan(c.override_friction), scene.effective_friction,
                  c.override_friction)[c.point_joint]
     n = nx + 1
-    Aeq = sp.hstack([system.A, sp.csc_matrix(system.live[:, None])])
+    Aeq = sp.hstack([system.A.tocsc(), sp.csc_matrix(system.live[:, None])])
     r = np.arange(P)
     t0c = system.layout.tangential.start
     nonneg = sp.coo_matrix((-np.ones(P), (r, r)), shape=(P, n))

@@ -9,6 +9,10 @@ from __future__ import annotations
 
 import json
 import math
+import os
+import subprocess
+import sys
+from pathlib import Path
 
 import pytest
 from conftest import EXAMPLES, rect
@@ -236,3 +240,32 @@ def test_output_piped_into_head_ends_quietly(tmp_path):
     proc.stdout.close()  # the reader is gone before the answer is printed
     err = proc.stderr.read().decode()
     assert proc.wait() == 141 and "Traceback" not in err and "BrokenPipe" not in err, err
+
+
+def test_a_check_process_imports_only_what_it_uses(tmp_path):
+    """``rigidblocks check`` of a 2D wall and of its extrusion, with the force state, in
+    a fresh interpreter: neither scipy (0.1 CPU s to import scipy.sparse) nor the
+    modules of the other commands are imported."""
+    from rigidblocks.generators.walls import running_bond_wall
+    from rigidblocks.scene.extrude import extrude
+
+    wall = running_bond_wall(4, 4)
+    files = [tmp_path / "wall.json", tmp_path / "wall3d.json"]
+    write_scene(wall, files[0])
+    write_scene(extrude(wall), files[1])
+    code = ("import sys\n"
+            "from rigidblocks.cli.main import main\n"
+            "for f in sys.argv[1:]:\n"
+            "    assert main(['check', f, '--load-factor', '0', '--json']) == 0\n"
+            "print(sorted(m for m in sys.modules if m.split('.')[0] == 'scipy'\n"
+            "             or m.startswith(('rigidblocks.cli.', 'rigidblocks.io.dxf'))))\n")
+    root = Path(__file__).resolve().parents[1]
+    out = subprocess.run([sys.executable, "-c", code, *map(str, files)], capture_output=True,
+                         text=True, env={**os.environ, "PYTHONPATH": str(root)}, cwd=root,
+                         timeout=300)
+    assert out.returncode == 0, out.stderr
+    answers = [json.loads(line) for line in out.stdout.splitlines()[:-1]]
+    assert [a["status"] for a in answers] == ["admissible", "admissible"]
+    assert out.stdout.splitlines()[-1] == str(["rigidblocks.cli.analyses", "rigidblocks.cli.main",
+                                               "rigidblocks.cli.options",
+                                               "rigidblocks.cli.progress"])

@@ -147,3 +147,14 @@ def test_non_convex_support_touches_like_its_convex_pieces():
             got = {tuple(np.round(nv + 0.0, 9)): a
                    for nv, a in zip(con.normals, con.areas, strict=True)}
         assert got == pytest.approx(expected)
+
+
+def test_a_block_smaller_than_the_contact_tolerance_is_named():
+    """Contacts are judged at 1e-7 x the scene's size (here 2.5e-6): a block 1e-7 across
+    cannot have a joint of its own, and the error names it and its size."""
+    scene = scene3d(("base", box(0, 10, 0, 10, -1, 0), True),
+                    ("big", box(0, 10, 0, 10, 0, 10), False),
+                    ("dust", box(20, 20 + 1e-7, 0, 1e-7, 0, 1e-7), False))
+    with pytest.raises(InputError, match=r"block 'dust'.*\(1e-07 across\) is smaller than "
+                       r"the contact tolerance 2\.49e-06"):
+        detect_contacts(scene)

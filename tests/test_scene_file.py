@@ -367,3 +367,30 @@ def test_slight_overlap_of_side_by_side_blocks(tmp_path):
     doc = base_doc()
     doc["blocks"].append({"id": "C", "vertices": rect(1.499, 0.5, 0.5, 0.5)})
     expect_error(write_doc(tmp_path, doc), "'A'", "'C'", "overlap")
+
+
+def _cube_doc(faces) -> dict:
+    """A 3D scene: a unit cube with the given faces on a support slab."""
+    cube = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+            [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]
+    good = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6],
+            [3, 0, 4, 7]]
+    slab = [[x, y, z - 1] for x, y, z in cube]
+    return {"format": "rigidblocks-scene", "version": 1, "dimension": 3,
+            "unit_weight": 1.0, "friction": 0.6,
+            "blocks": [{"id": "slab", "vertices": slab, "faces": good, "support": True},
+                       {"id": "cube", "vertices": cube, "faces": faces}]}
+
+
+@pytest.mark.parametrize("bad,k", [(8, 2), (-1, 2), (True, 2), (1.0, 2), ("1", 2)])
+def test_a_bad_vertex_index_of_a_face_is_named(tmp_path, bad, k):
+    faces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, bad, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6],
+             [3, 0, 4, 7]]
+    expect_error(write_doc(tmp_path, _cube_doc(faces)), "block 'cube'", f'"faces"[{k}]',
+                 "0..7")
+
+
+@pytest.mark.parametrize("face", [[0, 1], "0 1 2", None])
+def test_a_face_that_is_not_a_list_of_three_indices_is_named(tmp_path, face):
+    faces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], face, [2, 3, 7, 6], [3, 0, 4, 7]]
+    expect_error(write_doc(tmp_path, _cube_doc(faces)), "block 'cube'", '"faces"[3]')

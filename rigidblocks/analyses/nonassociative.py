@@ -56,7 +56,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..equilibrium import force_state
 from ..errors import InputError, SolverFailure
@@ -221,6 +220,8 @@ class ConvexNonAssociative(NonAssociative):
     def elastic(self, load_factor: float) -> np.ndarray | None:
         """X0 = K A^T (A K A^T)^-1 (-F) in scaled units (None: A K A^T is singular, the
         linked structure is a mechanism)."""
+        import scipy.sparse as sp
+
         sysm, sc = self.system, self.cv.scaling
         As = sp.diags(sc.row) @ sysm.A.tocsr()
         K = 1.0 / flexibility(sysm)

@@ -26,8 +26,8 @@ import numpy as np
 
 from ..errors import InputError
 from ..scene.geometry import scene_size
-from ..scene.model import Scene
-from ..scene.polyhedra import block_planes, candidate_pairs, shape
+from ..scene.model import Scene, block_boxes
+from ..scene.polyhedra import block_planes, blocks_in, candidate_pairs, shape
 from .detect2d import joint_laws
 from .model import Contacts
 
@@ -211,7 +211,7 @@ def _facing_faces(scene: Scene, shapes: list, pairs: np.ndarray, pks: np.ndarray
     the order of the pairs and, per pair, of i's and j's faces; each with its plane's
     frame and both faces' vertices in it (see :func:`_clip_faces`). None if there are
     none."""
-    used = np.unique(pairs)
+    used = blocks_in(pairs, len(scene.blocks))
     tab = _face_table(scene, shapes, used)
     N, D, has = tab["N"], tab["D"], tab["has"]
     origins = np.zeros((len(scene.blocks), 3))
@@ -261,13 +261,13 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
 
     L = scene_size(scene)
     eps = tol * L
-    for b in scene.blocks:
-        size = float(np.ptp(b.points, axis=0).max())
-        if size <= eps:
-            raise InputError(f"the block ({size:.3g} across) is smaller than the contact "
-                             f"tolerance {eps:.3g} (relative tolerance x scene size): "
-                             "enlarge or remove it, or analyse it in a scene of its own "
-                             "size", f"block {b.id!r}")
+    lo, hi = block_boxes(scene)
+    across = (hi - lo).max(axis=1)
+    for k in np.flatnonzero(across <= eps)[:1]:
+        raise InputError(f"the block ({across[k]:.3g} across) is smaller than the contact "
+                         f"tolerance {eps:.3g} (relative tolerance x scene size): "
+                         "enlarge or remove it, or analyse it in a scene of its own "
+                         f"size", f"block {scene.blocks[k].id!r}")
     planes = [block_planes(b) for b in scene.blocks]
     shapes = [shape(b) for b in scene.blocks]
     pairs, normals, tangents, polys, areas, order = [], [], [], [], [], []

@@ -19,13 +19,13 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..contacts import Contacts, detect_contacts
 from ..errors import InputError
 from ..scene.geometry import block_weights
 from ..scene.model import Scene
 from ..scene.validate import DEFAULT_TOL
+from ..sparse import CscMatrix
 
 ShearLayout = Literal["joint", "point"]
 
@@ -61,7 +61,8 @@ class EquilibriumSystem:
     """Sparse equilibrium matrix, load vectors and index maps.
 
     Attributes:
-        A: (rows, columns) sparse CSC matrix in the scene's units.
+        A: (rows, columns) sparse CSC matrix in the scene's units (a
+            :class:`~rigidblocks.sparse.CscMatrix`: ``A.tocsc()`` is scipy's).
         dead, live: load vectors (forces and moments about centroids) on the rows.
         layout: the named blocks of columns.
         contacts: the joints the columns belong to.
@@ -72,7 +73,7 @@ class EquilibriumSystem:
         sizes: (n_blocks,) bounding-box diagonal of each block.
     """
 
-    A: sp.csc_matrix
+    A: CscMatrix
     dead: np.ndarray
     live: np.ndarray
     layout: Layout
@@ -162,13 +163,10 @@ def assemble(scene: Scene, contacts: Contacts | None = None, *, shear: ShearLayo
         rows_list.append((r0[on][:, None] + np.arange(dofs)[None, :]).ravel())
         cols_list.append(np.repeat(c, dofs))
         vals_list.append(entries.ravel())
-    if rows_list:
-        A = sp.csc_matrix((np.concatenate(vals_list),
-                           (np.concatenate(rows_list), np.concatenate(cols_list))),
-                          shape=(n_rows, layout.size))
-    else:
-        A = sp.csc_matrix((n_rows, layout.size))
-    A.eliminate_zeros()
+    vals, rows, cols = (np.concatenate(parts) if parts else np.zeros(0, dtype=np.int64)
+                        for parts in (vals_list, rows_list, cols_list))
+    nz = vals != 0  # zero components of forces and moments are not stored
+    A = CscMatrix.from_triplets(vals[nz], rows[nz], cols[nz], (n_rows, layout.size))
     dead, live = load_vectors(scene, block_rows, dofs, weights, centroids)
     return EquilibriumSystem(A=A, dead=dead, live=live, layout=layout, contacts=contacts,
                              block_rows=block_rows, dofs=dofs, centroids=centroids,

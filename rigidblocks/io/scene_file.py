@@ -218,10 +218,21 @@ def _parse_block(b: Any, i: int, dim: int) -> Block:
     return Block(bid, vertices, faces, bool(support), uw)
 
 
+def _plain_faces(faces: list, nv: int) -> bool:
+    """Is every face a list of at least 3 JSON integers in 0..nv-1 (the common case,
+    checked without a test per index)?"""
+    if not all(type(f) is list and len(f) >= 3 for f in faces):
+        return False
+    flat = [i for f in faces for i in f]
+    return all(type(i) is int for i in flat) and 0 <= min(flat) and max(flat) < nv
+
+
 def _parse_faces(faces: Any, nv: int, where: str) -> tuple[tuple[int, ...], ...]:
     if not isinstance(faces, list) or len(faces) < 4:
         raise InputError('"faces" must be a list of at least 4 faces', where)
-    out = []
+    if _plain_faces(faces, nv):
+        return tuple(map(tuple, faces))
+    out = []  # the slow path finds and names the bad face
     for k, f in enumerate(faces):
         ok = isinstance(f, list) and len(f) >= 3 and all(
             isinstance(i, int) and not isinstance(i, bool) and 0 <= i < nv for i in f)

@@ -262,7 +262,7 @@ class Verdicts:
         viol = joint_violations(prob, jr, z, self.system.contacts.n_joints, relax)
         eq = prob.rows["equilibrium"]
         return (float(viol.max(initial=0.0)),
-                float(np.abs(prob.A[eq] @ z - prob.b[eq]).max(initial=0.0)))
+                float(np.abs((prob.A @ z)[eq] - prob.b[eq]).max(initial=0.0)))
 
     def _violation_force(self, rx: Relaxation) -> float:
         """The largest breach of the joint laws by the relaxation's state, force units."""

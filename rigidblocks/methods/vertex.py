@@ -25,10 +25,14 @@ dome).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import scipy.sparse as sp
 
 from ..solvers import OPTIMAL, ConicProblem, SolverResult, solve
+
+if TYPE_CHECKING:  # scipy.sparse is imported where a vertex is sought, not with the module
+    import scipy.sparse as sp
 
 #: a row is active when its slack is below this (scaled units) ...
 ACTIVE_TOL = 1e-7
@@ -74,6 +78,8 @@ def vertex_dual(prob: ConicProblem, res: SolverResult, eq_rows: slice, dofs: int
 
     ``eq_rows`` are the equilibrium rows (``dofs`` per free block, in block order).
     """
+    import scipy.sparse as sp
+
     z, y = res.z, res.y
     if z is None or y is None:
         return None
@@ -192,6 +198,8 @@ def _cone_lp(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int,
         g_cols.append(At[:, cols] @ dirs.T)
         g_obj.append(dirs[:, 0])
         g_b.append(dirs @ prob.b[rows])
+    import scipy.sparse as sp
+
     parts = [At[:, lin]] + [sp.csc_matrix(g) for g in g_cols]
     A_eq = sp.hstack(parts, format="csc")
     n_g = A_eq.shape[1] - len(lin)
@@ -229,6 +237,8 @@ def _cone_extreme(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int
     w[n_eq_k:n_eq_k + n_lin_k] = 1.0
     for c in cones:
         w[c[0]] = 1.0
+    import scipy.sparse as sp
+
     eye = sp.identity(n, format="csr")
     lin_sel = np.arange(n_eq_k, n_eq_k + n_lin_k)
     # no bound on b^T y here: it leaves the cones' feasible set without an interior,

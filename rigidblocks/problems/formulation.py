@@ -32,10 +32,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..equilibrium import EquilibriumSystem
 from ..solvers.base import ConicProblem
+from ..sparse import CscMatrix, hstack, vstack
 
 #: block loads spanning more than this ratio are scaled block by block
 #: (:meth:`Scaling.for_system`): a block 100 times lighter than the heaviest is still
@@ -172,15 +172,15 @@ class JointRows:
     constant) on a normal force: ``block`` 0 for a row of ``G_lin``, 1 of ``G_soc``.
     """
 
-    G_lin: sp.csr_matrix
+    G_lin: CscMatrix
     h_lin: np.ndarray
-    G_soc: sp.csr_matrix
+    G_soc: CscMatrix
     h_soc: np.ndarray
     soc: tuple[int, ...]
     n_normal_rows: int
     fric_head: np.ndarray
     fric_joint: np.ndarray
-    fric_nsum: sp.csr_matrix
+    fric_nsum: CscMatrix
     f_entries: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
     #: the joint of every row of ``G_lin`` and of every cone of ``G_soc``
     lin_joint: np.ndarray | None = None
@@ -223,8 +223,8 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
     if cap is not None:
         coh_joint = coh_joint + np.bincount(pj, cap_pt, minlength=c.n_joints)
     # -- no tension: -N_k (- r) <= sigma a_k
-    nrow = sp.coo_matrix((-np.ones(P), (np.arange(P), lay.normal.start + np.arange(P))),
-                         shape=(P, n_cols))
+    nrow = CscMatrix.from_triplets(-np.ones(P), np.arange(P), lay.normal.start + np.arange(P),
+                                   (P, n_cols))
     lin_blocks = [nrow]
     h_parts = [tens]
     finite = np.isfinite(f_joint)
@@ -248,14 +248,14 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
             rows_t = np.concatenate([np.arange(nJ), np.arange(nJ) + nJ])
             cols_t = np.concatenate([t0 + J, t0 + J])
             vals_t = np.concatenate([np.ones(nJ), -np.ones(nJ)])
-            G = sp.coo_matrix((np.concatenate([vals_n, vals_t]),
-                               (np.concatenate([rows_n, rows_t]),
-                                np.concatenate([cols_n, cols_t]))), shape=(2 * nJ, n_cols))
+            G = CscMatrix.from_triplets(np.concatenate([vals_n, vals_t]),
+                                        np.concatenate([rows_n, rows_t]),
+                                        np.concatenate([cols_n, cols_t]), (2 * nJ, n_cols))
             lin_blocks.append(G)
             h_parts.append(np.concatenate([coh_joint[J], coh_joint[J]]) + relax_rhs)
             fric_joint = np.concatenate([J, J])
-            nsum = sp.coo_matrix((np.ones(2 * len(pts)), (rows_n, cols_n)),
-                                 shape=(2 * nJ, n_cols)).tocsr()
+            nsum = CscMatrix.from_triplets(np.ones(2 * len(pts)), rows_n, cols_n,
+                                           (2 * nJ, n_cols))
             f_ent = (P + rows_n, cols_n, J[np.concatenate([owner, owner])], vals_n)
         else:
             # one inequality pair per point: +-T_k - f_j N_k <= c_j a_k
@@ -266,13 +266,12 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
             cols = np.concatenate([K, K, t0 + K, t0 + K])
             fk = f_joint[pj[K]]
             vals = np.concatenate([-fk, -fk, np.ones(nK), -np.ones(nK)])
-            lin_blocks.append(sp.coo_matrix((vals, (rows, cols)), shape=(2 * nK, n_cols)))
+            lin_blocks.append(CscMatrix.from_triplets(vals, rows, cols, (2 * nK, n_cols)))
             hk = c.cohesion[pj[K]] * a_pt[K] / F_pt[K] + cap_pt[K]
             h_parts.append(np.concatenate([hk, hk]) + relax_rhs)
             fric_joint = np.concatenate([pj[K], pj[K]])
-            nsum = sp.coo_matrix((np.ones(2 * nK), (np.concatenate([r, r + nK]),
-                                                    np.concatenate([K, K]))),
-                                 shape=(2 * nK, n_cols)).tocsr()
+            nsum = CscMatrix.from_triplets(np.ones(2 * nK), np.concatenate([r, r + nK]),
+                                           np.concatenate([K, K]), (2 * nK, n_cols))
             f_ent = (P + rows[:2 * nK], cols[:2 * nK], fric_joint, vals[:2 * nK])
         n_fric = len(fric_joint)
         fric_head = P + np.arange(n_fric)
@@ -289,14 +288,13 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
             rows += [r, r, r]
             cols += [K, t0 + 2 * K, t0 + 2 * K + 1]
             vals += [-fk * cosk, np.full(nK, np.cos(a)), np.full(nK, np.sin(a))]
-        lin_blocks.append(sp.coo_matrix((np.concatenate(vals),
-                                         (np.concatenate(rows), np.concatenate(cols))),
-                                        shape=(k * nK, n_cols)))
+        lin_blocks.append(CscMatrix.from_triplets(np.concatenate(vals), np.concatenate(rows),
+                                                  np.concatenate(cols), (k * nK, n_cols)))
         hk = (c.cohesion[pj[K]] * a_pt[K] / F_pt[K] + cap_pt[K]) * cosk
         h_parts.append(np.tile(hk, k) + relax_rhs)
         fric_joint = np.tile(pj[K], k)
-        nsum = sp.coo_matrix((np.full(k * nK, cosk), (np.arange(k * nK), np.tile(K, k))),
-                             shape=(k * nK, n_cols)).tocsr()
+        nsum = CscMatrix.from_triplets(np.full(k * nK, cosk), np.arange(k * nK),
+                                       np.tile(K, k), (k * nK, n_cols))
         fric_head = P + np.arange(k * nK)
         f_ent = (P + np.arange(k * nK), np.tile(K, k), fric_joint, np.tile(-fk * cosk, k))
     else:
@@ -312,23 +310,22 @@ def joint_rows(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
             rows = np.concatenate([rows, r])
             cols = np.concatenate([cols, np.full(nK, relax_col)])
             vals = np.concatenate([vals, -np.ones(nK)])
-        soc_rows = sp.coo_matrix((vals, (rows, cols)), shape=(3 * nK, n_cols)).tocsr()
+        soc_rows = CscMatrix.from_triplets(vals, rows, cols, (3 * nK, n_cols))
         h_soc = np.zeros(3 * nK)
         h_soc[r] = c.cohesion[pj[K]] * a_pt[K] / F_pt[K] + cap_pt[K] + relax_rhs
         soc = (3,) * nK
         fric_joint = pj[K]
         fric_head = None  # set below, after the linear rows are counted
         f_ent = (r, K, fric_joint, -fk)
-        nsum = sp.coo_matrix((np.ones(nK), (np.arange(nK), K)), shape=(nK, n_cols)).tocsr()
-    G_lin = sp.vstack(lin_blocks, format="csr")
+        nsum = CscMatrix.from_triplets(np.ones(nK), np.arange(nK), K, (nK, n_cols))
+    G_lin = vstack(lin_blocks)
     h_lin = np.concatenate(h_parts)
     if relax_col is not None:
-        extra = sp.coo_matrix((-np.ones(G_lin.shape[0]),
-                               (np.arange(G_lin.shape[0]),
-                                np.full(G_lin.shape[0], relax_col))), shape=G_lin.shape)
-        G_lin = (G_lin + extra).tocsr()
+        extra = CscMatrix.from_triplets(-np.ones(G_lin.shape[0]), np.arange(G_lin.shape[0]),
+                                        np.full(G_lin.shape[0], relax_col), G_lin.shape)
+        G_lin = G_lin + extra
     if soc_rows is None:
-        soc_rows = sp.csr_matrix((0, n_cols))
+        soc_rows = CscMatrix.empty((0, n_cols))
         block = np.zeros(len(f_ent[0]), dtype=int)
     else:
         fric_head = G_lin.shape[0] + np.arange(len(fric_joint)) * 3
@@ -366,7 +363,7 @@ def joint_violations(problem: ConicProblem, jr: JointRows, z: np.ndarray, n_join
     return out
 
 
-def friction_parameter(A: sp.csc_matrix, jr: JointRows, first_joint_row: int,
+def friction_parameter(A: CscMatrix, jr: JointRows, first_joint_row: int,
                        f_joint: np.ndarray, uniform: np.ndarray,
                        ) -> tuple[np.ndarray, np.ndarray]:
     """Positions in ``A.data`` and coefficients of the entries proportional to the
@@ -387,11 +384,8 @@ def friction_parameter(A: sp.csc_matrix, jr: JointRows, first_joint_row: int,
     return pos, coef
 
 
-def _equilibrium(system: EquilibriumSystem, scaling: Scaling) -> sp.csr_matrix:
-    A = sp.diags(scaling.row) @ system.A.tocsr()
-    if scaling.col is not None:
-        A = (A @ sp.diags(scaling.col)).tocsr()
-    return A
+def _equilibrium(system: EquilibriumSystem, scaling: Scaling) -> CscMatrix:
+    return system.A.scaled(scaling.row, scaling.col)
 
 
 def _stack(eq_A, eq_b, jr: JointRows, extra_lin=None, extra_h=None):
@@ -404,8 +398,7 @@ def _stack(eq_A, eq_b, jr: JointRows, extra_lin=None, extra_h=None):
     rhs.append(jr.h_lin)
     blocks.append(jr.G_soc)
     rhs.append(jr.h_soc)
-    A = sp.vstack(blocks, format="csc")
-    return A, np.concatenate(rhs)
+    return vstack(blocks), np.concatenate(rhs)
 
 
 def build_relaxation(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndarray,
@@ -422,17 +415,16 @@ def build_relaxation(system: EquilibriumSystem, scaling: Scaling, f_joint: np.nd
     """
     n = system.layout.size
     nc = n + 1
-    Aeq = sp.hstack([_equilibrium(system, scaling), sp.csr_matrix((system.n_rows, 1))])
+    Aeq = hstack([_equilibrium(system, scaling), CscMatrix.empty((system.n_rows, 1))])
     beq = -scaling.row * (system.dead + load_factor * system.live) / scaling.force
     jr = joint_rows(system, scaling, f_joint, nc, relax_col=n, pyramid=pyramid, cap=cap)
-    r_nonneg = sp.coo_matrix(([-1.0], ([0], [n])), shape=(1, nc))
+    r_nonneg = CscMatrix.from_triplets([-1.0], [0], [n], (1, nc))
     A, b = _stack(Aeq, beq, jr, r_nonneg, np.zeros(1))
     cvec = np.zeros(nc)
     cvec[n] = 1.0
     ne, nl = system.n_rows, jr.G_lin.shape[0] + 1
     params = {}
     if uniform is not None and np.any(uniform & np.isfinite(f_joint)):
-        A.sort_indices()
         params["f"] = friction_parameter(A, jr, ne + 1, f_joint, uniform)
     prob = ConicProblem(c=cvec, A=A, b=b, n_eq=ne, n_nonneg=nl, soc=jr.soc,
                         cols={"x": slice(0, n), "r": slice(n, n + 1)},
@@ -449,7 +441,7 @@ def build_max_load(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndar
     n = system.layout.size
     nc = n + 1
     live = (scaling.row * system.live / scaling.force)[:, None]
-    Aeq = sp.hstack([_equilibrium(system, scaling), sp.csr_matrix(live)])
+    Aeq = hstack([_equilibrium(system, scaling), CscMatrix.from_dense(live)])
     beq = -scaling.row * system.dead / scaling.force
     jr = joint_rows(system, scaling, f_joint, nc, pyramid=pyramid, cap=cap)
     A, b = _stack(Aeq, beq, jr)
@@ -511,7 +503,7 @@ def energy_problem(system: EquilibriumSystem, scaling: Scaling, f_joint: np.ndar
         energy = 0.5 * float(diag @ reference ** 2)
         if energy > n:
             diag = diag * (n / energy)
-    P = sp.diags(diag, format="csc")
+    P = CscMatrix.diagonal_of(diag)
     ne = system.n_rows
     return ConicProblem(c=np.zeros(n), A=A, b=b, n_eq=ne, n_nonneg=jr.G_lin.shape[0],
                         soc=jr.soc, P=P, cols={"x": slice(0, n)},

@@ -146,9 +146,8 @@ def block_weights(scene: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         area, centroids = polygon_areas_centroids(verts, starts)
         sizes = polygon_diagonals(verts, starts)
         return gamma * np.abs(area) * scene.effective_depth, centroids, sizes
-    from .polyhedra import polyhedra_volumes_centroids  # 3D only
+    from .polyhedra import block_size, polyhedra_volumes_centroids  # 3D only
 
     meas, centroids = polyhedra_volumes_centroids(scene.blocks)
-    sizes = np.array([float(np.linalg.norm(np.ptp(b.points, axis=0)))
-                      for b in scene.blocks])
+    sizes = np.array([block_size(b) for b in scene.blocks])  # cached by validation
     return gamma * meas, centroids, sizes

@@ -242,6 +242,13 @@ def make_block(block_id: str, vertices: Sequence[Sequence[float]], *, support: b
     return Block(block_id, verts, fcs, support, unit_weight)
 
 
+def block_boxes(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
+    """(n, d) lowest and highest corners of every block's bounding box, in one pass."""
+    starts = np.cumsum([0] + [len(b.vertices) for b in scene.blocks[:-1]])
+    pts = np.concatenate([b.points for b in scene.blocks], axis=0)
+    return np.minimum.reduceat(pts, starts, axis=0), np.maximum.reduceat(pts, starts, axis=0)
+
+
 def scene_size(scene: Scene) -> float:
     """A characteristic length of the scene: the diagonal of its bounding box."""
     allpts = np.concatenate([b.points for b in scene.blocks], axis=0)

@@ -20,9 +20,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
-import scipy.sparse as sp
+
+from ..sparse import as_csc
 
 OPTIMAL = "optimal"
 INFEASIBLE = "infeasible"
@@ -39,12 +41,13 @@ class ConicProblem:
     """
 
     c: np.ndarray
-    A: sp.csc_matrix
+    #: a :class:`~rigidblocks.sparse.CscMatrix`, or any of scipy's sparse matrices
+    A: Any
     b: np.ndarray
     n_eq: int
     n_nonneg: int
     soc: tuple[int, ...] = ()
-    P: sp.csc_matrix | None = None
+    P: Any = None
     cols: dict[str, slice] = field(default_factory=dict)
     rows: dict[str, slice] = field(default_factory=dict)
     #: parametric entries of A by name: (positions in ``A.data``, coefficients), so that
@@ -59,10 +62,10 @@ class ConicProblem:
         """The same problem with the entries of parameter ``name`` set for ``value``
         (a copy of ``A.data``; the sparsity pattern is shared)."""
         pos, coef = self.params[name]
-        A = self.A.tocsc()
+        A = as_csc(self.A)
         data = A.data.copy()
         data[pos] = coef * value
-        return replace(self, A=sp.csc_matrix((data, A.indices, A.indptr), shape=A.shape))
+        return replace(self, A=A.with_data(data))
 
     @property
     def is_lp(self) -> bool:
@@ -148,7 +151,8 @@ def normalised(problem: ConicProblem, res: SolverResult) -> SolverResult | None:
 def certificate_problem(problem: ConicProblem, status: str) -> ConicProblem | None:
     """The problem whose solution is the certificate of an infeasible (``status``
     infeasible) or unbounded problem, for a back end that returns the status without
-    one, in the same standard form (the back end solves it as any other):
+    one, in the same standard form (the back end solves it as any other; its matrix is
+    scipy's):
 
     * infeasible: min b'y s.t. A'y = 0, y in the dual cone K* (= K: zero rows free,
       nonnegative rows, second-order cones), |y| <= 1;
@@ -156,6 +160,8 @@ def certificate_problem(problem: ConicProblem, status: str) -> ConicProblem | No
 
     A negative optimum is the certificate (y, or the ray d as ``z``); None for an
     unbounded problem with a quadratic term."""
+    import scipy.sparse as sp
+
     A = problem.A.tocsr()
     m, n = A.shape
     ne, nl = problem.n_eq, problem.n_nonneg

@@ -1,8 +1,9 @@
 """Clarabel through its native API (the default back end).
 
-The problem matrices go to ``clarabel.DefaultSolver`` as they are: no modelling layer
-in between, so the only cost above the interior-point iterations is building the
-sparse matrices.
+The problem matrices go to ``clarabel.DefaultSolver`` as they are (its Python interface
+reads the CSC arrays of a :class:`~rigidblocks.sparse.CscMatrix` as of scipy's): no
+modelling layer in between, so the only cost above the interior-point iterations is
+building the sparse matrices.
 
 A solve can be given the settings of the solve its caller would try next where its own
 tolerances are out of reach (looser ones). Clarabel's iterates do not depend on its
@@ -23,9 +24,9 @@ import math
 import time
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..errors import InputError
+from ..sparse import CscMatrix, as_csc
 from .base import FAILURE, INFEASIBLE, OPTIMAL, UNBOUNDED, ConicProblem, SolverResult
 
 _STATUS = {
@@ -98,6 +99,21 @@ class _Stall:
         return self.stopped
 
 
+class _Listed:
+    """A CSC matrix as Clarabel's Python interface reads it, its arrays as lists: it
+    copies them element by element through Python's sequence protocol, which takes a
+    list's numbers as they are but builds a numpy scalar for each element of an array
+    (the extruded 1,041-block wall's least-energy problem: 1.6e8 instructions fewer,
+    1 % of its whole check)."""
+
+    has_canonical_format = True
+
+    def __init__(self, m: CscMatrix):
+        self.shape = m.shape
+        self.data, self.indices, self.indptr = (m.data.tolist(), m.indices.tolist(),
+                                                m.indptr.tolist())
+
+
 def cones(problem: ConicProblem) -> list:
     import clarabel
 
@@ -121,16 +137,13 @@ def solve_clarabel(problem: ConicProblem, after: dict | None = None,
     import clarabel
 
     n = problem.n
-    if problem.P is None:
-        P = sp.csc_matrix((np.zeros(0), np.zeros(0, np.int32), np.zeros(n + 1, np.int32)),
-                          shape=(n, n))
-    else:
-        P = sp.triu(problem.P, format="csc")
-    A = problem.A if problem.A.format == "csc" else sp.csc_matrix(problem.A)
+    P = CscMatrix.empty((n, n)) if problem.P is None else as_csc(problem.P).triu()
+    A = as_csc(problem.A)
     own = clarabel_settings(**settings)
     t0 = time.perf_counter()
-    solver = clarabel.DefaultSolver(P, np.asarray(problem.c, float), A,
-                                    np.asarray(problem.b, float), cones(problem), own)
+    solver = clarabel.DefaultSolver(_Listed(P), np.asarray(problem.c, float).tolist(),
+                                    _Listed(A), np.asarray(problem.b, float).tolist(),
+                                    cones(problem), own)
     stall = None
     if after is not None:
         nxt = clarabel_settings(**after)

@@ -57,7 +57,7 @@ def solve_cvxpy(problem: ConicProblem, solver: str, **options) -> SolverResult:
         start += k
     obj = problem.c @ z
     if problem.P is not None and problem.P.nnz:
-        obj = obj + 0.5 * cp.quad_form(z, cp.psd_wrap(problem.P))
+        obj = obj + 0.5 * cp.quad_form(z, cp.psd_wrap(problem.P.tocsc()))
     prob = cp.Problem(cp.Minimize(obj), cons)
     t0 = time.perf_counter()
     try:

@@ -77,7 +77,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..equilibrium import EquilibriumSystem
 
@@ -179,6 +178,8 @@ class DistortionSolver:
         points per joint), in the scaled units of ``scaling`` (a
         :class:`~rigidblocks.problems.formulation.Scaling`), with link flexibilities
         ``flexibility`` (C); ``block_ids`` name blocks without joints in messages."""
+        import scipy.sparse as sp
+
         self.system = system
         sysm = system
         c = sysm.contacts

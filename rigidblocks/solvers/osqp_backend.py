@@ -5,9 +5,9 @@ from __future__ import annotations
 import time
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..errors import InputError
+from ..sparse import CscMatrix, as_csc
 from .base import FAILURE, INFEASIBLE, OPTIMAL, UNBOUNDED, ConicProblem, SolverResult
 
 
@@ -17,7 +17,7 @@ def solve_osqp(problem: ConicProblem, **settings) -> SolverResult:
     if problem.soc:
         raise InputError("OSQP handles linear constraints only (no friction cones)")
     n = problem.n
-    P = problem.P if problem.P is not None else sp.csc_matrix((n, n))
+    P = as_csc(problem.P) if problem.P is not None else CscMatrix.empty((n, n))
     ne = problem.n_eq
     lower = np.concatenate([problem.b[:ne], np.full(problem.n_nonneg, -np.inf)])
     # certificates to the accuracy of the solver policy's check (the defaults, 1e-4,
@@ -27,7 +27,7 @@ def solve_osqp(problem: ConicProblem, **settings) -> SolverResult:
     opts.update(settings)
     t0 = time.perf_counter()
     solver = osqp.OSQP()
-    solver.setup(P=sp.triu(P, format="csc"), q=problem.c, A=sp.csc_matrix(problem.A),
+    solver.setup(P=P.triu().tocsc(), q=problem.c, A=as_csc(problem.A).tocsc(),
                  l=lower, u=problem.b, **opts)
     res = solver.solve(raise_error=False)  # a status, not an exception
     elapsed = time.perf_counter() - t0
