@@ -1,0 +1,435 @@
+"""The safe non-associative multiplier: the smallest collapse multiplier over all states.
+
+Under Coulomb friction without dilatancy the collapse multiplier depends on the state
+the joints are in (a pinch raises the shear a joint can carry): the analysis of
+:mod:`.nonassociative` follows the state reached from the elastic state X0, one of
+many. This module computes, for small 2D scenes, the least multiplier at which *some*
+state collapses, so that the engineer sees how far the X0 answer is from the worst case.
+
+Notes
+-----
+A non-associative collapse state at lambda (in the scaled unknowns of
+:func:`~rigidblocks.problems.formulation.build_max_load`) is forces x and block
+velocities u with
+
+    A x + F_dead + lambda F_live = 0,     s = h - G x >= 0           (equilibrium, laws)
+    A^T u + Q^T nu = 0,   nu >= 0,        F_live . u = 1             (flow, a mechanism)
+    nu_r s_r = 0 for every law row r                                 (complementarity)
+
+G x <= h are the joint laws (N_k >= -t_k per contact point; +-T_j - f_j sum N_k <= c_j
+per joint). A^T u are the relative displacements at the links (opening along N, slip
+along T): an opening nu_k >= 0 only where N_k is at its tensile limit, a slip
+nu_- - nu_+ only where the shear is at its threshold, against it. Q is G with the
+-f_j entries of the non-associative joints removed: their slip opens nothing (no
+dilatancy); on the associative joints Q = G (normality). The set of such states is not
+convex; the complementarity is written with one binary z_r per law row,
+
+    nu_r <= V z_r,     s_r <= S_r (1 - z_r),
+
+and lambda >= 0 minimised by HiGHS's branch and bound (:func:`scipy.optimize.milp`).
+The constants are stated bounds, not a property of the structure: S on every normal
+force (N_k + t_k <= S, whence |T_j| <= f_j sum N_k + c_j bounds the friction rows'
+slacks) and V on every opening and slip (per unit work of the live load). The value
+is the smallest collapse multiplier *with forces and displacement rates within those
+bounds*; the computation is repeated with both doubled, and a value that moves is not
+given as the safe one.
+
+Each answer is checked after the solve: with its binaries fixed, the linear program
+of that active set (exact complementarity, no bounds) is solved again (a collapse
+state of that value, or lower: the bounds then bind) and its equilibrium,
+laws and complementarity are measured. Every collapse state is statically admissible,
+so lambda <= the associative multiplier (the static theorem; Radenkovic's first
+theorem, Drucker, J. Appl. Mech. 21, 1954), and every one is at least the associative
+multiplier with the non-associative joints frictionless (Radenkovic's second theorem;
+Drucker 1954): both are reported beside the value.
+
+2D only: in 3D the Coulomb cones would have to be linearised (a pyramid) to stay a
+mixed-integer LP, and that is not done here.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.optimize import Bounds, LinearConstraint, linprog, milp
+
+from ..equilibrium import force_state, mechanism
+from ..errors import InputError
+from ..results import ForceState, Mechanism
+from ..scene.model import Scene, friction_value
+from .nonassociative import _frictionless_bound, flow_mask
+
+#: the largest scene (joints) the mixed-integer program is tried on by default
+MAX_JOINTS = 50
+#: default bound on the normal forces, times the sum of the blocks' loads
+FORCE_FACTOR = 10.0
+#: default bound on openings and slips per unit work of the live load, times the
+#: largest of the blocks' live loads over the smallest
+VELOCITY_FACTOR = 100.0
+#: relative (and absolute, in units of the reference force) gap HiGHS must close
+MIP_GAP = 1e-6
+#: two values of lambda closer than this (relative, absolute below 1) are one value
+SAME = 1e-6
+#: a complementarity breach, equilibrium residual or law breach above this (in units
+#: of the reference force, or of the displacement bound) fails the check
+CHECK_TOL = 1e-6
+
+OPTIMAL = "optimal"
+BOUND_DEPENDENT = "bound-dependent"
+NONE_WITHIN_BOUNDS = "no collapse within the bounds"
+UNDECIDED = "undecided"
+
+
+@dataclass(frozen=True, eq=False)
+class SafeMultiplier:
+    """The smallest non-associative collapse multiplier (see the module docstring).
+
+    ``status``: "optimal" (``value`` proven smallest within the bounds, and unchanged
+    with the bounds doubled), "bound-dependent" (a smaller state was found with the
+    bounds doubled or lifted: ``upper`` is the least found, no value), "no collapse
+    within the bounds", or "undecided" (the solver did not prove optimality: ``lower``
+    and ``upper`` are its bracket, or None). ``lower`` is HiGHS's proven lower bound at
+    the final bounds. ``force_bound`` (scene force units) bounds every normal force,
+    ``velocity_bound`` every opening and slip of a mechanism normalised to a work of the
+    live load of one reference force ``reference_force`` times one length unit.
+    """
+
+    status: str
+    value: float | None
+    lower: float | None
+    upper: float | None
+    friction: float
+    frictionless: float | None
+    associative: float | None
+    force_bound: float
+    velocity_bound: float
+    reference_force: float
+    state: ForceState | None = None
+    mechanism: Mechanism | None = None
+    #: the least value at each pair of bounds tried, (force bound, value or None)
+    trials: tuple[tuple[float, float | None], ...] = ()
+    solve_time: float = 0.0
+    nodes: int = 0
+    gap: float | None = None
+    n_binaries: int = 0
+    #: the largest breach of the checked state: equilibrium, laws, complementarity
+    breach: float | None = None
+    notes: tuple[str, ...] = field(default_factory=tuple)
+
+
+@dataclass(frozen=True, eq=False)
+class _Model:
+    """The data of the mixed-integer program (scaled, see the module docstring)."""
+
+    A: sp.csr_matrix  # (ne, n) equilibrium
+    live: np.ndarray  # (ne,) scaled live column
+    b: np.ndarray  # (ne,) minus the scaled dead load
+    G: sp.csr_matrix  # (L, n) joint laws G x <= h
+    h: np.ndarray
+    Q: sp.csr_matrix  # (L, n) flow rows
+    normal: slice  # the normal-force columns of x
+    n_points: int  # the first n_points law rows are the no-tension rows
+
+
+def _model(cv, marked: np.ndarray, f: float) -> _Model:
+    from ..problems.formulation import build_max_load
+
+    sysm, sc = cv.system, cv.scaling
+    prob, jr = build_max_load(sysm, sc, cv.f_joint(f))
+    ne, n = sysm.n_rows, sysm.layout.size
+    A = prob.A.tocsr()
+    G = jr.G_lin.tocsr()[:, :n]
+    _, rows, cols, joint, vals = jr.f_entries
+    na = marked[joint]
+    # the flow rows: the -f N terms of the non-associative joints taken out
+    Q = (G - sp.csr_matrix((vals[na], (rows[na], cols[na])), shape=G.shape)).tocsr()
+    Q.eliminate_zeros()
+    return _Model(A=A[:ne, :n], live=A[:ne, n].toarray().ravel(), b=prob.b[:ne],
+                  G=G, h=jr.h_lin, Q=Q, normal=sysm.layout.normal,
+                  n_points=jr.n_normal_rows)
+
+
+def _slack_bounds(m: _Model, S: float) -> np.ndarray:
+    """(L,) the largest slack of each law row when every N_k + t_k <= S: S on the
+    no-tension rows, 2 (h_r + sum f N) on the friction rows (|T| <= f sum N + c)."""
+    P = m.n_points
+    t = m.h[:P]
+    Nmax = np.zeros(m.G.shape[1])
+    Nmax[m.normal] = S - t
+    fric = abs(m.G[P:]) @ Nmax
+    return np.concatenate([np.full(P, S), 2.0 * (m.h[P:] + fric)])
+
+
+def _columns(m: _Model) -> tuple[int, int, int, int]:
+    n, ne, L = m.A.shape[1], m.A.shape[0], m.G.shape[0]
+    return n, ne, L, n + 1 + ne + L
+
+
+def _common_rows(m: _Model) -> tuple[sp.csr_matrix, np.ndarray]:
+    """Equality rows over (x, lambda, u, nu): equilibrium, flow, F_live . u = 1."""
+    n, ne, L, _ = _columns(m)
+    Z = sp.csr_matrix
+    eq = sp.hstack([m.A, Z(m.live[:, None]), Z((ne, ne)), Z((ne, L))])
+    flow = sp.hstack([Z((n, n)), Z((n, 1)), m.A.T, m.Q.T])
+    work = sp.hstack([Z((1, n)), Z((1, 1)), Z(m.live[None, :]), Z((1, L))])
+    rhs = np.concatenate([m.b, np.zeros(n), [1.0]])
+    return sp.vstack([eq, flow, work], format="csr"), rhs
+
+
+def _solve_milp(m: _Model, S: float, V: float, time_limit: float) -> dict:
+    """min lambda over the collapse states within the bounds (S on normal forces, V on
+    openings and slips): HiGHS's answer as a dict."""
+    n, ne, L, nc = _columns(m)
+    E, e = _common_rows(m)
+    Sr = _slack_bounds(m, S)
+    Z = sp.csr_matrix
+    laws = sp.hstack([m.G, Z((L, 1 + ne + L)), Z((L, L))])  # G x <= h
+    cap_nu = sp.hstack([Z((L, n + 1 + ne)), sp.identity(L), -V * sp.identity(L)])  # nu <= V z
+    # s = h - G x <= S_r (1 - z)
+    cap_s = sp.hstack([-m.G, Z((L, 1 + ne + L)), sp.diags(Sr)])
+    Ein = sp.hstack([E, Z((E.shape[0], L))])
+    cons = [LinearConstraint(Ein, e, e),
+            LinearConstraint(laws, -np.inf, m.h),
+            LinearConstraint(cap_nu, -np.inf, 0.0),
+            LinearConstraint(cap_s, -np.inf, Sr - m.h)]
+    lo = np.concatenate([np.full(n, -np.inf), [0.0], np.full(ne, -np.inf), np.zeros(2 * L)])
+    hi = np.concatenate([np.full(n + 1 + ne, np.inf), np.full(L, V), np.ones(L)])
+    cost = np.zeros(nc + L)
+    cost[n] = 1.0
+    integ = np.concatenate([np.zeros(nc), np.ones(L)])
+    t0 = time.perf_counter()
+    res = milp(cost, constraints=cons, integrality=integ, bounds=Bounds(lo, hi),
+               options={"time_limit": float(time_limit), "mip_rel_gap": MIP_GAP,
+                        "presolve": True})
+    out = {"status": int(res.status), "message": str(res.message),
+           "time": time.perf_counter() - t0,
+           "nodes": int(getattr(res, "mip_node_count", 0) or 0),
+           "dual": getattr(res, "mip_dual_bound", None),
+           "gap": getattr(res, "mip_gap", None), "z": None, "value": None}
+    if res.x is not None:
+        out["value"] = float(res.x[n])
+        out["z"] = np.round(res.x[nc:]).astype(bool)
+    return out
+
+
+def _polish(m: _Model, active: np.ndarray) -> tuple[float, np.ndarray] | None:
+    """The least lambda of the active set ``active`` (law rows held at equality, the
+    others with nu = 0), without bounds: exact complementarity. (lambda, the solution
+    over (x, lambda, u, nu)), or None when HiGHS finds no solution."""
+    n, ne, L, nc = _columns(m)
+    E, e = _common_rows(m)
+    Z = sp.csr_matrix
+    laws = sp.hstack([m.G, Z((L, 1 + ne + L))], format="csr")
+    A_ub = laws[~active]
+    A_eq = sp.vstack([E, laws[active]], format="csr")
+    b_eq = np.concatenate([e, m.h[active]])
+    bounds = [(None, None)] * n + [(0.0, None)] + [(None, None)] * ne + \
+        [(0.0, None) if a else (0.0, 0.0) for a in active]
+    cost = np.zeros(nc)
+    cost[n] = 1.0
+    res = linprog(cost, A_ub=A_ub if A_ub.shape[0] else None,
+                  b_ub=m.h[~active] if A_ub.shape[0] else None, A_eq=A_eq, b_eq=b_eq,
+                  bounds=bounds, method="highs")
+    if res.status != 0:
+        return None
+    return float(res.x[n]), res.x
+
+
+def _breach(m: _Model, sol: np.ndarray) -> float:
+    """The largest breach of a solution over (x, lambda, u, nu): equilibrium and flow
+    residuals, law breaches, complementarity (min(nu_r, s_r) over the rows, relative
+    to the largest nu and the largest force)."""
+    n, ne, L, nc = _columns(m)
+    E, e = _common_rows(m)
+    x, nu = sol[:n], sol[n + 1 + ne:nc]
+    s = m.h - m.G @ x
+    top_nu = max(float(np.abs(nu).max(initial=0.0)), 1.0)
+    top_x = max(float(np.abs(x).max(initial=0.0)), 1.0)
+    comp = np.minimum(nu / top_nu, s / top_x)
+    return float(max(np.abs(E @ sol[:nc] - e).max(initial=0.0),
+                     (-s).max(initial=0.0), (-nu).max(initial=0.0),
+                     comp.max(initial=0.0)))
+
+
+def _bounds_of(cv) -> tuple[float, float]:
+    """Default (S, V) in scaled units: S = FORCE_FACTOR x the blocks' total load, V =
+    VELOCITY_FACTOR / the smallest nonzero live load of a block (so that a mechanism
+    that moves that block alone fits, VELOCITY_FACTOR times over)."""
+    sysm, sc = cv.system, cv.scaling
+    d = sysm.dofs
+    dead = np.abs(sc.row * sysm.dead / sc.force).reshape(-1, d).max(axis=1)
+    live = np.abs(sc.row * sysm.live / sc.force).reshape(-1, d).max(axis=1)
+    total = float(np.maximum(dead, live).sum())
+    pos = live[live > 0]
+    lmin = float(pos.min()) if pos.size else 1.0
+    return FORCE_FACTOR * max(total, 1.0), VELOCITY_FACTOR / lmin
+
+
+def _same(a: float, b: float) -> bool:
+    return abs(a - b) <= SAME * max(1.0, abs(a), abs(b))
+
+
+def _checked(m: _Model, run: dict) -> tuple[float, np.ndarray, float] | None:
+    """The polished state of a run's active set: (lambda, solution, breach)."""
+    if run["z"] is None:
+        return None
+    got = _polish(m, run["z"])
+    if got is None:
+        return None
+    lam, sol = got
+    return lam, sol, _breach(m, sol)
+
+
+def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
+                    flow: str | None = None, max_joints: int = MAX_JOINTS,
+                    force_bound: float | None = None, velocity_bound: float | None = None,
+                    time_limit: float = 60.0, double_check: bool = True) -> SafeMultiplier:
+    """The smallest non-associative collapse multiplier over all states (2D), as a
+    mixed-integer LP solved by HiGHS (see the module docstring).
+
+    ``friction``, ``flow``: as for :func:`rigidblocks.analyses.max_load_multiplier`
+    (``flow`` None: the scene's, with its joints' overrides; the associative joints
+    keep normality). ``force_bound`` (scene force units; default ``FORCE_FACTOR``
+    times the blocks' total load) bounds every normal force, ``velocity_bound`` every
+    opening and slip per unit work of the live load (see :class:`SafeMultiplier`);
+    ``double_check`` solves again with both doubled and gives no value if it moves.
+    ``time_limit`` (s) per mixed-integer solve. Scenes of more than ``max_joints``
+    joints, and 3D scenes, are refused with an :class:`InputError`.
+    """
+    from ..methods import open_method
+
+    if scene.dimension != 2:
+        raise InputError("the safe non-associative multiplier is computed in 2D only "
+                         "(3D cones would need a linearisation)", scene.source)
+    if not scene.has_live_load:
+        raise InputError("the scene has no live load (no \"live\": true load and no "
+                         "live_body_force): there is nothing to multiply", scene.source)
+    f = friction_value(scene.effective_friction if friction is None else friction)
+    cv = open_method(scene, "clarabel")
+    c = cv.contacts
+    if c.n_joints > max_joints:
+        raise InputError(f"{c.n_joints} joints: the safe non-associative multiplier (a "
+                         f"mixed-integer LP, one binary per joint law) is computed for "
+                         f"at most {max_joints} (max_joints)", scene.source)
+    marked = flow_mask(scene, c, flow)
+    m = _model(cv, marked, f)
+    F = cv.scaling.force
+    S, V = _bounds_of(cv)
+    if force_bound is not None:
+        S = float(force_bound) / F
+    if velocity_bound is not None:
+        V = float(velocity_bound)
+    if not (S > 0 and V > 0 and math.isfinite(S) and math.isfinite(V)):
+        raise InputError("force_bound and velocity_bound must be finite numbers > 0")
+    up = cv.load_limit(f, 1e-9)
+    assoc = up.value if up.status == "collapse" else (
+        math.inf if up.status == "unbounded" else None)
+    low = _frictionless_bound(cv, marked, f)
+    return _decide(_Context(m, cv, f, S, V, low, assoc), time_limit, double_check)
+
+
+@dataclass
+class _Context:
+    """What the verdict is made of: the model, its bounds, the runs so far."""
+
+    m: _Model
+    cv: object
+    f: float
+    S: float
+    V: float
+    low: float | None
+    assoc: float | None
+    trials: list[tuple[float, float | None]] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    elapsed: float = 0.0
+    nodes: int = 0
+    gap: float | None = None
+
+
+def _decide(ctx: _Context, time_limit: float, double_check: bool) -> SafeMultiplier:
+    """Solve at the bounds (S, V) and, with ``double_check``, at twice them; the
+    verdict (see :class:`SafeMultiplier`)."""
+    m, F = ctx.m, ctx.cv.scaling.force
+    best: tuple[float, np.ndarray, float] | None = None
+    first: float | None = None
+    dual: float | None = None
+    for k in (1.0, 2.0) if double_check else (1.0,):
+        run = _solve_milp(m, k * ctx.S, k * ctx.V, time_limit)
+        ctx.nodes += run["nodes"]
+        ctx.elapsed += run["time"]
+        ctx.gap = run["gap"]
+        if run["status"] not in (0, 2):
+            ctx.notes.append(f"HiGHS did not prove optimality ({run['message']}) with "
+                             f"normal forces up to {k * ctx.S * F:.6g}: bracket "
+                             f"[{run['dual']}, {run['value']}]")
+            return _result(ctx, UNDECIDED, None, run["dual"], run["value"], None)
+        ctx.trials.append((k * ctx.S * F, run["value"] if run["status"] == 0 else None))
+        if run["status"] == 2:
+            continue
+        got = _checked(m, run)
+        if got is None or got[2] > CHECK_TOL:
+            ctx.notes.append("the state HiGHS found fails its check (with its active set "
+                             "fixed the linear program has no solution, or it breaches "
+                             "equilibrium, laws or complementarity by "
+                             f"{'?' if got is None else f'{got[2]:.3g}'})")
+            return _result(ctx, UNDECIDED, None, run["dual"], run["value"], None)
+        if not _same(got[0], run["value"]):
+            ctx.notes.append(f"with the bounds lifted the same joints' states collapse at "
+                             f"{got[0]:.9g}, below {run['value']:.9g}: the bounds bind")
+        if best is None or got[0] < best[0]:
+            best = got
+        if first is None:
+            first, dual = run["value"], run["dual"]
+    if best is None:
+        b = ctx.trials[-1][0]
+        ctx.notes.append(f"HiGHS finds no collapse state with normal forces up to {b:.6g} "
+                         "(no certificate that none exists beyond)")
+        return _result(ctx, NONE_WITHIN_BOUNDS, None, None, None, None)
+    if not all(v is not None and _same(v, best[0]) for _, v in ctx.trials):
+        ctx.notes.append("the least multiplier depends on the bounds: "
+                         + ", ".join(f"{'none' if v is None else f'{v:.9g}'} with normal "
+                                     f"forces up to {b:.6g}" for b, v in ctx.trials)
+                         + ": no safe value, only the least collapse state found")
+        return _result(ctx, BOUND_DEPENDENT, None, None, best[0], best)
+    return _result(ctx, OPTIMAL, first, dual, best[0], best)
+
+
+def _result(ctx: _Context, status: str, value: float | None, lower: float | None,
+            upper: float | None, best: tuple[float, np.ndarray, float] | None
+            ) -> SafeMultiplier:
+    cv, notes = ctx.cv, ctx.notes
+    F = cv.scaling.force
+    sysm = cv.system
+    n, ne = sysm.layout.size, sysm.n_rows
+    st = mech = None
+    if best is not None:
+        sol = best[1]
+        st = force_state(sysm, sol[:n] * F, "a non-associative collapse state of the "
+                         "least multiplier over all states")
+        mech = mechanism(sysm, cv.scaling.row, sol[n + 1:n + 1 + ne], "vertex")
+    tol = SAME * max(1.0, abs(upper or 0.0))
+    if upper is not None and ctx.low is not None and upper < ctx.low - tol:
+        notes.append(f"the state found ({upper:.9g}) is below the frictionless bound "
+                     f"{ctx.low:.9g} (Drucker 1954): a defect")
+    if upper is not None and ctx.assoc is not None and upper > ctx.assoc + tol:
+        notes.append(f"the state found ({upper:.9g}) is above the associative multiplier "
+                     f"{ctx.assoc:.9g} (static theorem): a defect")
+    k = 2.0 if len(ctx.trials) > 1 else 1.0
+    notes.append(f"smallest over the collapse states with normal forces up to "
+                 f"{k * ctx.S * F:.6g} and openings or slips up to {k * ctx.V:.6g} per "
+                 f"unit work of the live load (in units of {F:.6g} x one length unit)")
+    lower = float(lower) if lower is not None and math.isfinite(lower) else None
+    return SafeMultiplier(status=status, value=value, lower=lower, upper=upper,
+                          friction=ctx.f, frictionless=ctx.low, associative=ctx.assoc,
+                          force_bound=k * ctx.S * F, velocity_bound=k * ctx.V,
+                          reference_force=F, state=st, mechanism=mech,
+                          trials=tuple(ctx.trials), solve_time=ctx.elapsed,
+                          nodes=ctx.nodes, gap=ctx.gap, n_binaries=ctx.m.G.shape[0],
+                          breach=None if best is None else best[2], notes=tuple(notes))
+
+
+__all__ = ["SafeMultiplier", "safe_multiplier"]
