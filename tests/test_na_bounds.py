@@ -91,12 +91,13 @@ def collapse_state_holds(scene, res, tol=1e-7):
 
 
 def bracketed(res, x0=None):
-    """frictionless bound <= the safe value <= X0's answer (a LoadResult: the upper end
-    of its bisection's bracket) <= associative (see the module docstring), to 1e-7
-    (the LPs' accuracy)."""
+    """frictionless bound <= capacity bound <= the safe value <= X0's answer (a
+    LoadResult: the upper end of its bisection's bracket) <= associative (see the
+    module docstring), to 1e-7 (the LPs' accuracy)."""
     v = res.value
     if res.frictionless is not None:
-        assert res.frictionless <= v + 1e-7 * max(1.0, v)
+        assert res.frictionless <= res.capacity_bound + 1e-7 * max(1.0, v)
+    assert res.capacity_bound <= v + 1e-7 * max(1.0, v)
     if x0 is not None:
         assert x0.status == "collapse"
         top = x0.bracket[1] if x0.bracket else x0.load_multiplier
@@ -110,8 +111,11 @@ def bracketed(res, x0=None):
 def test_single_block(f, value, mode):
     """A block b = 1 wide, h = 2 tall on a support under a horizontal body force lambda W
     (validation.md): it slides at lambda = f when f < b/h, tips about its toe at b/h =
-    0.5 otherwise. One joint, one state: every state gives the same answer."""
-    res = safe_multiplier(block(f=f))
+    0.5 otherwise. One joint, one state: every state gives the same answer, and the
+    capacity bound reaches it (the block's bed joint carries at least its weight).
+    Solved without the bound as a cut, so that the MILP's value is its own."""
+    res = safe_multiplier(block(f=f), cut=False)
+    assert res.capacity_bound == pytest.approx(value, rel=RTOL)
     assert res.status == "optimal"
     assert res.value == pytest.approx(value, rel=RTOL)
     assert res.mechanism.modes == (mode,)
@@ -124,8 +128,9 @@ def test_three_block_stack(f, value):
     """Three unit blocks stacked on a support, body force lambda W each: every bed joint
     carries the weight of the blocks above it and the live load on them, so each slides
     at lambda = f; the stack of height H tips about its toe at b / H, the top k blocks at
-    b / k (validation.md): min(f, 1/3)."""
-    res = safe_multiplier(stack(f=f))
+    b / k (validation.md): min(f, 1/3). The capacity bound reaches it."""
+    res = safe_multiplier(stack(f=f), cut=False)
+    assert res.capacity_bound == pytest.approx(value, rel=RTOL)
     assert res.status == "optimal"
     assert res.value == pytest.approx(value, rel=RTOL)
     collapse_state_holds(stack(f=f), res)
@@ -149,9 +154,11 @@ def test_pinched_block_safe_value_is_f():
     0.3 W, and lambda W = f (N_base + L) = 0.8 (1.3 W + 0.3 W) = 1.28 W. The pinch is a
     state choice: every lintel force L >= 0 gives a collapse state at f (1 + 2 L / W),
     and the least is the safe value. The frictionless bound is 0 (the block slides
-    freely on frictionless faces)."""
+    freely on frictionless faces); the capacity bound reaches 0.8 (the base carries at
+    least W in every admissible state)."""
     scene = pinched(0.8)
-    res = safe_multiplier(scene)
+    res = safe_multiplier(scene, cut=False)
+    assert res.capacity_bound == pytest.approx(0.8, rel=RTOL)
     assert res.status == "optimal"
     assert res.value == pytest.approx(0.8, rel=RTOL)
     assert res.associative == np.inf and res.frictionless == 0.0
@@ -181,9 +188,10 @@ def test_examples_between_the_bounds(name, value):
     """frictionless bound <= safe value <= the answer from the elastic state <=
     associative, on the seed's small examples, every joint non-associative; the state
     returned is a collapse state (checked independently). Where the safe value is a
-    closed form it is derived beside it."""
+    closed form it is derived beside it. Without the capacity bound as a cut: the
+    MILP's value is its own, and the bound is checked against it."""
     scene = read_scene(EXAMPLES / name)
-    res = safe_multiplier(scene, flow=NA)
+    res = safe_multiplier(scene, flow=NA, cut=False)
     assert res.status == "optimal" and res.value is not None
     assert res.lower <= res.value
     if value is not None:

@@ -58,7 +58,7 @@ import scipy.sparse as sp
 from scipy.optimize import Bounds, LinearConstraint, linprog, milp
 
 from ..equilibrium import force_state, mechanism
-from ..errors import InputError
+from ..errors import InputError, SolverFailure
 from ..results import ForceState, Mechanism
 from ..scene.model import Scene, friction_value
 from .nonassociative import _frictionless_bound, flow_mask
@@ -107,6 +107,9 @@ class SafeMultiplier:
     friction: float
     frictionless: float | None
     associative: float | None
+    #: a lower bound on every collapse multiplier (:func:`capacity_bound`) and its rounds
+    capacity_bound: float
+    bound_rounds: int
     force_bound: float
     velocity_bound: float
     reference_force: float
@@ -194,6 +197,86 @@ def _slack_bounds(m: _Model, S: float, s_max: np.ndarray) -> np.ndarray:
     return np.where(fin, s_max + 1e-6 * max(top, 1.0), stated)
 
 
+def _least_normal(m: _Model, joints: np.ndarray, starts: np.ndarray, lo: float,
+                  hi: float) -> np.ndarray | None:
+    """(len(joints),) the least sum of each joint's normal forces over the admissible
+    states at lo <= lambda <= hi (one LP each); None when there is no such state."""
+    L, n = m.G.shape
+    A_eq = sp.hstack([m.A, sp.csr_matrix(m.live[:, None])], format="csr")
+    A_ub = sp.hstack([m.G, sp.csr_matrix((L, 1))], format="csr")
+    bounds = [(None, None)] * n + [(lo, None if not math.isfinite(hi) else hi)]
+    out = np.zeros(len(joints))
+    for i, j in enumerate(joints):
+        cost = np.zeros(n + 1)
+        cost[m.normal.start + starts[j]:m.normal.start + starts[j + 1]] = 1.0
+        res = linprog(cost, A_ub=A_ub, b_ub=m.h, A_eq=A_eq, b_eq=m.b, bounds=bounds,
+                      method="highs")
+        if res.status == 2:
+            return None
+        if res.status != 0:
+            raise SolverFailure(f"HiGHS: {res.message} (least normal force of a joint)",
+                                "highs", str(res.status))
+        out[i] = res.fun
+    return out
+
+
+def _max_load_lp(prob) -> float | None:
+    """lambda* of a 2D maximum-load problem (:func:`build_max_load`) by HiGHS's simplex:
+    inf when unbounded, None when infeasible."""
+    ne = prob.n_eq
+    A = prob.A.tocsr()
+    res = linprog(prob.c, A_ub=A[ne:], b_ub=prob.b[ne:], A_eq=A[:ne], b_eq=prob.b[:ne],
+                  bounds=[(None, None)] * prob.n, method="highs")
+    if res.status == 3:
+        return math.inf
+    if res.status == 2:
+        return None
+    if res.status != 0:
+        raise SolverFailure(f"HiGHS: {res.message} (maximum load, capped laws)", "highs",
+                            str(res.status))
+    return float(res.x[prob.cols["lambda"]][0])
+
+
+def capacity_bound(m: _Model, cv, marked: np.ndarray, f: float, lo: float, hi: float,
+                   max_rounds: int = 100) -> tuple[float, int]:
+    """A lower bound on every non-associative collapse multiplier in [lo, hi], and the
+    rounds it took.
+
+    Radenkovic's second theorem with the least normal forces: a collapse state at
+    lambda is admissible at lambda, so each joint's normal force sum N_j is at least
+    N_j^min, its least over the admissible states at lo <= lambda <= hi, and the shear
+    its slip dissipates against, f N_j + c_j a_j, at least k_j = max(0, f N_j^min +
+    c_j a_j). The mechanism (openings where N is at its tensile limit, slips without
+    dilatancy) is a mechanism of the structure whose non-associative joints follow the
+    cohesion-only law |T_j| <= k_j (normality for it: a slip without opening), and it
+    dissipates there no more than in the collapse state: by the kinematic theorem that
+    structure's associative multiplier is a lower bound (with N_j^min = 0 it is the
+    frictionless bound, Drucker 1954). The bound raises lo, which raises N^min: repeated
+    until it stops rising (or reaches hi)."""
+    from ..problems.formulation import build_max_load
+
+    sysm, sc = cv.system, cv.scaling
+    c = sysm.contacts
+    fj = cv.f_joint(f)
+    mk = np.flatnonzero(marked & np.isfinite(fj))
+    f_eff = np.where(marked & np.isfinite(fj), 0.0, fj)
+    coh = c.cohesion * c.areas / sc.force
+    rounds = 0
+    while rounds < max_rounds and lo < hi:
+        rounds += 1
+        nmin = _least_normal(m, mk, c.joint_start, lo, hi)
+        if nmin is None:  # no admissible state in [lo, hi]: no collapse state either
+            return hi, rounds
+        cap = np.zeros(c.n_points)
+        cap[c.joint_start[mk]] = np.maximum(fj[mk] * nmin, -coh[mk])
+        prob, _ = build_max_load(sysm, sc, f_eff, cap=cap)
+        lam = _max_load_lp(prob)
+        if lam is None or lam <= lo * (1 + 1e-12) + 1e-12:
+            break
+        lo = min(lam, hi)
+    return lo, rounds
+
+
 def _columns(m: _Model) -> tuple[int, int, int, int]:
     n, ne, L = m.A.shape[1], m.A.shape[0], m.G.shape[0]
     return n, ne, L, n + 1 + ne + L
@@ -210,9 +293,10 @@ def _common_rows(m: _Model) -> tuple[sp.csr_matrix, np.ndarray]:
     return sp.vstack([eq, flow, work], format="csr"), rhs
 
 
-def _solve_milp(m: _Model, Sr: np.ndarray, V: float, time_limit: float) -> dict:
-    """min lambda over the collapse states within the bounds (``Sr`` on the law rows'
-    slacks, V on openings and slips): HiGHS's answer as a dict."""
+def _solve_milp(m: _Model, Sr: np.ndarray, V: float, time_limit: float,
+                lam_lo: float = 0.0) -> dict:
+    """min lambda >= ``lam_lo`` over the collapse states within the bounds (``Sr`` on
+    the law rows' slacks, V on openings and slips): HiGHS's answer as a dict."""
     n, ne, L, nc = _columns(m)
     E, e = _common_rows(m)
     Z = sp.csr_matrix
@@ -225,7 +309,8 @@ def _solve_milp(m: _Model, Sr: np.ndarray, V: float, time_limit: float) -> dict:
             LinearConstraint(laws, -np.inf, m.h),
             LinearConstraint(cap_nu, -np.inf, 0.0),
             LinearConstraint(cap_s, -np.inf, Sr - m.h)]
-    lo = np.concatenate([np.full(n, -np.inf), [0.0], np.full(ne, -np.inf), np.zeros(2 * L)])
+    lo = np.concatenate([np.full(n, -np.inf), [lam_lo], np.full(ne, -np.inf),
+                         np.zeros(2 * L)])
     hi = np.concatenate([np.full(n + 1 + ne, np.inf), np.full(L, V), np.ones(L)])
     cost = np.zeros(nc + L)
     cost[n] = 1.0
@@ -298,6 +383,10 @@ def _bounds_of(cv) -> tuple[float, float]:
     return FORCE_FACTOR * max(total, 1.0), VELOCITY_FACTOR / lmin
 
 
+def _tol(a: float) -> float:
+    return SAME * max(1.0, abs(a))
+
+
 def _same(a: float, b: float) -> bool:
     return abs(a - b) <= SAME * max(1.0, abs(a), abs(b))
 
@@ -317,7 +406,8 @@ def _checked(m: _Model, run: dict) -> tuple[float, np.ndarray, float] | None:
 def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
                     flow: str | None = None, max_joints: int = MAX_JOINTS,
                     force_bound: float | None = None, velocity_bound: float | None = None,
-                    time_limit: float = 60.0, double_check: bool = True) -> SafeMultiplier:
+                    time_limit: float = 60.0, double_check: bool = True,
+                    cut: bool = True) -> SafeMultiplier:
     """The smallest non-associative collapse multiplier over all states (2D), as a
     mixed-integer LP solved by HiGHS (see the module docstring).
 
@@ -327,7 +417,10 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
     times the blocks' total load) bounds every normal force, ``velocity_bound`` every
     opening and slip per unit work of the live load (see :class:`SafeMultiplier`);
     ``double_check`` solves again with both doubled and gives no value if it moves.
-    ``time_limit`` (s) per mixed-integer solve. Scenes of more than ``max_joints``
+    ``time_limit`` (s) per mixed-integer solve. ``cut``: lambda >= the capacity bound
+    (:func:`capacity_bound`, a theorem) is a constraint of the mixed-integer LP, which
+    then prunes below it; without it the MILP's value is independent of the bound.
+    Scenes of more than ``max_joints``
     joints, and 3D scenes, are refused with an :class:`InputError`.
     """
     from ..methods import open_method
@@ -360,7 +453,10 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
         math.inf if up.status == "unbounded" else None)
     low = _frictionless_bound(cv, marked, f)
     s_max = _static_slack_max(m, assoc)
-    return _decide(_Context(m, cv, f, S, V, low, assoc, s_max), time_limit, double_check)
+    hi = math.inf if assoc is None else assoc
+    cap, rounds = capacity_bound(m, cv, marked, f, max(low or 0.0, 0.0), hi)
+    ctx = _Context(m, cv, f, S, V, low, assoc, s_max, cap, rounds, cut)
+    return _decide(ctx, time_limit, double_check)
 
 
 @dataclass
@@ -376,6 +472,10 @@ class _Context:
     assoc: float | None
     #: (L,) the largest slack of each law row over the admissible states (inf: unbounded)
     s_max: np.ndarray
+    #: the capacity bound (:func:`capacity_bound`), its rounds, and whether it is a cut
+    cap: float
+    rounds: int
+    cut: bool
     trials: list[tuple[float, float | None]] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     elapsed: float = 0.0
@@ -393,7 +493,7 @@ def _decide(ctx: _Context, time_limit: float, double_check: bool) -> SafeMultipl
     raw: list[float] = []
     for k in (1.0, 2.0) if double_check else (1.0,):
         run = _solve_milp(m, _slack_bounds(m, k * ctx.S, ctx.s_max), k * ctx.V,
-                          time_limit)
+                          time_limit, ctx.cap if ctx.cut else 0.0)
         ctx.nodes += run["nodes"]
         ctx.elapsed += run["time"]
         ctx.gap = run["gap"]
@@ -403,11 +503,18 @@ def _decide(ctx: _Context, time_limit: float, double_check: bool) -> SafeMultipl
                              f"fixed it breaches equilibrium, laws or complementarity by "
                              f"{got[2]:.3g}")
             got = None
+        if run["status"] == 1 and got is not None and got[0] <= ctx.cap + _tol(ctx.cap):
+            # the least state found meets a lower bound: proven without HiGHS's bound
+            ctx.notes.append(f"HiGHS stopped ({run['message']}) on a collapse state at "
+                             f"{got[0]:.9g}, which the capacity bound {ctx.cap:.9g} "
+                             "proves least")
+            run = dict(run, status=0, dual=ctx.cap)
         if run["status"] not in (0, 2) or (run["status"] == 0 and got is None):
             up = None if got is None else got[0]
+            lo = ctx.cap if run["dual"] is None else max(float(run["dual"]), ctx.cap)
             ctx.notes.append(f"HiGHS did not prove the least multiplier ({run['message']}"
                              f", {run['nodes']} nodes) with normal forces up to "
-                             f"{k * ctx.S * F:.6g}: it lies in [{_fmt(run['dual'])}, "
+                             f"{k * ctx.S * F:.6g}: it lies in [{_fmt(lo)}, "
                              f"{_fmt(up)}]" + ("" if up is None else
                                               f" ({_fmt(up)}: a collapse state found)"))
             return _result(ctx, UNDECIDED, None, run["dual"], up, got)
@@ -471,9 +578,13 @@ def _result(ctx: _Context, status: str, value: float | None, lower: float | None
     notes.append(f"smallest over the collapse states with {forces}openings or slips up to "
                  f"{k * ctx.V:.6g} per unit work of the live load (in units of {F:.6g} x "
                  "one length unit)")
-    lower = float(lower) if lower is not None and math.isfinite(lower) else None
+    lower = ctx.cap if lower is None or not math.isfinite(lower) else \
+        max(float(lower), ctx.cap)
+    if upper is not None:
+        lower = min(lower, upper)
     return SafeMultiplier(status=status, value=value, lower=lower, upper=upper,
                           friction=ctx.f, frictionless=ctx.low, associative=ctx.assoc,
+                          capacity_bound=ctx.cap, bound_rounds=ctx.rounds,
                           force_bound=k * ctx.S * F, velocity_bound=k * ctx.V,
                           reference_force=F, state=st, mechanism=mech,
                           trials=tuple(ctx.trials), solve_time=ctx.elapsed,
