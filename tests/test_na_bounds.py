@@ -241,3 +241,22 @@ def test_refusals():
         safe_multiplier(block().with_changes(live_body_force=None))
     with pytest.raises(InputError, match="force_bound"):
         safe_multiplier(block(), force_bound=-1.0)
+
+
+def test_bench_na_bounds_tiny(tmp_path):
+    """The benchmark runs on its tiny cases: the single block at f = 0.3 (slides at f)
+    and the pinched block at f = 0.8 (safe value f, see above), with its table."""
+    import importlib.util
+
+    from conftest import ROOT
+
+    spec = importlib.util.spec_from_file_location(
+        "bench_na_bounds", ROOT / "benchmarks" / "bench_na_bounds.py")
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    data = bench.main(["--tiny", "--out", str(tmp_path)])
+    got = {r["case"]: r["safe"] for r in data["rows"]}
+    assert got == {"block 1 x 2, f = 0.3": pytest.approx(0.3, rel=RTOL),
+                   "pinched block, f = 0.8": pytest.approx(0.8, rel=RTOL)}
+    md = (tmp_path / "bench_na_bounds.md").read_text()
+    assert md.startswith("## The safe non-associative multiplier")
