@@ -216,18 +216,46 @@ def test_bounds_that_bind_give_no_value():
     collapse_state_holds(scene, res)
 
 
-def test_unproven_is_undecided():
-    """The 3 x 3 running-bond wall at f = 0.8 (11 blocks, 22 joints, 88 binaries): its
-    complementarity relaxes so weakly that HiGHS's lower bound stays 0 after 2 minutes
-    (127,000 nodes); with a time limit of 2 s the answer is undecided, with no value,
-    and any state found is a collapse state between the bounds."""
+def test_the_3x3_wall_collapses_at_5_7_in_some_state():
+    """The 3 x 3 running-bond wall at f = 0.8 (issue 30: LMGC90's tilt test [0.7139,
+    0.7148], the answer from the elastic state 0.7468, associative 0.7705).
+
+    A collapse state at 5/7, by hand: blocks 0.4 x 0.2 (half blocks 0.2 x 0.2) of
+    weight 20 per unit area; the right end of the middle course is the half block c1b3
+    (weight 0.8, centroid (1.1, 0.3)) under the top course's end block c2b2 (weight 1.6,
+    centroid (1.0, 0.5)), which also rests on c1b2. In the state where c2b2 rests on
+    c1b3 alone (the base resultant at x = 1.0 + 0.1 lambda, inside c1b3's top [1.0,
+    1.2]) and the head joint c1b2-c1b3 carries nothing, the two blocks overturn together
+    about c1b3's toe (1.2, 0.2) when lambda (0.8 x 0.1 + 1.6 x 0.3) = 0.8 x 0.1 + 1.6 x
+    0.2, lambda = 0.40 / 0.56 = 5/7 = 0.714286, inside LMGC90's bracket; c2b2 slides off
+    c1b2 and c2b1 without dilatancy (their normal forces are zero), and the toe's
+    shear 5/7 x 2.4 = 1.71 is below f N = 0.8 x 2.4 = 1.92. The answer from the elastic
+    state, 0.7468, rests on a head-joint thrust that this state does not have: it is
+    above the least collapse state by 4.6%.
+
+    The mixed-integer LP finds this state within 1,000 branch-and-bound nodes but does
+    not prove it least: its complementarity relaxes so weakly that HiGHS's lower bound
+    stays 0 (after 127,000 nodes, 2 minutes), and the capacity bound is 0 too (c0b1 can
+    hang from its neighbours by head-joint friction in some admissible state, the top
+    course's blocks from either block below): undecided, no value."""
     scene = build("wall", courses=3, blocks_per_course=3, friction=0.8)
-    res = safe_multiplier(scene, flow=NA, time_limit=2.0)
+    res = safe_multiplier(scene, flow=NA, node_limit=1000)
     assert res.status == "undecided" and res.value is None
     assert any("did not prove" in n for n in res.notes)
-    if res.upper is not None:
-        collapse_state_holds(scene, res)
-        assert res.upper <= res.associative * (1 + 1e-7)
+    assert res.lower == 0.0 and res.capacity_bound == 0.0
+    assert res.upper == pytest.approx(5 / 7, rel=1e-9)
+    collapse_state_holds(scene, res)
+    ids = [b.id for b in scene.blocks]
+    v = res.mechanism.velocities
+    moving = {ids[k] for k in np.flatnonzero(np.abs(v).max(axis=1) > 1e-9)}
+    assert moving == {"c1b3", "c2b2"}
+    # one rigid rotation of both about (1.2, 0.2): v = omega x (centroid - pivot)
+    for k, centroid in ((ids.index("c1b3"), (1.1, 0.3)), (ids.index("c2b2"), (1.0, 0.5))):
+        w = v[k, 2]
+        assert v[k, :2] == pytest.approx([-w * (centroid[1] - 0.2), w * (centroid[0] - 1.2)],
+                                         abs=1e-9)
+    x0 = rb.max_load_multiplier(scene, flow=NA, state=False)
+    assert x0.status == "collapse" and x0.load_multiplier >= res.upper
 
 
 # -- refusals -------------------------------------------------------------------------------

@@ -84,6 +84,7 @@ OPTIMAL = "optimal"
 BOUND_DEPENDENT = "bound-dependent"
 NONE_WITHIN_BOUNDS = "no collapse within the bounds"
 UNDECIDED = "undecided"
+UNSTABLE = "unstable"
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,9 +94,13 @@ class SafeMultiplier:
     ``status``: "optimal" (``value`` proven smallest within the bounds, and unchanged
     with the bounds doubled), "bound-dependent" (a smaller state was found with the
     bounds doubled or lifted: ``upper`` is the least found, no value), "no collapse
-    within the bounds", or "undecided" (the solver did not prove optimality: ``lower``
-    and ``upper`` are its bracket, or None). ``lower`` is HiGHS's proven lower bound at
-    the final bounds. ``force_bound`` (scene force units) bounds every normal force,
+    within the bounds" (the structure stands until the associative multiplier, where
+    no state is admissible any more, unless a collapse state lies beyond the bounds),
+    "unstable" (the dead load alone has no admissible state), or "undecided" (the
+    solver did not prove optimality: ``lower`` and ``upper`` are its bracket, or None).
+    ``lower``: the larger of HiGHS's proven bound and the capacity bound; ``upper``: the
+    least collapse state found (``state``, ``mechanism``). ``force_bound`` (scene force
+    units) bounds every normal force the admissible states leave unbounded,
     ``velocity_bound`` every opening and slip of a mechanism normalised to a work of the
     live load of one reference force ``reference_force`` times one length unit.
     """
@@ -107,8 +112,9 @@ class SafeMultiplier:
     friction: float
     frictionless: float | None
     associative: float | None
-    #: a lower bound on every collapse multiplier (:func:`capacity_bound`) and its rounds
-    capacity_bound: float
+    #: a lower bound on every collapse multiplier (:func:`capacity_bound`; None where no
+    #: solve was made) and its rounds
+    capacity_bound: float | None
     bound_rounds: int
     force_bound: float
     velocity_bound: float
@@ -294,7 +300,7 @@ def _common_rows(m: _Model) -> tuple[sp.csr_matrix, np.ndarray]:
 
 
 def _solve_milp(m: _Model, Sr: np.ndarray, V: float, time_limit: float,
-                lam_lo: float = 0.0) -> dict:
+                lam_lo: float = 0.0, node_limit: int | None = None) -> dict:
     """min lambda >= ``lam_lo`` over the collapse states within the bounds (``Sr`` on
     the law rows' slacks, V on openings and slips): HiGHS's answer as a dict."""
     n, ne, L, nc = _columns(m)
@@ -316,9 +322,11 @@ def _solve_milp(m: _Model, Sr: np.ndarray, V: float, time_limit: float,
     cost[n] = 1.0
     integ = np.concatenate([np.zeros(nc), np.ones(L)])
     t0 = time.perf_counter()
+    opts = {"time_limit": float(time_limit), "mip_rel_gap": MIP_GAP, "presolve": True}
+    if node_limit is not None:
+        opts["node_limit"] = int(node_limit)
     res = milp(cost, constraints=cons, integrality=integ, bounds=Bounds(lo, hi),
-               options={"time_limit": float(time_limit), "mip_rel_gap": MIP_GAP,
-                        "presolve": True})
+               options=opts)
     out = {"status": int(res.status), "message": str(res.message),
            "time": time.perf_counter() - t0,
            "nodes": int(getattr(res, "mip_node_count", 0) or 0),
@@ -406,8 +414,8 @@ def _checked(m: _Model, run: dict) -> tuple[float, np.ndarray, float] | None:
 def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
                     flow: str | None = None, max_joints: int = MAX_JOINTS,
                     force_bound: float | None = None, velocity_bound: float | None = None,
-                    time_limit: float = 60.0, double_check: bool = True,
-                    cut: bool = True) -> SafeMultiplier:
+                    time_limit: float = 60.0, node_limit: int | None = None,
+                    double_check: bool = True, cut: bool = True) -> SafeMultiplier:
     """The smallest non-associative collapse multiplier over all states (2D), as a
     mixed-integer LP solved by HiGHS (see the module docstring).
 
@@ -417,7 +425,8 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
     times the blocks' total load) bounds every normal force, ``velocity_bound`` every
     opening and slip per unit work of the live load (see :class:`SafeMultiplier`);
     ``double_check`` solves again with both doubled and gives no value if it moves.
-    ``time_limit`` (s) per mixed-integer solve. ``cut``: lambda >= the capacity bound
+    ``time_limit`` (s) and ``node_limit`` (branch-and-bound nodes, None: no limit) per
+    mixed-integer solve. ``cut``: lambda >= the capacity bound
     (:func:`capacity_bound`, a theorem) is a constraint of the mixed-integer LP, which
     then prunes below it; without it the MILP's value is independent of the bound.
     Scenes of more than ``max_joints``
@@ -449,13 +458,21 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
     if not (S > 0 and V > 0 and math.isfinite(S) and math.isfinite(V)):
         raise InputError("force_bound and velocity_bound must be finite numbers > 0")
     up = cv.load_limit(f, 1e-9)
-    assoc = up.value if up.status == "collapse" else (
-        math.inf if up.status == "unbounded" else None)
+    if up.status not in ("collapse", "unbounded"):
+        ctx = _Context(m, cv, f, S, V, None, None, np.zeros(0), 0.0, 0, cut)
+        if up.status == "unstable":
+            ctx.notes.append("the dead load alone has no admissible state (static "
+                             "problem): the structure does not stand, under either flow "
+                             "rule")
+            return _result(ctx, UNSTABLE, None, None, None, None)
+        ctx.notes.append(f"the associative multiplier is undecided ({up.status}): no "
+                         "bounds to search between")
+        return _result(ctx, UNDECIDED, None, None, None, None)
+    assoc = up.value if up.status == "collapse" else math.inf
     low = _frictionless_bound(cv, marked, f)
     s_max = _static_slack_max(m, assoc)
-    hi = math.inf if assoc is None else assoc
-    cap, rounds = capacity_bound(m, cv, marked, f, max(low or 0.0, 0.0), hi)
-    ctx = _Context(m, cv, f, S, V, low, assoc, s_max, cap, rounds, cut)
+    cap, rounds = capacity_bound(m, cv, marked, f, max(low or 0.0, 0.0), assoc)
+    ctx = _Context(m, cv, f, S, V, low, assoc, s_max, cap, rounds, cut, node_limit)
     return _decide(ctx, time_limit, double_check)
 
 
@@ -476,6 +493,9 @@ class _Context:
     cap: float
     rounds: int
     cut: bool
+    node_limit: int | None = None
+    #: a mixed-integer solve was made
+    ran: bool = False
     trials: list[tuple[float, float | None]] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     elapsed: float = 0.0
@@ -493,7 +513,8 @@ def _decide(ctx: _Context, time_limit: float, double_check: bool) -> SafeMultipl
     raw: list[float] = []
     for k in (1.0, 2.0) if double_check else (1.0,):
         run = _solve_milp(m, _slack_bounds(m, k * ctx.S, ctx.s_max), k * ctx.V,
-                          time_limit, ctx.cap if ctx.cut else 0.0)
+                          time_limit, ctx.cap if ctx.cut else 0.0, ctx.node_limit)
+        ctx.ran = True
         ctx.nodes += run["nodes"]
         ctx.elapsed += run["time"]
         ctx.gap = run["gap"]
@@ -529,7 +550,9 @@ def _decide(ctx: _Context, time_limit: float, double_check: bool) -> SafeMultipl
     if best is None:
         b = ctx.trials[-1][0]
         ctx.notes.append(f"HiGHS finds no collapse state with normal forces up to {b:.6g} "
-                         "(no certificate that none exists beyond)")
+                         f"at 0 <= lambda <= {_fmt(ctx.assoc)} (the associative "
+                         "multiplier, above which no state is admissible); no certificate "
+                         "that none exists beyond the bounds")
         return _result(ctx, NONE_WITHIN_BOUNDS, None, None, None, None)
     values = [v for _, v in ctx.trials] + raw
     if not all(v is not None and _same(v, best[0]) for v in values):
@@ -569,6 +592,11 @@ def _result(ctx: _Context, status: str, value: float | None, lower: float | None
     if upper is not None and ctx.assoc is not None and upper > ctx.assoc + tol:
         notes.append(f"the state found ({upper:.9g}) is above the associative multiplier "
                      f"{ctx.assoc:.9g} (static theorem): a defect")
+    if not ctx.ran:  # decided before any mixed-integer solve
+        return SafeMultiplier(status=status, value=None, lower=None, upper=None,
+                              friction=ctx.f, frictionless=None, associative=ctx.assoc,
+                              capacity_bound=None, bound_rounds=0, force_bound=ctx.S * F,
+                              velocity_bound=ctx.V, reference_force=F, notes=tuple(notes))
     k = 2.0 if len(ctx.trials) > 1 else 1.0
     free = int(np.sum(~np.isfinite(ctx.s_max)))
     forces = (f"normal forces up to {k * ctx.S * F:.6g} on the {free} of {len(ctx.s_max)} "
