@@ -288,3 +288,20 @@ def test_bench_na_bounds_tiny(tmp_path):
                    "pinched block, f = 0.8": pytest.approx(0.8, rel=RTOL)}
     md = (tmp_path / "bench_na_bounds.md").read_text()
     assert md.startswith("## The safe non-associative multiplier")
+
+
+def test_the_documented_example(capsys):
+    """docs/safe-multiplier.md's example prints what the page says it prints."""
+    import re
+
+    from conftest import ROOT
+
+    text = (ROOT / "docs" / "safe-multiplier.md").read_text()
+    code = re.search(r"```python\n(.*?)```", text, re.S).group(1)
+    said = [ln[2:] for ln in code.splitlines() if ln.startswith("# ")]
+    run = "\n".join(ln for ln in code.splitlines() if not ln.startswith("# "))
+    run = run.replace('"examples/', f'"{EXAMPLES}/')
+    exec(compile(run, "safe-multiplier.md", "exec"), {})
+    printed = [ln for ln in capsys.readouterr().out.splitlines()
+               if not ln.startswith("HighsMip")]
+    assert printed == said
