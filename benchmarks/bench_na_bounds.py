@@ -1,7 +1,8 @@
 """The safe non-associative multiplier against the answer from the elastic state.
 
 For 2D scenes of up to 50 joints, every joint non-associative: the frictionless bound
-(Drucker 1954), the capacity bound (:func:`rigidblocks.analyses.na_bounds.capacity_bound`),
+(Drucker 1954), the capacity bound (``SafeMultiplier.capacity_bound``, see
+:mod:`rigidblocks.analyses.na_bounds`),
 the smallest collapse multiplier over all states (the mixed-integer LP of
 :mod:`rigidblocks.analyses.na_bounds`, HiGHS, with its status, seconds and
 branch-and-bound nodes), the multiplier reached from the elastic state

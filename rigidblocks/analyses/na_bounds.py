@@ -50,8 +50,12 @@ mixed-integer LP, and that is not done here.
 from __future__ import annotations
 
 import math
+import os
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -62,6 +66,9 @@ from ..errors import InputError, SolverFailure
 from ..results import ForceState, Mechanism
 from ..scene.model import Scene, friction_value
 from .nonassociative import _frictionless_bound, flow_mask
+
+if TYPE_CHECKING:
+    from ..methods.convex import ConvexMethod
 
 #: the largest scene (joints) the mixed-integer program is tried on by default
 MAX_JOINTS = 50
@@ -112,7 +119,7 @@ class SafeMultiplier:
     friction: float
     frictionless: float | None
     associative: float | None
-    #: a lower bound on every collapse multiplier (:func:`capacity_bound`; None where no
+    #: a lower bound on every collapse multiplier (:func:`_capacity_bound`; None where no
     #: solve was made) and its rounds
     capacity_bound: float | None
     bound_rounds: int
@@ -146,7 +153,7 @@ class _Model:
     n_points: int  # the first n_points law rows are the no-tension rows
 
 
-def _model(cv, marked: np.ndarray, f: float) -> _Model:
+def _model(cv: ConvexMethod, marked: np.ndarray, f: float) -> _Model:
     from ..problems.formulation import build_max_load
 
     sysm, sc = cv.system, cv.scaling
@@ -243,8 +250,8 @@ def _max_load_lp(prob) -> float | None:
     return float(res.x[prob.cols["lambda"]][0])
 
 
-def capacity_bound(m: _Model, cv, marked: np.ndarray, f: float, lo: float, hi: float,
-                   max_rounds: int = 100) -> tuple[float, int]:
+def _capacity_bound(m: _Model, cv: ConvexMethod, marked: np.ndarray, f: float, lo: float,
+                    hi: float, max_rounds: int = 100) -> tuple[float, int]:
     """A lower bound on every non-associative collapse multiplier in [lo, hi], and the
     rounds it took.
 
@@ -299,6 +306,26 @@ def _common_rows(m: _Model) -> tuple[sp.csr_matrix, np.ndarray]:
     return sp.vstack([eq, flow, work], format="csr"), rhs
 
 
+@contextmanager
+def _quiet_stderr() -> Iterator[None]:
+    """The process's standard error (file descriptor 2) pointed at /dev/null: the
+    HiGHS bundled with scipy writes a debugging line there from its branch and bound
+    ("HighsMipSolverData::transformNewIntegerFeasibleSolution tmpSolver.run();")."""
+    try:
+        saved = os.dup(2)
+    except OSError:  # no descriptor 2
+        yield
+        return
+    null = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(null, 2)
+        yield
+    finally:
+        os.dup2(saved, 2)
+        os.close(saved)
+        os.close(null)
+
+
 def _solve_milp(m: _Model, Sr: np.ndarray, V: float, time_limit: float,
                 lam_lo: float = 0.0, node_limit: int | None = None) -> dict:
     """min lambda >= ``lam_lo`` over the collapse states within the bounds (``Sr`` on
@@ -325,8 +352,9 @@ def _solve_milp(m: _Model, Sr: np.ndarray, V: float, time_limit: float,
     opts = {"time_limit": float(time_limit), "mip_rel_gap": MIP_GAP, "presolve": True}
     if node_limit is not None:
         opts["node_limit"] = int(node_limit)
-    res = milp(cost, constraints=cons, integrality=integ, bounds=Bounds(lo, hi),
-               options=opts)
+    with _quiet_stderr():
+        res = milp(cost, constraints=cons, integrality=integ, bounds=Bounds(lo, hi),
+                   options=opts)
     out = {"status": int(res.status), "message": str(res.message),
            "time": time.perf_counter() - t0,
            "nodes": int(getattr(res, "mip_node_count", 0) or 0),
@@ -377,7 +405,7 @@ def _breach(m: _Model, sol: np.ndarray) -> float:
                      comp.max(initial=0.0)))
 
 
-def _bounds_of(cv) -> tuple[float, float]:
+def _bounds_of(cv: ConvexMethod) -> tuple[float, float]:
     """Default (S, V) in scaled units: S = FORCE_FACTOR x the blocks' total load, V =
     VELOCITY_FACTOR / the smallest nonzero live load of a block (so that a mechanism
     that moves that block alone fits, VELOCITY_FACTOR times over)."""
@@ -427,7 +455,7 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
     ``double_check`` solves again with both doubled and gives no value if it moves.
     ``time_limit`` (s) and ``node_limit`` (branch-and-bound nodes, None: no limit) per
     mixed-integer solve. ``cut``: lambda >= the capacity bound
-    (:func:`capacity_bound`, a theorem) is a constraint of the mixed-integer LP, which
+    (:func:`_capacity_bound`, a theorem) is a constraint of the mixed-integer LP, which
     then prunes below it; without it the MILP's value is independent of the bound.
     Scenes of more than ``max_joints``
     joints, and 3D scenes, are refused with an :class:`InputError`.
@@ -471,7 +499,7 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
     assoc = up.value if up.status == "collapse" else math.inf
     low = _frictionless_bound(cv, marked, f)
     s_max = _static_slack_max(m, assoc)
-    cap, rounds = capacity_bound(m, cv, marked, f, max(low or 0.0, 0.0), assoc)
+    cap, rounds = _capacity_bound(m, cv, marked, f, max(low or 0.0, 0.0), assoc)
     ctx = _Context(m, cv, f, S, V, low, assoc, s_max, cap, rounds, cut, node_limit)
     return _decide(ctx, time_limit, double_check)
 
@@ -481,7 +509,7 @@ class _Context:
     """What the verdict is made of: the model, its bounds, the runs so far."""
 
     m: _Model
-    cv: object
+    cv: ConvexMethod
     f: float
     S: float
     V: float
@@ -489,7 +517,7 @@ class _Context:
     assoc: float | None
     #: (L,) the largest slack of each law row over the admissible states (inf: unbounded)
     s_max: np.ndarray
-    #: the capacity bound (:func:`capacity_bound`), its rounds, and whether it is a cut
+    #: the capacity bound (:func:`_capacity_bound`), its rounds, and whether it is a cut
     cap: float
     rounds: int
     cut: bool
