@@ -56,14 +56,16 @@ def pinched(f=0.8):
     ], unit_weight=10.0, friction=f, live_body_force=[1, 0], flow=NA)
 
 
-def collapse_state_holds(scene, res, tol=1e-7):
+def collapse_state_holds(scene, res, tol=1e-7, dilatancy=False):
     """Is ``res`` a non-associative collapse state at ``res.upper``? Checked on the
     equilibrium system assembled afresh (design.md, "Statics conventions"):
     equilibrium, N_k >= -t a_k, |T_j| <= f (N_1 + N_2) + c a_j; relative displacements
     A^T v of the mechanism's block velocities v: openings >= 0 and only where N_k is at
     its tensile limit, slips only where |T| is at its limit and against T (no
-    dilatancy asked: a slip need not open); the live load does positive work. Returns
-    the joints that slip."""
+    dilatancy asked: a slip need not open); the live load does positive work. With
+    ``dilatancy`` (associative flow) a slip opens the joint by f |slip| at each point
+    (normality), and only the opening beyond that needs the tensile limit. Returns the
+    joints that slip."""
     sysm = assemble(scene)
     c = sysm.contacts
     lay = sysm.layout
@@ -81,6 +83,8 @@ def collapse_state_holds(scene, res, tol=1e-7):
     delta = sysm.A.T @ v
     opening, slip = delta[lay.normal], delta[lay.tangential]
     vs = float(np.abs(delta).max())
+    if dilatancy:
+        opening = opening - f * np.abs(slip)[c.point_joint]
     assert opening.min() >= -tol * vs
     assert np.all((N - Nmin)[opening > tol * vs] <= tol * scale)
     slides = np.flatnonzero(np.abs(slip) > tol * vs)
@@ -198,6 +202,22 @@ def test_examples_between_the_bounds(name, value):
         assert res.value == pytest.approx(value, abs=1e-9, rel=RTOL)
     collapse_state_holds(scene, res)
     bracketed(res, rb.max_load_multiplier(scene, flow=NA, state=False))
+
+
+@pytest.mark.parametrize("name", ["reference_self_weight.json", "fig4a_bonded.json",
+                                  "arpino_gate.json"])
+def test_associative_flow_gives_the_associative_multiplier(name):
+    """With every joint associative (Q = G: normality) every collapse state has the one
+    associative multiplier (the limit theorems), so the least over the states, found by
+    branch and bound over the same binaries, is the maximum-load LP's value (Clarabel):
+    two solvers and two formulations, one number (validation.md, "Cross-checks that need
+    no reference value"). Without the capacity bound as a cut (with no non-associative
+    joint it is the associative multiplier itself)."""
+    scene = read_scene(EXAMPLES / name)
+    res = safe_multiplier(scene, flow="associative", cut=False)
+    assert res.status == "optimal"
+    assert res.value == pytest.approx(res.associative, rel=1e-7)
+    collapse_state_holds(scene, res, dilatancy=True)
 
 
 def test_bounds_that_bind_give_no_value():

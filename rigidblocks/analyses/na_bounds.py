@@ -307,22 +307,29 @@ def _common_rows(m: _Model) -> tuple[sp.csr_matrix, np.ndarray]:
 
 
 @contextmanager
-def _quiet_stderr() -> Iterator[None]:
-    """The process's standard error (file descriptor 2) pointed at /dev/null: the
-    HiGHS bundled with scipy writes a debugging line there from its branch and bound
-    ("HighsMipSolverData::transformNewIntegerFeasibleSolution tmpSolver.run();")."""
-    try:
-        saved = os.dup(2)
-    except OSError:  # no descriptor 2
-        yield
-        return
+def _quiet() -> Iterator[None]:
+    """The process's standard output and error (file descriptors 1 and 2) pointed at
+    /dev/null: the HiGHS bundled with scipy writes a debugging line from its branch and
+    bound ("HighsMipSolverData::transformNewIntegerFeasibleSolution tmpSolver.run();"),
+    which would land in the middle of a report or a JSON answer."""
+    import sys
+
+    for stream in (sys.stdout, sys.stderr):
+        stream.flush()
+    saved: list[tuple[int, int]] = []
     null = os.open(os.devnull, os.O_WRONLY)
     try:
-        os.dup2(null, 2)
+        for fd in (1, 2):
+            try:
+                saved.append((fd, os.dup(fd)))
+            except OSError:  # no such descriptor
+                continue
+            os.dup2(null, fd)
         yield
     finally:
-        os.dup2(saved, 2)
-        os.close(saved)
+        for fd, copy in saved:
+            os.dup2(copy, fd)
+            os.close(copy)
         os.close(null)
 
 
@@ -352,7 +359,7 @@ def _solve_milp(m: _Model, Sr: np.ndarray, V: float, time_limit: float,
     opts = {"time_limit": float(time_limit), "mip_rel_gap": MIP_GAP, "presolve": True}
     if node_limit is not None:
         opts["node_limit"] = int(node_limit)
-    with _quiet_stderr():
+    with _quiet():
         res = milp(cost, constraints=cons, integrality=integ, bounds=Bounds(lo, hi),
                    options=opts)
     out = {"status": int(res.status), "message": str(res.message),
