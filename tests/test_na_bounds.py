@@ -278,13 +278,32 @@ def test_the_3x3_wall_collapses_at_5_7_in_some_state():
     assert x0.status == "collapse" and x0.load_multiplier >= res.upper
 
 
+@pytest.mark.parametrize("f, value", [(0.3, 0.3), (0.8, 0.8)])
+def test_single_box_3d_with_a_pyramid(f, value):
+    """3D: a 1 x 1 x 1 box on a slab under a horizontal body force along x (box_stack
+    with one box) slides at lambda = f when f < b/h = 1 (validation.md). The cones are
+    replaced by inscribed 8-facet pyramids whose facets' normals lie at (2i + 1) pi / 8
+    from the contacts' first tangent, x here: x is a pyramid edge, where the pyramid
+    meets the cone, so the pyramid law's multiplier along x is f exactly, as the
+    associative LP with the same pyramids gives it. The capacity bound is 0 in 3D
+    (each contact point can be unloaded in some admissible state; the laws are per
+    point)."""
+    scene = build("box_stack", boxes=1, friction=f)
+    res = safe_multiplier(scene, flow=NA)
+    assert res.status == "optimal"
+    assert res.value == pytest.approx(value, rel=RTOL)
+    assert res.associative == pytest.approx(value, rel=1e-9)
+    assert any("8-facet pyramids" in n for n in res.notes)
+    assert res.capacity_bound == 0.0
+
+
 # -- refusals -------------------------------------------------------------------------------
 def test_refusals():
     wall = build("wall", courses=3, blocks_per_course=3, friction=0.8)
     with pytest.raises(InputError, match=r"22 joints.*at most 10 \(max_joints\)"):
         safe_multiplier(wall, max_joints=10)
-    with pytest.raises(InputError, match="2D only"):
-        safe_multiplier(read_scene(EXAMPLES / "box_stack_3d.json"))
+    with pytest.raises(InputError, match="3D scenes only"):
+        safe_multiplier(block(), pyramid=4)
     with pytest.raises(InputError, match="no live load"):
         safe_multiplier(block().with_changes(live_body_force=None))
     with pytest.raises(InputError, match="force_bound"):

@@ -43,8 +43,12 @@ theorem, Drucker, J. Appl. Mech. 21, 1954), and every one is at least the associ
 multiplier with the non-associative joints frictionless (Radenkovic's second theorem;
 Drucker 1954): both are reported beside the value.
 
-2D only: in 3D the Coulomb cones would have to be linearised (a pyramid) to stay a
-mixed-integer LP, and that is not done here.
+In 3D the Coulomb cone of each contact point is replaced by an inscribed pyramid
+(:func:`~rigidblocks.problems.formulation.joint_rows`, ``pyramid``; 8 facets by
+default): T . d_i <= f cos(pi / k) N_k, the facets' normals d_i in the tangent plane; its
+non-associative flow is a slip sum nu_i d_i with no opening. The answer is that of the
+pyramid law, which lies inside the cone (an approximation, said in the notes); the
+binaries (k + 1 per contact point) limit it to a few blocks.
 """
 
 from __future__ import annotations
@@ -72,6 +76,8 @@ if TYPE_CHECKING:
 
 #: the largest scene (joints) the mixed-integer program is tried on by default
 MAX_JOINTS = 50
+#: facets of the inscribed pyramid that replaces each 3D Coulomb cone
+PYRAMID = 8
 #: default bound on the normal forces, times the sum of the blocks' loads
 FORCE_FACTOR = 10.0
 #: default bound on openings and slips per unit work of the live load, times the
@@ -151,13 +157,17 @@ class _Model:
     Q: sp.csr_matrix  # (L, n) flow rows
     normal: slice  # the normal-force columns of x
     n_points: int  # the first n_points law rows are the no-tension rows
+    #: a friction row's slack over its friction-and-cohesion term (h_r + f N) at most:
+    #: 2 for |T| <= f N + c in 2D, 1 + 1 / cos(pi / k) for a facet of an inscribed
+    #: k-facet pyramid (its slack h + f cos N - T . d_i, with |T| <= f N + c)
+    slack_factor: float = 2.0
 
 
 def _model(cv: ConvexMethod, marked: np.ndarray, f: float) -> _Model:
     from ..problems.formulation import build_max_load
 
     sysm, sc = cv.system, cv.scaling
-    prob, jr = build_max_load(sysm, sc, cv.f_joint(f))
+    prob, jr = build_max_load(sysm, sc, cv.f_joint(f), cv.pyramid)
     ne, n = sysm.n_rows, sysm.layout.size
     A = prob.A.tocsr()
     G = jr.G_lin.tocsr()[:, :n]
@@ -168,7 +178,9 @@ def _model(cv: ConvexMethod, marked: np.ndarray, f: float) -> _Model:
     Q.eliminate_zeros()
     return _Model(A=A[:ne, :n], live=A[:ne, n].toarray().ravel(), b=prob.b[:ne],
                   G=G, h=jr.h_lin, Q=Q, normal=sysm.layout.normal,
-                  n_points=jr.n_normal_rows)
+                  n_points=jr.n_normal_rows,
+                  slack_factor=2.0 if cv.pyramid is None else
+                  1.0 + 1.0 / math.cos(math.pi / cv.pyramid))
 
 
 def _static_slack_max(m: _Model, lam_hi: float | None) -> np.ndarray:
@@ -197,29 +209,30 @@ def _static_slack_max(m: _Model, lam_hi: float | None) -> np.ndarray:
 def _slack_bounds(m: _Model, S: float, s_max: np.ndarray) -> np.ndarray:
     """(L,) the big-M of each law row's slack: ``s_max`` where the admissible states
     bound it (with a margin of 1e-6 of the largest), else the slack's largest value
-    when every N_k + t_k <= S: S on the no-tension rows, 2 (h_r + sum f N) on the
-    friction rows (|T| <= f sum N + c)."""
+    when every N_k + t_k <= S: S on the no-tension rows, ``slack_factor`` (h_r + f N)
+    on the friction rows."""
     P = m.n_points
     t = m.h[:P]
     Nmax = np.zeros(m.G.shape[1])
     Nmax[m.normal] = S - t
     fric = abs(m.G[P:]) @ Nmax
-    stated = np.concatenate([np.full(P, S), 2.0 * (m.h[P:] + fric)])
+    stated = np.concatenate([np.full(P, S), m.slack_factor * (m.h[P:] + fric)])
     fin = np.isfinite(s_max)
     top = float(s_max[fin].max(initial=1.0))
     return np.where(fin, s_max + 1e-6 * max(top, 1.0), stated)
 
 
-def _least_normal(m: _Model, joints: np.ndarray, starts: np.ndarray, lo: float,
+def _least_normal(m: _Model, groups: np.ndarray, starts: np.ndarray, lo: float,
                   hi: float) -> np.ndarray | None:
-    """(len(joints),) the least sum of each joint's normal forces over the admissible
-    states at lo <= lambda <= hi (one LP each); None when there is no such state."""
+    """(len(groups),) the least sum of the normal forces of each group of contact points
+    (group g: points starts[g] to starts[g + 1]) over the admissible states at lo <=
+    lambda <= hi (one LP each); None when there is no such state."""
     L, n = m.G.shape
     A_eq = sp.hstack([m.A, sp.csr_matrix(m.live[:, None])], format="csr")
     A_ub = sp.hstack([m.G, sp.csr_matrix((L, 1))], format="csr")
     bounds = [(None, None)] * n + [(lo, None if not math.isfinite(hi) else hi)]
-    out = np.zeros(len(joints))
-    for i, j in enumerate(joints):
+    out = np.zeros(len(groups))
+    for i, j in enumerate(groups):
         cost = np.zeros(n + 1)
         cost[m.normal.start + starts[j]:m.normal.start + starts[j + 1]] = 1.0
         res = linprog(cost, A_ub=A_ub, b_ub=m.h, A_eq=A_eq, b_eq=m.b, bounds=bounds,
@@ -234,8 +247,8 @@ def _least_normal(m: _Model, joints: np.ndarray, starts: np.ndarray, lo: float,
 
 
 def _max_load_lp(prob) -> float | None:
-    """lambda* of a 2D maximum-load problem (:func:`build_max_load`) by HiGHS's simplex:
-    inf when unbounded, None when infeasible."""
+    """lambda* of a linear maximum-load problem (:func:`build_max_load`, 2D or with
+    pyramids) by HiGHS's simplex: inf when unbounded, None when infeasible."""
     ne = prob.n_eq
     A = prob.A.tocsr()
     res = linprog(prob.c, A_ub=A[ne:], b_ub=prob.b[ne:], A_eq=A[:ne], b_eq=prob.b[:ne],
@@ -271,18 +284,25 @@ def _capacity_bound(m: _Model, cv: ConvexMethod, marked: np.ndarray, f: float, l
     sysm, sc = cv.system, cv.scaling
     c = sysm.contacts
     fj = cv.f_joint(f)
-    mk = np.flatnonzero(marked & np.isfinite(fj))
     f_eff = np.where(marked & np.isfinite(fj), 0.0, fj)
-    coh = c.cohesion * c.areas / sc.force
+    if c.dimension == 2:  # the law of a joint: its normal forces' sum
+        mk = np.flatnonzero(marked & np.isfinite(fj))
+        starts, at = c.joint_start, c.joint_start[mk]
+        fk, coh = fj[mk], (c.cohesion * c.areas / sc.force)[mk]
+    else:  # the law of a contact point (a pyramid per point)
+        pj = c.point_joint
+        mk = np.flatnonzero((marked & np.isfinite(fj))[pj])
+        starts, at = np.arange(c.n_points + 1), mk
+        fk, coh = fj[pj[mk]], (c.cohesion[pj] * c.point_areas / sc.force)[mk]
     rounds = 0
     while rounds < max_rounds and lo < hi:
         rounds += 1
-        nmin = _least_normal(m, mk, c.joint_start, lo, hi)
+        nmin = _least_normal(m, mk, starts, lo, hi)
         if nmin is None:  # no admissible state in [lo, hi]: no collapse state either
             return hi, rounds
         cap = np.zeros(c.n_points)
-        cap[c.joint_start[mk]] = np.maximum(fj[mk] * nmin, -coh[mk])
-        prob, _ = build_max_load(sysm, sc, f_eff, cap=cap)
+        cap[at] = np.maximum(fk * nmin, -coh)
+        prob, _ = build_max_load(sysm, sc, f_eff, cv.pyramid, cap=cap)
         lam = _max_load_lp(prob)
         if lam is None or lam <= lo * (1 + 1e-12) + 1e-12:
             break
@@ -450,8 +470,9 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
                     flow: str | None = None, max_joints: int = MAX_JOINTS,
                     force_bound: float | None = None, velocity_bound: float | None = None,
                     time_limit: float = 60.0, node_limit: int | None = None,
-                    double_check: bool = True, cut: bool = True) -> SafeMultiplier:
-    """The smallest non-associative collapse multiplier over all states (2D), as a
+                    double_check: bool = True, cut: bool = True,
+                    pyramid: int | None = None) -> SafeMultiplier:
+    """The smallest non-associative collapse multiplier over all states, as a
     mixed-integer LP solved by HiGHS (see the module docstring).
 
     ``friction``, ``flow``: as for :func:`rigidblocks.analyses.max_load_multiplier`
@@ -464,19 +485,20 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
     mixed-integer solve. ``cut``: lambda >= the capacity bound
     (:func:`_capacity_bound`, a theorem) is a constraint of the mixed-integer LP, which
     then prunes below it; without it the MILP's value is independent of the bound.
-    Scenes of more than ``max_joints``
-    joints, and 3D scenes, are refused with an :class:`InputError`.
+    ``pyramid`` (3D only; default ``PYRAMID``): the Coulomb cones are replaced by
+    inscribed pyramids of that many facets (a linear law: the answer is that law's, and
+    a note says so). Scenes of more than ``max_joints`` joints are refused with an
+    :class:`InputError`.
     """
     from ..methods import open_method
 
-    if scene.dimension != 2:
-        raise InputError("the safe non-associative multiplier is computed in 2D only "
-                         "(3D cones would need a linearisation)", scene.source)
+    if scene.dimension == 3 and pyramid is None:
+        pyramid = PYRAMID
     if not scene.has_live_load:
         raise InputError("the scene has no live load (no \"live\": true load and no "
                          "live_body_force): there is nothing to multiply", scene.source)
     f = friction_value(scene.effective_friction if friction is None else friction)
-    cv = open_method(scene, "clarabel")
+    cv = open_method(scene, "clarabel", pyramid=pyramid)
     c = cv.contacts
     if c.n_joints > max_joints:
         raise InputError(f"{c.n_joints} joints: the safe non-associative multiplier (a "
@@ -508,6 +530,7 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
     s_max = _static_slack_max(m, assoc)
     cap, rounds = _capacity_bound(m, cv, marked, f, max(low or 0.0, 0.0), assoc)
     ctx = _Context(m, cv, f, S, V, low, assoc, s_max, cap, rounds, cut, node_limit)
+    ctx.notes.extend(n for n in cv.notes if n.startswith("friction cones linearised"))
     return _decide(ctx, time_limit, double_check)
 
 
