@@ -1,6 +1,7 @@
 """The safe non-associative multiplier against the answer from the elastic state.
 
-For 2D scenes of up to 50 joints, every joint non-associative: the frictionless bound
+For 2D scenes of up to 50 joints and small 3D ones (cones as inscribed 8-facet
+pyramids), every joint non-associative: the frictionless bound
 (Drucker 1954), the capacity bound (``SafeMultiplier.capacity_bound``, see
 :mod:`rigidblocks.analyses.na_bounds`),
 the smallest collapse multiplier over all states (the mixed-integer LP of
@@ -77,6 +78,9 @@ def cases(tiny: bool) -> list[tuple[str, Any]]:
     out += [(name, read_scene(EXAMPLES / name)) for name in FILES]
     out.append(("wall 3 x 3, f = 0.8",
                 build("wall", courses=3, blocks_per_course=3, friction=0.8)))
+    for boxes, f in ((1, 0.3), (1, 0.8), (2, 0.6)):
+        out.append((f"3D: {boxes} box{'es' if boxes > 1 else ''} 1 x 1 x 1 on a slab, f = "
+                    f"{f} (8-facet pyramids)", build("box_stack", boxes=boxes, friction=f)))
     return out
 
 
@@ -124,7 +128,10 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
               r["nodes"], _g(r["x0"]) if r["x0_status"] == "collapse" else r["x0_status"],
               _g(r["associative"])] for r in rows]
     md = ["## The safe non-associative multiplier", "",
-          "2D scenes of up to 50 joints, every joint non-associative: the least collapse "
+          "2D scenes of up to 50 joints and small 3D ones (cones as inscribed 8-facet "
+          "pyramids in the MILP and the associative column; the X0 column with the "
+          "cones), every joint "
+          "non-associative: the least collapse "
           "multiplier over all states (mixed-integer LP, HiGHS, "
           f"{args.time_limit:g} s per solve, solved twice: with the bounds doubled) "
           "against the frictionless and capacity lower bounds, the multiplier reached "
