@@ -591,9 +591,10 @@ def _decide(ctx: _Context, time_limit: float, double_check: bool) -> SafeMultipl
         if run["status"] not in (0, 2) or (run["status"] == 0 and got is None):
             up = None if got is None else got[0]
             lo = ctx.cap if run["dual"] is None else max(float(run["dual"]), ctx.cap)
+            gap = "" if run["gap"] is None else f", gap {100 * float(run['gap']):.3g}%"
             ctx.notes.append(f"HiGHS did not prove the least multiplier ({run['message']}"
-                             f", {run['nodes']} nodes) with normal forces up to "
-                             f"{k * ctx.S * F:.6g}: it lies in [{_fmt(lo)}, "
+                             f", {run['nodes']} nodes{gap}) within the bounds"
+                             f"{' doubled' if k > 1 else ''}: it lies in [{_fmt(lo)}, "
                              f"{_fmt(up)}]" + ("" if up is None else
                                               f" ({_fmt(up)}: a collapse state found)"))
             return _result(ctx, UNDECIDED, None, run["dual"], up, got)
@@ -606,8 +607,7 @@ def _decide(ctx: _Context, time_limit: float, double_check: bool) -> SafeMultipl
         elif got[0] < best[0]:
             best = got
     if best is None:
-        b = ctx.trials[-1][0]
-        ctx.notes.append(f"HiGHS finds no collapse state with normal forces up to {b:.6g} "
+        ctx.notes.append(f"HiGHS finds no collapse state within the bounds (nor doubled) "
                          f"at 0 <= lambda <= {_fmt(ctx.assoc)} (the associative "
                          "multiplier, above which no state is admissible); no certificate "
                          "that none exists beyond the bounds")
@@ -615,11 +615,10 @@ def _decide(ctx: _Context, time_limit: float, double_check: bool) -> SafeMultipl
     values = [v for _, v in ctx.trials] + raw
     if not all(v is not None and _same(v, best[0]) for v in values):
         ctx.notes.append("the least multiplier depends on the bounds: "
-                         + ", ".join(f"{_fmt(v)} with normal forces up to {b:.6g}"
-                                     for b, v in ctx.trials)
-                         + " (with the bounds lifted on each answer's joint states: "
-                         + ", ".join(_fmt(v) for _, v in ctx.trials)
-                         + f"; HiGHS's values {', '.join(_fmt(v) for v in raw)}): no safe "
+                         + ", ".join(f"{_fmt(v)} with {what}" for (_, v), what in
+                                     zip(ctx.trials, ("them", "them doubled"), strict=False))
+                         + f" (HiGHS's values {', '.join(_fmt(v) for v in raw)}, each "
+                           "answer's joint states solved again without bounds): no safe "
                            "value, only the least collapse state found")
         return _result(ctx, BOUND_DEPENDENT, None, None, best[0], best)
     lower = best[0] if dual is None else min(float(dual), best[0])
