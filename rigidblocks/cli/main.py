@@ -9,6 +9,7 @@ standard error naming the file, block or key), 1 for a solver failure.
 from __future__ import annotations
 
 import argparse
+import gc
 import importlib
 import sys
 import warnings
@@ -91,7 +92,11 @@ def _main(argv: Sequence[str] | None) -> int:
             return 2
         if getattr(args, "output", None):  # every command's -o, before any work
             output_path(args.output)
-        status = int(args._run(args) or 0)
+        gc.freeze()  # the imported modules' objects: the collections of the run skip them
+        try:
+            status = int(args._run(args) or 0)
+        finally:
+            gc.unfreeze()
         sys.stdout.flush()  # a closed pipe (`| head`) shows here, not at exit
         return status
     except BrokenPipeError:  # the reader stopped reading: not an error of the run

@@ -183,6 +183,7 @@ def _cone_lp(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int,
     lambda*. None where that LP has no solution (the directions are read from the
     interior-point slacks to the solver's accuracy, and the apex cones' edges only
     approximate them)."""
+    import scipy.sparse as sp
     from scipy.optimize import linprog
 
     pos = {int(r): j for j, r in enumerate(idx)}
@@ -198,8 +199,6 @@ def _cone_lp(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int,
         g_cols.append(At[:, cols] @ dirs.T)
         g_obj.append(dirs[:, 0])
         g_b.append(dirs @ prob.b[rows])
-    import scipy.sparse as sp
-
     parts = [At[:, lin]] + [sp.csc_matrix(g) for g in g_cols]
     A_eq = sp.hstack(parts, format="csc")
     n_g = A_eq.shape[1] - len(lin)
@@ -229,6 +228,8 @@ def _cone_extreme(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int
     OPTIMAL_GAP above lambda*: a simpler mechanism that needs a larger load, the ring
     of a corbel dome sliding at lambda = f), b^T y first and the multipliers after
     (their sum weighted LEX_WEIGHT of the interior-point dual's)."""
+    import scipy.sparse as sp
+
     k_idx = {int(r): j for j, r in enumerate(idx)}
     cones = [[k_idx[int(r)] for r in cr] for cr in cone_rows if int(cr[0]) in k_idx
              and all(int(r) in k_idx for r in cr)]
@@ -237,8 +238,6 @@ def _cone_extreme(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int
     w[n_eq_k:n_eq_k + n_lin_k] = 1.0
     for c in cones:
         w[c[0]] = 1.0
-    import scipy.sparse as sp
-
     eye = sp.identity(n, format="csr")
     lin_sel = np.arange(n_eq_k, n_eq_k + n_lin_k)
     # no bound on b^T y here: it leaves the cones' feasible set without an interior,

@@ -1,7 +1,8 @@
 """Clarabel through its native API (the default back end).
 
-The problem matrices go to ``clarabel.DefaultSolver`` as they are (its Python interface
-reads the CSC arrays of a :class:`~rigidblocks.sparse.CscMatrix` as of scipy's): no
+The problem matrices go to ``clarabel.DefaultSolver`` as their CSC arrays (its Python
+interface reads ``data``, ``indices``, ``indptr``, ``shape`` and
+``has_canonical_format`` of whatever it is given, scipy's or not: :class:`_Listed`): no
 modelling layer in between, so the only cost above the interior-point iterations is
 building the sparse matrices.
 
