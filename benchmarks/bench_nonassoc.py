@@ -32,13 +32,20 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from common import markdown_table, out_dir, write_results  # noqa: E402
+from common import (  # noqa: E402
+    markdown_table,
+    out_dir,
+    read_results,
+    rewrite_results,
+    write_results,
+)
 
 import rigidblocks as rb  # noqa: E402
 from rigidblocks.generators import build  # noqa: E402
 from rigidblocks.io.scene_file import scene_from_dict  # noqa: E402
 from rigidblocks.scene import Scene  # noqa: E402
 from rigidblocks.scene.extrude import extrude  # noqa: E402
+from rigidblocks.scene.polyhedra import outward_faces  # noqa: E402
 
 NA = "non-associative"
 #: (courses, blocks per course) of the walls; the distortion iteration on the first few
@@ -143,9 +150,11 @@ LMGC90_DURATION = 1.0
 LMGC90_RTOL = 1e-3
 #: compas_cra's CRA-penalty bisected on the tilt up to this many free blocks
 CRA_UP_TO = 12
-#: CRA-penalty's virtual-displacement bound and complementarity relaxation: those of the
-#: peer's own tilted and loaded examples (snake, bridge); at its default d_bnd = 1e-3 it
-#: finds a block on a base tilted by atan(0.3) infeasible at f = 0.6
+#: the time steps of the pinched block's series (its bracket depends on dt)
+LMGC90_DT_SERIES = (4e-3, 2e-3, 2.5e-4, 1.25e-4)
+#: compas_cra's virtual-displacement bound and complementarity relaxation: those of the
+#: peer's own loaded examples (snake, bridge); at its default d_bnd = 1e-3 its CRA finds
+#: a block on a base at f = 0.6 tilted by atan(0.1) infeasible (CRA-penalty: atan(0.3))
 CRA_SETTINGS = {"d_bnd": 0.1, "eps": 0.0}
 #: the walls: (courses, blocks per course, in plane / out of plane)
 LMGC90_WALLS = ((3, 3, "in_plane"), (3, 3, "out_of_plane"), (5, 5, "in_plane"),
@@ -190,7 +199,8 @@ def lmgc90_cases(tiny: bool) -> list[dict[str, Any]]:
         return cases[:1]
     cases.append({"name": "pinched block", "scene": lmgc90_pinched(0.8), "closed": None,
                   "basis": "non-associative from the unloaded state (no pinch): "
-                           "lambda = f = 0.8 (validation.md)"})
+                           "lambda = f = 0.8 (validation.md)",
+                  "dt_series": LMGC90_DT_SERIES})
     for c, n, way in LMGC90_WALLS:
         if way == "in_plane":
             scene = build("wall", courses=c, blocks_per_course=n, friction=WALL_FRICTION)
@@ -221,10 +231,13 @@ def lmgc90_python(arg: str | None) -> tuple[str | None, str]:
 
 
 def lmgc90_blocks(scene3d: Scene) -> list[dict[str, Any]]:
-    """The 3D scene's blocks as polyhedra for the peer processes."""
+    """The 3D scene's blocks as polyhedra for the peer processes, faces outward (a
+    generated scene's need not be: wall3d's caps face inwards, which LMGC90 takes for a
+    body of a third of the volume)."""
     w = scene3d.effective_unit_weight
     return [{"id": b.id, "vertices": [list(map(float, p)) for p in b.vertices],
-             "faces": [list(f) for f in b.faces], "support": bool(b.support),
+             "faces": [[int(i) for i in f] for f in outward_faces(b)],
+             "support": bool(b.support),
              "density": float(b.unit_weight if b.unit_weight is not None else w)}
             for b in scene3d.blocks]
 
@@ -279,41 +292,46 @@ def _tilted(blocks: list[dict], lam: float, direction: Sequence[float]) -> list[
     return [{**b, "vertices": (np.asarray(b["vertices"]) @ rot.T).tolist()} for b in blocks]
 
 
+def _cra(python: str, scene3d: Scene, blocks: list[dict], lam: float, method: str,
+         tmp: Path, timeout: float) -> dict:
+    """One compas_cra run on the assembly tilted by atan(lam)."""
+    from bench_peer import RUNNER, rbe_tension_ratio
+
+    case = {"name": scene3d.name, "mu": float(scene3d.friction),
+            "blocks": _tilted(blocks, lam, scene3d.live_body_force),
+            "interfaces": {"nmax": 10, "tmax": 1e-6, "amin": 1e-6}, **CRA_SETTINGS}
+    out = _run_peer_script(python, RUNNER, [method], case, tmp, timeout)
+    stands = {"solved": True}.get(out.get("status"))
+    if out.get("status") == "failed" and "nfeasib" in out.get("message", ""):
+        stands = False
+    return {"lam": lam, "method": method, "status": out.get("status"), "stands": stands,
+            "tension_ratio": rbe_tension_ratio({"method": method, "joints": [], **out}),
+            "seconds": out.get("times", {}).get("total")}
+
+
 def cra_tilt(python: str, scene3d: Scene, guess: float, tmp: Path, timeout: float
              ) -> dict:
-    """compas_cra's CRA-penalty (Kao et al. 2022, Eq. 14) on the tilted assembly: the
-    bracket of the tilt lam = tan(angle) at which its verdict turns inadmissible."""
-    from bench_peer import RUNNER, peer_na_verdict
-
+    """compas_cra on the tilted assembly: CRA (Kao et al. 2022, Eq. 11, complementarity
+    without dilatancy; infeasible = no state stands) bisected on the tilt lam =
+    tan(angle), and CRA-penalty (Eq. 14) at the bracket's ends: its penalised tension
+    over its compression (its admissibility rule in bench_peer: below 1e-4)."""
     blocks = lmgc90_blocks(scene3d)
     trials: list[dict] = []
 
     def stands(lam: float) -> bool | None:
-        case = {"name": scene3d.name, "mu": float(scene3d.friction),
-                "blocks": _tilted(blocks, lam, scene3d.live_body_force),
-                "interfaces": {"nmax": 10, "tmax": 1e-6, "amin": 1e-6}, **CRA_SETTINGS}
-        out = _run_peer_script(python, RUNNER, ["cra_penalty"], case, tmp, timeout)
-        v = peer_na_verdict({"method": "cra_penalty", "joints": [], **out})
-        trials.append({"lam": lam, "verdict": v, "seconds": out.get("times", {}).get("total")})
-        return {"admissible": True, "inadmissible": False}.get(v)
+        trials.append(_cra(python, scene3d, blocks, lam, "cra", tmp, timeout))
+        return trials[-1]["stands"]
 
-    lo, hi = 0.0, None
-    lam = guess
+    lo, hi, lam = 0.0, math.inf, guess
     for _ in range(8):
         v = stands(lam)
         if v is None:
             return {"status": "no answer", "trials": trials}
-        if v:
-            lo = lam
-            if hi is not None:
-                break
-            lam *= 2.0
-        else:
-            hi = lam
-            if lo > 0.0:
-                break
-            lam *= 0.5
-    if hi is None or lo == 0.0:
+        lo, hi = (lam, hi) if v else (lo, lam)
+        if lo > 0.0 and hi < math.inf:
+            break
+        lam = 2.0 * lam if v else 0.5 * lam
+    else:
         return {"status": "no bracket", "trials": trials}
     while hi - lo > LMGC90_RTOL * hi:
         mid = 0.5 * (lo + hi)
@@ -321,7 +339,10 @@ def cra_tilt(python: str, scene3d: Scene, guess: float, tmp: Path, timeout: floa
         if v is None:
             return {"status": "no answer", "bracket": [lo, hi], "trials": trials}
         lo, hi = (mid, hi) if v else (lo, mid)
-    return {"status": "bracketed", "bracket": [lo, hi], "trials": trials}
+    penalty = [_cra(python, scene3d, blocks, x, "cra_penalty", tmp, timeout)
+               for x in (lo, hi)]
+    return {"status": "bracketed", "bracket": [lo, hi], "trials": trials,
+            "penalty": penalty}
 
 
 def lmgc90_ours(scene: Scene, extruded: bool) -> dict[str, Any]:
@@ -366,6 +387,10 @@ def lmgc90_rows(python: str, tiny: bool, timeout: float, log=sys.stdout
                             or 1.0)
             row["lmgc90"] = lmgc90_tilt(python, s3, guess, LMGC90_DT, tmp, timeout)
             row["lmgc90_half"] = lmgc90_tilt(python, s3, guess, LMGC90_DT / 2, tmp, timeout)
+            row["lmgc90_series"] = [
+                {"dt": dt, "bracket": lmgc90_tilt(python, s3, guess, dt, tmp,
+                                                  timeout).get("bracket")}
+                for dt in case.get("dt_series", ())]
             if free <= CRA_UP_TO:
                 row["cra"] = cra_tilt(python, s3, guess, tmp, timeout)
             row["loadavg_end"] = _load()
@@ -385,12 +410,26 @@ def _bracket(r: dict | None) -> str:
     if not r:
         return "-"
     b = r.get("bracket")
-    return f"[{b[0]:.4f}, {b[1]:.4f}]" if b else r.get("status", "-")
+    if b:
+        return f"[{b[0]:.4f}, {b[1]:.4f}]"
+    held = [t["lam"] for t in r.get("trials", ())
+            if t.get("stands") or t.get("moves") is False]
+    if r.get("status") == "no bracket" and len(held) == len(r["trials"]) > 0:
+        return f"stands to {max(held):.4g}"
+    return r.get("status", "-")
 
 
-def _num(x: Any) -> str:
-    if x is None:
+def _penalty(r: dict | None) -> str:
+    p = (r or {}).get("penalty")
+    if not p:
         return "-"
+    return " / ".join("-" if q["tension_ratio"] is None else f"{q['tension_ratio']:.1e}"
+                      for q in p)
+
+
+def _num(x: Any, status: str = "-") -> str:
+    if x is None:
+        return status
     return f"{x:.4f}" if math.isfinite(x) else "unbounded"
 
 
@@ -422,20 +461,27 @@ def lmgc90_markdown(rows: list[dict[str, Any]], skipped: str) -> str:
            f"{LMGC90_DURATION:g} s at dt = {LMGC90_DT:g} s and again at dt / 2; a trial "
            "moves when a block's centroid travels more than 1e-5 of the smallest block "
            "over the last quarter of the run (a slip that arrests does not count); "
-           f"bisection to {LMGC90_RTOL:g} relative. CRA-penalty: compas_cra (Kao et al. "
-           "2022, Eq. 14; d_bnd = 0.1, eps = 0) on the assembly tilted by atan(lambda), "
-           f"bisected on its verdict (cases up to {CRA_UP_TO} blocks). Ours: `max_load` "
+           f"bisection to {LMGC90_RTOL:g} relative. CRA: compas_cra (Kao et al. 2022, "
+           "Eq. 11, d_bnd = 0.1, eps = 0) on the assembly tilted by atan(lambda), "
+           "bisected on its verdict (solved: stands; infeasible: collapses), cases up "
+           f"to {CRA_UP_TO} blocks; CRA-penalty (Eq. 14): its penalised tension over its "
+           "compression at the two ends of CRA's bracket. Ours: `max_load` "
            "associative, non-associative (convex path; "
            "distortion path and the extrusion for 2D scenes).", "",
            markdown_table(
-               ["case", "f", "closed form", "LMGC90 dt", "LMGC90 dt/2", "CRA-penalty",
+               ["case", "f", "closed form", "LMGC90 dt", "LMGC90 dt/2", "CRA",
+                "CRA-penalty tension",
                 "ours assoc", "ours non-assoc", "distortion", "extruded", "non-assoc vs "
                 "LMGC90"],
                [[r["name"], r["friction"], _num(r["closed"]), _bracket(r["lmgc90"]),
-                 _bracket(r["lmgc90_half"]), _bracket(r.get("cra")),
-                 _num(r["ours"]["assoc"]), _num(r["ours"]["na"]),
+                 _bracket(r["lmgc90_half"]), _bracket(r.get("cra")), _penalty(r.get("cra")),
+                 _num(r["ours"]["assoc"], r["ours"]["assoc_status"]),
+                 _num(r["ours"]["na"], r["ours"]["na_status"]),
                  _num(r["ours"].get("na_distortion")), _num(r["ours"].get("na_3d")),
                  lmgc90_verdict(r, "na")] for r in rows]), "",
+           *[f"{r['name']}: LMGC90's bracket against the time step: " + ", ".join(
+               f"dt = {x['dt']:g}: {_bracket(x)}" for x in r["lmgc90_series"]) + "."
+             for r in rows if r["lmgc90_series"]], "",
            "Load average (1, 5, 15 min) at the start and end: "
            f"{rows[0]['loadavg_start']} / {rows[-1]['loadavg_end']}."]
     return "\n".join(md)
@@ -468,7 +514,14 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
                    help="Python with compas_lmgc90 and compas_cra ('none' skips them)")
     p.add_argument("--only", choices=("walls", "lmgc90"), default=None,
                    help="run one part only")
+    p.add_argument("--redraw", action="store_true",
+                   help="rewrite bench_nonassoc_lmgc90.md from its JSON (no runs)")
     args = p.parse_args(argv)
+    if args.redraw:
+        doc = read_results(args.out, "bench_nonassoc_lmgc90")
+        rewrite_results(args.out, "bench_nonassoc_lmgc90", doc,
+                        lmgc90_markdown(doc["rows"], doc["skipped"]))
+        return {"lmgc90": doc}
     if args.only == "lmgc90":
         return {"lmgc90": lmgc90_section(args.out, args.lmgc90_python, args.tiny)}
     sizes = TINY_WALLS if args.tiny else WALLS

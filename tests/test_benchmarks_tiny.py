@@ -498,3 +498,24 @@ def test_lmgc90_runner_volume_and_size():
     case = {"blocks": [{"vertices": box.tolist(), "support": False},
                        {"vertices": (10 * box).tolist(), "support": True}]}
     assert runner.size(case) == pytest.approx(0.2)
+
+
+def test_lmgc90_blocks_face_outwards():
+    """LMGC90 takes a body's volume and inertia from its faces as given: the blocks
+    handed to it have outward faces even where the generated scene's do not (wall3d's
+    caps face inwards; a 0.4 x 0.3 x 0.2 block then measured 0.008 instead of 0.024),
+    so each block's divergence-theorem volume is its box volume."""
+    import numpy as np
+
+    bench = load_nonassoc_bench()
+    spec = importlib.util.spec_from_file_location(
+        "lmgc90_runner", ROOT / "benchmarks" / "lmgc90_runner.py")
+    runner = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(runner)
+    from rigidblocks.generators import build
+
+    scene = build("wall3d", courses=2, blocks_per_course=2)
+    for b in bench.lmgc90_blocks(scene):
+        v = np.asarray(b["vertices"])
+        assert runner.volume(v, b["faces"]) == pytest.approx(np.prod(np.ptp(v, axis=0)),
+                                                             rel=1e-12)
