@@ -367,9 +367,10 @@ def _finite(x: Any) -> float | None:
     return x if isinstance(x, float) and math.isfinite(x) else None
 
 
-def lmgc90_rows(python: str, tiny: bool, timeout: float, log=sys.stdout
-                ) -> list[dict[str, Any]]:
-    """Every case: ours, LMGC90 at dt and dt / 2, CRA-penalty (small cases)."""
+def lmgc90_rows(python: str, tiny: bool, timeout: float, log=sys.stdout,
+                done: Any = None) -> list[dict[str, Any]]:
+    """Every case: ours, LMGC90 at dt and dt / 2 (and the case's series of time
+    steps), CRA (small cases); ``done(rows)`` after each case."""
     rows = []
     with tempfile.TemporaryDirectory() as tmpd:
         tmp = Path(tmpd)
@@ -395,6 +396,8 @@ def lmgc90_rows(python: str, tiny: bool, timeout: float, log=sys.stdout
                 row["cra"] = cra_tilt(python, s3, guess, tmp, timeout)
             row["loadavg_end"] = _load()
             rows.append(row)
+            if done is not None:
+                done(rows)
             print(f"{row['name']}: LMGC90 {row['lmgc90'].get('bracket')}, dt/2 "
                   f"{row['lmgc90_half'].get('bracket')}, CRA "
                   f"{row.get('cra', {}).get('bracket')}, ours {row['ours']['assoc']} / "
@@ -417,6 +420,13 @@ def _bracket(r: dict | None) -> str:
     if r.get("status") == "no bracket" and len(held) == len(r["trials"]) > 0:
         return f"stands to {max(held):.4g}"
     return r.get("status", "-")
+
+
+def _first_mover(r: dict) -> str:
+    """The block that travelled furthest in the trial at the bracket's upper end."""
+    b = r.get("bracket")
+    hit = [t for t in r.get("trials", ()) if b and t["lam"] == b[1]]
+    return f"{hit[0]['block']} ({hit[0]['total']:.2g} m)" if hit else "-"
 
 
 def _penalty(r: dict | None) -> str:
@@ -472,13 +482,13 @@ def lmgc90_markdown(rows: list[dict[str, Any]], skipped: str) -> str:
                ["case", "f", "closed form", "LMGC90 dt", "LMGC90 dt/2", "CRA",
                 "CRA-penalty tension",
                 "ours assoc", "ours non-assoc", "distortion", "extruded", "non-assoc vs "
-                "LMGC90"],
+                "LMGC90", "LMGC90 moves first"],
                [[r["name"], r["friction"], _num(r["closed"]), _bracket(r["lmgc90"]),
                  _bracket(r["lmgc90_half"]), _bracket(r.get("cra")), _penalty(r.get("cra")),
                  _num(r["ours"]["assoc"], r["ours"]["assoc_status"]),
                  _num(r["ours"]["na"], r["ours"]["na_status"]),
                  _num(r["ours"].get("na_distortion")), _num(r["ours"].get("na_3d")),
-                 lmgc90_verdict(r, "na")] for r in rows]), "",
+                 lmgc90_verdict(r, "na"), _first_mover(r["lmgc90"])] for r in rows]), "",
            *[f"{r['name']}: LMGC90's bracket against the time step: " + ", ".join(
                f"dt = {x['dt']:g}: {_bracket(x)}" for x in r["lmgc90_series"]) + "."
              for r in rows if r["lmgc90_series"]], "",
@@ -491,15 +501,17 @@ def lmgc90_section(out: str | None, python_arg: str | None, tiny: bool,
                    timeout: float = 1800.0) -> dict[str, Any]:
     """Run the LMGC90 comparison (or say why not) and write bench_nonassoc_lmgc90."""
     python, skipped = lmgc90_python(python_arg)
+
+    def write(rows: list[dict[str, Any]]) -> dict[str, Any]:
+        data = {"lmgc90_python": python, "skipped": skipped, "dt": LMGC90_DT,
+                "duration": LMGC90_DURATION, "rtol": LMGC90_RTOL, "rows": rows}
+        write_results(out, "bench_nonassoc_lmgc90", data, lmgc90_markdown(rows, skipped))
+        return data
+
     if python is None:
         print(skipped, flush=True)
-        rows: list[dict[str, Any]] = []
-    else:
-        rows = lmgc90_rows(python, tiny, timeout)
-    data = {"lmgc90_python": python, "skipped": skipped, "dt": LMGC90_DT,
-            "duration": LMGC90_DURATION, "rtol": LMGC90_RTOL, "rows": rows}
-    write_results(out, "bench_nonassoc_lmgc90", data, lmgc90_markdown(rows, skipped))
-    return data
+        return write([])
+    return write(lmgc90_rows(python, tiny, timeout, done=write))
 
 
 def _cell(v: Any) -> Any:
