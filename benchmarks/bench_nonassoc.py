@@ -259,13 +259,15 @@ def _run_peer_script(python: str, script: Path, args: list[str], case: dict,
 
 
 def lmgc90_tilt(python: str, scene3d: Scene, guess: float, dt: float, tmp: Path,
-                timeout: float) -> dict:
-    """LMGC90's bracket of the multiplier at which the scene starts to move."""
+                timeout: float, check: Sequence[float] | None = None) -> dict:
+    """LMGC90's bracket of the multiplier at which the scene starts to move (with
+    ``check``: only whether that bracket holds at this time step)."""
     direction = [float(x) for x in scene3d.live_body_force]
     case = {"name": scene3d.name, "mu": float(scene3d.friction),
             "blocks": lmgc90_blocks(scene3d), "direction": direction, "dt": dt,
             "duration": LMGC90_DURATION, "rtol": LMGC90_RTOL, "guess": guess,
-            "density": 1000.0 * scene3d.effective_unit_weight / 9.81}
+            "density": 1000.0 * scene3d.effective_unit_weight / 9.81,
+            **({"check": list(check)} if check else {})}
     out = _run_peer_script(python, LMGC90_RUNNER, [], case, tmp, timeout)
     out.pop("traceback", None)
     return out
@@ -384,10 +386,16 @@ def lmgc90_rows(python: str, tiny: bool, timeout: float, log=sys.stdout,
                                    "dimension": scene.dimension, "loadavg_start": _load()}
             row["ours"] = lmgc90_ours(scene, extruded=free <= EXTRUDED_UP_TO)
             # the first trial off our answer, so that no bracket end is ours
-            guess = 1.03 * (_finite(row["ours"]["na"]) or _finite(row["ours"]["assoc"])
+            guess = 1.01 * (_finite(row["ours"]["na"]) or _finite(row["ours"]["assoc"])
                             or 1.0)
             row["lmgc90"] = lmgc90_tilt(python, s3, guess, LMGC90_DT, tmp, timeout)
-            row["lmgc90_half"] = lmgc90_tilt(python, s3, guess, LMGC90_DT / 2, tmp, timeout)
+            # halving the time step: the bracket's two ends again, bisected anew only
+            # where they no longer hold
+            row["lmgc90_half"] = lmgc90_tilt(python, s3, guess, LMGC90_DT / 2, tmp, timeout,
+                                             check=row["lmgc90"].get("bracket"))
+            if row["lmgc90_half"].get("status") == "changed":
+                row["lmgc90_half"] = lmgc90_tilt(python, s3, guess, LMGC90_DT / 2, tmp,
+                                                 timeout)
             row["lmgc90_series"] = [
                 {"dt": dt, "bracket": lmgc90_tilt(python, s3, guess, dt, tmp,
                                                   timeout).get("bracket")}
@@ -414,7 +422,8 @@ def _bracket(r: dict | None) -> str:
         return "-"
     b = r.get("bracket")
     if b:
-        return f"[{b[0]:.4f}, {b[1]:.4f}]"
+        same = " (same)" if r.get("status") == "confirmed" else ""
+        return f"[{b[0]:.4f}, {b[1]:.4f}]{same}"
     held = [t["lam"] for t in r.get("trials", ())
             if t.get("stands") or t.get("moves") is False]
     if r.get("status") == "no bracket" and len(held) == len(r["trials"]) > 0:
@@ -468,7 +477,9 @@ def lmgc90_markdown(rows: list[dict[str, Any]], skipped: str) -> str:
            "IQS_CLB_g0: unilateral contact, Coulomb friction, no dilatancy) on the "
            "polyhedral blocks (2D scenes extruded): a constant horizontal force lambda "
            "times each free block's weight, from rest, "
-           f"{LMGC90_DURATION:g} s at dt = {LMGC90_DT:g} s and again at dt / 2; a trial "
+           f"{LMGC90_DURATION:g} s at dt = {LMGC90_DT:g} s; at dt / 2 the two ends of "
+           "that bracket are run again (\"same\": the lower end stands and the upper "
+           "one moves at dt / 2 too; else a new bisection at dt / 2); a trial "
            "moves when a block's centroid travels more than 1e-5 of the smallest block "
            "over the last quarter of the run (a slip that arrests does not count); "
            f"bisection to {LMGC90_RTOL:g} relative. CRA: compas_cra (Kao et al. 2022, "

@@ -19,10 +19,13 @@ some block's centroid travels more than ``move_tol`` (default 1e-5 of the smalle
 block's size) over the last quarter of the run: a slip that arrests does not count, a
 block that keeps going does (above the limit it accelerates, so it travels further in
 the last quarter than in any earlier one). The multiplier is bracketed from ``guess``
-(halved or doubled until one trial stands and one moves) and bisected until the
-bracket's width is at most ``rtol`` of its upper end.
+(trials at guess times or divided by 1.03, 1.06, 1.13, 1.27, 1.6, ... until one
+stands and one moves) and bisected until the bracket's width is at most ``rtol`` of
+its upper end. With ``"check": [lo, hi]`` only those two trials run: "confirmed" when
+lo stands and hi moves (a bracket found at another time step holds at this one).
 
-``OUT.json``: ``{"status": "bracketed" | "no bracket" | "error", "bracket": [lo, hi],
+``OUT.json``: ``{"status": "bracketed" | "no bracket" | "confirmed" | "changed" |
+"error", "bracket": [lo, hi],
 "trials": [{"lam", "moves", "last_quarter", "third_quarter", "total", "block",
 "seconds"}, ...], "steps", "seconds", "version", "message"}`` with the lengths in
 the scene's units (the largest centroid displacement over the last and the third
@@ -32,6 +35,7 @@ quarter of the run and over the whole run, and the block that travelled furthest
 from __future__ import annotations
 
 import json
+import math
 import sys
 import time
 import traceback
@@ -117,27 +121,26 @@ def bisect(case: dict) -> dict:
 
     out = {"status": "no bracket", "bracket": None, "trials": trials, "move_tol": tol,
            "dt": dt, "duration": duration, "rtol": rtol}
-    lam, expand = float(case.get("guess", 1.0)), int(case.get("max_expand", 8))
-    if moves(lam):
-        hi = lam
-        for _ in range(expand):
-            lam *= 0.5
-            if not moves(lam):
-                break
+    if case.get("check"):  # only the two ends of a bracket found before
+        lo, hi = (float(x) for x in case["check"])
+        same = not moves(lo) and moves(hi)
+        out.update(status="confirmed" if same else "changed", bracket=[lo, hi])
+        return out
+    guess, ratio = float(case.get("guess", 1.0)), 1.03
+    lo, hi = 0.0, math.inf
+    lam = guess
+    for _ in range(int(case.get("max_expand", 10))):
+        if moves(lam):
             hi = lam
+            lam = guess / ratio if lo == 0.0 else lam
         else:
-            return out
-        lo = lam
-    else:
-        lo = lam
-        for _ in range(expand):
-            lam *= 2.0
-            if moves(lam):
-                break
             lo = lam
-        else:
-            return out
-        hi = lam
+            lam = guess * ratio if hi == math.inf else lam
+        if lo > 0.0 and hi < math.inf:
+            break
+        ratio *= ratio  # 1.03, 1.06, 1.13, 1.27, 1.6, 2.6, ...
+    else:
+        return out
     while hi - lo > rtol * hi:
         mid = 0.5 * (lo + hi)
         if moves(mid):
