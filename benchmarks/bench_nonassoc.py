@@ -423,12 +423,20 @@ def _bracket(r: dict | None) -> str:
     b = r.get("bracket")
     if b:
         same = " (same)" if r.get("status") == "confirmed" else ""
-        return f"[{b[0]:.4f}, {b[1]:.4f}]{same}"
+        return f"[{b[0]:.5f}, {b[1]:.5f}]{same}"
     held = [t["lam"] for t in r.get("trials", ())
             if t.get("stands") or t.get("moves") is False]
     if r.get("status") == "no bracket" and len(held) == len(r["trials"]) > 0:
         return f"stands to {max(held):.4g}"
     return r.get("status", "-")
+
+
+def _verdicts(row: dict[str, Any]) -> str:
+    """Each of our non-associative multipliers against LMGC90's bracket."""
+    keys = (("na", "convex"), ("na_distortion", "distortion"), ("na_3d", "extruded"))
+    out = [f"{label}: {lmgc90_verdict(row, k)}" for k, label in keys
+           if row["ours"].get(k) is not None]
+    return "; ".join(out) if len(out) > 1 else lmgc90_verdict(row, "na")
 
 
 def _first_mover(r: dict) -> str:
@@ -449,7 +457,7 @@ def _penalty(r: dict | None) -> str:
 def _num(x: Any, status: str = "-") -> str:
     if x is None:
         return status
-    return f"{x:.4f}" if math.isfinite(x) else "unbounded"
+    return f"{x:.5f}" if math.isfinite(x) else "unbounded"
 
 
 def lmgc90_verdict(row: dict[str, Any], key: str) -> str:
@@ -499,7 +507,7 @@ def lmgc90_markdown(rows: list[dict[str, Any]], skipped: str) -> str:
                  _num(r["ours"]["assoc"], r["ours"]["assoc_status"]),
                  _num(r["ours"]["na"], r["ours"]["na_status"]),
                  _num(r["ours"].get("na_distortion")), _num(r["ours"].get("na_3d")),
-                 lmgc90_verdict(r, "na"), _first_mover(r["lmgc90"])] for r in rows]), "",
+                 _verdicts(r), _first_mover(r["lmgc90"])] for r in rows]), "",
            *[f"{r['name']}: LMGC90's bracket against the time step: " + ", ".join(
                f"dt = {x['dt']:g}: {_bracket(x)}" for x in r["lmgc90_series"]) + "."
              for r in rows if r["lmgc90_series"]], "",
