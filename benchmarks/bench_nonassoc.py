@@ -373,6 +373,8 @@ def lmgc90_rows(python: str, tiny: bool, timeout: float, log=sys.stdout,
                 done: Any = None) -> list[dict[str, Any]]:
     """Every case: ours, LMGC90 at dt and dt / 2 (and the case's series of time
     steps), CRA (small cases); ``done(rows)`` after each case."""
+    from bench_peer import loadavg
+
     rows = []
     with tempfile.TemporaryDirectory() as tmpd:
         tmp = Path(tmpd)
@@ -383,7 +385,7 @@ def lmgc90_rows(python: str, tiny: bool, timeout: float, log=sys.stdout,
             row: dict[str, Any] = {"name": case["name"], "blocks": free,
                                    "friction": float(scene.friction),
                                    "closed": case["closed"], "basis": case["basis"],
-                                   "dimension": scene.dimension, "loadavg_start": _load()}
+                                   "dimension": scene.dimension, "loadavg_start": loadavg()}
             row["ours"] = lmgc90_ours(scene, extruded=free <= EXTRUDED_UP_TO)
             # the first trial off our answer, so that no bracket end is ours
             guess = 1.01 * (_finite(row["ours"]["na"]) or _finite(row["ours"]["assoc"])
@@ -402,7 +404,7 @@ def lmgc90_rows(python: str, tiny: bool, timeout: float, log=sys.stdout,
                 for dt in case.get("dt_series", ())]
             if free <= CRA_UP_TO:
                 row["cra"] = cra_tilt(python, s3, guess, tmp, timeout)
-            row["loadavg_end"] = _load()
+            row["loadavg_end"] = loadavg()
             rows.append(row)
             if done is not None:
                 done(rows)
@@ -411,10 +413,6 @@ def lmgc90_rows(python: str, tiny: bool, timeout: float, log=sys.stdout,
                   f"{row.get('cra', {}).get('bracket')}, ours {row['ours']['assoc']} / "
                   f"{row['ours']['na']}", file=log, flush=True)
     return rows
-
-
-def _load() -> list[float]:
-    return [round(x, 2) for x in os.getloadavg()] if hasattr(os, "getloadavg") else []
 
 
 def _bracket(r: dict | None) -> str:
