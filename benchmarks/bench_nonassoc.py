@@ -11,6 +11,13 @@
    the reference model (H as the live load) and the flat arch, stocky arch and Arpino
    gate under a horizontal body force; one chart.
 
+3. LMGC90's tilting-table test (contact dynamics, no dilatancy; benchmarks/
+   lmgc90_runner.py in the peer environment, ``--lmgc90-python``) and compas_cra's CRA
+   on the tilted assembly, beside our associative and non-associative multipliers, on
+   single blocks, the pinched block and running-bond walls in and out of plane
+   (``bench_nonassoc_lmgc90.json`` and ``.md``; skipped, with the reason, without the
+   peer; ``--only lmgc90`` runs this part alone, ``--redraw`` rewrites its table).
+
 Run as ``python benchmarks/bench_nonassoc.py [--tiny] [--out DIR]``; it writes
 ``bench_nonassoc.json``, ``bench_nonassoc.md`` and ``bench_nonassoc.png`` (see
 benchmarks/common.py).
