@@ -11,6 +11,13 @@
    the reference model (H as the live load) and the flat arch, stocky arch and Arpino
    gate under a horizontal body force; one chart.
 
+3. LMGC90's tilting-table test (contact dynamics, no dilatancy; benchmarks/
+   lmgc90_runner.py in the peer environment, ``--lmgc90-python``) and compas_cra's CRA
+   on the tilted assembly, beside our associative and non-associative multipliers, on
+   single blocks, the pinched block and running-bond walls in and out of plane
+   (``bench_nonassoc_lmgc90.json`` and ``.md``; skipped, with the reason, without the
+   peer; ``--only lmgc90`` runs this part alone, ``--redraw`` rewrites its table).
+
 Run as ``python benchmarks/bench_nonassoc.py [--tiny] [--out DIR]``; it writes
 ``bench_nonassoc.json``, ``bench_nonassoc.md`` and ``bench_nonassoc.png`` (see
 benchmarks/common.py).
@@ -19,7 +26,12 @@ benchmarks/common.py).
 from __future__ import annotations
 
 import argparse
+import json
+import math
+import os
+import subprocess
 import sys
+import tempfile
 import time
 from collections.abc import Sequence
 from pathlib import Path
@@ -27,10 +39,20 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from common import markdown_table, out_dir, write_results  # noqa: E402
+from common import (  # noqa: E402
+    markdown_table,
+    out_dir,
+    read_results,
+    rewrite_results,
+    write_results,
+)
 
 import rigidblocks as rb  # noqa: E402
 from rigidblocks.generators import build  # noqa: E402
+from rigidblocks.io.scene_file import scene_from_dict  # noqa: E402
+from rigidblocks.scene import Scene  # noqa: E402
+from rigidblocks.scene.extrude import extrude  # noqa: E402
+from rigidblocks.scene.polyhedra import outward_faces  # noqa: E402
 
 NA = "non-associative"
 #: (courses, blocks per course) of the walls; the distortion iteration on the first few
@@ -123,6 +145,399 @@ def chart(data: list[dict[str, Any]], path: Path) -> None:
     plt.close(fig)
 
 
+# -- LMGC90's tilting-table test ------------------------------------------------------
+#: LMGC90 (contact dynamics, benchmarks/lmgc90_runner.py) and compas_cra run in the peer
+#: environment, never in ours: ``--lmgc90-python``, else RIGIDBLOCKS_LMGC90_PYTHON,
+#: else this path
+LMGC90_RUNNER = Path(__file__).resolve().parent / "lmgc90_runner.py"
+LMGC90_DEFAULT = "/work/venv-peer/bin/python"
+#: the tilting-table test: time step (s), duration (s), bracket width (relative)
+LMGC90_DT = 1e-3
+LMGC90_DURATION = 1.0
+LMGC90_RTOL = 1e-3
+#: compas_cra's CRA-penalty bisected on the tilt up to this many free blocks
+CRA_UP_TO = 12
+#: the time steps of the pinched block's series (its bracket depends on dt)
+LMGC90_DT_SERIES = (4e-3, 2e-3, 2.5e-4, 1.25e-4)
+#: compas_cra's virtual-displacement bound and complementarity relaxation: those of the
+#: peer's own loaded examples (snake, bridge); at its default d_bnd = 1e-3 its CRA finds
+#: a block on a base at f = 0.6 tilted by atan(0.1) infeasible (CRA-penalty: atan(0.3))
+CRA_SETTINGS = {"d_bnd": 0.1, "eps": 0.0}
+#: the walls: (courses, blocks per course, in plane / out of plane)
+LMGC90_WALLS = ((3, 3, "in_plane"), (3, 3, "out_of_plane"), (5, 5, "in_plane"),
+                (5, 5, "out_of_plane"), (10, 10, "in_plane"), (10, 10, "out_of_plane"))
+#: our non-associative answer on the extrusion of a 2D scene up to this many blocks
+EXTRUDED_UP_TO = 30
+
+
+def _rect(x0: float, y0: float, w: float, h: float) -> list[list[float]]:
+    return [[x0, y0], [x0 + w, y0], [x0 + w, y0 + h], [x0, y0 + h]]
+
+
+def _scene2d(blocks: list[dict], friction: float) -> Scene:
+    return scene_from_dict({"format": "rigidblocks-scene", "version": 1, "dimension": 2,
+                            "blocks": blocks, "unit_weight": 20.0, "friction": friction,
+                            "live_body_force": [1, 0]})
+
+
+def lmgc90_block(b: float, h: float, f: float) -> Scene:
+    """A b x h block on a wide base under a horizontal body force."""
+    return _scene2d([{"id": "base", "vertices": _rect(-1, -1, b + 2, 1), "support": True},
+                     {"id": "B", "vertices": _rect(0, 0, b, h)}], f)
+
+
+def lmgc90_pinched(f: float) -> Scene:
+    """The unit block between a fixed base and a fixed lintel, both touching it (the
+    scene of tests/test_nonassociative.py)."""
+    return _scene2d([{"id": "base", "vertices": _rect(-1, -1, 3, 1), "support": True},
+                     {"id": "B", "vertices": _rect(0, 0, 1, 1)},
+                     {"id": "lintel", "vertices": _rect(-1, 1, 3, 1), "support": True}], f)
+
+
+def lmgc90_cases(tiny: bool) -> list[dict[str, Any]]:
+    """The cases: name, scene (2D ones are extruded for LMGC90), and the closed form
+    with its argument where there is one."""
+    cases: list[dict[str, Any]] = [
+        {"name": "squat block 1 x 0.5", "scene": lmgc90_block(1.0, 0.5, 0.6),
+         "closed": 0.6, "basis": "slides at lambda = f = 0.6 (tips at b/h = 2)"},
+        {"name": "slender block 0.5 x 2", "scene": lmgc90_block(0.5, 2.0, 0.6),
+         "closed": 0.25, "basis": "tips at lambda = b/h = 0.25 (slides at f = 0.6)"}]
+    if tiny:
+        return cases[:1]
+    cases.append({"name": "pinched block", "scene": lmgc90_pinched(0.8), "closed": None,
+                  "basis": "non-associative from the unloaded state (no pinch): "
+                           "lambda = f = 0.8 (validation.md)",
+                  "dt_series": LMGC90_DT_SERIES})
+    for c, n, way in LMGC90_WALLS:
+        if way == "in_plane":
+            scene = build("wall", courses=c, blocks_per_course=n, friction=WALL_FRICTION)
+            closed, basis = None, ""
+        else:
+            scene = build("wall3d", courses=c, blocks_per_course=n, friction=WALL_FRICTION,
+                          load_direction=way)
+            closed = min(WALL_FRICTION, 0.3 / (0.2 * c))
+            basis = "min(f, t/H), the whole wall overturning (wall3d's notes)"
+        cases.append({"name": f"wall {c} x {n} {way.replace('_', ' ')}", "scene": scene,
+                      "closed": closed, "basis": basis})
+    return cases
+
+
+def lmgc90_python(arg: str | None) -> tuple[str | None, str]:
+    """The peer interpreter that has compas_lmgc90, or None and the reason why not."""
+    path = arg or os.environ.get("RIGIDBLOCKS_LMGC90_PYTHON") or LMGC90_DEFAULT
+    if path.lower() == "none":
+        return None, "LMGC90 part not run (--lmgc90-python none)"
+    if not Path(path).exists():
+        return None, f"LMGC90 part skipped: no peer Python at {path}"
+    probe = subprocess.run([path, "-c", "import compas_lmgc90, compas_cra"],
+                           capture_output=True, text=True)
+    if probe.returncode != 0:
+        return None, (f"LMGC90 part skipped: {path} cannot import compas_lmgc90 and "
+                      "compas_cra (pip install compas-lmgc90 compas_cra there)")
+    return path, ""
+
+
+def lmgc90_blocks(scene3d: Scene) -> list[dict[str, Any]]:
+    """The 3D scene's blocks as polyhedra for the peer processes, faces outward (a
+    generated scene's need not be: wall3d's caps face inwards, which LMGC90 takes for a
+    body of a third of the volume)."""
+    w = scene3d.effective_unit_weight
+    return [{"id": b.id, "vertices": [list(map(float, p)) for p in b.vertices],
+             "faces": [[int(i) for i in f] for f in outward_faces(b)],
+             "support": bool(b.support),
+             "density": float(b.unit_weight if b.unit_weight is not None else w)}
+            for b in scene3d.blocks]
+
+
+def _run_peer_script(python: str, script: Path, args: list[str], case: dict,
+                     tmp: Path, timeout: float) -> dict:
+    src, dst = tmp / "case.json", tmp / "out.json"
+    src.write_text(json.dumps(case))
+    dst.unlink(missing_ok=True)
+    env = {**os.environ, "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+    try:
+        proc = subprocess.run([python, str(script), str(src), str(dst), *args],
+                              capture_output=True, text=True, timeout=timeout, env=env)
+    except subprocess.TimeoutExpired:
+        return {"status": "timeout", "message": f"no answer within {timeout:g} s"}
+    if not dst.exists():
+        return {"status": "error", "message": (proc.stderr or proc.stdout).strip()[-300:]}
+    return json.loads(dst.read_text())
+
+
+def lmgc90_tilt(python: str, scene3d: Scene, guess: float, dt: float, tmp: Path,
+                timeout: float, check: Sequence[float] | None = None) -> dict:
+    """LMGC90's bracket of the multiplier at which the scene starts to move (with
+    ``check``: only whether that bracket holds at this time step)."""
+    direction = [float(x) for x in scene3d.live_body_force]
+    case = {"name": scene3d.name, "mu": float(scene3d.friction),
+            "blocks": lmgc90_blocks(scene3d), "direction": direction, "dt": dt,
+            "duration": LMGC90_DURATION, "rtol": LMGC90_RTOL, "guess": guess,
+            "density": 1000.0 * scene3d.effective_unit_weight / 9.81,
+            **({"check": list(check)} if check else {})}
+    out = _run_peer_script(python, LMGC90_RUNNER, [], case, tmp, timeout)
+    out.pop("traceback", None)
+    return out
+
+
+def _tilted(blocks: list[dict], lam: float, direction: Sequence[float]) -> list[dict]:
+    """The blocks turned so that gravity (-z) has, in the blocks' frame, lam times the
+    vertical weight along ``direction``: the tilting table (Rodrigues' rotation taking
+    the unit vector of z - lam d to z)."""
+    import numpy as np
+
+    d = np.asarray(direction, dtype=float)
+    u = np.array([0.0, 0.0, 1.0]) - lam * d
+    u /= np.linalg.norm(u)
+    z = np.array([0.0, 0.0, 1.0])
+    k = np.cross(u, z)
+    s, c = np.linalg.norm(k), float(u @ z)
+    if s < 1e-15:
+        rot = np.eye(3)
+    else:
+        k /= s
+        kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+        rot = np.eye(3) + s * kx + (1 - c) * kx @ kx
+    return [{**b, "vertices": (np.asarray(b["vertices"]) @ rot.T).tolist()} for b in blocks]
+
+
+def _cra(python: str, scene3d: Scene, blocks: list[dict], lam: float, method: str,
+         tmp: Path, timeout: float) -> dict:
+    """One compas_cra run on the assembly tilted by atan(lam)."""
+    from bench_peer import RUNNER, rbe_tension_ratio
+
+    case = {"name": scene3d.name, "mu": float(scene3d.friction),
+            "blocks": _tilted(blocks, lam, scene3d.live_body_force),
+            "interfaces": {"nmax": 10, "tmax": 1e-6, "amin": 1e-6}, **CRA_SETTINGS}
+    out = _run_peer_script(python, RUNNER, [method], case, tmp, timeout)
+    stands = {"solved": True}.get(out.get("status"))
+    if out.get("status") == "failed" and "nfeasib" in out.get("message", ""):
+        stands = False
+    return {"lam": lam, "method": method, "status": out.get("status"), "stands": stands,
+            "tension_ratio": rbe_tension_ratio({"method": method, "joints": [], **out}),
+            "seconds": out.get("times", {}).get("total")}
+
+
+def cra_tilt(python: str, scene3d: Scene, guess: float, tmp: Path, timeout: float
+             ) -> dict:
+    """compas_cra on the tilted assembly: CRA (Kao et al. 2022, Eq. 11, complementarity
+    without dilatancy; infeasible = no state stands) bisected on the tilt lam =
+    tan(angle), and CRA-penalty (Eq. 14) at the bracket's ends: its penalised tension
+    over its compression (its admissibility rule in bench_peer: below 1e-4)."""
+    blocks = lmgc90_blocks(scene3d)
+    trials: list[dict] = []
+
+    def stands(lam: float) -> bool | None:
+        trials.append(_cra(python, scene3d, blocks, lam, "cra", tmp, timeout))
+        return trials[-1]["stands"]
+
+    lo, hi, lam = 0.0, math.inf, guess
+    for _ in range(8):
+        v = stands(lam)
+        if v is None:
+            return {"status": "no answer", "trials": trials}
+        lo, hi = (lam, hi) if v else (lo, lam)
+        if lo > 0.0 and hi < math.inf:
+            break
+        lam = 2.0 * lam if v else 0.5 * lam
+    else:
+        return {"status": "no bracket", "trials": trials}
+    while hi - lo > LMGC90_RTOL * hi:
+        mid = 0.5 * (lo + hi)
+        v = stands(mid)
+        if v is None:
+            return {"status": "no answer", "bracket": [lo, hi], "trials": trials}
+        lo, hi = (mid, hi) if v else (lo, mid)
+    penalty = [_cra(python, scene3d, blocks, x, "cra_penalty", tmp, timeout)
+               for x in (lo, hi)]
+    return {"status": "bracketed", "bracket": [lo, hi], "trials": trials,
+            "penalty": penalty}
+
+
+def lmgc90_ours(scene: Scene, extruded: bool) -> dict[str, Any]:
+    """Our associative and non-associative multipliers (and on the extrusion)."""
+    out: dict[str, Any] = {}
+    a, out["assoc_seconds"] = _run(rb.max_load_multiplier, scene, state=False)
+    out["assoc"], out["assoc_status"] = a.load_multiplier, a.status
+    v, out["na_seconds"] = _run(rb.max_load_multiplier, scene, flow=NA, state=False)
+    out["na"], out["na_status"] = v.load_multiplier, v.status
+    out["na_bounds"] = list(v.load_multiplier_bounds) if v.load_multiplier_bounds else None
+    if scene.dimension == 2:
+        d = rb.max_load_multiplier(scene, flow=NA, method="distortion", state=False)
+        out["na_distortion"], out["na_distortion_status"] = d.load_multiplier, d.status
+        if extruded:
+            e, out["na_3d_seconds"] = _run(rb.max_load_multiplier, extrude(scene),
+                                           flow=NA, state=False)
+            out["na_3d"], out["na_3d_status"] = e.load_multiplier, e.status
+    return out
+
+
+def _finite(x: Any) -> float | None:
+    return x if isinstance(x, float) and math.isfinite(x) else None
+
+
+def lmgc90_rows(python: str, tiny: bool, timeout: float, log=sys.stdout,
+                done: Any = None) -> list[dict[str, Any]]:
+    """Every case: ours, LMGC90 at dt and dt / 2 (and the case's series of time
+    steps), CRA (small cases); ``done(rows)`` after each case."""
+    from bench_peer import loadavg
+
+    rows = []
+    with tempfile.TemporaryDirectory() as tmpd:
+        tmp = Path(tmpd)
+        for case in lmgc90_cases(tiny):
+            scene = case["scene"]
+            s3 = extrude(scene) if scene.dimension == 2 else scene
+            free = sum(not b.support for b in scene.blocks)
+            row: dict[str, Any] = {"name": case["name"], "blocks": free,
+                                   "friction": float(scene.friction),
+                                   "closed": case["closed"], "basis": case["basis"],
+                                   "dimension": scene.dimension, "loadavg_start": loadavg()}
+            row["ours"] = lmgc90_ours(scene, extruded=free <= EXTRUDED_UP_TO)
+            # the first trial off our answer, so that no bracket end is ours
+            guess = 1.01 * (_finite(row["ours"]["na"]) or _finite(row["ours"]["assoc"])
+                            or 1.0)
+            row["lmgc90"] = lmgc90_tilt(python, s3, guess, LMGC90_DT, tmp, timeout)
+            # halving the time step: the bracket's two ends again, bisected anew only
+            # where they no longer hold
+            row["lmgc90_half"] = lmgc90_tilt(python, s3, guess, LMGC90_DT / 2, tmp, timeout,
+                                             check=row["lmgc90"].get("bracket"))
+            if row["lmgc90_half"].get("status") == "changed":
+                row["lmgc90_half"] = lmgc90_tilt(python, s3, guess, LMGC90_DT / 2, tmp,
+                                                 timeout)
+            row["lmgc90_series"] = [
+                {"dt": dt, "bracket": lmgc90_tilt(python, s3, guess, dt, tmp,
+                                                  timeout).get("bracket")}
+                for dt in case.get("dt_series", ())]
+            if free <= CRA_UP_TO:
+                row["cra"] = cra_tilt(python, s3, guess, tmp, timeout)
+            row["loadavg_end"] = loadavg()
+            rows.append(row)
+            if done is not None:
+                done(rows)
+            print(f"{row['name']}: LMGC90 {row['lmgc90'].get('bracket')}, dt/2 "
+                  f"{row['lmgc90_half'].get('bracket')}, CRA "
+                  f"{row.get('cra', {}).get('bracket')}, ours {row['ours']['assoc']} / "
+                  f"{row['ours']['na']}", file=log, flush=True)
+    return rows
+
+
+def _bracket(r: dict | None) -> str:
+    if not r:
+        return "-"
+    b = r.get("bracket")
+    if b:
+        same = " (same)" if r.get("status") == "confirmed" else ""
+        return f"[{b[0]:.5f}, {b[1]:.5f}]{same}"
+    held = [t["lam"] for t in r.get("trials", ())
+            if t.get("stands") or t.get("moves") is False]
+    if r.get("status") == "no bracket" and len(held) == len(r["trials"]) > 0:
+        return f"stands to {max(held):.4g}"
+    return r.get("status", "-")
+
+
+def _verdicts(row: dict[str, Any]) -> str:
+    """Each of our non-associative multipliers against LMGC90's bracket."""
+    keys = (("na", "convex"), ("na_distortion", "distortion"), ("na_3d", "extruded"))
+    out = [f"{label}: {lmgc90_verdict(row, k)}" for k, label in keys
+           if row["ours"].get(k) is not None]
+    return "; ".join(out) if len(out) > 1 else lmgc90_verdict(row, "na")
+
+
+def _first_mover(r: dict) -> str:
+    """The block that travelled furthest in the trial at the bracket's upper end."""
+    b = r.get("bracket")
+    hit = [t for t in r.get("trials", ()) if b and t["lam"] == b[1]]
+    return f"{hit[0]['block']} ({hit[0]['total']:.2g} m)" if hit else "-"
+
+
+def _penalty(r: dict | None) -> str:
+    p = (r or {}).get("penalty")
+    if not p:
+        return "-"
+    return " / ".join("-" if q["tension_ratio"] is None else f"{q['tension_ratio']:.1e}"
+                      for q in p)
+
+
+def _num(x: Any, status: str = "-") -> str:
+    if x is None:
+        return status
+    return f"{x:.5f}" if math.isfinite(x) else "unbounded"
+
+
+def lmgc90_verdict(row: dict[str, Any], key: str) -> str:
+    """Where our multiplier ``key`` lies against LMGC90's bracket (both time steps):
+    inside, below (safe side) or above (unsafe side), with the relative gap."""
+    x = row["ours"].get(key)
+    br = [row[k].get("bracket") for k in ("lmgc90", "lmgc90_half")]
+    if x is None or not all(br):
+        return "-"
+    lo, hi = min(b[0] for b in br), max(b[1] for b in br)
+    if not math.isfinite(x):
+        return "above (unbounded)"
+    if x < lo:
+        return f"below by {(lo - x) / lo:.1%}"
+    if x > hi:
+        return f"above by {(x - hi) / hi:.1%}"
+    return "inside"
+
+
+def lmgc90_markdown(rows: list[dict[str, Any]], skipped: str) -> str:
+    md = ["## Non-associative multipliers against LMGC90's tilting-table test", ""]
+    if skipped:
+        return "\n".join([*md, skipped])
+    md += [f"LMGC90 (compas_lmgc90 {rows[0]['lmgc90'].get('version', '?')}, contact law "
+           "IQS_CLB_g0: unilateral contact, Coulomb friction, no dilatancy) on the "
+           "polyhedral blocks (2D scenes extruded): a constant horizontal force lambda "
+           "times each free block's weight, from rest, "
+           f"{LMGC90_DURATION:g} s at dt = {LMGC90_DT:g} s; at dt / 2 the two ends of "
+           "that bracket are run again (\"same\": the lower end stands and the upper "
+           "one moves at dt / 2 too; else a new bisection at dt / 2); a trial "
+           "moves when a block's centroid travels more than 1e-5 of the smallest block "
+           "over the last quarter of the run (a slip that arrests does not count); "
+           f"bisection to {LMGC90_RTOL:g} relative. CRA: compas_cra (Kao et al. 2022, "
+           "Eq. 11, d_bnd = 0.1, eps = 0) on the assembly tilted by atan(lambda), "
+           "bisected on its verdict (solved: stands; infeasible: collapses), cases up "
+           f"to {CRA_UP_TO} blocks; CRA-penalty (Eq. 14): its penalised tension over its "
+           "compression at the two ends of CRA's bracket. Ours: `max_load` "
+           "associative, non-associative (convex path; "
+           "distortion path and the extrusion for 2D scenes).", "",
+           markdown_table(
+               ["case", "f", "closed form", "LMGC90 dt", "LMGC90 dt/2", "CRA",
+                "CRA-penalty tension",
+                "ours assoc", "ours non-assoc", "distortion", "extruded", "non-assoc vs "
+                "LMGC90", "LMGC90 moves first"],
+               [[r["name"], r["friction"], _num(r["closed"]), _bracket(r["lmgc90"]),
+                 _bracket(r["lmgc90_half"]), _bracket(r.get("cra")), _penalty(r.get("cra")),
+                 _num(r["ours"]["assoc"], r["ours"]["assoc_status"]),
+                 _num(r["ours"]["na"], r["ours"]["na_status"]),
+                 _num(r["ours"].get("na_distortion")), _num(r["ours"].get("na_3d")),
+                 _verdicts(r), _first_mover(r["lmgc90"])] for r in rows]), "",
+           *[f"{r['name']}: LMGC90's bracket against the time step: " + ", ".join(
+               f"dt = {x['dt']:g}: {_bracket(x)}" for x in r["lmgc90_series"]) + "."
+             for r in rows if r["lmgc90_series"]], "",
+           "Load average (1, 5, 15 min) at the start and end: "
+           f"{rows[0]['loadavg_start']} / {rows[-1]['loadavg_end']}."]
+    return "\n".join(md)
+
+
+def lmgc90_section(out: str | None, python_arg: str | None, tiny: bool,
+                   timeout: float = 1800.0) -> dict[str, Any]:
+    """Run the LMGC90 comparison (or say why not) and write bench_nonassoc_lmgc90."""
+    python, skipped = lmgc90_python(python_arg)
+
+    def write(rows: list[dict[str, Any]]) -> dict[str, Any]:
+        data = {"lmgc90_python": python, "skipped": skipped, "dt": LMGC90_DT,
+                "duration": LMGC90_DURATION, "rtol": LMGC90_RTOL, "rows": rows}
+        write_results(out, "bench_nonassoc_lmgc90", data, lmgc90_markdown(rows, skipped))
+        return data
+
+    if python is None:
+        print(skipped, flush=True)
+        return write([])
+    return write(lmgc90_rows(python, tiny, timeout, done=write))
+
+
 def _cell(v: Any) -> Any:
     return "-" if v is None else v
 
@@ -131,7 +546,20 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--tiny", action="store_true", help="smallest sizes only")
     p.add_argument("--out", default=None, help="results folder")
+    p.add_argument("--lmgc90-python", default=None,
+                   help="Python with compas_lmgc90 and compas_cra ('none' skips them)")
+    p.add_argument("--only", choices=("walls", "lmgc90"), default=None,
+                   help="run one part only")
+    p.add_argument("--redraw", action="store_true",
+                   help="rewrite bench_nonassoc_lmgc90.md from its JSON (no runs)")
     args = p.parse_args(argv)
+    if args.redraw:
+        doc = read_results(args.out, "bench_nonassoc_lmgc90")
+        rewrite_results(args.out, "bench_nonassoc_lmgc90", doc,
+                        lmgc90_markdown(doc["rows"], doc["skipped"]))
+        return {"lmgc90": doc}
+    if args.only == "lmgc90":
+        return {"lmgc90": lmgc90_section(args.out, args.lmgc90_python, args.tiny)}
     sizes = TINY_WALLS if args.tiny else WALLS
     wall_rows = walls(sizes, DISTORTION_UP_TO)
     curve = curves(TINY_STRUCTURES if args.tiny else STRUCTURES,
@@ -157,6 +585,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
           "![lambda against f](results/bench_nonassoc.png)"]
     data = {"walls": wall_rows, "curves": curve}
     write_results(args.out, "bench_nonassoc", data, "\n".join(md))
+    if args.only is None:
+        data["lmgc90"] = lmgc90_section(args.out, args.lmgc90_python, args.tiny)
     return data
 
 

@@ -432,3 +432,90 @@ def test_bench_accuracy_rtol_sweep_on_the_catalogue(tmp_path):
                 assert r["error"] <= r["rtol"] + 1e-9, r
         else:
             assert r["accuracy"] is None or r["accuracy"] > r["rtol"], r
+
+
+def load_nonassoc_bench():
+    import sys
+
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    spec = importlib.util.spec_from_file_location(
+        "bench_nonassoc", ROOT / "benchmarks" / "bench_nonassoc.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_bench_nonassoc_lmgc90_is_skipped_without_the_peer(tmp_path):
+    """Without the peer environment the LMGC90 section says why, and runs nothing."""
+    bench = load_nonassoc_bench()
+    missing = tmp_path / "no-such-python"
+    data = bench.main(["--only", "lmgc90", "--tiny", "--lmgc90-python", str(missing),
+                       "--out", str(tmp_path)])
+    assert data["lmgc90"]["rows"] == []
+    md = (tmp_path / "bench_nonassoc_lmgc90.md").read_text()
+    assert f"LMGC90 part skipped: no peer Python at {missing}" in md
+    data = bench.main(["--only", "lmgc90", "--tiny", "--lmgc90-python", "none",
+                       "--out", str(tmp_path)])
+    assert data["lmgc90"]["skipped"] == "LMGC90 part not run (--lmgc90-python none)"
+
+
+@pytest.mark.parametrize("direction", [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.6, 0.8, 0.0)])
+def test_tilted_assembly_sees_the_horizontal_load(direction):
+    """The tilting table of the CRA-penalty runs: after the turn, gravity (-z) seen in
+    the blocks' frame is (lam d - z) / sqrt(1 + lam^2): lam times the vertical weight
+    along d. The unit points e_x, e_y, e_z turned give the rotation's columns."""
+    import numpy as np
+
+    bench = load_nonassoc_bench()
+    lam = 0.7
+    block = {"id": "B", "vertices": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "faces": []}
+    (turned,) = bench._tilted([block], lam, direction)
+    rot = np.asarray(turned["vertices"]).T
+    assert rot.T @ rot == pytest.approx(np.eye(3), abs=1e-12)
+    g = rot.T @ np.array([0.0, 0.0, -1.0])
+    expected = (lam * np.asarray(direction) - np.array([0, 0, 1.0])) / np.hypot(1, lam)
+    assert g == pytest.approx(expected, abs=1e-12)
+
+
+def test_lmgc90_runner_volume_and_size():
+    """The runner's weights: a 0.4 x 0.3 x 0.2 box has volume 0.024 (and a prism of a
+    right triangle with legs 1, 2 and depth 3 has 3); the smallest side sets the
+    movement tolerance."""
+    spec = importlib.util.spec_from_file_location(
+        "lmgc90_runner", ROOT / "benchmarks" / "lmgc90_runner.py")
+    runner = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(runner)
+    import numpy as np
+
+    box = np.array([[0, 0, 0], [0.4, 0, 0], [0.4, 0.3, 0], [0, 0.3, 0], [0, 0, 0.2],
+                    [0.4, 0, 0.2], [0.4, 0.3, 0.2], [0, 0.3, 0.2]])
+    faces = [[3, 2, 1, 0], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6],
+             [3, 0, 4, 7]]
+    assert runner.volume(box, faces) == pytest.approx(0.024, rel=1e-12)
+    prism = np.array([[0, 0, 0], [1, 0, 0], [0, 0, 2], [0, 3, 0], [1, 3, 0], [0, 3, 2]])
+    pfaces = [[0, 1, 2], [3, 5, 4], [0, 3, 4, 1], [1, 4, 5, 2], [2, 5, 3, 0]]
+    assert runner.volume(prism, pfaces) == pytest.approx(3.0, rel=1e-12)
+    case = {"blocks": [{"vertices": box.tolist(), "support": False},
+                       {"vertices": (10 * box).tolist(), "support": True}]}
+    assert runner.size(case) == pytest.approx(0.2)
+
+
+def test_lmgc90_blocks_face_outwards():
+    """LMGC90 takes a body's volume and inertia from its faces as given: the blocks
+    handed to it have outward faces even where the generated scene's do not (wall3d's
+    caps face inwards; a 0.4 x 0.3 x 0.2 block then measured 0.008 instead of 0.024),
+    so each block's divergence-theorem volume is its box volume."""
+    import numpy as np
+
+    bench = load_nonassoc_bench()
+    spec = importlib.util.spec_from_file_location(
+        "lmgc90_runner", ROOT / "benchmarks" / "lmgc90_runner.py")
+    runner = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(runner)
+    from rigidblocks.generators import build
+
+    scene = build("wall3d", courses=2, blocks_per_course=2)
+    for b in bench.lmgc90_blocks(scene):
+        v = np.asarray(b["vertices"])
+        assert runner.volume(v, b["faces"]) == pytest.approx(np.prod(np.ptp(v, axis=0)),
+                                                             rel=1e-12)
