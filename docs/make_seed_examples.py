@@ -226,8 +226,9 @@ RATIO_DEPTHS: tuple[float, ...] = tuple(
 RATIO_TOL = 1e-3
 #: relative accuracy asked of each friction value in the ratio sweeps
 RATIO_RTOL = 1e-5
-#: the chart of the ratio against c, next to the page
+#: the chart of the ratio against c, next to the page, and the ratio drawn at its top
 RATIO_CHART = "flat_arch_ratio.png"
+RATIO_CAP = 300.0
 
 #: a friction angle as a bracket (lower, upper) in degrees; None: no bracket
 Angle = tuple[float, float] | None
@@ -486,7 +487,7 @@ def ratio_table(sweeps: Sequence[RatioSweep]) -> Table:
     return header, [ratio_row(s) for s in sweeps]
 
 
-def ratio_chart(sweeps: Sequence[RatioSweep], path: Path, cap: float = 300.0) -> None:
+def ratio_chart(sweeps: Sequence[RatioSweep], path: Path, cap: float = RATIO_CAP) -> None:
     """phi_vertical / phi_radial against c, one panel per support, one line per
     reading, the seed's 23 dashed; ratios above ``cap`` (or infinite) drawn at it."""
     import matplotlib
@@ -545,7 +546,10 @@ def ratio_section(sweeps: Sequence[RatioSweep]) -> list[str]:
          "limit no joint slides, so the bond changes nothing.",
          ""]
     L.extend(markdown(ratio_table(sweeps)))
-    L += ["", f"![ratio against c]({RATIO_CHART})", ""]
+    L += ["", f"![ratio against c]({RATIO_CHART})", "",
+          "A gap in a curve is a depth where that value is undecided (listed in the "
+          f"table); a ratio of {RATIO_CAP:g} or more, or an infinite one, is drawn at "
+          f"{RATIO_CAP:g}.", ""]
     return L
 
 
@@ -851,8 +855,8 @@ def page() -> str:
     w("")
     w("Between the joint slopes that need no friction at all and the nearly vertical "
       "ones, the ratio sweeps every value from 1 to infinity; the seed's 23 lies on "
-      "that range, at a joint slope its paper does not give. Where, for each reading "
-      "and support:")
+      "that range, at a joint slope its paper does not give; where, for each reading "
+      "and support, is the next section.")
     w("")
     sweeps = ratio_sweeps()
     ratio_chart(sweeps, ROOT / "docs" / RATIO_CHART)
