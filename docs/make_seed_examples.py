@@ -466,7 +466,7 @@ def ratio_row(s: RatioSweep) -> list[str]:
     v = s.vertical
     if s.target is None:
         return [s.reading, s.support, "0 (undefined ratio)" if v else "n/a", "-",
-                "none: phi vertical is 0, the ratio is not defined", "-", "-"]
+                "none: phi vertical is 0, the ratio is not defined", "-"]
     b = bands(s)
     where = ", ".join(f"{_end(s, lo)} to {_end(s, hi)}" for lo, hi in b)
     crossings = "; ".join(_crossing(x) for x in s.crossings) or "none"
@@ -477,13 +477,12 @@ def ratio_row(s: RatioSweep) -> list[str]:
                       + ", " + ("each bracket on one side of 23" if all(
                           x is not None for _, x in gaps) else "not all placed"))
     return [s.reading, s.support, f"{_mid(v):.3f}", f"{_mid(s.target):.4f}", crossings,
-            where or f"never (largest ratio {_largest(s)})", _largest(s)]
+            where or f"never (largest ratio {_largest(s)})"]
 
 
 def ratio_table(sweeps: Sequence[RatioSweep]) -> Table:
     header = ["reading", "support", "phi vertical (deg)", "phi vertical / 23 (deg)",
-              "ratio crosses 23 at c (m)", "ratio >= 23 for c (m)",
-              "largest finite ratio (swept c)"]
+              "ratio crosses 23 at c (m)", "ratio >= 23 for c (m)"]
     return header, [ratio_row(s) for s in sweeps]
 
 
