@@ -3,6 +3,9 @@
 Run from the repository root: ``python docs/make_seed_examples.py``. Every number in
 the generated page is computed here, by the convex path and (when
 :mod:`rigidblocks.solvers.distortion` is available) by the impressed-distortion solver.
+``python docs/make_seed_examples.py --ratio-only`` recomputes only the flat arch's ratio
+of 23 (section and docs/flat_arch_ratio.png), e.g. after a change of the non-associative
+algorithm.
 """
 
 from __future__ import annotations
@@ -12,7 +15,7 @@ import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from rigidblocks import check, min_friction
 from rigidblocks.generators import available, build
@@ -107,6 +110,10 @@ def friction(gen: str, load_factor: float = 0.0, both: bool = True,
 def fmt(r) -> str:
     if r is None:
         return "n/a"
+    if r.status == "undecided":
+        lo, hi = r.lower, r.upper
+        return "undecided" + (f" [{lo:.4f}, {hi:.4f}]" if lo is not None and hi is not None
+                              else "")
     if r.status != "stable":
         return "unstable"
     return f"{r.friction_factor:.4f} ({r.friction_angle_deg:.2f} deg)"
@@ -201,6 +208,366 @@ def flat_arch_sweep(vertical: Any,
                      ratio(deg(vertical), deg(rf)), f"{deg(rb):.2f}", f"{deg(vb):.2f}",
                      ratio(deg(vb), deg(rb))])
     return header, rows
+
+
+# -- the seed's ratio of 23 on the flat arch -------------------------------------------
+#: the seed's ratio of friction angles, vertical over radial joints (Fig. 6)
+SEED_RATIO = 23.0
+#: the readings of the seed's "friction needed" (section "What the seed computes")
+RATIO_READINGS = ("static", "demand", "non-associative")
+#: support conditions of the flat arch: label -> generator parameters
+SUPPORTS: dict[str, dict[str, Any]] = {
+    "free piers": {}, "bonded piers": {"bonded_piers": True},
+    "fixed abutments": {"springing": "abutments"}}
+#: centre depths c (m) of the radial joints swept: 0.1 to 50 m, ratio 1.04 between steps
+RATIO_DEPTHS: tuple[float, ...] = tuple(
+    round(0.1 * (500.0 ** (i / 160)), 6) for i in range(161))
+#: width of the interval of c (m) to which a crossing of 23 is located
+RATIO_TOL = 1e-3
+#: relative accuracy asked of each friction value in the ratio sweeps
+RATIO_RTOL = 1e-5
+#: the chart of the ratio against c, next to the page, and the ratio drawn at its top
+RATIO_CHART = "flat_arch_ratio.png"
+RATIO_CAP = 300.0
+
+#: a friction angle as a bracket (lower, upper) in degrees; None: no bracket
+Angle = tuple[float, float] | None
+
+
+def angle(reading: str, **params: Any) -> Angle:
+    """The friction angle (deg) that ``reading`` gives the flat arch
+    ``build("flat_arch", **params)`` under self-weight, as a bracket: the static f*
+    and the non-associative friction to :data:`RATIO_RTOL` (the ends of their search),
+    the least-energy state's demand exactly (one solve). None when no bracket."""
+    scene = build("flat_arch", **params)
+    if reading == "demand":
+        d = check(scene, friction="infinite", load_factor=0.0).friction_demand
+        if d is None:
+            return None
+        a = math.degrees(math.atan(d[0]))
+        return a, a
+    flow = "non-associative" if reading == "non-associative" else None
+    try:
+        r = min_friction(scene, load_factor=0.0, state=False, rtol=RATIO_RTOL, flow=flow)
+    except Exception as err:  # noqa: BLE001 - reported as a gap in the sweep
+        print(f"{reading} failed on flat_arch {params}: {err}", file=sys.stderr)
+        return None
+    if r.lower is None or r.upper is None:
+        return None
+    return math.degrees(math.atan(r.lower)), math.degrees(math.atan(r.upper))
+
+
+def decided(a: Angle) -> bool:
+    """A bracket narrow enough to stand for a value (relative width 1e-3 at most; an
+    undecided search leaves a wider one)."""
+    return a is not None and a[1] - a[0] <= 1e-3 * a[1] + 1e-9
+
+
+def _mid(a: Angle) -> float:
+    """The bracket's midpoint, nan when not :func:`decided`."""
+    return 0.5 * (a[0] + a[1]) if decided(a) else math.nan
+
+
+def side(radial: Angle, target: tuple[float, float]) -> int | None:
+    """+1 if phi_vertical / phi_radial is above 23 for every value in the brackets
+    (``target`` = phi_vertical / 23), -1 if below, None if the brackets overlap."""
+    if radial is None:
+        return None
+    if radial[1] < target[0]:
+        return 1
+    if radial[0] > target[1]:
+        return -1
+    return None
+
+
+class Crossing(NamedTuple):
+    """Where the ratio passes 23 between centre depths ``a`` and ``b`` (m): the side of
+    23 at each (+1 above, -1 below; ``sb`` None: the bisection met a value it could
+    not place, at ``b``) and the radial angle brackets there."""
+
+    a: float
+    b: float
+    sa: int
+    sb: int | None
+    phi_a: Angle
+    phi_b: Angle
+
+
+class RatioSweep(NamedTuple):
+    """One reading on one support: the vertical joints' angle, the radial joints' angle
+    at each depth, and the located crossings of 23."""
+
+    reading: str
+    support: str
+    vertical: Angle
+    depths: tuple[float, ...]
+    radial: list[Angle]
+    crossings: list[Crossing]
+
+    @property
+    def target(self) -> tuple[float, float] | None:
+        v = self.vertical
+        return None if v is None or v[0] <= 0.0 else (v[0] / SEED_RATIO, v[1] / SEED_RATIO)
+
+    def ratios(self) -> list[float]:
+        """phi_vertical / phi_radial at each depth (bracket midpoints; inf where the
+        radial joints need no friction, nan where undecided)."""
+        v = _mid(self.vertical)
+        return [math.inf if decided(r) and r[1] <= 1e-9 else v / _mid(r)
+                for r in self.radial]
+
+
+def locate(reading: str, params: dict[str, Any], target: tuple[float, float],
+           a: float, sa: int, b: float, tol: float = RATIO_TOL) -> Crossing:
+    """Bisect c between ``a`` (side ``sa``) and ``b`` (the other side) to ``tol``."""
+    phi_a = phi_b = None
+    while b - a > tol:
+        m = 0.5 * (a + b)
+        phi = angle(reading, centre_depth=m, **params)
+        s = side(phi, target)
+        if s is None:
+            return Crossing(a, m, sa, None, phi_a, phi)
+        if s == sa:
+            a, phi_a = m, phi
+        else:
+            b, phi_b = m, phi
+    phi_a = phi_a or angle(reading, centre_depth=a, **params)
+    phi_b = phi_b or angle(reading, centre_depth=b, **params)
+    return Crossing(a, b, sa, -sa, phi_a, phi_b)
+
+
+def _golden(fun: Any, a: float, b: float, n: int = 24) -> float:
+    """The c in [a, b] at which ``fun`` is least, by golden-section search (``n`` steps:
+    the interval shrinks to 0.618^n of its width; a local least value where ``fun`` is
+    not unimodal)."""
+    g = (math.sqrt(5.0) - 1.0) / 2.0
+    x1, x2 = b - g * (b - a), a + g * (b - a)
+    f1, f2 = fun(x1), fun(x2)
+    for _ in range(n):
+        if f1 <= f2:
+            b, x2, f2 = x2, x1, f1
+            x1 = b - g * (b - a)
+            f1 = fun(x1)
+        else:
+            a, x1, f1 = x1, x2, f2
+            x2 = a + g * (b - a)
+            f2 = fun(x2)
+    return x1 if f1 <= f2 else x2
+
+
+def refine(reading: str, params: dict[str, Any], target: tuple[float, float],
+           depths: list[float], radial: list[Angle]) -> tuple[list[float], list[Angle]]:
+    """Look between the grid's depths for the bands a grid step can hide: at each depth
+    where the radial angle is at a local extreme on the side of 23 away from it (a
+    least angle with the ratio below 23, a largest with it above), search the two
+    steps around it for the extreme (:func:`_golden`) and add that depth to the grid
+    (the crossings are then located on either side of it if it lies across 23)."""
+    mids = [_mid(r) for r in radial]
+    extra = []
+    for i in range(1, len(depths) - 1):
+        s = side(radial[i], target)
+        sign = {-1: 1.0, 1: -1.0}.get(s) if s is not None else None
+        if sign is None or not all(math.isfinite(mids[j]) for j in (i - 1, i, i + 1)):
+            continue
+        here, around = sign * mids[i], (sign * mids[i - 1], sign * mids[i + 1])
+        if here > min(around) or here == max(around):
+            continue
+        c = _golden(lambda x, k=sign: k * _mid(angle(reading, centre_depth=x, **params)),
+                    depths[i - 1], depths[i + 1])
+        extra.append((c, angle(reading, centre_depth=c, **params)))
+    pairs = sorted([*zip(depths, radial, strict=True), *extra], key=lambda p: p[0])
+    return [c for c, _ in pairs], [r for _, r in pairs]
+
+
+def ratio_sweep(reading: str, support: str,
+                depths: Sequence[float] = RATIO_DEPTHS) -> RatioSweep:
+    """The ratio phi_vertical / phi_radial of friction ANGLES for one reading and
+    support over the centre depths, with every crossing of 23 between two depths of
+    the grid located by bisection (a band narrower than the grid's step can be missed
+    where the ratio enters and leaves it between two depths)."""
+    params = SUPPORTS[support]
+    vertical = angle(reading, joints="vertical", **params)
+    radial = [angle(reading, centre_depth=c, **params) for c in depths]
+    sweep = RatioSweep(reading, support, vertical, tuple(depths), radial, [])
+    target = sweep.target
+    if target is None:
+        return sweep
+    depths, radial = refine(reading, params, target, list(depths), radial)
+    sweep = RatioSweep(reading, support, vertical, tuple(depths), radial, [])
+    last = None  # (depth, side) of the last depth placed
+    for c, phi in zip(depths, radial, strict=True):
+        s = side(phi, target)
+        if s is None:
+            continue
+        if last is not None and s != last[1]:
+            sweep.crossings.append(locate(reading, params, target, last[0], last[1], c))
+        last = (c, s)
+    return sweep
+
+
+def ratio_sweeps(readings: Sequence[str] = RATIO_READINGS,
+                 depths: Sequence[float] = RATIO_DEPTHS) -> list[RatioSweep]:
+    """:func:`ratio_sweep` for each reading and every support."""
+    return [ratio_sweep(r, s, depths) for r in readings for s in SUPPORTS]
+
+
+def nonassociative_ratio_sweeps(depths: Sequence[float] = RATIO_DEPTHS) -> list[RatioSweep]:
+    """The non-associative reading alone (the expensive one), on every support."""
+    return ratio_sweeps(("non-associative",), depths)
+
+
+
+
+def _crossing(x: Crossing) -> str:
+    if x.sb is None:
+        return (f"between {x.a:.4f} and {x.b:.4f} (undecided at {x.b:.4f}: "
+                f"phi_r {_mid(x.phi_b):.3f} deg)")
+    return (f"{0.5 * (x.a + x.b):.4f} (phi_r {_mid(x.phi_a):.3f} -> "
+            f"{_mid(x.phi_b):.3f} deg)")
+
+
+def bands(s: RatioSweep) -> list[tuple[float, float]]:
+    """The intervals of c where the ratio is at least 23 (ends at the crossings'
+    midpoints, or at the sweep's ends)."""
+    target = s.target
+    if target is None:
+        return []
+    sides = [side(r, target) for r in s.radial]
+    placed = [(c, x) for c, x in zip(s.depths, sides, strict=True) if x is not None]
+    if not placed:
+        return []
+    out, start = [], s.depths[0] if placed[0][1] == 1 else None
+    for x in s.crossings:
+        c = 0.5 * (x.a + x.b)
+        if x.sa == -1:
+            start = c
+        elif start is not None:
+            out.append((start, c))
+            start = None
+    if start is not None:
+        out.append((start, s.depths[-1]))
+    return out
+
+
+def _largest(s: RatioSweep) -> str:
+    finite = [(q, c) for q, c in zip(s.ratios(), s.depths, strict=True)
+              if math.isfinite(q)]
+    if not finite:
+        return "-"
+    q, c = max(finite)
+    return f"{q:.2f} at c = {c:g}"
+
+
+def _end(s: RatioSweep, c: float) -> str:
+    return f"{c:g} (end of the sweep)" if c in (s.depths[0], s.depths[-1]) else f"{c:.4f}"
+
+
+def ratio_row(s: RatioSweep) -> list[str]:
+    v = s.vertical
+    if s.target is None:
+        return [s.reading, s.support, "0 (undefined ratio)" if v else "n/a", "-",
+                "none: phi vertical is 0, the ratio is not defined", "-"]
+    b = bands(s)
+    where = ", ".join(f"{_end(s, lo)} to {_end(s, hi)}" for lo, hi in b)
+    crossings = "; ".join(_crossing(x) for x in s.crossings) or "none"
+    gaps = [(c, side(r, s.target)) for c, r in zip(s.depths, s.radial, strict=True)
+            if not decided(r)]
+    if gaps:
+        crossings += ("; phi_r undecided at c = " + ", ".join(f"{c:g}" for c, _ in gaps)
+                      + ", " + ("each bracket on one side of 23" if all(
+                          x is not None for _, x in gaps) else "not all placed"))
+    return [s.reading, s.support, f"{_mid(v):.3f}", f"{_mid(s.target):.4f}", crossings,
+            where or f"never (largest ratio {_largest(s)})"]
+
+
+def ratio_table(sweeps: Sequence[RatioSweep]) -> Table:
+    header = ["reading", "support", "phi vertical (deg)", "phi vertical / 23 (deg)",
+              "ratio crosses 23 at c (m)", "ratio >= 23 for c (m)"]
+    return header, [ratio_row(s) for s in sweeps]
+
+
+def ratio_chart(sweeps: Sequence[RatioSweep], path: Path, cap: float = RATIO_CAP) -> None:
+    """phi_vertical / phi_radial against c, one panel per support, one line per
+    reading, the seed's 23 dashed; ratios above ``cap`` (or infinite) drawn at it."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    supports = list(dict.fromkeys(s.support for s in sweeps))
+    fig, axes = plt.subplots(1, len(supports), figsize=(5 * len(supports), 4.2),
+                             sharey=True, squeeze=False)
+    for ax, sup in zip(axes[0], supports, strict=True):
+        for s in (s for s in sweeps if s.support == sup):
+            if s.target is None:
+                continue
+            q = [min(x, cap) for x in s.ratios()]
+            ax.plot(s.depths, q, label=s.reading, lw=1.2,
+                    color=f"C{RATIO_READINGS.index(s.reading)}")
+        ax.axhline(SEED_RATIO, color="k", ls="--", lw=0.8)
+        ax.set(xscale="log", yscale="log", ylim=(0.8, cap * 1.2),
+               xlabel="centre depth c of the radial joints (m)", title=sup)
+        ax.grid(True, which="both", lw=0.3)
+        ax.legend(fontsize=8)
+    axes[0][0].set_ylabel("phi vertical / phi radial (angles)")
+    fig.suptitle(f"flat arch: ratio of friction angles (dashed: the seed's 23; "
+                 f"at the top: {cap:g} or more, or no friction needed)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+#: the heading of the ratio section, where --ratio-only splices the page
+RATIO_HEADING = "### Where the seed's ratio of 23 falls"
+
+
+def ratio_section(sweeps: Sequence[RatioSweep]) -> list[str]:
+    """The page's section on the ratio of 23: how it is computed, the table, the chart
+    (written next to the page)."""
+    d = RATIO_DEPTHS
+    L = [RATIO_HEADING, "",
+         "The ratio phi_vertical / phi_radial of friction ANGLES (degrees, as everywhere "
+         "on this page), for each reading of the seed's friction (section \"What the seed "
+         "computes\") on each support: free piers, bonded piers (`bonded_piers`: the "
+         "piers never slide on the ground) and fixed abutments (`springing abutments`). "
+         "phi_vertical is the same reading on the vertical-joint platband on the same "
+         f"support; phi_radial is computed at {len(d)} centre depths c from {d[0]:g} m to "
+         f"{d[-1]:g} m (skewbacks {math.degrees(math.atan(1 / d[0])):.1f} to "
+         f"{math.degrees(math.atan(1 / d[-1])):.1f} deg from the vertical, steps of "
+         f"{100 * (d[1] / d[0] - 1):.0f} %), the static f* and the non-associative f each "
+         f"to a relative {RATIO_RTOL:g}, the demand in one solve. Where the ratio passes "
+         f"23 between two depths, c is bisected to {RATIO_TOL:g} m; a crossing is the "
+         "midpoint of the last interval, with phi_radial at its two ends (a jump between "
+         "them is a change of mechanism). A depth is placed on one side of 23 only when "
+         "the brackets of both angles are; around each local extreme of phi_radial on "
+         "the grid a golden-section search looks for a band narrower than a step. The "
+         "ratio is infinite where the radial joints need no friction, so a band includes "
+         "those depths. The demand is the same on free and bonded piers: with no friction "
+         "limit no joint slides, so the bond changes nothing.",
+         ""]
+    L.extend(markdown(ratio_table(sweeps)))
+    L += ["", f"![ratio against c]({RATIO_CHART})", "",
+          "A gap in a curve is a depth where that value is undecided (listed in the "
+          f"table); a ratio of {RATIO_CAP:g} or more, or an infinite one, is drawn at "
+          f"{RATIO_CAP:g}.", ""]
+    return L
+
+
+def update_ratio_section(readings: Sequence[str] = RATIO_READINGS) -> float:
+    """Recompute the ratio sweeps and splice their section and chart into the existing
+    page (``--ratio-only``: after a change of the non-associative algorithm, without
+    the rest of the page); the CPU seconds the sweeps took."""
+    path = ROOT / "docs" / "seed-examples.md"
+    text = path.read_text()
+    start = text.index(RATIO_HEADING)
+    end = text.find("\n## ", start)
+    t0 = time.process_time()
+    sweeps = [s for r in readings for s in (
+        nonassociative_ratio_sweeps() if r == "non-associative" else ratio_sweeps((r,)))]
+    cpu = time.process_time() - t0
+    ratio_chart(sweeps, ROOT / "docs" / RATIO_CHART)
+    path.write_text(text[:start] + "\n".join(ratio_section(sweeps)).rstrip("\n")
+                    + "\n" + text[end:])
+    return cpu
 
 
 def seven_table(both: bool = True) -> Table:
@@ -300,16 +667,6 @@ def fmt_demand(c: Any) -> str:
     return f"{f:.4f} ({math.degrees(math.atan(f)):.2f} deg) at {a}-{b}"
 
 
-def fmt_na(r: Any) -> str:
-    if r is None:
-        return "n/a"
-    if r.status == "undecided":
-        lo, hi = r.lower, r.upper
-        return "undecided" + (f" [{lo:.4f}, {hi:.4f}]" if lo is not None and hi is not None
-                              else "")
-    return fmt(r)
-
-
 #: the cases of the readings table: label, seed's value, generator, load factor, params
 READINGS: tuple[tuple[str, str, str, float, dict[str, Any]], ...] = (
     ("reference, no self-weight (4a)", "0.5 (26.56 deg)", "reference", 1.0, {}),
@@ -342,7 +699,7 @@ def readings_table() -> tuple[Table, dict[str, dict[str, Any]]]:
         r = readings(gen, lf, **params)
         got[label] = r
         rows.append([label, seed, fmt(r["static"]), fmt_demand(r["demand"]),
-                     fmt_na(r["na_convex"]), fmt_na(r["na_distortion"])])
+                     fmt(r["na_convex"]), fmt(r["na_distortion"])])
     return (header, rows), got
 
 
@@ -414,8 +771,11 @@ def readings_section() -> list[str]:
     w("")
     v = got[READINGS[4][0]]["demand"]
     r = got[READINGS[5][0]]["demand"]
+    sv = got[READINGS[4][0]]["static"]
     w("Flat arch on fixed abutments: the static f* is 0 for both joint patterns (the "
-      "abutments can pinch the platband as hard as needed), so the seed's finite ratio "
+      "abutments can pinch the platband as hard as needed; for the vertical joints the "
+      f"search stops at the bracket [{sv.lower:.2g}, {sv.upper:.2g}]), so the seed's "
+      "finite ratio "
       "cannot be a ratio of static values there; it points at a state quantity. The "
       f"demands give a ratio of friction angles of {_ratio_deg(v, r)} (vertical over "
       "radial) with this geometry; on piers the static values give the ratio in the "
@@ -426,9 +786,9 @@ def readings_section() -> list[str]:
         if t is None:
             continue
         w(f"{label}: the distortion iteration at its default tolerance (1e-9) leaves the "
-          f"non-associative friction {fmt_na(r['na_distortion'])} (it stalls near the "
-          f"answer); at tolerance {TIGHT_DISTORTION:g} it gives {fmt_na(t)}, the "
-          f"convex path {fmt_na(r['na_convex'])}.")
+          f"non-associative friction {fmt(r['na_distortion'])} (it stalls near the "
+          f"answer); at tolerance {TIGHT_DISTORTION:g} it gives {fmt(t)}, the "
+          f"convex path {fmt(r['na_convex'])}.")
         w("")
     w("Arpino gate: the seed gives no survey; the published height of about 4.2 m is "
       "in the last row (the opening, course count and wall thickness stay the "
@@ -494,8 +854,12 @@ def page() -> str:
     w("")
     w("Between the joint slopes that need no friction at all and the nearly vertical "
       "ones, the ratio sweeps every value from 1 to infinity; the seed's 23 lies on "
-      "that range, at a joint slope its paper does not give.")
+      "that range, at a joint slope its paper does not give; where, for each reading "
+      "and support, is the next section.")
     w("")
+    sweeps = ratio_sweeps()
+    ratio_chart(sweeps, ROOT / "docs" / RATIO_CHART)
+    L.extend(ratio_section(sweeps))
     # -- stocky and corbel arches
     w("## Stocky arch and corbel arches (seed Fig. 7)")
     w("")
@@ -544,7 +908,17 @@ def page() -> str:
     return "\n".join(L)
 
 
-def main() -> int:
+def main(argv: Sequence[str] | None = None) -> int:
+    args = sys.argv[1:] if argv is None else list(argv)
+    if args == ["--ratio-only"]:
+        cpu = update_ratio_section()
+        print(f"updated the ratio section of docs/seed-examples.md and docs/{RATIO_CHART}"
+              f" ({cpu:.1f} s CPU)")
+        return 0
+    if args:
+        print(f"usage: python docs/make_seed_examples.py [--ratio-only]; got {args}",
+              file=sys.stderr)
+        return 2
     t = time.time()
     files = write_examples()
     text = page()
