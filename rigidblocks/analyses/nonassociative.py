@@ -67,6 +67,7 @@ from ..problems.formulation import build_energy_qp, build_max_load, build_relaxa
 from ..results import CheckResult, ForceState, FrictionResult, LoadResult
 from ..scene.model import NON_ASSOCIATIVE, Scene, flow_value, friction_label, friction_value
 from ..solvers import OPTIMAL
+from .na_limit import CappedLimit, LimitRun, certificate, x0_normals
 from .search import UNBOUNDED_AT, bisect
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
@@ -98,6 +99,13 @@ UNRESOLVED_N = "the shear is carried on normal forces"
 UNDECIDED_RUN = 3
 #: the reason of a distortion run that found an admissible iterate but did not settle
 _UNSETTLED = "admissible; the iteration budget"
+
+#: the starts of the limit iteration, as the notes name them
+FROM_X0 = "the elastic state X0"
+FROM_ASSOC = "the associative collapse state"
+#: the a-posteriori check of a fixed point: equilibrium and Coulomb with its own normal
+#: forces to this fraction of its largest force
+CERT_TOL = 1e-7
 
 #: the note every non-associative result carries
 STATE_NOTE = ("non-associative sliding (no dilatancy): the answer is the one reached from "
@@ -486,6 +494,8 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
         na.notes.append("the associative multiplier is unbounded: no upper bound")
     lo = _frictionless_bound(cv, na.marked, f)
     bounds = (lo, math.inf if up.status == "unbounded" else hi)
+    if isinstance(na, ConvexNonAssociative) and up.status in ("collapse", "unbounded"):
+        return _load_by_limit(na, cv, f, up, bounds, state, mechanism)
 
     def result(status: str, lam: float | None = None, v: Verdict | None = None,
                converged: bool | None = None,
@@ -562,6 +572,100 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
                         f"bound {lo:.6g}: the state reached from the elastic state "
                         "collapses earlier than some other state would")
     return result("collapse", br.good, best_v, True, (br.lower, br.upper))
+
+
+def _starts(na: ConvexNonAssociative, cv: ConvexMethod, up: Any
+            ) -> list[tuple[str, np.ndarray]]:
+    """The starts of the limit iteration (scaled normal forces): the elastic state X0
+    (the seed's start, the answer's) and the associative collapse state."""
+    out = []
+    n0 = x0_normals(na)
+    if n0 is not None:
+        out.append((FROM_X0, n0))
+    if up.status == "collapse" and up.at is not None and up.at.data is not None:
+        res, prob = up.at.data
+        xa = cv.lscaling.forces(res.z[prob.cols["x"]])
+        out.append((FROM_ASSOC, np.maximum(xa[cv.system.layout.normal], 0.0)
+                    / cv.scaling.force))
+    return out
+
+
+def _limit_checks(cv: ConvexMethod, f: float, run: LimitRun,
+                  bounds: tuple[float | None, float | None]) -> list[str]:
+    """What the fixed point ``run`` fails of its a-posteriori checks (empty: none):
+    equilibrium and Coulomb's law with its own normal forces to CERT_TOL of its
+    largest force, lo <= lambda <= hi (Drucker 1954; Radenkovic's first theorem)."""
+    lam, x = run.lam, run.x * cv.scaling.force
+    eq, breach = certificate(cv, f, lam, x)
+    bad = []
+    if eq > CERT_TOL or breach > CERT_TOL:
+        bad.append(f"the fixed point fails its check: equilibrium residual {eq:.2g}, "
+                   f"breach of Coulomb's law with its own normal forces {breach:.2g} "
+                   "(of the largest force)")
+    lo, hi = bounds
+    slack = 1e-6 * max(abs(lam), 1.0)
+    if hi is not None and lam > hi + slack:
+        bad.append(f"lambda = {lam:.9g} is above the associative multiplier {hi:.9g}")
+    if lo is not None and lam < lo - slack:
+        bad.append(f"lambda = {lam:.9g} is below the frictionless bound {lo:.9g}")
+    return bad
+
+
+def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
+                   bounds: tuple[float | None, float | None], state: bool,
+                   mechanism: str) -> LoadResult:
+    """The non-associative collapse multiplier as the fixed point of the capped limit
+    problem (:mod:`rigidblocks.analyses.na_limit`) from X0, with the answer from the
+    associative collapse state beside it."""
+    capped = CappedLimit(cv, na.marked, f)
+    runs = [capped.run(n, name) for name, n in _starts(na, cv, up)]
+    na.fp_iterations += capped.solves
+    trials = tuple({"start": r.start, "load_factor": r.lam, "status": r.status,
+                    "iterations": r.iterations, "converged": r.converged} for r in runs)
+    main = runs[0] if runs else None
+    if main is None or not main.converged:
+        na.notes.append("the elastic state X0 has no solution" if main is None else
+                        f"from {main.start}: {main.reason}")
+        return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
+                                    False), load_multiplier_bounds=bounds)
+    bad = _limit_checks(cv, f, main, bounds)
+    if bad:
+        na.notes.extend(bad)
+        return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
+                                    True), load_multiplier_bounds=bounds)
+    na.notes.append(_spread_note(runs))
+    lam = float(main.lam)
+    if bounds[1] is not None and lam > bounds[1]:
+        # within the checks' 1e-6 above the interior-point associative multiplier (the
+        # simplex's is this one): the static theorem puts it at most there
+        na.notes.append(f"the fixed point's multiplier {lam:.10g} is the associative one "
+                        f"{bounds[1]:.10g} to {lam / bounds[1] - 1:.1e} (relative): "
+                        "the answer is the associative multiplier")
+        lam = float(bounds[1])
+    st = force_state(cv.system, main.x * cv.scaling.force,
+                     "non-associative collapse state reached from the elastic state")
+    mech, gov = _collapse_mechanism(cv, na, f, lam, st, mechanism)
+    return LoadResult(**_fields(na, "max_load_multiplier", "collapse", f, lam, trials, True),
+                      state=st if state else None, load_multiplier=lam,
+                      load_multiplier_bounds=bounds, mechanism=mech, governing=gov)
+
+
+def _spread_note(runs: list[LimitRun]) -> str:
+    """The answers from every start, and whether they differ (1e-6 relative)."""
+    main = runs[0]
+    text = f"non-associative collapse state from {main.start}: lambda = {main.lam:.7g}"
+    others = [r for r in runs[1:] if r.converged]
+    same = [r for r in others if abs(r.lam - main.lam) <= 1e-6 * max(abs(main.lam), 1e-9)]
+    for r in runs[1:]:
+        text += (f"; from {r.start}: " + (f"lambda = {r.lam:.7g}" if r.converged
+                                          else f"undecided ({r.reason})"))
+    if others and len(same) < len(others):
+        lams = [main.lam] + [r.lam for r in others]
+        text += (f". The collapse states differ: the answers spread over "
+                 f"[{min(lams):.7g}, {max(lams):.7g}] (the answer is X0's)")
+    elif others:
+        text += ": the same answer"
+    return text
 
 
 def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: float,
