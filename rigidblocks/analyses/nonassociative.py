@@ -635,13 +635,14 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
                                     True), load_multiplier_bounds=bounds)
     na.notes.append(_spread_note(runs))
     lam = float(main.lam)
-    if bounds[1] is not None and lam > bounds[1]:
-        # within the checks' 1e-6 above the interior-point associative multiplier (the
-        # simplex's is this one): the static theorem puts it at most there
-        na.notes.append(f"the fixed point's multiplier {lam:.10g} is the associative one "
-                        f"{bounds[1]:.10g} to {lam / bounds[1] - 1:.1e} (relative): "
-                        "the answer is the associative multiplier")
-        lam = float(bounds[1])
+    hi = bounds[1]
+    if hi is not None and math.isfinite(hi) and abs(lam - hi) <= 1e-6 * max(abs(hi), 1.0):
+        # the associative multiplier is an upper bound on every state (Radenkovic): a
+        # fixed point within the checks' 1e-6 of it (an interior-point value) is it
+        na.notes.append(f"the non-associative multiplier equals the associative one (the "
+                        f"fixed point's {lam:.10g} is {abs(lam - hi):.1e} from it)")
+        lam = float(hi)
+        bounds = (lam, hi)
     st = force_state(cv.system, main.x * cv.scaling.force,
                      "non-associative collapse state reached from the elastic state")
     mech, gov = _collapse_mechanism(cv, na, f, lam, st, mechanism)
@@ -793,6 +794,11 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
         return out("unstable" if lim.status == "unstable" else lim.status, converged=True)
     fs = float(lim.value)
 
+    if isinstance(na, ConvexNonAssociative) and scene.has_live_load and lf > 0:
+        # (without a live load, or at lambda = 0, there is no limit to iterate: the
+        # state reached from X0 answers below)
+        return _friction_by_limit(na, cv, lf, lim, rtol, out, trials)
+
     def decide(fv: float) -> tuple[bool | None, Verdict]:
         v = na.admissible(fv, lf)
         trials.append(_trial("friction", fv, v))
@@ -856,6 +862,75 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
             na.notes.append("bracket wider than 1e-3 relative: undecided, no number")
             return out(UNDECIDED, lower=br.lower, upper=br.upper, converged=False)
     return out("stable", br.good, best, br.lower, br.upper, True)
+
+
+def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, lim: Any,
+                       rtol: float, out: Any, trials: list[dict[str, Any]]
+                       ) -> FrictionResult:
+    """The smallest f whose limit fixed point from X0 (:func:`_load_by_limit`'s answer)
+    carries ``load_factor``: bisection (the search engine's) between the static f*
+    (no state at all below it) and the first of f*, 2 f*, 4 f*, ... that carries it.
+    ``out`` builds the result (as :func:`min_friction_nonassociative` does) from the
+    ``trials``, appended to here."""
+    n0 = x0_normals(na)
+    fs = float(lim.value)
+    if n0 is None:
+        na.notes.append("the elastic state X0 has no solution")
+        return out(UNDECIDED, converged=False)
+    runs: dict[float, LimitRun] = {}
+
+    def decide(fv: float) -> tuple[bool | None, Verdict]:
+        capped = CappedLimit(cv, na.marked, fv)
+        r = capped.run(n0, FROM_X0)
+        na.fp_iterations += capped.solves
+        runs[fv] = r
+        trials.append({"friction": fv, "load_factor": r.lam, "status": r.status,
+                          "iterations": r.iterations, "converged": r.converged})
+        if r.status == "unbounded":
+            return True, _verdict(r, cv.scaling.force)
+        if r.status == "infeasible":
+            return False, _verdict(r, cv.scaling.force)
+        if not r.converged or _limit_checks(cv, fv, r, (None, None)):
+            return None, _verdict(r, cv.scaling.force)
+        return r.lam >= lf * (1.0 - 1e-9), _verdict(r, cv.scaling.force)
+
+    ok, v = decide(fs)
+    if ok:
+        na.notes.append("the non-associative friction equals the static f*")
+        return out("stable", fs, v, lim.lower if lim.lower is not None else fs, fs, True)
+    good = max(2.0 * fs, 1e-3)
+    while True:
+        ok, v = decide(good)
+        if ok is None:
+            na.notes.append(f"the limit iteration did not settle at f = {good:.6g} "
+                            f"({v.notes[0] if v.notes else ''})")
+            return out(UNDECIDED, lower=fs, converged=False)
+        if ok:
+            break
+        good *= 2.0
+        if good > NA_FRICTION_CEILING:
+            na.notes.append(f"no friction up to {NA_FRICTION_CEILING:g} carries the load "
+                            "at the limit fixed point reached from X0")
+            return out("unstable", converged=True)
+    br = bisect(decide, fs if good == max(2.0 * fs, 1e-3) else good / 2.0, good, rtol)
+    if br.undecided_at is not None and br.too_wide(1e-3, 1e-6):
+        na.notes.append(f"the limit iteration did not settle at f = {br.undecided_at:.9g}: "
+                        f"bracket [{br.lower:.9g}, {br.upper:.9g}] wider than 1e-3")
+        return out(UNDECIDED, lower=br.lower, upper=br.upper, converged=False)
+    r = runs[br.good]
+    na.notes.append(f"at f = {br.good:.9g} the limit fixed point from X0 carries lambda = "
+                    f"{r.lam:.9g} >= {lf:g}")
+    return out("stable", br.good, br.good_data, br.lower, br.upper, True)
+
+
+def _verdict(r: LimitRun, force: float) -> Verdict:
+    """A limit run as a verdict whose data the result reads the state from (``force``
+    the reference force of the run's scaled forces)."""
+    fp = FixedPoint(ADMISSIBLE if r.converged else UNDECIDED,
+                    np.full(0, np.nan) if r.x is None else r.x * force, r.iterations,
+                    r.converged,
+                    0.0, r.reason, [c for _, c in r.history], r.time)
+    return Verdict(fp.status, 0.0, (r.reason,) if r.reason else (), fp)
 
 
 __all__ = ["ConvexNonAssociative", "DistortionNonAssociative", "FixedPoint",
