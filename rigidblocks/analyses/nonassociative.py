@@ -868,59 +868,92 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
                        rtol: float, out: Any, trials: list[dict[str, Any]]
                        ) -> FrictionResult:
     """The smallest f whose limit fixed point from X0 (:func:`_load_by_limit`'s answer)
-    carries ``load_factor``: bisection (the search engine's) between the static f*
-    (no state at all below it) and the first of f*, 2 f*, 4 f*, ... that carries it.
-    ``out`` builds the result (as :func:`min_friction_nonassociative` does) from the
-    ``trials``, appended to here."""
+    carries ``load_factor``: the search engine between the static f* (no state at all
+    below it) and the first of 2 f*, 4 f*, ... that carries it, stepping by the secant
+    of lambda(f) - load_factor (:func:`_secant`, :func:`_across`) where it can, else
+    halving. ``out`` builds the result (as :func:`min_friction_nonassociative` does)
+    from the ``trials``, appended to here."""
+    from ..methods.engine import Search, Trial, midpoint, narrow_enough, run, undecided_trial
+
     n0 = x0_normals(na)
     fs = float(lim.value)
     if n0 is None:
         na.notes.append("the elastic state X0 has no solution")
         return out(UNDECIDED, converged=False)
-    runs: dict[float, LimitRun] = {}
 
-    def decide(fv: float) -> tuple[bool | None, Verdict]:
+    def oracle(fv: float) -> Trial:
         capped = CappedLimit(cv, na.marked, fv)
         r = capped.run(n0, FROM_X0)
         na.fp_iterations += capped.solves
-        runs[fv] = r
         trials.append({"friction": fv, "load_factor": r.lam, "status": r.status,
-                          "iterations": r.iterations, "converged": r.converged})
-        if r.status == "unbounded":
-            return True, _verdict(r, cv.scaling.force)
-        if r.status == "infeasible":
-            return False, _verdict(r, cv.scaling.force)
+                       "iterations": r.iterations, "converged": r.converged})
+        v = _verdict(r, cv.scaling.force)
+        if r.status in ("unbounded", "infeasible"):
+            return Trial(fv, r.status == "unbounded", data=v)
         if not r.converged or _limit_checks(cv, fv, r, (None, None)):
-            return None, _verdict(r, cv.scaling.force)
-        return r.lam >= lf * (1.0 - 1e-9), _verdict(r, cv.scaling.force)
+            return Trial(fv, None, data=v, why=r.reason)
+        return Trial(fv, r.lam >= lf * (1.0 - 1e-9), value=r.lam - lf, data=v)
 
-    ok, v = decide(fs)
-    if ok:
+    s = Search(fs, fs, rtol)
+    t = oracle(fs)
+    s.record(t)
+    if t.side:
         na.notes.append("the non-associative friction equals the static f*")
-        return out("stable", fs, v, lim.lower if lim.lower is not None else fs, fs, True)
+        return out("stable", fs, t.data, lim.lower if lim.lower is not None else fs, fs,
+                   True)
     good = max(2.0 * fs, 1e-3)
     while True:
-        ok, v = decide(good)
-        if ok is None:
+        t = oracle(good)
+        s.record(t)
+        if t.side is None:
             na.notes.append(f"the limit iteration did not settle at f = {good:.6g} "
-                            f"({v.notes[0] if v.notes else ''})")
-            return out(UNDECIDED, lower=fs, converged=False)
-        if ok:
+                            f"({t.why})")
+            return out(UNDECIDED, lower=s.bad, converged=False)
+        if t.side:
             break
         good *= 2.0
         if good > NA_FRICTION_CEILING:
             na.notes.append(f"no friction up to {NA_FRICTION_CEILING:g} carries the load "
                             "at the limit fixed point reached from X0")
             return out("unstable", converged=True)
-    br = bisect(decide, fs if good == max(2.0 * fs, 1e-3) else good / 2.0, good, rtol)
-    if br.undecided_at is not None and br.too_wide(1e-3, 1e-6):
-        na.notes.append(f"the limit iteration did not settle at f = {br.undecided_at:.9g}: "
-                        f"bracket [{br.lower:.9g}, {br.upper:.9g}] wider than 1e-3")
-        return out(UNDECIDED, lower=br.lower, upper=br.upper, converged=False)
-    r = runs[br.good]
-    na.notes.append(f"at f = {br.good:.9g} the limit fixed point from X0 carries lambda = "
-                    f"{r.lam:.9g} >= {lf:g}")
-    return out("stable", br.good, br.good_data, br.lower, br.upper, True)
+    run(s, oracle, (undecided_trial, narrow_enough), (_across, _secant, midpoint))
+    if s.stopped == "undecided_trial" and not s.narrow(1e-3):
+        na.notes.append(f"the limit iteration did not settle at f = {s.last.x:.9g}: "
+                        f"bracket [{s.lower:.9g}, {s.upper:.9g}] wider than 1e-3")
+        return out(UNDECIDED, lower=s.lower, upper=s.upper, converged=False)
+    at = s.end(True)
+    na.notes.append(f"at f = {s.good:.9g} the limit fixed point from X0 carries lambda = "
+                    f"{at.value + lf:.9g} >= {lf:g}; at f = {s.bad:.9g} "
+                    f"{s.end(False).value + lf:.9g}")
+    return out("stable", s.good, at.data, s.lower, s.upper, True)
+
+
+def _secant(s: Any) -> float | None:
+    """The root of the secant of lambda(f) - load_factor through the bracket's ends,
+    kept inside its middle 98 %; None (halve) where an end has no value or the last
+    two trials landed on one side (the secant then creeps)."""
+    g, b = s.end(True), s.end(False)
+    if g is None or b is None or not (math.isfinite(g.value) and math.isfinite(b.value)):
+        return None
+    if len(s.trials) >= 2 and s.trials[-1].side is s.trials[-2].side \
+            and s.trials[-1].rule == s.trials[-2].rule == "_secant":
+        return None
+    if g.value == b.value:
+        return None
+    x = g.x - g.value * (g.x - b.x) / (g.value - b.value)
+    lo, hi = s.lower + 0.01 * s.width, s.upper - 0.01 * s.width
+    return min(max(x, lo), hi)
+
+
+def _across(s: Any) -> float | None:
+    """After a secant step, a point a third of the requested accuracy past it towards
+    the other end: where the secant's root was close, the bracket closes in two trials."""
+    t = s.last
+    if t is None or t.rule != "_secant" or t.side is None:
+        return None
+    other = s.bad if t.side else s.good
+    x = t.x + math.copysign(s.rtol * abs(t.x) / 3.0, other - t.x)
+    return x if s.lower < x < s.upper else None
 
 
 def _verdict(r: LimitRun, force: float) -> Verdict:
