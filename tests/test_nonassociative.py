@@ -399,3 +399,69 @@ def test_bench_nonassoc_tiny(tmp_path):
     assert row["distortion_lambda"] == pytest.approx(0.8, rel=RTOL)
     assert (tmp_path / "bench_nonassoc.png").stat().st_size > 0
     assert (tmp_path / "bench_nonassoc.md").read_text().startswith("## Non-associative")
+
+
+# -- the limit fixed point (rigidblocks.analyses.na_limit) --------------------------------
+def test_3x3_wall_one_answer_in_2d_and_3d_within_lmgc90():
+    """The 3 x 3 running-bond wall at f = 0.8 and its 3D extrusion: LMGC90's tilting-table
+    test (contact dynamics, Coulomb friction without dilatancy) puts the multiplier in
+    [0.7139, 0.7148] (issue #30). The limit fixed point from X0 gives one answer in both
+    dimensions, inside that bracket, and the same from the associative collapse state;
+    the associative multiplier 0.7705 is above it."""
+    from rigidblocks.scene.extrude import extrude
+
+    scene = build("wall", courses=3, blocks_per_course=3, friction=0.8)
+    r2 = rb.max_load_multiplier(scene, flow=NA, state=False)
+    r3 = rb.max_load_multiplier(extrude(scene), flow=NA, state=False)
+    for r in (r2, r3):
+        assert r.status == "collapse" and r.converged
+        assert 0.7139 <= r.load_multiplier <= 0.7148
+        assert [h["start"] for h in r.history] == ["the elastic state X0",
+                                                    "the associative collapse state"]
+        assert r.history[1]["load_factor"] == pytest.approx(r.load_multiplier, rel=1e-6)
+        assert r.load_multiplier_bounds[1] == pytest.approx(0.770492, rel=1e-5)
+    assert r2.load_multiplier == pytest.approx(r3.load_multiplier, rel=1e-6)
+
+
+def test_limit_fixed_point_is_a_checked_collapse_state():
+    """The 5 x 3 wall at f = 0.8: the answer's state is in equilibrium at lambda and
+    within Coulomb's law with its own normal forces (to 1e-7 of its largest force: the
+    a-posteriori check, computed here independently of the analysis), between the
+    frictionless and associative multipliers (Drucker 1954; Radenkovic), and its
+    mechanism, the capped problem's duals drawn as a vertex, has sliding joints."""
+    scene = build("wall", courses=5, blocks_per_course=3, friction=0.8)
+    res = rb.max_load_multiplier(scene, flow=NA)
+    assert res.status == "collapse"
+    lam, st = res.load_multiplier, res.state
+    from rigidblocks.equilibrium import assemble
+
+    sysm = assemble(scene, detect_contacts(scene))
+    lay = sysm.layout
+    x = np.zeros(lay.size)
+    x[lay.normal], x[lay.tangential] = st.normal, st.joint_shear  # 2D: one shear a joint
+    scale = float(np.abs(x).max())
+    assert np.abs(sysm.A @ x + sysm.dead + lam * sysm.live).max() <= 1e-7 * scale
+    assert st.normal.min() >= -1e-7 * scale
+    assert (np.abs(st.joint_shear) - 0.8 * st.joint_normal).max() <= 1e-7 * scale
+    lo, hi = res.load_multiplier_bounds
+    assert lo <= lam <= hi
+    assert res.mechanism is not None and res.mechanism.kind == "vertex"
+    assert any(m.startswith("slide") for m in res.mechanism.modes)
+    assert any("from the elastic state X0: lambda" in n for n in res.notes)
+
+
+def test_nonassociative_friction_reaches_the_load_factor():
+    """friction --flow non-associative on the 5 x 3 wall at lambda = 0.5: the answer f
+    carries lambda = 0.5 at its limit fixed point (load at that f, >= 0.5 to 1e-9) and
+    the bracket's lower end does not (< 0.5); it lies above the static f* (at which the
+    associative multiplier is 0.5)."""
+    scene = build("wall", courses=5, blocks_per_course=3, friction=0.8)
+    fr = rb.min_friction(scene, load_factor=0.5, flow=NA, state=False)
+    assert fr.status == "stable"
+    static = rb.min_friction(scene, load_factor=0.5, state=False).friction_factor
+    assert fr.friction_factor >= static * (1 - 1e-6)
+    at = rb.max_load_multiplier(scene, friction=fr.friction_factor, flow=NA, state=False)
+    assert at.load_multiplier >= 0.5 * (1 - 1e-9)
+    if fr.lower < fr.friction_factor:
+        below = rb.max_load_multiplier(scene, friction=fr.lower, flow=NA, state=False)
+        assert below.load_multiplier < 0.5
