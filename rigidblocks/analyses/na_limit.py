@@ -301,3 +301,66 @@ def certificate(cv: ConvexMethod, f: float, lam: float, x: np.ndarray
     v = joint_violations(prob, jr, z, cv.contacts.n_joints)
     return (float(np.abs(res).max(initial=0.0)) / scale,
             float(v.max(initial=0.0)) * cv.scaling.force / scale)
+
+
+def friction_fixed_point(capped: CappedLimit, unit: np.ndarray, load_factor: float,
+                         N_start: np.ndarray, start: str, tol: float = LIMIT_TOL,
+                         max_iter: int = LIMIT_MAX_ITER) -> LimitRun:
+    """The fixed point on the friction: each step the smallest uniform f whose caps
+    f ``unit`` N_prev (plus the fixed caps of joints with their own friction) carry
+    ``load_factor`` (one LP in (x, f)), then the state selected as in
+    :meth:`CappedLimit.run` at that f; a fixed point is a non-associative collapse state
+    at exactly ``load_factor`` with friction f. ``capped`` is built at any f with the
+    uniform joints marked; ``unit`` (P,) is 1 at the points of the uniform joints. The
+    run's ``lam`` is the friction f."""
+    t0 = time.perf_counter()
+    cv, p = capped.cv, capped.prob
+    ne, n = p.n_eq, p.n
+    li = p.cols["lambda"].start
+    A = p.A.tocsc()
+    live = A[:ne, li].toarray().ravel()
+    fixed = np.where(unit > 0, 0.0, capped.f_pt)
+    b_eq = p.b[:ne] - load_factor * live
+    keep = sp.csc_matrix(A[:, :li])
+    N = np.maximum(N_start, 0.0)
+    hist: list[tuple[float, float]] = []
+    fk, x = math.nan, None
+    for k in range(1, max_iter + 1):
+        col = -(capped.M @ (unit * N))
+        Af = sp.vstack([sp.hstack([keep[:ne], sp.csc_matrix((ne, 1))]),
+                        sp.csc_matrix(([-1.0], ([0], [li])), shape=(1, n)),
+                        sp.hstack([keep[ne:], sp.csc_matrix(col[:, None])])], format="csc")
+        bj = capped.b0 + capped.M @ (fixed * N)
+        c = np.zeros(n)
+        c[li] = 1.0
+        prob = ConicProblem(c=c, A=Af, b=np.concatenate([b_eq, [0.0], bj]), n_eq=ne,
+                            n_nonneg=p.n_nonneg + 1, soc=p.soc, cols={"x": p.cols["x"]},
+                            rows={})
+        capped.solves += 1
+        try:
+            res = cv.solve(prob, "least friction (capped laws)", tight=True, stall=False)
+        except SolverFailure:
+            res = None
+        if res is None or res.status != OPTIMAL:
+            st = "failure" if res is None else res.status
+            return LimitRun(start, "infeasible" if st == "infeasible" else "undecided",
+                            None, None, k, f"the least-friction problem: {st}", hist,
+                            time.perf_counter() - t0)
+        fk = float(res.z[li])
+        b = bj + fk * (capped.M @ (unit * N))
+        zz = capped.nearest(b, load_factor - PROX_SLACK * max(1.0, abs(load_factor)), N)
+        z = res.z if zz is None else zz
+        x = z[:cv.system.layout.size]
+        Nn = np.maximum(x[capped.nsl], 0.0)
+        scale = max(1.0, float(np.abs(x).max(initial=0.0)))
+        change = float(np.abs(Nn - N).max(initial=0.0)) / scale
+        hist.append((fk, change))
+        if change <= tol:
+            return LimitRun(start, "converged", fk, x, k,
+                            f"fixed point after {k} least-friction solves", hist,
+                            time.perf_counter() - t0)
+        N = Nn
+    return LimitRun(start, "undecided", fk, x, max_iter,
+                    f"no fixed point within {max_iter} least-friction solves (last "
+                    f"relative change of the normal forces {hist[-1][1]:.3g})", hist,
+                    time.perf_counter() - t0)
