@@ -467,17 +467,20 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
                             *, flow: str | None = None, state: bool = True,
                             rtol: float = NA_RTOL, mechanism: str = "vertex",
                             **kw: Any) -> LoadResult:
-    """The collapse multiplier under non-associative sliding, reached from the elastic
-    state, by bisection between 0 and the associative multiplier (an upper bound).
+    """The collapse multiplier under non-associative sliding, from the elastic state.
+
+    Convex path: the fixed point of the capped limit problem from X0
+    (:func:`_load_by_limit`, :mod:`rigidblocks.analyses.na_limit`), with the answer
+    from the associative collapse state beside it. Distortion path: bisection between
+    0 and the associative multiplier on the verdicts of the state the seed's iteration
+    reaches from X0 (:func:`_load_by_bisection`).
 
     ``load_multiplier_bounds`` = [lo, hi]: hi the associative multiplier (Radenkovic's
-    first theorem), lo the best lower bound known: the associative multiplier with
-    frictionless marked joints (Drucker 1954; None where it is not defined: the
-    frictionless dead load has no admissible state) or, where higher, the answer's
-    admissible lower end (its ``bracket``, where that is not one point). The
-    associative multiplier is tried first: where the state reached from the elastic
-    state stands there, it is the answer, exact. ``mechanism``: "vertex" (default) or
-    "blend", which of the optimal mechanisms of the computed state is drawn, as for
+    first theorem), lo the associative multiplier with frictionless marked joints
+    (Drucker 1954; None where it is not defined: the frictionless dead load has no
+    admissible state) or, where higher, the answer's admissible lower end (distortion
+    path) or the answer itself where it equals hi. ``mechanism``: "vertex" (default)
+    or "blend", which of the optimal mechanisms of the computed state is drawn, as for
     associative friction (see :func:`_collapse_mechanism`).
     """
     if not scene.has_live_load:
@@ -485,7 +488,6 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
                          "live_body_force): there is nothing to multiply", scene.source)
     f = friction_value(scene.effective_friction if friction is None else friction)
     na, cv = _open(scene, method, flow, **kw)
-    trials: list[dict[str, Any]] = []
     up = cv.load_limit(f, 1e-9)
     # the associative multiplier, within round-off below 0 taken as 0 (as the
     # associative analysis reports it)
@@ -496,22 +498,29 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
     bounds = (lo, math.inf if up.status == "unbounded" else hi)
     if isinstance(na, ConvexNonAssociative) and up.status in ("collapse", "unbounded"):
         return _load_by_limit(na, cv, f, up, bounds, state, mechanism)
+    return _load_by_bisection(na, cv, f, up, hi, lo, bounds, state, rtol, mechanism)
+
+
+def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
+                       hi: float | None, lo: float | None,
+                       bounds: tuple[float | None, float | None], state: bool, rtol: float,
+                       mechanism: str) -> LoadResult:
+    """The multiplier by bisection on the verdicts of the state reached from X0 (the
+    distortion path, the seed's procedure) between 0 and ``hi`` (tried first)."""
+    trials: list[dict[str, Any]] = []
 
     def result(status: str, lam: float | None = None, v: Verdict | None = None,
                converged: bool | None = None,
                bracket: tuple[float, float] | None = None) -> LoadResult:
-        """The result; ``bracket``: the answer's, whose lower end (an admissible trial)
-        raises the lower bound where it is above the frictionless one."""
+        # bracket: the answer's, whose lower end (an admissible trial) raises the
+        # lower bound where it is above the frictionless one
         st = na.state(f, lam, v) if (v is not None and lam is not None) else None
-        mech, gov = None, ()
-        if st is not None:
-            mech, gov = _collapse_mechanism(cv, na, f, lam, st, mechanism)
-        hist = tuple(trials)
+        mech, gov = _collapse_mechanism(cv, na, f, lam, st, mechanism) if st else (None, ())
         low = bounds[0]
         if bracket is not None and (low is None or bracket[0] > low):
             low = bracket[0]
-        return LoadResult(**_fields(na, "max_load_multiplier", status, f, lam, hist,
-                                    converged), state=st if state else None,
+        return LoadResult(**_fields(na, "max_load_multiplier", status, f, lam,
+                                    tuple(trials), converged), state=st if state else None,
                           load_multiplier=lam, load_multiplier_bounds=(low, bounds[1]),
                           mechanism=mech, governing=gov,
                           bracket=bracket if bracket and bracket[0] < bracket[1] else None)
@@ -756,8 +765,11 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
                                 state: bool = True, rtol: float = NA_RTOL,
                                 **kw: Any) -> FrictionResult:
     """The smallest uniform f at which the non-associative analysis finds the structure
-    standing at ``load_factor`` (the seed's "friction needed"), by bisection upwards
-    from the static f* (below which no state is admissible at all)."""
+    standing at ``load_factor`` (the seed's "friction needed"), upwards from the static
+    f* (below which no state is admissible at all): on the convex path with a live
+    load, the least f whose limit fixed point from X0 carries it
+    (:func:`_friction_by_limit`); else by bisection on the verdicts of the state
+    reached from X0 (:func:`_friction_by_verdicts`)."""
     import math as _m
 
     lf = float(load_factor)
@@ -792,12 +804,20 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
     if lim.status != "stable":
         na.notes.append("no friction admits an equilibrium state (static problem)")
         return out("unstable" if lim.status == "unstable" else lim.status, converged=True)
-    fs = float(lim.value)
-
     if isinstance(na, ConvexNonAssociative) and scene.has_live_load and lf > 0:
         # (without a live load, or at lambda = 0, there is no limit to iterate: the
         # state reached from X0 answers below)
         return _friction_by_limit(na, cv, lf, lim, rtol, out, trials)
+    return _friction_by_verdicts(na, lf, lim, rtol, out, trials)
+
+
+def _friction_by_verdicts(na: NonAssociative, lf: float, lim: Any, rtol: float, out: Any,
+                          trials: list[dict[str, Any]]) -> FrictionResult:
+    """The smallest f at which the state reached from X0 stands at ``lf``: bisection
+    upwards from the static f* (``lim``) on the verdicts (the distortion path, and the
+    convex path without a live load). ``out`` and ``trials`` as in
+    :func:`_friction_by_limit`."""
+    fs = float(lim.value)
 
     def decide(fv: float) -> tuple[bool | None, Verdict]:
         v = na.admissible(fv, lf)
