@@ -44,8 +44,16 @@ the associative (static) problem has no admissible state (proven), at a fixed po
 that breaches the laws (convex), or when the distortion iteration drifts along a
 mechanism without dilatancy on which the loads do more work than the joints dissipate
 at their current normal forces; ``undecided`` (with the reason) when the iteration does
-not settle within its budget. The analyses bisect on these verdicts: ``load`` between 0
-and the associative multiplier, ``friction`` upwards from the static f*.
+not settle within its budget. ``check`` gives these verdicts at one load factor.
+
+The limit analyses on the convex path do not bisect on them: ``load`` iterates the limit
+problem itself (:mod:`rigidblocks.analyses.na_limit`: max lambda under |T| <= f N_prev,
+then the least confined state carrying it near N_prev, to a fixed point checked a
+posteriori), from X0 under the dead load and from the associative collapse state, and
+reports both; ``friction`` iterates the least f under the same caps at the load factor
+(or, where a uniform joint dilates, searches f on the load's fixed point). On the
+distortion path (the seed's procedure) ``load`` bisects on the verdicts between 0 and
+the associative multiplier, ``friction`` upwards from the static f*.
 """
 
 from __future__ import annotations
@@ -114,6 +122,14 @@ STATE_NOTE = ("non-associative sliding (no dilatancy): the answer is the one rea
               "not cause; other states, and so other answers, may exist")
 
 
+#: the note of the limit analyses on the convex path
+LIMIT_NOTE = ("non-associative sliding (no dilatancy): the answer is a collapse state "
+              "reached from the elastic state X0 by iterating the limit problem with the "
+              "shear capacities f N of the previous state's normal forces (Gilbert, "
+              "Casapulla & Ahmed 2006), checked a posteriori; non-associative collapse "
+              "states are not unique, and other starts may give other answers")
+
+
 def flow_mask(scene: Scene, contacts: Any, flow: str | None = None) -> np.ndarray:
     """(m,) True where a joint slides without dilatancy.
 
@@ -172,6 +188,8 @@ class NonAssociative(Method):
         self.runs = 0
         self.fp_iterations = 0
         self.converged_runs = 0
+        #: the limit analyses answered by iterating the limit problem
+        self.limit_path = False
 
     @property
     def n_solves(self) -> int:
@@ -418,7 +436,8 @@ def _open(scene: Scene, method: str, flow: str | None, **kw: Any
 def _fields(na: NonAssociative, analysis: str, status: str, friction: Any,
             load_factor: float | None, history: tuple = (), converged: bool | None = None
             ) -> dict[str, Any]:
-    notes = [STATE_NOTE] + [n for n in na.notes if n != STATE_NOTE]
+    first = LIMIT_NOTE if getattr(na, "limit_path", False) else STATE_NOTE
+    notes = [first] + [n for n in na.notes if n not in (STATE_NOTE, LIMIT_NOTE)]
     return dict(analysis=analysis, status=status, friction=friction_label(friction),
                 load_factor=load_factor, contacts=na.contacts, solver=na.solver,
                 n_solves=na.n_solves, solve_time=na.solve_time, iterations=na.iterations,
@@ -626,6 +645,7 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
     """The non-associative collapse multiplier as the fixed point of the capped limit
     problem (:mod:`rigidblocks.analyses.na_limit`) from X0, with the answer from the
     associative collapse state beside it."""
+    na.limit_path = True
     capped = CappedLimit(cv, na.marked, f)
     runs = [capped.run(n, name) for name, n in _starts(na, cv, up)]
     na.fp_iterations += capped.solves
@@ -895,6 +915,7 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     from the ``trials``, appended to here."""
     from ..methods.engine import Search, Trial, midpoint, narrow_enough, run, undecided_trial
 
+    na.limit_path = True
     n0 = x0_normals(na)
     fs = float(lim.value)
     if n0 is None:
