@@ -465,3 +465,18 @@ def test_nonassociative_friction_reaches_the_load_factor():
     if fr.lower < fr.friction_factor:
         below = rb.max_load_multiplier(scene, friction=fr.lower, flow=NA, state=False)
         assert below.load_multiplier < 0.5
+
+
+def test_cli_names_the_starts_and_bounds(tmp_path, capsys):
+    """`load --flow non-associative` prints the bounds and the answer from each start
+    (3 x 3 wall, f = 0.8: both starts reach 0.7142857, inside LMGC90's bracket, so no
+    spread is named)."""
+    p = tmp_path / "wall.json"
+    p.write_text(dumps_scene(build("wall", courses=3, blocks_per_course=3, friction=0.8)))
+    assert main(["load", str(p), "--flow", NA]) == 0
+    out = capsys.readouterr().out
+    line = next(s for s in out.splitlines() if s.startswith("starts"))
+    assert "from the elastic state X0: lambda = 0.7142857" in line
+    assert "from the associative collapse state: lambda = 0.7142857" in line
+    assert "spread" not in line
+    assert any(s.startswith("bounds     [0, 0.770492]") for s in out.splitlines())
