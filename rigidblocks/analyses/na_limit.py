@@ -59,6 +59,9 @@ from ..solvers.base import ConicProblem
 LIMIT_TOL = 1e-7
 #: iteration budget of one run
 LIMIT_MAX_ITER = 200
+#: steps without a new smallest change after which the step is halved, down to
+STALL = 12
+MIN_DAMPING = 1.0 / 64
 #: weight of the proximal term of the selection step (scaled forces: the largest block
 #: load is 1)
 PROX_WEIGHT = 1.0
@@ -244,6 +247,7 @@ class CappedLimit:
         t0 = time.perf_counter()
         N = np.maximum(N_start, 0.0)
         hist: list[tuple[float, float]] = []
+        beta, best, since = 1.0, math.inf, 0
         x: np.ndarray | None = None
         lam = math.nan
         for k in range(1, max_iter + 1):
@@ -267,7 +271,15 @@ class CappedLimit:
                 return LimitRun(start, "converged", lam, x, k,
                                 f"fixed point after {k} limit solves", hist,
                                 time.perf_counter() - t0)
-            N = Nn
+            # damping where the change stops falling (a cycle on the optimal face): the
+            # step is halved after STALL steps without a new smallest change
+            if change < best:
+                best, since = change, 0
+            else:
+                since += 1
+                if since >= STALL and beta > MIN_DAMPING:
+                    beta, since = 0.5 * beta, 0
+            N = N + beta * (Nn - N)
         return LimitRun(start, "undecided", lam, x, max_iter,
                         f"no fixed point within {max_iter} limit solves (last relative "
                         f"change of the normal forces {hist[-1][1]:.3g})", hist,
