@@ -286,6 +286,24 @@ class CappedLimit:
                         time.perf_counter() - t0)
 
 
+def reached_normals(na: Any, f: float) -> tuple[str, np.ndarray | None]:
+    """The normal forces (scaled) of the state reached from X0 under the dead load at
+    friction ``f`` (the fixed point of the seed's procedure at lambda = 0, from a
+    :class:`~rigidblocks.analyses.nonassociative.ConvexNonAssociative`), and its
+    verdict: "admissible" (the forces), "inadmissible" (the dead load alone is not
+    carried from X0: None) or "undecided" (X0's normal forces,
+    :func:`x0_normals`)."""
+    from ..methods import ADMISSIBLE, INADMISSIBLE
+
+    r = na.fixed_point(f, 0.0)
+    if r.status == ADMISSIBLE:
+        return "admissible", np.maximum(r.x[na.system.layout.normal], 0.0) / \
+            na.cv.scaling.force
+    if r.status == INADMISSIBLE:
+        return "inadmissible", None
+    return "undecided", x0_normals(na)
+
+
 def x0_normals(na: Any) -> np.ndarray | None:
     """The normal forces (scaled) of the elastic state X0 under the dead load, with the
     no-tension law imposed (its least-energy state with the normal links alone, the

@@ -75,7 +75,14 @@ from ..problems.formulation import build_energy_qp, build_max_load, build_relaxa
 from ..results import CheckResult, ForceState, FrictionResult, LoadResult
 from ..scene.model import NON_ASSOCIATIVE, Scene, flow_value, friction_label, friction_value
 from ..solvers import OPTIMAL
-from .na_limit import CappedLimit, LimitRun, certificate, friction_fixed_point, x0_normals
+from .na_limit import (
+    CappedLimit,
+    LimitRun,
+    certificate,
+    friction_fixed_point,
+    reached_normals,
+    x0_normals,
+)
 from .search import UNBOUNDED_AT, bisect
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
@@ -602,12 +609,14 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
     return result("collapse", br.good, best_v, True, (br.lower, br.upper))
 
 
-def _starts(na: ConvexNonAssociative, cv: ConvexMethod, up: Any
-            ) -> list[tuple[str, np.ndarray]]:
-    """The starts of the limit iteration (scaled normal forces): the elastic state X0
-    (the seed's start, the answer's) and the associative collapse state."""
+def _starts(na: ConvexNonAssociative, cv: ConvexMethod, up: Any, f: float
+            ) -> tuple[str, list[tuple[str, np.ndarray]]]:
+    """The verdict under the dead load of the state reached from X0 (see
+    :func:`~rigidblocks.analyses.na_limit.reached_normals`), and the starts of the limit
+    iteration (scaled normal forces): that state (the seed's start, the answer's, where
+    it stands) and the associative collapse state."""
     out = []
-    n0 = x0_normals(na)
+    verdict, n0 = reached_normals(na, f)
     if n0 is not None:
         out.append((FROM_X0, n0))
     if up.status == "collapse" and up.at is not None and up.at.data is not None:
@@ -615,7 +624,7 @@ def _starts(na: ConvexNonAssociative, cv: ConvexMethod, up: Any
         xa = cv.lscaling.forces(res.z[prob.cols["x"]])
         out.append((FROM_ASSOC, np.maximum(xa[cv.system.layout.normal], 0.0)
                     / cv.scaling.force))
-    return out
+    return verdict, out
 
 
 def _limit_checks(cv: ConvexMethod, f: float, run: LimitRun,
@@ -647,10 +656,21 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
     associative collapse state beside it."""
     na.limit_path = True
     capped = CappedLimit(cv, na.marked, f)
-    runs = [capped.run(n, name) for name, n in _starts(na, cv, up)]
+    verdict, starts = _starts(na, cv, up, f)
+    runs = [capped.run(n, name) for name, n in starts]
     na.fp_iterations += capped.solves
     trials = tuple({"start": r.start, "load_factor": r.lam, "status": r.status,
                     "iterations": r.iterations, "converged": r.converged} for r in runs)
+    if verdict == INADMISSIBLE:
+        na.notes.append("the state reached from the elastic state X0 under the dead load "
+                        "alone breaches the joint laws: it does not stand" +
+                        (f"; from the associative collapse state: lambda = {runs[0].lam:.7g}"
+                         if runs and runs[0].converged else ""))
+        return LoadResult(**_fields(na, "max_load_multiplier", "unstable", f, None, trials,
+                                    True), load_multiplier_bounds=bounds)
+    if verdict == UNDECIDED:
+        na.notes.append("the state reached from X0 under the dead load did not settle: the "
+                        "limit iteration starts from X0's normal forces")
     main = runs[0] if runs else None
     if main is None or not main.converged:
         na.notes.append("the elastic state X0 has no solution" if main is None else
