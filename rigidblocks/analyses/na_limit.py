@@ -58,7 +58,7 @@ from ..solvers.base import ConicProblem
 #: relative change of the normal forces (of the largest force) that ends the iteration
 LIMIT_TOL = 1e-7
 #: iteration budget of one run
-LIMIT_MAX_ITER = 200
+LIMIT_MAX_ITER = 500
 #: steps without a new smallest change after which the step is halved, down to
 STALL = 12
 MIN_DAMPING = 1.0 / 64
@@ -271,14 +271,7 @@ class CappedLimit:
                 return LimitRun(start, "converged", lam, x, k,
                                 f"fixed point after {k} limit solves", hist,
                                 time.perf_counter() - t0)
-            # damping where the change stops falling (a cycle on the optimal face): the
-            # step is halved after STALL steps without a new smallest change
-            if change < best:
-                best, since = change, 0
-            else:
-                since += 1
-                if since >= STALL and beta > MIN_DAMPING:
-                    beta, since = 0.5 * beta, 0
+            beta, best, since = _damped(beta, best, since, change)
             N = N + beta * (Nn - N)
         return LimitRun(start, "undecided", lam, x, max_iter,
                         f"no fixed point within {max_iter} limit solves (last relative "
@@ -302,6 +295,19 @@ def reached_normals(na: Any, f: float) -> tuple[str, np.ndarray | None]:
     if r.status == INADMISSIBLE:
         return "inadmissible", None
     return "undecided", x0_normals(na)
+
+
+def _damped(beta: float, best: float, since: int, change: float
+            ) -> tuple[float, float, int]:
+    """Damping where the change stops falling (a cycle on the optimal face): the step
+    ``beta`` is halved after STALL steps without a new smallest change ``best``
+    (``since`` counts them), down to MIN_DAMPING."""
+    if change < best:
+        return beta, change, 0
+    since += 1
+    if since >= STALL and beta > MIN_DAMPING:
+        return 0.5 * beta, best, 0
+    return beta, best, since
 
 
 def x0_normals(na: Any) -> np.ndarray | None:
@@ -354,6 +360,7 @@ def friction_fixed_point(capped: CappedLimit, unit: np.ndarray, load_factor: flo
     keep = sp.csc_matrix(A[:, :li])
     N = np.maximum(N_start, 0.0)
     hist: list[tuple[float, float]] = []
+    beta, best, since = 1.0, math.inf, 0
     fk, x = math.nan, None
     for k in range(1, max_iter + 1):
         col = -(capped.M @ (unit * N))
@@ -389,7 +396,8 @@ def friction_fixed_point(capped: CappedLimit, unit: np.ndarray, load_factor: flo
             return LimitRun(start, "converged", fk, x, k,
                             f"fixed point after {k} least-friction solves", hist,
                             time.perf_counter() - t0)
-        N = Nn
+        beta, best, since = _damped(beta, best, since, change)
+        N = N + beta * (Nn - N)
     return LimitRun(start, "undecided", fk, x, max_iter,
                     f"no fixed point within {max_iter} least-friction solves (last "
                     f"relative change of the normal forces {hist[-1][1]:.3g})", hist,
