@@ -37,6 +37,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")  # one thread: the CPU times are comparable
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from common import (  # noqa: E402
@@ -538,6 +540,77 @@ def lmgc90_section(out: str | None, python_arg: str | None, tiny: bool,
     return write(lmgc90_rows(python, tiny, timeout, done=write))
 
 
+#: the large walls (courses, blocks per course) at both frictions, and the largest wall
+#: run by default (70 x 70 with --large-walls 5000)
+LARGE_WALLS = ((10, 10), (20, 15), (32, 32), (70, 70))
+LARGE_FRICTIONS = (0.6, 0.8)
+LARGE_UP_TO = 1100
+TINY_LARGE = ((3, 3),)
+
+
+def _cpu(fn: Any, *args: Any, **kw: Any) -> tuple[Any, float]:
+    """fn(*args, **kw) and the CPU seconds it took (this process, one thread when the
+    script runs with OMP_NUM_THREADS=1 etc., as it sets by default)."""
+    t0 = time.process_time()
+    r = fn(*args, **kw)
+    return r, time.process_time() - t0
+
+
+def large_walls(sizes: Sequence[tuple[int, int]], frictions: Sequence[float],
+                up_to: int) -> list[dict[str, Any]]:
+    """Non-associative load and friction on running-bond walls against the associative
+    load in the same run (CPU seconds): the limit fixed point from X0 and from the
+    associative collapse state (the spread), and the friction whose fixed point from X0
+    carries the multiplier found at f (it should give f back)."""
+    warm = build("wall", courses=2, blocks_per_course=2, friction=0.6)
+    rb.max_load_multiplier(warm, state=False)  # imports and first calls out of the timing
+    rb.max_load_multiplier(warm, flow=NA, state=False)
+    rows = []
+    for c, n in sizes:
+        for f in frictions:
+            scene = build("wall", courses=c, blocks_per_course=n, friction=f)
+            if len(scene.blocks) > up_to:
+                continue
+            a, ta = _cpu(rb.max_load_multiplier, scene, state=False)
+            v, tv = _cpu(rb.max_load_multiplier, scene, flow=NA, state=False)
+            starts = {h.get("start"): h.get("load_factor") for h in v.history}
+            lf = v.load_multiplier if v.status == "collapse" else 0.9 * a.load_multiplier
+            fr, tf = _cpu(rb.min_friction, scene, load_factor=lf, flow=NA, state=False)
+            row = {"courses": c, "per_course": n, "blocks": len(scene.blocks),
+                   "friction": f, "assoc_lambda": a.load_multiplier, "assoc_cpu": ta,
+                   "na_status": v.status, "na_lambda": v.load_multiplier, "na_cpu": tv,
+                   "na_from_assoc": starts.get("the associative collapse state"),
+                   "na_solves": v.iterations, "na_ratio": tv / ta if ta else None,
+                   "friction_load_factor": lf, "friction_status": fr.status,
+                   "na_friction": fr.friction_factor,
+                   "friction_bracket": fr.bracket, "friction_cpu": tf,
+                   "friction_ratio": tf / ta if ta else None}
+            rows.append(row)
+            print(f"wall {c}x{n} f={f}: assoc {a.load_multiplier:.6g} ({ta:.2f} s), "
+                  f"non-assoc {v.status} {v.load_multiplier} ({tv:.2f} s), friction "
+                  f"{fr.status} {fr.friction_factor} ({tf:.2f} s)", flush=True)
+    return rows
+
+
+def large_walls_md(rows: list[dict[str, Any]]) -> list[str]:
+    """The markdown of :func:`large_walls`."""
+    header = ["wall", "blocks", "f", "lambda assoc", "CPU s", "lambda non-assoc (X0)",
+              "from the assoc. state", "CPU s", "x assoc", "limit solves",
+              "f non-assoc at lambda non-assoc", "CPU s", "x assoc"]
+    body = [[f"{r['courses']} x {r['per_course']}", r["blocks"], r["friction"],
+             r["assoc_lambda"], r["assoc_cpu"], _cell(r["na_lambda"]) if r["na_status"]
+             == "collapse" else r["na_status"], _cell(r["na_from_assoc"]), r["na_cpu"],
+             _cell(r["na_ratio"]), r["na_solves"], _cell(r["na_friction"]) if
+             r["friction_status"] == "stable" else r["friction_status"], r["friction_cpu"],
+             _cell(r["friction_ratio"])] for r in rows]
+    return ["### Running-bond walls: the limit fixed point against the associative load", "",
+            "Non-associative `load` (the fixed point of the capped limit problem from the "
+            "elastic state X0, and from the associative collapse state: the spread) and "
+            "`friction` at the multiplier found (which should give f back), CPU seconds in "
+            "one process on one thread, with the associative `load` of the same run.", "",
+            markdown_table(header, body)]
+
+
 def _cell(v: Any) -> Any:
     return "-" if v is None else v
 
@@ -552,6 +625,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
                    help="run one part only")
     p.add_argument("--redraw", action="store_true",
                    help="rewrite bench_nonassoc_lmgc90.md from its JSON (no runs)")
+    p.add_argument("--large-walls", type=int, default=LARGE_UP_TO,
+                   help="largest wall (blocks) of the large-walls table")
     args = p.parse_args(argv)
     if args.redraw:
         doc = read_results(args.out, "bench_nonassoc_lmgc90")
@@ -560,6 +635,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         return {"lmgc90": doc}
     if args.only == "lmgc90":
         return {"lmgc90": lmgc90_section(args.out, args.lmgc90_python, args.tiny)}
+    large = large_walls(TINY_LARGE if args.tiny else LARGE_WALLS, LARGE_FRICTIONS,
+                        args.large_walls)
     sizes = TINY_WALLS if args.tiny else WALLS
     wall_rows = walls(sizes, DISTORTION_UP_TO)
     curve = curves(TINY_STRUCTURES if args.tiny else STRUCTURES,
@@ -582,8 +659,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
           "iteration with separate links. `bench_nonassoc.png`: the collapse multiplier "
           "against f under both flow rules on the seed's structures (convex path).", "",
           markdown_table(header, rows), "",
-          "![lambda against f](results/bench_nonassoc.png)"]
-    data = {"walls": wall_rows, "curves": curve}
+          "![lambda against f](results/bench_nonassoc.png)", ""] + large_walls_md(large)
+    data = {"walls": wall_rows, "curves": curve, "large_walls": large}
     write_results(args.out, "bench_nonassoc", data, "\n".join(md))
     if args.only is None:
         data["lmgc90"] = lmgc90_section(args.out, args.lmgc90_python, args.tiny)

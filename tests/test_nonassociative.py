@@ -116,10 +116,12 @@ def test_pinched_block_slides_at_f(method):
     res = rb.max_load_multiplier(scene, method=method, flow=NA)
     assert res.status == "collapse" and res.converged
     assert res.load_multiplier == pytest.approx(0.3, rel=RTOL)
-    # the lower bound is the answer's admissible lower end (the frictionless one, 0,
-    # is lower), the upper one the unbounded associative multiplier
+    # the lower bound: the frictionless multiplier (Drucker 1954), 0, on the convex
+    # path; the answer's admissible lower end on the distortion path. The upper one: the
+    # unbounded associative multiplier
     lo, hi = res.load_multiplier_bounds
-    assert lo == pytest.approx(0.3, rel=RTOL) and lo <= res.load_multiplier and hi == math.inf
+    assert lo == (0.0 if method == "clarabel" else pytest.approx(0.3, rel=RTOL))
+    assert lo <= res.load_multiplier and hi == math.inf
     assert any("elastic state" in n for n in res.notes)
     d = res.to_dict()
     assert d["flow"] == NA and d["load_multiplier_bounds"] == [lo, math.inf]
@@ -258,18 +260,26 @@ EXAMPLES_2D = [p.name for p in sorted(EXAMPLES.glob("*.json"))
 
 @pytest.mark.parametrize("name", EXAMPLES_2D)
 def test_algorithms_agree_on_examples(name):
-    """Both algorithms compute the state reached from X0 whose plastic distortions are
-    openings at the no-tension limit and slips without dilatancy at the friction
-    threshold (module docstring of rigidblocks.analyses.nonassociative); where both
-    decide they agree to the bisection's tolerance."""
+    """The distortion path bisects on the state reached from X0 (module docstring of
+    rigidblocks.analyses.nonassociative), the convex path iterates the limit problem
+    (rigidblocks.analyses.na_limit): where both decide they agree to the bisection's
+    tolerance, or the distortion path's answer is the associative upper bound."""
     scene = read_scene(EXAMPLES / name)
     a = rb.max_load_multiplier(scene, flow=NA, state=False)
     b = rb.max_load_multiplier(scene, flow=NA, method="distortion", state=False)
     if "undecided" in (a.status, b.status):
         pytest.skip(f"one algorithm is undecided: {a.status}, {b.status}")
     assert a.status == b.status
-    if a.status == "collapse":
-        assert a.load_multiplier == pytest.approx(b.load_multiplier, rel=RTOL)
+    if a.status != "collapse" or a.load_multiplier == pytest.approx(b.load_multiplier,
+                                                                    rel=RTOL):
+        return
+    # they differ where the state the distortion iteration reaches from X0 stands up to
+    # the associative multiplier (its answer is the upper bound, so it names no
+    # collapse state below it) while the limit iteration settles on a collapse state
+    # below it: the Arpino gate, 0.1187021 against 0.1227975
+    hi = a.load_multiplier_bounds[1]
+    assert b.load_multiplier == pytest.approx(hi, rel=RTOL)
+    assert a.load_multiplier < hi and a.mechanism is not None
 
 
 def test_two_fixed_points_on_the_3x3_wall():
@@ -357,7 +367,7 @@ def test_cli_flow(tmp_path, capsys):
     assert out["status"] == "collapse" and out["flow"] == NA
     assert out["load_multiplier"] == pytest.approx(0.3, rel=RTOL)
     lo, hi = out["load_multiplier_bounds"]
-    assert lo == pytest.approx(0.3, rel=RTOL) and hi == "infinite"
+    assert lo == 0.0 and hi == "infinite"  # frictionless and associative bounds
     assert isinstance(out["iterations"], int) and out["converged"] is True
     assert main(["check", str(p), "--load-factor", "0.4", "--flow", NA, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -389,3 +399,84 @@ def test_bench_nonassoc_tiny(tmp_path):
     assert row["distortion_lambda"] == pytest.approx(0.8, rel=RTOL)
     assert (tmp_path / "bench_nonassoc.png").stat().st_size > 0
     assert (tmp_path / "bench_nonassoc.md").read_text().startswith("## Non-associative")
+
+
+# -- the limit fixed point (rigidblocks.analyses.na_limit) --------------------------------
+def test_3x3_wall_one_answer_in_2d_and_3d_within_lmgc90():
+    """The 3 x 3 running-bond wall at f = 0.8 and its 3D extrusion: LMGC90's tilting-table
+    test (contact dynamics, Coulomb friction without dilatancy) puts the multiplier in
+    [0.7139, 0.7148] (issue #30). The limit fixed point from X0 gives one answer in both
+    dimensions, inside that bracket, and the same from the associative collapse state;
+    the associative multiplier 0.7705 is above it."""
+    from rigidblocks.scene.extrude import extrude
+
+    scene = build("wall", courses=3, blocks_per_course=3, friction=0.8)
+    r2 = rb.max_load_multiplier(scene, flow=NA, state=False)
+    r3 = rb.max_load_multiplier(extrude(scene), flow=NA, state=False)
+    for r in (r2, r3):
+        assert r.status == "collapse" and r.converged
+        assert 0.7139 <= r.load_multiplier <= 0.7148
+        assert [h["start"] for h in r.history] == ["the elastic state X0",
+                                                    "the associative collapse state"]
+        assert r.history[1]["load_factor"] == pytest.approx(r.load_multiplier, rel=1e-6)
+        assert r.load_multiplier_bounds[1] == pytest.approx(0.770492, rel=1e-5)
+    assert r2.load_multiplier == pytest.approx(r3.load_multiplier, rel=1e-6)
+
+
+def test_limit_fixed_point_is_a_checked_collapse_state():
+    """The 5 x 3 wall at f = 0.8: the answer's state is in equilibrium at lambda and
+    within Coulomb's law with its own normal forces (to 1e-7 of its largest force: the
+    a-posteriori check, computed here independently of the analysis), between the
+    frictionless and associative multipliers (Drucker 1954; Radenkovic), and its
+    mechanism, the capped problem's duals drawn as a vertex, has sliding joints."""
+    scene = build("wall", courses=5, blocks_per_course=3, friction=0.8)
+    res = rb.max_load_multiplier(scene, flow=NA)
+    assert res.status == "collapse"
+    lam, st = res.load_multiplier, res.state
+    from rigidblocks.equilibrium import assemble
+
+    sysm = assemble(scene, detect_contacts(scene))
+    lay = sysm.layout
+    x = np.zeros(lay.size)
+    x[lay.normal], x[lay.tangential] = st.normal, st.joint_shear  # 2D: one shear a joint
+    scale = float(np.abs(x).max())
+    assert np.abs(sysm.A @ x + sysm.dead + lam * sysm.live).max() <= 1e-7 * scale
+    assert st.normal.min() >= -1e-7 * scale
+    assert (np.abs(st.joint_shear) - 0.8 * st.joint_normal).max() <= 1e-7 * scale
+    lo, hi = res.load_multiplier_bounds
+    assert lo <= lam <= hi
+    assert res.mechanism is not None and res.mechanism.kind == "vertex"
+    assert any(m.startswith("slide") for m in res.mechanism.modes)
+    assert any("from the elastic state X0: lambda" in n for n in res.notes)
+
+
+def test_nonassociative_friction_reaches_the_load_factor():
+    """friction --flow non-associative on the 5 x 3 wall at lambda = 0.5: the answer f
+    carries lambda = 0.5 at its limit fixed point (load at that f, >= 0.5 to 1e-9) and
+    the bracket's lower end does not (< 0.5); it lies above the static f* (at which the
+    associative multiplier is 0.5)."""
+    scene = build("wall", courses=5, blocks_per_course=3, friction=0.8)
+    fr = rb.min_friction(scene, load_factor=0.5, flow=NA, state=False)
+    assert fr.status == "stable"
+    static = rb.min_friction(scene, load_factor=0.5, state=False).friction_factor
+    assert fr.friction_factor >= static * (1 - 1e-6)
+    at = rb.max_load_multiplier(scene, friction=fr.friction_factor, flow=NA, state=False)
+    assert at.load_multiplier >= 0.5 * (1 - 1e-9)
+    if fr.lower < fr.friction_factor:
+        below = rb.max_load_multiplier(scene, friction=fr.lower, flow=NA, state=False)
+        assert below.load_multiplier < 0.5
+
+
+def test_cli_names_the_starts_and_bounds(tmp_path, capsys):
+    """`load --flow non-associative` prints the bounds and the answer from each start
+    (3 x 3 wall, f = 0.8: both starts reach 0.7142857, inside LMGC90's bracket, so no
+    spread is named)."""
+    p = tmp_path / "wall.json"
+    p.write_text(dumps_scene(build("wall", courses=3, blocks_per_course=3, friction=0.8)))
+    assert main(["load", str(p), "--flow", NA]) == 0
+    out = capsys.readouterr().out
+    line = next(s for s in out.splitlines() if s.startswith("starts"))
+    assert "from the elastic state X0: lambda = 0.7142857" in line
+    assert "from the associative collapse state: lambda = 0.7142857" in line
+    assert "spread" not in line
+    assert any(s.startswith("bounds     [0, 0.770492]") for s in out.splitlines())

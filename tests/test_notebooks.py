@@ -165,14 +165,16 @@ def test_nonassociative(tmp_path):
     """The pinched block slides at lambda = f = 0.3 without dilatancy and never with it
     (validation.md, "A block pinched between two fixed parallel faces"); on the 3 x 3
     wall both algorithms stay below the associative multiplier (Radenkovic's first
-    theorem) and within 1% of each other (they settle on different states near the
-    limit: 0.7468 and 0.7492); the arch's chart is drawn."""
+    theorem), the convex path's collapse state inside LMGC90's tilting-table bracket
+    [0.7139, 0.7148] (issue #30; the distortion path's state reached from X0 stands up
+    to 0.7492); the arch's chart is drawn."""
     nb = execute("05_nonassociative", tmp_path)
     text = text_of(nb)
     assert "pinched block: associative unbounded, non-associative lambda = 0.3000" in text
     na = [float(v) for v in re.findall(r"non-associative lambda = ([0-9.]+) \(bounds", text)]
     assoc = float(re.search(r"x\d+ associative lambda = ([0-9.]+)", text)[1])
-    assert len(na) == 2 and abs(na[0] - na[1]) < 1e-2 * assoc and max(na) <= assoc + 1e-9
+    assert len(na) == 2 and max(na) <= assoc + 1e-9
+    assert 0.7139 <= na[0] <= 0.7148  # the convex path, printed first
     # at f = 0.2 the arch has no admissible state under self-weight (the associative
     # answer says so); no flow rule makes it stand (a non-associative state is an
     # associative one), and the notebook prints the status where there is no number

@@ -44,8 +44,16 @@ the associative (static) problem has no admissible state (proven), at a fixed po
 that breaches the laws (convex), or when the distortion iteration drifts along a
 mechanism without dilatancy on which the loads do more work than the joints dissipate
 at their current normal forces; ``undecided`` (with the reason) when the iteration does
-not settle within its budget. The analyses bisect on these verdicts: ``load`` between 0
-and the associative multiplier, ``friction`` upwards from the static f*.
+not settle within its budget. ``check`` gives these verdicts at one load factor.
+
+The limit analyses on the convex path do not bisect on them: ``load`` iterates the limit
+problem itself (:mod:`rigidblocks.analyses.na_limit`: max lambda under |T| <= f N_prev,
+then the least confined state carrying it near N_prev, to a fixed point checked a
+posteriori), from X0 under the dead load and from the associative collapse state, and
+reports both; ``friction`` iterates the least f under the same caps at the load factor
+(or, where a uniform joint dilates, searches f on the load's fixed point). On the
+distortion path (the seed's procedure) ``load`` bisects on the verdicts between 0 and
+the associative multiplier, ``friction`` upwards from the static f*.
 """
 
 from __future__ import annotations
@@ -66,6 +74,14 @@ from ..problems.formulation import build_energy_qp, build_max_load, build_relaxa
 from ..results import CheckResult, ForceState, FrictionResult, LoadResult
 from ..scene.model import NON_ASSOCIATIVE, Scene, flow_value, friction_label, friction_value
 from ..solvers import OPTIMAL
+from .na_limit import (
+    CappedLimit,
+    LimitRun,
+    certificate,
+    friction_fixed_point,
+    reached_normals,
+    x0_normals,
+)
 from .search import UNBOUNDED_AT, bisect
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
@@ -98,11 +114,26 @@ UNDECIDED_RUN = 3
 #: the reason of a distortion run that found an admissible iterate but did not settle
 _UNSETTLED = "admissible; the iteration budget"
 
+#: the starts of the limit iteration, as the notes name them
+FROM_X0 = "the elastic state X0"
+FROM_ASSOC = "the associative collapse state"
+#: the a-posteriori check of a fixed point: equilibrium and Coulomb with its own normal
+#: forces to this fraction of its largest force
+CERT_TOL = 1e-7
+
 #: the note every non-associative result carries
 STATE_NOTE = ("non-associative sliding (no dilatancy): the answer is the one reached from "
               "the elastic state X0 (least complementary energy under equilibrium alone, "
               "the starting state of the distortion method), with no pinch the loads do "
               "not cause; other states, and so other answers, may exist")
+
+
+#: the note of the limit analyses on the convex path
+LIMIT_NOTE = ("non-associative sliding (no dilatancy): the answer is a collapse state "
+              "reached from the elastic state X0 by iterating the limit problem with the "
+              "shear capacities f N of the previous state's normal forces (Gilbert, "
+              "Casapulla & Ahmed 2006), checked a posteriori; non-associative collapse "
+              "states are not unique, and other starts may give other answers")
 
 
 def flow_mask(scene: Scene, contacts: Any, flow: str | None = None) -> np.ndarray:
@@ -163,6 +194,8 @@ class NonAssociative(Method):
         self.runs = 0
         self.fp_iterations = 0
         self.converged_runs = 0
+        #: the limit analyses answered by iterating the limit problem
+        self.limit_path = False
 
     @property
     def n_solves(self) -> int:
@@ -411,7 +444,8 @@ def _open(scene: Scene, method: str, flow: str | None, **kw: Any
 def _fields(na: NonAssociative, analysis: str, status: str, friction: Any,
             load_factor: float | None, history: tuple = (), converged: bool | None = None
             ) -> dict[str, Any]:
-    notes = [STATE_NOTE] + [n for n in na.notes if n != STATE_NOTE]
+    first = LIMIT_NOTE if getattr(na, "limit_path", False) else STATE_NOTE
+    notes = [first] + [n for n in na.notes if n not in (STATE_NOTE, LIMIT_NOTE)]
     return dict(analysis=analysis, status=status, friction=friction_label(friction),
                 load_factor=load_factor, contacts=na.contacts, solver=na.solver,
                 n_solves=na.n_solves, solve_time=na.solve_time, iterations=na.iterations,
@@ -460,17 +494,20 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
                             *, flow: str | None = None, state: bool = True,
                             rtol: float = NA_RTOL, mechanism: str = "vertex",
                             **kw: Any) -> LoadResult:
-    """The collapse multiplier under non-associative sliding, reached from the elastic
-    state, by bisection between 0 and the associative multiplier (an upper bound).
+    """The collapse multiplier under non-associative sliding, from the elastic state.
+
+    Convex path: the fixed point of the capped limit problem from X0
+    (:func:`_load_by_limit`, :mod:`rigidblocks.analyses.na_limit`), with the answer
+    from the associative collapse state beside it. Distortion path: bisection between
+    0 and the associative multiplier on the verdicts of the state the seed's iteration
+    reaches from X0 (:func:`_load_by_bisection`).
 
     ``load_multiplier_bounds`` = [lo, hi]: hi the associative multiplier (Radenkovic's
-    first theorem), lo the best lower bound known: the associative multiplier with
-    frictionless marked joints (Drucker 1954; None where it is not defined: the
-    frictionless dead load has no admissible state) or, where higher, the answer's
-    admissible lower end (its ``bracket``, where that is not one point). The
-    associative multiplier is tried first: where the state reached from the elastic
-    state stands there, it is the answer, exact. ``mechanism``: "vertex" (default) or
-    "blend", which of the optimal mechanisms of the computed state is drawn, as for
+    first theorem), lo the associative multiplier with frictionless marked joints
+    (Drucker 1954; None where it is not defined: the frictionless dead load has no
+    admissible state) or, where higher, the answer's admissible lower end (distortion
+    path) or the answer itself where it equals hi. ``mechanism``: "vertex" (default)
+    or "blend", which of the optimal mechanisms of the computed state is drawn, as for
     associative friction (see :func:`_collapse_mechanism`).
     """
     if not scene.has_live_load:
@@ -478,7 +515,6 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
                          "live_body_force): there is nothing to multiply", scene.source)
     f = friction_value(scene.effective_friction if friction is None else friction)
     na, cv = _open(scene, method, flow, **kw)
-    trials: list[dict[str, Any]] = []
     up = cv.load_limit(f, 1e-9)
     # the associative multiplier, within round-off below 0 taken as 0 (as the
     # associative analysis reports it)
@@ -487,22 +523,31 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
         na.notes.append("the associative multiplier is unbounded: no upper bound")
     lo = _frictionless_bound(cv, na.marked, f)
     bounds = (lo, math.inf if up.status == "unbounded" else hi)
+    if isinstance(na, ConvexNonAssociative) and up.status in ("collapse", "unbounded"):
+        return _load_by_limit(na, cv, f, up, bounds, state, mechanism)
+    return _load_by_bisection(na, cv, f, up, hi, lo, bounds, state, rtol, mechanism)
+
+
+def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
+                       hi: float | None, lo: float | None,
+                       bounds: tuple[float | None, float | None], state: bool, rtol: float,
+                       mechanism: str) -> LoadResult:
+    """The multiplier by bisection on the verdicts of the state reached from X0 (the
+    distortion path, the seed's procedure) between 0 and ``hi`` (tried first)."""
+    trials: list[dict[str, Any]] = []
 
     def result(status: str, lam: float | None = None, v: Verdict | None = None,
                converged: bool | None = None,
                bracket: tuple[float, float] | None = None) -> LoadResult:
-        """The result; ``bracket``: the answer's, whose lower end (an admissible trial)
-        raises the lower bound where it is above the frictionless one."""
+        # bracket: the answer's, whose lower end (an admissible trial) raises the
+        # lower bound where it is above the frictionless one
         st = na.state(f, lam, v) if (v is not None and lam is not None) else None
-        mech, gov = None, ()
-        if st is not None:
-            mech, gov = _collapse_mechanism(cv, na, f, lam, st, mechanism)
-        hist = tuple(trials)
+        mech, gov = _collapse_mechanism(cv, na, f, lam, st, mechanism) if st else (None, ())
         low = bounds[0]
         if bracket is not None and (low is None or bracket[0] > low):
             low = bracket[0]
-        return LoadResult(**_fields(na, "max_load_multiplier", status, f, lam, hist,
-                                    converged), state=st if state else None,
+        return LoadResult(**_fields(na, "max_load_multiplier", status, f, lam,
+                                    tuple(trials), converged), state=st if state else None,
                           load_multiplier=lam, load_multiplier_bounds=(low, bounds[1]),
                           mechanism=mech, governing=gov,
                           bracket=bracket if bracket and bracket[0] < bracket[1] else None)
@@ -563,6 +608,115 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
                         f"bound {lo:.6g}: the state reached from the elastic state "
                         "collapses earlier than some other state would")
     return result("collapse", br.good, best_v, True, (br.lower, br.upper))
+
+
+def _starts(na: ConvexNonAssociative, cv: ConvexMethod, up: Any, f: float
+            ) -> tuple[str, list[tuple[str, np.ndarray]]]:
+    """The verdict under the dead load of the state reached from X0 (see
+    :func:`~rigidblocks.analyses.na_limit.reached_normals`), and the starts of the limit
+    iteration (scaled normal forces): that state (the seed's start, the answer's, where
+    it stands) and the associative collapse state."""
+    out = []
+    verdict, n0 = reached_normals(na, f)
+    if n0 is not None:
+        out.append((FROM_X0, n0))
+    if up.status == "collapse" and up.at is not None and up.at.data is not None:
+        res, prob = up.at.data
+        xa = cv.lscaling.forces(res.z[prob.cols["x"]])
+        out.append((FROM_ASSOC, np.maximum(xa[cv.system.layout.normal], 0.0)
+                    / cv.scaling.force))
+    return verdict, out
+
+
+def _limit_checks(cv: ConvexMethod, f: float, run: LimitRun,
+                  bounds: tuple[float | None, float | None]) -> list[str]:
+    """What the fixed point ``run`` fails of its a-posteriori checks (empty: none):
+    equilibrium and Coulomb's law with its own normal forces to CERT_TOL of its
+    largest force, lo <= lambda <= hi (Drucker 1954; Radenkovic's first theorem)."""
+    lam, x = run.lam, run.x * cv.scaling.force
+    eq, breach = certificate(cv, f, lam, x)
+    bad = []
+    if eq > CERT_TOL or breach > CERT_TOL:
+        bad.append(f"the fixed point fails its check: equilibrium residual {eq:.2g}, "
+                   f"breach of Coulomb's law with its own normal forces {breach:.2g} "
+                   "(of the largest force)")
+    lo, hi = bounds
+    slack = 1e-6 * max(abs(lam), 1.0)
+    if hi is not None and lam > hi + slack:
+        bad.append(f"lambda = {lam:.9g} is above the associative multiplier {hi:.9g}")
+    if lo is not None and lam < lo - slack:
+        bad.append(f"lambda = {lam:.9g} is below the frictionless bound {lo:.9g}")
+    return bad
+
+
+def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
+                   bounds: tuple[float | None, float | None], state: bool,
+                   mechanism: str) -> LoadResult:
+    """The non-associative collapse multiplier as the fixed point of the capped limit
+    problem (:mod:`rigidblocks.analyses.na_limit`) from X0, with the answer from the
+    associative collapse state beside it."""
+    na.limit_path = True
+    capped = CappedLimit(cv, na.marked, f)
+    verdict, starts = _starts(na, cv, up, f)
+    runs = [capped.run(n, name) for name, n in starts]
+    na.fp_iterations += capped.solves
+    trials = tuple({"start": r.start, "load_factor": r.lam, "status": r.status,
+                    "iterations": r.iterations, "converged": r.converged} for r in runs)
+    if verdict == INADMISSIBLE:
+        na.notes.append("the state reached from the elastic state X0 under the dead load "
+                        "alone breaches the joint laws: it does not stand" +
+                        (f"; from the associative collapse state: lambda = {runs[0].lam:.7g}"
+                         if runs and runs[0].converged else ""))
+        return LoadResult(**_fields(na, "max_load_multiplier", "unstable", f, None, trials,
+                                    True), load_multiplier_bounds=bounds)
+    if verdict == UNDECIDED:
+        na.notes.append("the state reached from X0 under the dead load did not settle: the "
+                        "limit iteration starts from X0's normal forces")
+    main = runs[0] if runs else None
+    if main is None or not main.converged:
+        na.notes.append("the elastic state X0 has no solution" if main is None else
+                        f"from {main.start}: {main.reason}")
+        return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
+                                    False), load_multiplier_bounds=bounds)
+    bad = _limit_checks(cv, f, main, bounds)
+    if bad:
+        na.notes.extend(bad)
+        return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
+                                    True), load_multiplier_bounds=bounds)
+    na.notes.append(_spread_note(runs))
+    lam = float(main.lam)
+    hi = bounds[1]
+    if hi is not None and math.isfinite(hi) and abs(lam - hi) <= 1e-6 * max(abs(hi), 1.0):
+        # the associative multiplier is an upper bound on every state (Radenkovic): a
+        # fixed point within the checks' 1e-6 of it (an interior-point value) is it
+        na.notes.append(f"the non-associative multiplier equals the associative one (the "
+                        f"fixed point's {lam:.10g} is {abs(lam - hi):.1e} from it)")
+        lam = float(hi)
+        bounds = (lam, hi)
+    st = force_state(cv.system, main.x * cv.scaling.force,
+                     "non-associative collapse state reached from the elastic state")
+    mech, gov = _collapse_mechanism(cv, na, f, lam, st, mechanism)
+    return LoadResult(**_fields(na, "max_load_multiplier", "collapse", f, lam, trials, True),
+                      state=st if state else None, load_multiplier=lam,
+                      load_multiplier_bounds=bounds, mechanism=mech, governing=gov)
+
+
+def _spread_note(runs: list[LimitRun]) -> str:
+    """The answers from every start, and whether they differ (1e-6 relative)."""
+    main = runs[0]
+    text = f"non-associative collapse state from {main.start}: lambda = {main.lam:.7g}"
+    others = [r for r in runs[1:] if r.converged]
+    same = [r for r in others if abs(r.lam - main.lam) <= 1e-6 * max(abs(main.lam), 1e-9)]
+    for r in runs[1:]:
+        text += (f"; from {r.start}: " + (f"lambda = {r.lam:.7g}" if r.converged
+                                          else f"undecided ({r.reason})"))
+    if others and len(same) < len(others):
+        lams = [main.lam] + [r.lam for r in others]
+        text += (f". The collapse states differ: the answers spread over "
+                 f"[{min(lams):.7g}, {max(lams):.7g}] (the answer is X0's)")
+    elif others:
+        text += ": the same answer"
+    return text
 
 
 def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: float,
@@ -652,8 +806,11 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
                                 state: bool = True, rtol: float = NA_RTOL,
                                 **kw: Any) -> FrictionResult:
     """The smallest uniform f at which the non-associative analysis finds the structure
-    standing at ``load_factor`` (the seed's "friction needed"), by bisection upwards
-    from the static f* (below which no state is admissible at all)."""
+    standing at ``load_factor`` (the seed's "friction needed"), upwards from the static
+    f* (below which no state is admissible at all): on the convex path with a live
+    load, the least f whose limit fixed point from X0 carries it
+    (:func:`_friction_by_limit`); else by bisection on the verdicts of the state
+    reached from X0 (:func:`_friction_by_verdicts`)."""
     import math as _m
 
     lf = float(load_factor)
@@ -688,6 +845,19 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
     if lim.status != "stable":
         na.notes.append("no friction admits an equilibrium state (static problem)")
         return out("unstable" if lim.status == "unstable" else lim.status, converged=True)
+    if isinstance(na, ConvexNonAssociative) and scene.has_live_load and lf > 0:
+        # (without a live load, or at lambda = 0, there is no limit to iterate: the
+        # state reached from X0 answers below)
+        return _friction_by_limit(na, cv, lf, lim, rtol, out, trials)
+    return _friction_by_verdicts(na, lf, lim, rtol, out, trials)
+
+
+def _friction_by_verdicts(na: NonAssociative, lf: float, lim: Any, rtol: float, out: Any,
+                          trials: list[dict[str, Any]]) -> FrictionResult:
+    """The smallest f at which the state reached from X0 stands at ``lf``: bisection
+    upwards from the static f* (``lim``) on the verdicts (the distortion path, and the
+    convex path without a live load). ``out`` and ``trials`` as in
+    :func:`_friction_by_limit`."""
     fs = float(lim.value)
 
     def decide(fv: float) -> tuple[bool | None, Verdict]:
@@ -753,6 +923,148 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
             na.notes.append("bracket wider than 1e-3 relative: undecided, no number")
             return out(UNDECIDED, lower=br.lower, upper=br.upper, converged=False)
     return out("stable", br.good, best, br.lower, br.upper, True)
+
+
+def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, lim: Any,
+                       rtol: float, out: Any, trials: list[dict[str, Any]]
+                       ) -> FrictionResult:
+    """The smallest f whose limit fixed point from X0 (:func:`_load_by_limit`'s answer)
+    carries ``load_factor``: the search engine between the static f* (no state at all
+    below it) and the first of 2 f*, 4 f*, ... that carries it, stepping by the secant
+    of lambda(f) - load_factor (:func:`_secant`, :func:`_across`) where it can, else
+    halving. ``out`` builds the result (as :func:`min_friction_nonassociative` does)
+    from the ``trials``, appended to here."""
+    from ..methods.engine import Search, Trial, midpoint, narrow_enough, run, undecided_trial
+
+    na.limit_path = True
+    n0 = x0_normals(na)
+    fs = float(lim.value)
+    if n0 is None:
+        na.notes.append("the elastic state X0 has no solution")
+        return out(UNDECIDED, converged=False)
+
+    direct = _friction_fixed_point(na, cv, lf, fs, n0, out, trials)
+    if direct is not None:
+        return direct
+
+    def oracle(fv: float) -> Trial:
+        capped = CappedLimit(cv, na.marked, fv)
+        r = capped.run(n0, FROM_X0)
+        na.fp_iterations += capped.solves
+        trials.append({"friction": fv, "load_factor": r.lam, "status": r.status,
+                       "iterations": r.iterations, "converged": r.converged})
+        v = _verdict(r, cv.scaling.force)
+        if r.status in ("unbounded", "infeasible"):
+            return Trial(fv, r.status == "unbounded", data=v)
+        if not r.converged or _limit_checks(cv, fv, r, (None, None)):
+            return Trial(fv, None, data=v, why=r.reason)
+        return Trial(fv, r.lam >= lf * (1.0 - 1e-9), value=r.lam - lf, data=v)
+
+    s = Search(fs, fs, rtol)
+    t = oracle(fs)
+    s.record(t)
+    if t.side:
+        na.notes.append("the non-associative friction equals the static f*")
+        return out("stable", fs, t.data, lim.lower if lim.lower is not None else fs, fs,
+                   True)
+    good = max(2.0 * fs, 1e-3)
+    while True:
+        t = oracle(good)
+        s.record(t)
+        if t.side is None:
+            na.notes.append(f"the limit iteration did not settle at f = {good:.6g} "
+                            f"({t.why})")
+            return out(UNDECIDED, lower=s.bad, converged=False)
+        if t.side:
+            break
+        good *= 2.0
+        if good > NA_FRICTION_CEILING:
+            na.notes.append(f"no friction up to {NA_FRICTION_CEILING:g} carries the load "
+                            "at the limit fixed point reached from X0")
+            return out("unstable", converged=True)
+    run(s, oracle, (undecided_trial, narrow_enough), (_across, _secant, midpoint))
+    if s.stopped == "undecided_trial" and not s.narrow(1e-3):
+        na.notes.append(f"the limit iteration did not settle at f = {s.last.x:.9g}: "
+                        f"bracket [{s.lower:.9g}, {s.upper:.9g}] wider than 1e-3")
+        return out(UNDECIDED, lower=s.lower, upper=s.upper, converged=False)
+    at = s.end(True)
+    na.notes.append(f"at f = {s.good:.9g} the limit fixed point from X0 carries lambda = "
+                    f"{at.value + lf:.9g} >= {lf:g}; at f = {s.bad:.9g} "
+                    f"{s.end(False).value + lf:.9g}")
+    return out("stable", s.good, at.data, s.lower, s.upper, True)
+
+
+def _friction_fixed_point(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, fs: float,
+                          n0: np.ndarray, out: Any, trials: list[dict[str, Any]]
+                          ) -> FrictionResult | None:
+    """The friction as a fixed point on f (:func:`~rigidblocks.analyses.na_limit.
+    friction_fixed_point`) from X0, where every joint of the uniform friction slides
+    without dilatancy (f then enters only the caps); None where it does not apply, does
+    not settle, or its answer fails the a-posteriori check (equilibrium at
+    ``load_factor`` and Coulomb's law at f with the state's own normal forces, f >= the
+    static f*): the search answers then."""
+    fj = cv.f_joint(1.0)
+    uni = na.uniform & np.isfinite(fj)
+    if not uni.any() or not np.array_equal(na.marked & uni, uni):
+        return None
+    capped = CappedLimit(cv, na.marked, 1.0, backend="conic")
+    unit = uni[cv.contacts.point_joint].astype(float)
+    r = friction_fixed_point(capped, unit, lf, n0, FROM_X0)
+    na.fp_iterations += capped.solves
+    trials.append({"friction": r.lam, "load_factor": lf, "status": r.status,
+                   "iterations": r.iterations, "converged": r.converged})
+    if not r.converged or r.lam is None or r.lam < fs * (1.0 - 1e-6):
+        na.notes.append(f"the fixed point on f from X0 gave no answer ({r.reason}): "
+                        "searched on the load's fixed point instead")
+        return None
+    eq, breach = certificate(cv, r.lam, lf, r.x * cv.scaling.force)
+    if eq > CERT_TOL or breach > CERT_TOL:
+        na.notes.append(f"the fixed point on f from X0 (f = {r.lam:.9g}) fails its check "
+                        f"(equilibrium {eq:.2g}, Coulomb {breach:.2g}): searched instead")
+        return None
+    f = max(float(r.lam), fs)
+    na.notes.append(f"f = {f:.9g} is the fixed point on the friction from X0 after "
+                    f"{r.iterations} least-friction solves: the least f whose caps f N "
+                    f"carry lambda = {lf:g} with N its own normal forces")
+    return out("stable", f, _verdict(r, cv.scaling.force), f, f, True)
+
+
+def _secant(s: Any) -> float | None:
+    """The root of the secant of lambda(f) - load_factor through the bracket's ends,
+    kept inside its middle 98 %; None (halve) where an end has no value or the last
+    two trials landed on one side (the secant then creeps)."""
+    g, b = s.end(True), s.end(False)
+    if g is None or b is None or not (math.isfinite(g.value) and math.isfinite(b.value)):
+        return None
+    if len(s.trials) >= 2 and s.trials[-1].side is s.trials[-2].side \
+            and s.trials[-1].rule == s.trials[-2].rule == "_secant":
+        return None
+    if g.value == b.value:
+        return None
+    x = g.x - g.value * (g.x - b.x) / (g.value - b.value)
+    lo, hi = s.lower + 0.01 * s.width, s.upper - 0.01 * s.width
+    return min(max(x, lo), hi)
+
+
+def _across(s: Any) -> float | None:
+    """After a secant step, a point a third of the requested accuracy past it towards
+    the other end: where the secant's root was close, the bracket closes in two trials."""
+    t = s.last
+    if t is None or t.rule != "_secant" or t.side is None:
+        return None
+    other = s.bad if t.side else s.good
+    x = t.x + math.copysign(s.rtol * abs(t.x) / 3.0, other - t.x)
+    return x if s.lower < x < s.upper else None
+
+
+def _verdict(r: LimitRun, force: float) -> Verdict:
+    """A limit run as a verdict whose data the result reads the state from (``force``
+    the reference force of the run's scaled forces)."""
+    fp = FixedPoint(ADMISSIBLE if r.converged else UNDECIDED,
+                    np.full(0, np.nan) if r.x is None else r.x * force, r.iterations,
+                    r.converged,
+                    0.0, r.reason, [c for _, c in r.history], r.time)
+    return Verdict(fp.status, 0.0, (r.reason,) if r.reason else (), fp)
 
 
 __all__ = ["ConvexNonAssociative", "DistortionNonAssociative", "FixedPoint",

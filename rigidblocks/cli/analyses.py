@@ -198,6 +198,18 @@ def _flow_lines(res) -> list[str]:
         hi = "-" if b[1] is None else f"{b[1]:.6g}"
         out.append(f"bounds     [{lo}, {hi}]   (frictionless lower bound, associative "
                    "upper bound)")
+    starts = [h for h in (res.history or ()) if isinstance(h, dict) and "start" in h]
+    if starts:
+        def value(h: dict) -> str:
+            v = h.get("load_factor")
+            return f"{v:.7g}" if h.get("converged") and v is not None else h.get("status", "-")
+
+        vals = [h["load_factor"] for h in starts
+                if h.get("converged") and h.get("load_factor") is not None]
+        spread = (f"; spread [{min(vals):.7g}, {max(vals):.7g}]"
+                  if len(vals) > 1 and max(vals) > min(vals) * (1 + 1e-6) else "")
+        out.append("starts     " + "; ".join(f"from {h['start']}: lambda = {value(h)}"
+                                             for h in starts) + spread)
     return out
 
 

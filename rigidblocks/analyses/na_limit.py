@@ -1,0 +1,404 @@
+"""The non-associative collapse state as a fixed point of the limit problem.
+
+Gilbert, Casapulla & Ahmed (Computers & Structures 84, 2006, 873-887) and, with cones
+in 3D, Portioli et al. (2014) iterate the limit analysis itself: each marked joint's
+Coulomb law |T| <= f N is replaced by the cohesion-only law |T| <= f N_prev (per contact
+point, N_prev the previous iterate's normal forces), the maximum load multiplier is
+solved under it, and its normal forces give the next caps. A fixed point is a
+non-associative collapse state:
+
+* equilibrium at lambda, with |T| <= f N on the state's own normal forces (the caps
+  are its own forces);
+* lambda is the largest multiplier any state carries with those caps, and the duals of
+  that problem are a mechanism whose marked joints slide without opening (a
+  cohesion-only law has no normal component in its normal cone) and whose power
+  balance is the dissipation f N |slip| of the state's own forces: the non-associative
+  kinematic condition, compatible with the forces.
+
+The maximum-load problem has in general a face of optimal states, and the normal forces
+of one of its vertices jump from iteration to iteration: taking the vertex HiGHS gives,
+the 106-block wall cycles for hundreds of iterations within 5e-4 of one multiplier,
+and the 3 x 3 wall's answer depends on which vertex the simplex path meets (0.714286,
+0.715907 or 0.720409). Each step here therefore solves two problems: the maximum
+multiplier lambda_k under the caps, then, among the states carrying lambda_k, the least
+confined one near the previous iterate: min sum N + 1/2 |N - N_prev|^2 (scaled forces),
+unique. A pinch (a self-stress of the normal forces) only raises the next caps; the
+least squares term alone keeps it (the block pinched under a lintel then settles at
+0.345 instead of f = 0.3, the 3 x 3 wall at 0.715918 in 2D and 3D), the total normal
+force alone leaves the step's choice among equal totals to the solver (the 3 x 3 wall
+and the 106-block wall do not settle in 200 steps). The step stops exactly where the
+previous normal forces are themselves selected, the fixed-point condition. In 2D the
+maximum is a linear program solved by HiGHS's dual simplex, warm-started from the
+previous basis (only right-hand sides change); in 3D a second-order cone program solved
+by the convex method's back end; the selection is a quadratic program solved by the
+latter.
+
+Non-associative collapse states are not unique: the fixed point reached depends on the
+start. :func:`limit_fixed_point` starts from given normal forces; the analyses start
+from the elastic state X0 under the dead load (tension cleared) and from the associative
+collapse state, and report both.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..errors import SolverFailure
+from ..methods.convex import ConvexMethod
+from ..problems.formulation import build_max_load
+from ..solvers import OPTIMAL
+from ..solvers.base import ConicProblem
+
+#: relative change of the normal forces (of the largest force) that ends the iteration
+LIMIT_TOL = 1e-7
+#: iteration budget of one run
+LIMIT_MAX_ITER = 500
+#: steps without a new smallest change after which the step is halved, down to
+STALL = 12
+MIN_DAMPING = 1.0 / 64
+#: weight of the proximal term of the selection step (scaled forces: the largest block
+#: load is 1)
+PROX_WEIGHT = 1.0
+#: the selection step keeps lambda within this (relative) of the step's maximum
+PROX_SLACK = 1e-9
+
+
+@dataclass
+class LimitRun:
+    """One fixed-point run of the limit problem from one start.
+
+    ``lam`` the last multiplier; ``x`` the last state's link forces (scene units);
+    ``history`` (lambda, relative change of the normal forces) per step.
+    """
+
+    start: str
+    status: str  # "converged", "undecided", "infeasible", "unbounded"
+    lam: float | None
+    x: np.ndarray | None
+    iterations: int
+    reason: str = ""
+    history: list[tuple[float, float]] = field(default_factory=list)
+    time: float = 0.0
+
+    @property
+    def converged(self) -> bool:
+        return self.status == "converged"
+
+
+class _HighsLimit:
+    """The capped maximum-load LP (2D) in one HiGHS model, warm-started between solves
+    (only the joint rows' right-hand sides change)."""
+
+    def __init__(self, prob: ConicProblem):
+        import highspy
+
+        self.hs = highspy
+        n, ne, ni = prob.n, prob.n_eq, prob.n_nonneg
+        self.n, self.ne, self.ni = n, ne, ni
+        self.li = prob.cols["lambda"].start
+        A = prob.A.tocsc()
+        lp = highspy.HighsLp()
+        lp.num_col_, lp.num_row_ = n, A.shape[0]
+        inf = highspy.kHighsInf
+        lp.col_cost_ = prob.c
+        lp.col_lower_ = np.full(n, -inf)
+        lp.col_upper_ = np.full(n, inf)
+        lp.row_lower_ = np.concatenate([prob.b[:ne], np.full(ni, -inf)])
+        lp.row_upper_ = prob.b[:ne + ni]
+        lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
+        lp.a_matrix_.start_ = A.indptr
+        lp.a_matrix_.index_ = A.indices
+        lp.a_matrix_.value_ = A.data
+        try:  # the core object: highspy.Highs() prints a banner before any option is set
+            from highspy._core import _Highs as Highs
+        except ImportError:  # pragma: no cover - other highspy layouts
+            Highs = highspy.Highs
+        h = Highs()
+        h.setOptionValue("output_flag", False)
+        h.setOptionValue("solver", "simplex")
+        h.setOptionValue("threads", 1)
+        h.setOptionValue("primal_feasibility_tolerance", 1e-9)
+        h.setOptionValue("dual_feasibility_tolerance", 1e-9)
+        h.passModel(lp)
+        self.h = h
+        self.rows = np.arange(ne, ne + ni, dtype=np.int32)
+        self.free = np.full(ni, -inf)
+
+    def maximise(self, b_joints: np.ndarray) -> tuple[str, float, np.ndarray | None]:
+        """max lambda with the joint rows' right-hand sides ``b_joints``."""
+        self.h.changeRowsBounds(self.ni, self.rows, self.free, b_joints)
+        self.h.run()
+        st = self.h.getModelStatus()
+        ms = self.hs.HighsModelStatus
+        if st != ms.kOptimal:
+            return ({ms.kUnbounded: "unbounded", ms.kInfeasible: "infeasible",
+                     ms.kUnboundedOrInfeasible: "unbounded"}.get(st, "failure"),
+                    math.nan, None)
+        z = np.asarray(self.h.getSolution().col_value)
+        return OPTIMAL, float(z[self.li]), z
+
+
+class _ConicLimit:
+    """The capped maximum-load problem through the convex method's back end (3D cones)."""
+
+    def __init__(self, cv: ConvexMethod, prob: ConicProblem):
+        self.cv, self.prob = cv, prob
+
+    def maximise(self, b_joints: np.ndarray) -> tuple[str, float, np.ndarray | None]:
+        p = self.prob
+        b = np.concatenate([p.b[:p.n_eq], b_joints])
+        prob = ConicProblem(c=p.c, A=p.A, b=b, n_eq=p.n_eq, n_nonneg=p.n_nonneg, soc=p.soc,
+                            cols=p.cols, rows=p.rows)
+        try:
+            res = self.cv.solve(prob, "maximum load (capped laws)", tight=True, stall=False)
+        except SolverFailure:
+            return "failure", math.nan, None
+        if res.status != OPTIMAL:
+            return res.status, math.nan, None
+        return OPTIMAL, float(res.z[p.cols["lambda"]][0]), res.z
+
+
+def _select_problem(prob: ConicProblem, nsl: slice, b_joints: np.ndarray, lam: float,
+                     N_prev: np.ndarray) -> ConicProblem:
+    """min sum N + w/2 |N - N_prev|^2 (w = PROX_WEIGHT, N scaled) over the states of
+    ``prob`` (the capped maximum-load problem, joint rows' right-hand sides
+    ``b_joints``) with lambda >= ``lam``: the least confined state, near the previous."""
+    n, ne, ni = prob.n, prob.n_eq, prob.n_nonneg
+    li = prob.cols["lambda"].start
+    A = prob.A.tocsr()
+    lam_row = sp.csr_matrix(([-1.0], ([0], [li])), shape=(1, n))
+    A2 = sp.vstack([A[:ne], lam_row, A[ne:]], format="csc")
+    b2 = np.concatenate([prob.b[:ne], [-lam], b_joints])
+    d = np.zeros(n)
+    d[nsl] = 1.0
+    c = np.zeros(n)
+    c[nsl] = -N_prev
+    return ConicProblem(c=c * PROX_WEIGHT + d, A=A2, b=b2, n_eq=ne, n_nonneg=ni + 1,
+                        soc=prob.soc, P=sp.diags(d * PROX_WEIGHT, format="csc"),
+                        cols=prob.cols, rows={})
+
+
+class CappedLimit:
+    """The maximum-load problem of a scene with the marked joints' Coulomb law replaced
+    by caps |T| <= f N_prev per contact point, at one friction ``f``."""
+
+    def __init__(self, cv: ConvexMethod, marked: np.ndarray, f: float,
+                 backend: str | None = None):
+        c = cv.contacts
+        self.cv = cv
+        fj = cv.f_joint(f)
+        mk = marked & np.isfinite(fj)
+        self.f_eff = np.where(mk, 0.0, fj)
+        self.f_pt = np.where(mk, fj, 0.0)[c.point_joint]
+        self.nsl = cv.system.layout.normal
+        self.P = c.n_points
+        prob, _ = build_max_load(cv.system, cv.scaling, self.f_eff, cv.pyramid,
+                                 cap=np.zeros(self.P))
+        self.b0 = prob.b[prob.n_eq:].copy()
+        # the caps enter the joint rows' right-hand sides linearly: b = b0 + M cap
+        self.M = self._cap_matrix()
+        lp = prob.is_lp and cv.pyramid is None
+        self.backend = backend or ("highs" if lp else "conic")
+        self.prob = prob
+        self.solver: Any = _HighsLimit(prob) if self.backend == "highs" else \
+            _ConicLimit(cv, prob)
+        self.solves = 0
+
+    def _cap_matrix(self) -> sp.csr_matrix:
+        """M with b_joints(cap) = b0 + M cap: each friction row's right-hand side holds
+        the caps of the points whose normal forces it sums (``JointRows.fric_nsum``:
+        the joint's points in 2D with one shear per joint, the point itself otherwise,
+        times cos(pi/k) on a k-facet pyramid); the uniform scaling leaves them unscaled."""
+        from ..problems.formulation import joint_rows
+
+        cv = self.cv
+        jr = joint_rows(cv.system, cv.scaling, self.f_eff, cv.system.layout.size + 1,
+                        pyramid=cv.pyramid)
+        nsum = jr.fric_nsum.tocsc()[:, self.nsl].tocoo()
+        head = np.asarray(jr.fric_head)
+        return sp.csr_matrix((nsum.data, (head[nsum.row], nsum.col)),
+                             shape=(len(self.b0), self.P))
+
+    def nearest(self, b_joints: np.ndarray, lam: float, N_prev: np.ndarray
+                ) -> np.ndarray | None:
+        """The state at lambda >= ``lam`` under the caps selected by
+        :func:`_select_problem`."""
+        prob = _select_problem(self.prob, self.nsl, b_joints, lam, N_prev)
+        self.solves += 1
+        try:
+            res = self.cv.solve(prob, "nearest capped state", tight=True, stall=False)
+        except SolverFailure:
+            return None
+        return res.z if res.status == OPTIMAL else None
+
+    def rhs(self, N: np.ndarray) -> np.ndarray:
+        """The joint rows' right-hand sides with caps f N (N scaled, per point)."""
+        return self.b0 + self.M @ (self.f_pt * np.maximum(N, 0.0))
+
+    def run(self, N_start: np.ndarray, start: str, tol: float = LIMIT_TOL,
+            max_iter: int = LIMIT_MAX_ITER) -> LimitRun:
+        """Iterate from the normal forces ``N_start`` (scaled) to a fixed point."""
+        t0 = time.perf_counter()
+        N = np.maximum(N_start, 0.0)
+        hist: list[tuple[float, float]] = []
+        beta, best, since = 1.0, math.inf, 0
+        x: np.ndarray | None = None
+        lam = math.nan
+        for k in range(1, max_iter + 1):
+            b = self.rhs(N)
+            st, lam, z = self.solver.maximise(b)
+            self.solves += 1
+            if st != OPTIMAL:
+                why = {"infeasible": "the capped laws carry not even the dead load",
+                       "unbounded": "no multiplier makes the capped problem collapse"}
+                return LimitRun(start, st if st in why else "undecided", None, None, k,
+                                why.get(st, f"the solver failed ({st})"), hist,
+                                time.perf_counter() - t0)
+            zz = self.nearest(b, lam - PROX_SLACK * max(1.0, abs(lam)), N)
+            z = z if zz is None else zz
+            x = z[:self.cv.system.layout.size] if z is not None else None
+            Nn = np.maximum(x[self.nsl], 0.0)
+            scale = max(1.0, float(np.abs(x).max(initial=0.0)))
+            change = float(np.abs(Nn - N).max(initial=0.0)) / scale
+            hist.append((lam, change))
+            if change <= tol:
+                return LimitRun(start, "converged", lam, x, k,
+                                f"fixed point after {k} limit solves", hist,
+                                time.perf_counter() - t0)
+            beta, best, since = _damped(beta, best, since, change)
+            N = N + beta * (Nn - N)
+        return LimitRun(start, "undecided", lam, x, max_iter,
+                        f"no fixed point within {max_iter} limit solves (last relative "
+                        f"change of the normal forces {hist[-1][1]:.3g})", hist,
+                        time.perf_counter() - t0)
+
+
+def reached_normals(na: Any, f: float) -> tuple[str, np.ndarray | None]:
+    """The normal forces (scaled) of the state reached from X0 under the dead load at
+    friction ``f`` (the fixed point of the seed's procedure at lambda = 0, from a
+    :class:`~rigidblocks.analyses.nonassociative.ConvexNonAssociative`), and its
+    verdict: "admissible" (the forces), "inadmissible" (the dead load alone is not
+    carried from X0: None) or "undecided" (X0's normal forces,
+    :func:`x0_normals`)."""
+    from ..methods import ADMISSIBLE, INADMISSIBLE
+
+    r = na.fixed_point(f, 0.0)
+    if r.status == ADMISSIBLE:
+        return "admissible", np.maximum(r.x[na.system.layout.normal], 0.0) / \
+            na.cv.scaling.force
+    if r.status == INADMISSIBLE:
+        return "inadmissible", None
+    return "undecided", x0_normals(na)
+
+
+def _damped(beta: float, best: float, since: int, change: float
+            ) -> tuple[float, float, int]:
+    """Damping where the change stops falling (a cycle on the optimal face): the step
+    ``beta`` is halved after STALL steps without a new smallest change ``best``
+    (``since`` counts them), down to MIN_DAMPING."""
+    if change < best:
+        return beta, change, 0
+    since += 1
+    if since >= STALL and beta > MIN_DAMPING:
+        return 0.5 * beta, best, 0
+    return beta, best, since
+
+
+def x0_normals(na: Any) -> np.ndarray | None:
+    """The normal forces (scaled) of the elastic state X0 under the dead load, with the
+    no-tension law imposed (its least-energy state with the normal links alone, the
+    start of the seed's procedure), from a
+    :class:`~rigidblocks.analyses.nonassociative.ConvexNonAssociative`."""
+    c = na.contacts
+    x0, _ = na._solve_capped(np.full(c.n_joints, math.inf), 0.0, np.zeros(c.n_points))
+    if x0 is None:
+        x0 = na.elastic(0.0)
+    return None if x0 is None else np.maximum(x0[na.system.layout.normal], 0.0)
+
+
+def certificate(cv: ConvexMethod, f: float, lam: float, x: np.ndarray
+                ) -> tuple[float, float]:
+    """(equilibrium residual, breach of the Coulomb laws with the state's own normal
+    forces), both relative to the largest force of the state ``x`` (scene units) at
+    multiplier ``lam``: the a-posteriori check of a fixed point."""
+    from ..problems.formulation import joint_violations
+
+    sysm = cv.system
+    scale = max(float(np.abs(x).max(initial=0.0)), 1e-300)
+    res = sysm.A @ x + sysm.dead + lam * sysm.live
+    prob, jr = build_max_load(sysm, cv.scaling, cv.f_joint(f), cv.pyramid)
+    z = np.concatenate([x / cv.scaling.force, [lam]])
+    v = joint_violations(prob, jr, z, cv.contacts.n_joints)
+    return (float(np.abs(res).max(initial=0.0)) / scale,
+            float(v.max(initial=0.0)) * cv.scaling.force / scale)
+
+
+def friction_fixed_point(capped: CappedLimit, unit: np.ndarray, load_factor: float,
+                         N_start: np.ndarray, start: str, tol: float = LIMIT_TOL,
+                         max_iter: int = LIMIT_MAX_ITER) -> LimitRun:
+    """The fixed point on the friction: each step the smallest uniform f whose caps
+    f ``unit`` N_prev (plus the fixed caps of joints with their own friction) carry
+    ``load_factor`` (one LP in (x, f)), then the state selected as in
+    :meth:`CappedLimit.run` at that f; a fixed point is a non-associative collapse state
+    at exactly ``load_factor`` with friction f. ``capped`` is built at any f with the
+    uniform joints marked; ``unit`` (P,) is 1 at the points of the uniform joints. The
+    run's ``lam`` is the friction f."""
+    t0 = time.perf_counter()
+    cv, p = capped.cv, capped.prob
+    ne, n = p.n_eq, p.n
+    li = p.cols["lambda"].start
+    A = p.A.tocsc()
+    live = A[:ne, li].toarray().ravel()
+    fixed = np.where(unit > 0, 0.0, capped.f_pt)
+    b_eq = p.b[:ne] - load_factor * live
+    keep = sp.csc_matrix(A[:, :li])
+    N = np.maximum(N_start, 0.0)
+    hist: list[tuple[float, float]] = []
+    beta, best, since = 1.0, math.inf, 0
+    fk, x = math.nan, None
+    for k in range(1, max_iter + 1):
+        col = -(capped.M @ (unit * N))
+        Af = sp.vstack([sp.hstack([keep[:ne], sp.csc_matrix((ne, 1))]),
+                        sp.csc_matrix(([-1.0], ([0], [li])), shape=(1, n)),
+                        sp.hstack([keep[ne:], sp.csc_matrix(col[:, None])])], format="csc")
+        bj = capped.b0 + capped.M @ (fixed * N)
+        c = np.zeros(n)
+        c[li] = 1.0
+        prob = ConicProblem(c=c, A=Af, b=np.concatenate([b_eq, [0.0], bj]), n_eq=ne,
+                            n_nonneg=p.n_nonneg + 1, soc=p.soc, cols={"x": p.cols["x"]},
+                            rows={})
+        capped.solves += 1
+        try:
+            res = cv.solve(prob, "least friction (capped laws)", tight=True, stall=False)
+        except SolverFailure:
+            res = None
+        if res is None or res.status != OPTIMAL:
+            st = "failure" if res is None else res.status
+            return LimitRun(start, "infeasible" if st == "infeasible" else "undecided",
+                            None, None, k, f"the least-friction problem: {st}", hist,
+                            time.perf_counter() - t0)
+        fk = float(res.z[li])
+        b = bj + fk * (capped.M @ (unit * N))
+        zz = capped.nearest(b, load_factor - PROX_SLACK * max(1.0, abs(load_factor)), N)
+        z = res.z if zz is None else zz
+        x = z[:cv.system.layout.size]
+        Nn = np.maximum(x[capped.nsl], 0.0)
+        scale = max(1.0, float(np.abs(x).max(initial=0.0)))
+        change = float(np.abs(Nn - N).max(initial=0.0)) / scale
+        hist.append((fk, change))
+        if change <= tol:
+            return LimitRun(start, "converged", fk, x, k,
+                            f"fixed point after {k} least-friction solves", hist,
+                            time.perf_counter() - t0)
+        beta, best, since = _damped(beta, best, since, change)
+        N = N + beta * (Nn - N)
+    return LimitRun(start, "undecided", fk, x, max_iter,
+                    f"no fixed point within {max_iter} least-friction solves (last "
+                    f"relative change of the normal forces {hist[-1][1]:.3g})", hist,
+                    time.perf_counter() - t0)
