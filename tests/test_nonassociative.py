@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -421,6 +422,18 @@ def test_3x3_wall_one_answer_in_2d_and_3d_within_lmgc90():
         assert r.history[1]["load_factor"] == pytest.approx(r.load_multiplier, rel=1e-6)
         assert r.load_multiplier_bounds[1] == pytest.approx(0.770492, rel=1e-5)
     assert r2.load_multiplier == pytest.approx(r3.load_multiplier, rel=1e-6)
+
+
+def test_limit_fixed_point_without_highspy(monkeypatch):
+    """highspy is an optional extra (``solvers``): without it the 2D limit problem is
+    solved by the conic back end, to the same answer on the 3 x 3 wall (inside LMGC90's
+    [0.7139, 0.7148], issue #30), not an ImportError."""
+    scene = build("wall", courses=3, blocks_per_course=3, friction=0.8)
+    with_highs = rb.max_load_multiplier(scene, flow=NA, state=False)
+    monkeypatch.setitem(sys.modules, "highspy", None)
+    without = rb.max_load_multiplier(scene, flow=NA, state=False)
+    assert without.status == "collapse" and 0.7139 <= without.load_multiplier <= 0.7148
+    assert without.load_multiplier == pytest.approx(with_highs.load_multiplier, rel=1e-6)
 
 
 def test_limit_fixed_point_is_a_checked_collapse_state():

@@ -91,6 +91,17 @@ class LimitRun:
         return self.status == "converged"
 
 
+def _has_highspy() -> bool:
+    """Is highspy (the ``solvers`` extra) installed? Without it the 2D limit problem is
+    solved by the conic back end, without warm starts."""
+    from importlib.util import find_spec
+
+    try:
+        return find_spec("highspy") is not None
+    except ValueError:  # in sys.modules as None: import blocked
+        return False
+
+
 class _HighsLimit:
     """The capped maximum-load LP (2D) in one HiGHS model, warm-started between solves
     (only the joint rows' right-hand sides change)."""
@@ -204,7 +215,7 @@ class CappedLimit:
         # the caps enter the joint rows' right-hand sides linearly: b = b0 + M cap
         self.M = self._cap_matrix()
         lp = prob.is_lp and cv.pyramid is None
-        self.backend = backend or ("highs" if lp else "conic")
+        self.backend = backend or ("highs" if lp and _has_highspy() else "conic")
         self.prob = prob
         self.solver: Any = _HighsLimit(prob) if self.backend == "highs" else \
             _ConicLimit(cv, prob)
