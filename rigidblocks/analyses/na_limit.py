@@ -47,7 +47,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..errors import SolverFailure
 from ..methods.convex import ConvexMethod
@@ -180,6 +179,8 @@ def _select_problem(prob: ConicProblem, nsl: slice, b_joints: np.ndarray, lam: f
     """min sum N + w/2 |N - N_prev|^2 (w = PROX_WEIGHT, N scaled) over the states of
     ``prob`` (the capped maximum-load problem, joint rows' right-hand sides
     ``b_joints``) with lambda >= ``lam``: the least confined state, near the previous."""
+    import scipy.sparse as sp
+
     n, ne, ni = prob.n, prob.n_eq, prob.n_nonneg
     li = prob.cols["lambda"].start
     A = prob.A.tocsr()
@@ -221,11 +222,13 @@ class CappedLimit:
             _ConicLimit(cv, prob)
         self.solves = 0
 
-    def _cap_matrix(self) -> sp.csr_matrix:
+    def _cap_matrix(self) -> Any:
         """M with b_joints(cap) = b0 + M cap: each friction row's right-hand side holds
         the caps of the points whose normal forces it sums (``JointRows.fric_nsum``:
         the joint's points in 2D with one shear per joint, the point itself otherwise,
         times cos(pi/k) on a k-facet pyramid); the uniform scaling leaves them unscaled."""
+        import scipy.sparse as sp
+
         from ..problems.formulation import joint_rows
 
         cv = self.cv
@@ -360,6 +363,8 @@ def friction_fixed_point(capped: CappedLimit, unit: np.ndarray, load_factor: flo
     at exactly ``load_factor`` with friction f. ``capped`` is built at any f with the
     uniform joints marked; ``unit`` (P,) is 1 at the points of the uniform joints. The
     run's ``lam`` is the friction f."""
+    import scipy.sparse as sp
+
     t0 = time.perf_counter()
     cv, p = capped.cv, capped.prob
     ne, n = p.n_eq, p.n
