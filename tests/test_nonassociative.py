@@ -424,6 +424,27 @@ def test_3x3_wall_one_answer_in_2d_and_3d_within_lmgc90():
     assert r2.load_multiplier == pytest.approx(r3.load_multiplier, rel=1e-6)
 
 
+def test_limit_fixed_point_after_another_highs_solve():
+    """HiGHS keeps one thread scheduler per process: the 2D limit fixed point must not
+    ask for another thread count than a HiGHS solve before it in the same process set
+    up (it did, and every non-associative answer after a `method="cvxpy-highs"`
+    analysis was "undecided: the solver failed"). In a fresh interpreter: that back end
+    first,
+    then the 2 x 2 wall's non-associative multiplier, at most the associative 0.8
+    (Radenkovic's first theorem)."""
+    import subprocess
+
+    code = ("import rigidblocks as rb\n"
+            "from rigidblocks.generators import build\n"
+            "w = build('wall', courses=2, blocks_per_course=2, friction=0.8)\n"
+            "rb.max_load_multiplier(w, method='cvxpy-highs', state=False)\n"
+            "r = rb.max_load_multiplier(w, flow='non-associative', state=False)\n"
+            "print(r.status, r.load_multiplier)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out[-2] == "collapse" and 0.0 < float(out[-1]) <= 0.8 + 1e-9
+
+
 def test_limit_fixed_point_without_highspy(monkeypatch):
     """highspy is an optional extra (``solvers``): without it the 2D limit problem is
     solved by the conic back end, to the same answer on the 3 x 3 wall (inside LMGC90's

@@ -132,7 +132,6 @@ class _HighsLimit:
         h = Highs()
         h.setOptionValue("output_flag", False)
         h.setOptionValue("solver", "simplex")
-        h.setOptionValue("threads", 1)
         h.setOptionValue("primal_feasibility_tolerance", 1e-9)
         h.setOptionValue("dual_feasibility_tolerance", 1e-9)
         h.passModel(lp)
