@@ -268,8 +268,12 @@ def test_algorithms_agree_on_examples(name):
     scene = read_scene(EXAMPLES / name)
     a = rb.max_load_multiplier(scene, flow=NA, state=False)
     b = rb.max_load_multiplier(scene, flow=NA, method="distortion", state=False)
-    if "undecided" in (a.status, b.status):
-        pytest.skip(f"one algorithm is undecided: {a.status}, {b.status}")
+    # the limit iteration decides every bundled example (issue #30); the distortion
+    # path may not, and then names no number to compare
+    assert a.status in ("collapse", "unstable", "unbounded"), (a.status, a.notes)
+    if b.status == "undecided":
+        assert b.load_multiplier is None
+        return
     assert a.status == b.status
     if a.status != "collapse" or a.load_multiplier == pytest.approx(b.load_multiplier,
                                                                     rel=RTOL):
