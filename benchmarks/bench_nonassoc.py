@@ -644,7 +644,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     d = out_dir(args.out)
     chart(curve, d / "bench_nonassoc.png")
     header = ["wall", "blocks", "lambda assoc", "s", "lambda non-assoc (convex)", "s",
-              "convex iterations (QPs)", "trials", "lambda non-assoc (distortion)", "s",
+              "convex iterations", "trials", "lambda non-assoc (distortion)", "s",
               "distortion iterations"]
     rows = [[f"{r['courses']} x {r['per_course']}", r["blocks"], r["assoc_lambda"],
              r["assoc_seconds"], _cell(r["convex_lambda"]), r["convex_seconds"],
@@ -653,10 +653,12 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
             for r in wall_rows]
     md = ["## Non-associative sliding: cost and lambda against f", "",
           f"Running-bond walls at f = {WALL_FRICTION} under a horizontal body force: the "
-          "associative multiplier (one LP) against the non-associative one, reached from "
-          "the elastic state, by bisection on the verdicts of the convex path's "
-          "cohesion-capped problems (each iteration one QP) and of the distortion "
-          "iteration with separate links. `bench_nonassoc.png`: the collapse multiplier "
+          "associative multiplier (one LP) against the non-associative one: on the convex "
+          "path the fixed point of the capped limit problem (iterations: its limit "
+          "problems; trials: its starts, the elastic state X0 and the associative "
+          "collapse state), on the distortion path a bisection on the verdicts of the "
+          "state its iteration with separate links reaches from X0 (iterations: "
+          "distortion steps). Wall-clock seconds. `bench_nonassoc.png`: the collapse multiplier "
           "against f under both flow rules on the seed's structures (convex path).", "",
           markdown_table(header, rows), "",
           "![lambda against f](results/bench_nonassoc.png)", ""] + large_walls_md(large)
