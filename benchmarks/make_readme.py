@@ -116,18 +116,21 @@ def build(results: Path, readme_dir: Path = HERE) -> str:
 
 
 def _relink(lines: list[str], results: Path, readme_dir: Path) -> list[str]:
-    """Image links in the sections are relative to the results folder: make them
-    relative to the README's folder."""
+    """Image links in the sections are relative to the results folder, to the
+    benchmarks folder or to docs/ (a section also written into docs/methods.md): make
+    them relative to the README's folder, from the first base where the file exists."""
     import os
 
-    rel = os.path.relpath(results.resolve(), readme_dir.resolve())
-    prefix = "" if rel == "." else rel.replace(os.sep, "/") + "/"
+    bases = (results, results.parent, results.parent.parent / "docs")
     out = []
     for ln in lines:
         if ln.startswith("![") and "](" in ln and "://" not in ln:
             head, tail = ln.split("](", 1)
-            if not tail.startswith(prefix):
-                ln = f"{head}]({prefix}{tail}"
+            link, rest = tail.split(")", 1)
+            found = [b / link for b in bases if (b / link).exists()]
+            target = os.path.normpath((found or [results / link])[0].resolve())
+            rel = os.path.relpath(target, readme_dir.resolve()).replace(os.sep, "/")
+            ln = f"{head}]({rel}){rest}"
         out.append(ln)
     return out
 

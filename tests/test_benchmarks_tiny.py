@@ -281,6 +281,20 @@ def test_make_readme_order_and_machine(tmp_path):
     assert "python benchmarks/bench_scaling.py" in text
 
 
+def test_benchmarks_readme_images_exist():
+    """Every picture benchmarks/README.md shows is a file beside it: a section written
+    with links relative to docs/ (bench_accuracy_rtol, also in docs/methods.md) or to
+    the benchmarks folder is relinked to the README's folder, not prefixed blindly
+    (it was ``results/../benchmarks/results/...``, a picture that did not exist)."""
+    import re
+
+    text = (ROOT / "benchmarks" / "README.md").read_text()
+    links = re.findall(r"^!\[[^\]]*\]\(([^)]+)\)", text, flags=re.M)
+    assert links
+    missing = [ln for ln in links if not (ROOT / "benchmarks" / ln).is_file()]
+    assert not missing
+
+
 def test_bench_accuracy_tiny(tmp_path):
     """Errors fall as Clarabel's tolerances tighten; the references match closed forms.
 
