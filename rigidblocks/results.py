@@ -387,9 +387,10 @@ class LoadResult(Result):
     load_multiplier: float | None = None
     mechanism: Mechanism | None = field(default=None, repr=False)
     tilt_angle_deg: float | None = None
-    #: non-associative: [lo, hi] with hi the associative multiplier (an upper bound)
-    #: and lo the best lower bound known, the frictionless multiplier or the answer's
-    #: admissible lower end (None where there is none)
+    #: non-associative: [lo, hi], bounds on every non-associative collapse multiplier:
+    #: hi the associative multiplier, lo the frictionless one (None where it is not
+    #: defined); the answer reached from X0 is not a lower bound (other states may
+    #: collapse earlier: rigidblocks.analyses.na_bounds)
     load_multiplier_bounds: tuple[float | None, float | None] | None = None
 
     def _answer(self) -> dict[str, Any]:

@@ -344,3 +344,30 @@ def test_the_documented_example(capsys):
     printed = [ln for ln in capsys.readouterr().out.splitlines()
                if not ln.startswith("HighsMip")]
     assert printed == said
+
+
+def test_cli_load_safe(capsys, tmp_path):
+    """`load --flow non-associative --safe`: the reference model with self-weight has a
+    collapse state at 0.6 below the answer from X0, 2.4 (the top block on the right
+    block alone, the left block sliding out under its own weight: 50 N = f x 100 N),
+    proven the smallest; a scene of more than 50 joints gets the reason, and the
+    analysis' own answer and exit status are unchanged."""
+    import json
+
+    from rigidblocks.cli.main import main
+
+    path = str(EXAMPLES / "reference_self_weight.json")
+    assert main(["load", path, "--flow", "non-associative", "--safe"]) == 0
+    out = capsys.readouterr().out
+    assert "safe       lambda = 0.6: the smallest non-associative collapse multiplier" in out
+    assert main(["load", path, "--flow", "non-associative", "--safe", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["load_multiplier"] == pytest.approx(2.4, rel=1e-6)
+    assert doc["safe_multiplier"]["status"] == "optimal"
+    assert doc["safe_multiplier"]["value"] == pytest.approx(0.6, rel=1e-6)
+    from rigidblocks.io import write_scene
+
+    wall = tmp_path / "wall.json"  # 10 x 10: 106 blocks, 285 joints
+    write_scene(build("wall", courses=10, blocks_per_course=10), wall)
+    main(["load", str(wall), "--flow", "non-associative", "--safe"])
+    assert "safe       not computed:" in capsys.readouterr().out

@@ -505,8 +505,9 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
     ``load_multiplier_bounds`` = [lo, hi]: hi the associative multiplier (Radenkovic's
     first theorem), lo the associative multiplier with frictionless marked joints
     (Drucker 1954; None where it is not defined: the frictionless dead load has no
-    admissible state) or, where higher, the answer's admissible lower end (distortion
-    path) or the answer itself where it equals hi. ``mechanism``: "vertex" (default)
+    admissible state): bounds on every state's multiplier, not on the answer's alone
+    (which may equal hi while another state collapses below it: the reference model
+    with self-weight, 2.4 and 0.6). ``mechanism``: "vertex" (default)
     or "blend", which of the optimal mechanisms of the computed state is drawn, as for
     associative friction (see :func:`_collapse_mechanism`).
     """
@@ -539,16 +540,14 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
     def result(status: str, lam: float | None = None, v: Verdict | None = None,
                converged: bool | None = None,
                bracket: tuple[float, float] | None = None) -> LoadResult:
-        # bracket: the answer's, whose lower end (an admissible trial) raises the
-        # lower bound where it is above the frictionless one
+        # bracket: the answer's (the state reached from X0); the bounds hold for every
+        # state (Drucker 1954, Radenkovic): an admissible trial of this one raises no
+        # bound, other states may collapse earlier (docs/safe-multiplier.md)
         st = na.state(f, lam, v) if (v is not None and lam is not None) else None
         mech, gov = _collapse_mechanism(cv, na, f, lam, st, mechanism) if st else (None, ())
-        low = bounds[0]
-        if bracket is not None and (low is None or bracket[0] > low):
-            low = bracket[0]
         return LoadResult(**_fields(na, "max_load_multiplier", status, f, lam,
                                     tuple(trials), converged), state=st if state else None,
-                          load_multiplier=lam, load_multiplier_bounds=(low, bounds[1]),
+                          load_multiplier=lam, load_multiplier_bounds=bounds,
                           mechanism=mech, governing=gov,
                           bracket=bracket if bracket and bracket[0] < bracket[1] else None)
 
@@ -692,7 +691,6 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
         na.notes.append(f"the non-associative multiplier equals the associative one (the "
                         f"fixed point's {lam:.10g} is {abs(lam - hi):.1e} from it)")
         lam = float(hi)
-        bounds = (lam, hi)
     st = force_state(cv.system, main.x * cv.scaling.force,
                      "non-associative collapse state reached from the elastic state")
     mech, gov = _collapse_mechanism(cv, na, f, lam, st, mechanism)

@@ -60,6 +60,11 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                        help="vertex: one collapse mechanism, joints ranked by relative "
                        "velocity (default); blend: the interior-point mix of every "
                        "optimal mechanism")
+        p.add_argument("--safe", action="store_true",
+                       help="with non-associative joints, scenes of up to 50 joints: also "
+                       "the smallest non-associative collapse multiplier over all states "
+                       "(a mixed-integer LP solved by HiGHS, at most 60 s per solve; "
+                       "docs/safe-multiplier.md)")
     if name in ("friction", "load"):
         add_rtol(p, name)
     p.add_argument("--joints", nargs="?", const="-", default=None, metavar="CSV",
@@ -92,13 +97,47 @@ def run(args: argparse.Namespace) -> int:
         show=not args.json and sys.stderr.isatty())
     if csv_path is not None:
         _write_csv(res, csv_path)
+    safe = _safe(scene, args) if getattr(args, "safe", False) else None
     if args.json:
-        print(json.dumps(_jsonable(res.to_dict(joints=args.joints == "-"))))
+        doc = res.to_dict(joints=args.joints == "-")
+        if safe is not None:
+            doc["safe_multiplier"] = safe
+        print(json.dumps(_jsonable(doc)))
     else:
         print(report(scene, res, joints=args.joints == "-", verbose=args.verbose))
+        if safe is not None:
+            print(_safe_line(safe))
         if csv_path is not None:
             print(f"wrote {csv_path}")
     return EXIT.get(res.status, 0)
+
+
+def _safe(scene: Any, args: argparse.Namespace) -> dict[str, Any]:
+    """The safe multiplier of ``load --safe`` as a dict: status, value, bracket, notes
+    (or the reason it was not computed)."""
+    from ..analyses.na_bounds import safe_multiplier
+
+    q = question(args)
+    try:
+        r = safe_multiplier(scene, friction=q.get("friction"), flow=q.get("flow"))
+    except InputError as err:
+        return {"status": "not computed", "reason": str(err).split(": ", 1)[-1]}
+    return {"status": r.status, "value": r.value, "lower": r.lower, "upper": r.upper,
+            "nodes": r.nodes, "solve_time": r.solve_time, "notes": list(r.notes)}
+
+
+def _safe_line(safe: dict[str, Any]) -> str:
+    def num(v: Any) -> str:
+        return "-" if v is None else f"{v:.7g}"
+
+    st = safe["status"]
+    if st == "not computed":
+        return f"safe       not computed: {safe['reason']}"
+    if st == "optimal":
+        return (f"safe       lambda = {num(safe['value'])}: the smallest non-associative "
+                "collapse multiplier over all states (mixed-integer LP, proven)")
+    return (f"safe       {st}: bracket [{num(safe['lower'])}, {num(safe['upper'])}] "
+            "(mixed-integer LP)")
 
 
 def _writable(path: str) -> None:
