@@ -412,7 +412,9 @@ def bodies_text(res: Any, scene: Scene | None = None) -> str:
         return ""
     n = sum(len(g) for g in groups)
     if len(groups) == 1:
-        return f"the {n} moving block{'s' if n > 1 else ''} move as one rigid body"
+        if n == 1:
+            return "one block moves"
+        return f"the {n} moving blocks move as one rigid body"
     speed = None if scene is None else block_reach(scene, res.mechanism.velocities)
     ids = res.contacts.block_ids
 

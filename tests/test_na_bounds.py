@@ -360,6 +360,11 @@ def test_cli_load_safe(capsys, tmp_path):
     assert main(["load", path, "--flow", "non-associative", "--safe"]) == 0
     out = capsys.readouterr().out
     assert "safe       lambda = 0.6: the smallest non-associative collapse multiplier" in out
+    assert "safe       BELOW the answer lambda* = 2.4" in out
+    # with associative joints the multiplier is unique: no "safe" value is claimed
+    assert main(["load", path, "--safe"]) == 0
+    out = capsys.readouterr().out
+    assert "safe       not computed: no joint slides without dilatancy" in out
     assert main(["load", path, "--flow", "non-associative", "--safe", "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["load_multiplier"] == pytest.approx(2.4, rel=1e-6)

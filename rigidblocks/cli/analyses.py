@@ -106,7 +106,7 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(report(scene, res, joints=args.joints == "-", verbose=args.verbose))
         if safe is not None:
-            print(_safe_line(safe))
+            print(_safe_line(safe, getattr(res, "load_multiplier", None)))
         if csv_path is not None:
             print(f"wrote {csv_path}")
     return EXIT.get(res.status, 0)
@@ -116,8 +116,14 @@ def _safe(scene: Any, args: argparse.Namespace) -> dict[str, Any]:
     """The safe multiplier of ``load --safe`` as a dict: status, value, bracket, notes
     (or the reason it was not computed)."""
     from ..analyses.na_bounds import safe_multiplier
+    from ..analyses.nonassociative import is_nonassociative
 
     q = question(args)
+    if not is_nonassociative(scene, q.get("flow")):
+        return {"status": "not computed",
+                "reason": "no joint slides without dilatancy (give --flow "
+                          "non-associative): with associative joints the collapse "
+                          "multiplier is unique, the answer above"}
     try:
         r = safe_multiplier(scene, friction=q.get("friction"), flow=q.get("flow"))
     except InputError as err:
@@ -126,7 +132,7 @@ def _safe(scene: Any, args: argparse.Namespace) -> dict[str, Any]:
             "nodes": r.nodes, "solve_time": r.solve_time, "notes": list(r.notes)}
 
 
-def _safe_line(safe: dict[str, Any]) -> str:
+def _safe_line(safe: dict[str, Any], answer: float | None) -> str:
     def num(v: Any) -> str:
         return "-" if v is None else f"{v:.7g}"
 
@@ -134,10 +140,16 @@ def _safe_line(safe: dict[str, Any]) -> str:
     if st == "not computed":
         return f"safe       not computed: {safe['reason']}"
     if st == "optimal":
-        return (f"safe       lambda = {num(safe['value'])}: the smallest non-associative "
+        line = (f"safe       lambda = {num(safe['value'])}: the smallest non-associative "
                 "collapse multiplier over all states (mixed-integer LP, proven)")
+        if answer is not None and safe["value"] < answer * (1.0 - 1e-6):
+            line += (f"\nsafe       BELOW the answer lambda* = {num(answer)}, which is the "
+                     "state reached from the elastic state X0: the joints have another "
+                     f"state that collapses at {num(safe['value'])}")
+        return line
+    why = f"; {safe['notes'][0]}" if safe.get("notes") else ""
     return (f"safe       {st}: bracket [{num(safe['lower'])}, {num(safe['upper'])}] "
-            "(mixed-integer LP)")
+            f"(mixed-integer LP{why})")
 
 
 def _writable(path: str) -> None:
