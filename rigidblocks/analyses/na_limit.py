@@ -273,12 +273,7 @@ class CappedLimit:
                 return LimitRun(start, st if st in why else "undecided", None, None, k,
                                 why.get(st, f"the solver failed ({st})"), hist,
                                 time.perf_counter() - t0)
-            zz = self.nearest(b, lam - PROX_SLACK * max(1.0, abs(lam)), N)
-            z = z if zz is None else zz
-            x = z[:self.cv.system.layout.size] if z is not None else None
-            Nn = np.maximum(x[self.nsl], 0.0)
-            scale = max(1.0, float(np.abs(x).max(initial=0.0)))
-            change = float(np.abs(Nn - N).max(initial=0.0)) / scale
+            x, Nn, change = _select_step(self, b, lam, N, z)
             hist.append((lam, change))
             if change <= tol:
                 return LimitRun(start, "converged", lam, x, k,
@@ -290,6 +285,19 @@ class CappedLimit:
                         f"no fixed point within {max_iter} limit solves (last relative "
                         f"change of the normal forces {hist[-1][1]:.3g})", hist,
                         time.perf_counter() - t0)
+
+
+def _select_step(capped: CappedLimit, b: np.ndarray, target: float, N: np.ndarray,
+                 z: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+    """One step's state: the least-confined state near the normal forces ``N`` that
+    carries ``target`` under the joint rows' right-hand sides ``b`` (the limit solve's
+    own ``z`` where that selection fails), its normal forces, and their change from
+    ``N`` relative to the state's largest force."""
+    zz = capped.nearest(b, target - PROX_SLACK * max(1.0, abs(target)), N)
+    x = (z if zz is None else zz)[:capped.cv.system.layout.size]
+    Nn = np.maximum(x[capped.nsl], 0.0)
+    scale = max(1.0, float(np.abs(x).max(initial=0.0)))
+    return x, Nn, float(np.abs(Nn - N).max(initial=0.0)) / scale
 
 
 def reached_normals(na: Any, f: float) -> tuple[str, np.ndarray | None]:
@@ -400,12 +408,7 @@ def friction_fixed_point(capped: CappedLimit, unit: np.ndarray, load_factor: flo
                             time.perf_counter() - t0)
         fk = float(res.z[li])
         b = bj + fk * (capped.M @ (unit * N))
-        zz = capped.nearest(b, load_factor - PROX_SLACK * max(1.0, abs(load_factor)), N)
-        z = res.z if zz is None else zz
-        x = z[:cv.system.layout.size]
-        Nn = np.maximum(x[capped.nsl], 0.0)
-        scale = max(1.0, float(np.abs(x).max(initial=0.0)))
-        change = float(np.abs(Nn - N).max(initial=0.0)) / scale
+        x, Nn, change = _select_step(capped, b, load_factor, N, res.z)
         hist.append((fk, change))
         if change <= tol:
             return LimitRun(start, "converged", fk, x, k,
