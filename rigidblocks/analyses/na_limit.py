@@ -257,34 +257,49 @@ class CappedLimit:
     def run(self, N_start: np.ndarray, start: str, tol: float = LIMIT_TOL,
             max_iter: int = LIMIT_MAX_ITER) -> LimitRun:
         """Iterate from the normal forces ``N_start`` (scaled) to a fixed point."""
-        t0 = time.perf_counter()
-        N = np.maximum(N_start, 0.0)
-        hist: list[tuple[float, float]] = []
-        beta, best, since = 1.0, math.inf, 0
-        x: np.ndarray | None = None
-        lam = math.nan
-        for k in range(1, max_iter + 1):
+
+        def step(N: np.ndarray) -> tuple:
             b = self.rhs(N)
             st, lam, z = self.solver.maximise(b)
             self.solves += 1
             if st != OPTIMAL:
                 why = {"infeasible": "the capped laws carry not even the dead load",
                        "unbounded": "no multiplier makes the capped problem collapse"}
-                return LimitRun(start, st if st in why else "undecided", None, None, k,
-                                why.get(st, f"the solver failed ({st})"), hist,
-                                time.perf_counter() - t0)
-            x, Nn, change = _select_step(self, b, lam, N, z)
-            hist.append((lam, change))
-            if change <= tol:
-                return LimitRun(start, "converged", lam, x, k,
-                                f"fixed point after {k} limit solves", hist,
-                                time.perf_counter() - t0)
-            beta, best, since = _damped(beta, best, since, change)
-            N = N + beta * (Nn - N)
-        return LimitRun(start, "undecided", lam, x, max_iter,
-                        f"no fixed point within {max_iter} limit solves (last relative "
-                        f"change of the normal forces {hist[-1][1]:.3g})", hist,
-                        time.perf_counter() - t0)
+                failed = f"the solver failed ({st})"
+                return (st if st in why else "undecided"), why.get(st, failed)
+            return lam, b, z, lam
+
+        return _iterate(self, N_start, start, step, "limit solves", tol, max_iter)
+
+
+def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, what: str,
+             tol: float, max_iter: int) -> LimitRun:
+    """The fixed-point loop of both runs: ``step(N)`` solves one problem at the caps of
+    the normal forces N and gives (value, joint rows' right-hand sides, its solution,
+    the multiplier the state must carry), or (status, reason) where it has no answer;
+    then the state is selected (:func:`_select_step`) and the update damped
+    (:func:`_damped`) until the normal forces settle. ``what`` names the solves."""
+    t0 = time.perf_counter()
+    N = np.maximum(N_start, 0.0)
+    hist: list[tuple[float, float]] = []
+    beta, best, since = 1.0, math.inf, 0
+    value, x = math.nan, None
+    for k in range(1, max_iter + 1):
+        got = step(N)
+        if len(got) == 2:
+            return LimitRun(start, got[0], None, None, k, got[1], hist,
+                            time.perf_counter() - t0)
+        value, b, z, target = got
+        x, Nn, change = _select_step(capped, b, target, N, z)
+        hist.append((value, change))
+        if change <= tol:
+            return LimitRun(start, "converged", value, x, k,
+                            f"fixed point after {k} {what}", hist, time.perf_counter() - t0)
+        beta, best, since = _damped(beta, best, since, change)
+        N = N + beta * (Nn - N)
+    return LimitRun(start, "undecided", value, x, max_iter,
+                    f"no fixed point within {max_iter} {what} (last relative change of "
+                    f"the normal forces {hist[-1][1]:.3g})", hist, time.perf_counter() - t0)
 
 
 def _select_step(capped: CappedLimit, b: np.ndarray, target: float, N: np.ndarray,
@@ -372,7 +387,6 @@ def friction_fixed_point(capped: CappedLimit, unit: np.ndarray, load_factor: flo
     run's ``lam`` is the friction f."""
     import scipy.sparse as sp
 
-    t0 = time.perf_counter()
     cv, p = capped.cv, capped.prob
     ne, n = p.n_eq, p.n
     li = p.cols["lambda"].start
@@ -381,11 +395,7 @@ def friction_fixed_point(capped: CappedLimit, unit: np.ndarray, load_factor: flo
     fixed = np.where(unit > 0, 0.0, capped.f_pt)
     b_eq = p.b[:ne] - load_factor * live
     keep = sp.csc_matrix(A[:, :li])
-    N = np.maximum(N_start, 0.0)
-    hist: list[tuple[float, float]] = []
-    beta, best, since = 1.0, math.inf, 0
-    fk, x = math.nan, None
-    for k in range(1, max_iter + 1):
+    def step(N: np.ndarray) -> tuple:
         col = -(capped.M @ (unit * N))
         Af = sp.vstack([sp.hstack([keep[:ne], sp.csc_matrix((ne, 1))]),
                         sp.csc_matrix(([-1.0], ([0], [li])), shape=(1, n)),
@@ -403,20 +413,9 @@ def friction_fixed_point(capped: CappedLimit, unit: np.ndarray, load_factor: flo
             res = None
         if res is None or res.status != OPTIMAL:
             st = "failure" if res is None else res.status
-            return LimitRun(start, "infeasible" if st == "infeasible" else "undecided",
-                            None, None, k, f"the least-friction problem: {st}", hist,
-                            time.perf_counter() - t0)
+            return ("infeasible" if st == "infeasible" else "undecided",
+                    f"the least-friction problem: {st}")
         fk = float(res.z[li])
-        b = bj + fk * (capped.M @ (unit * N))
-        x, Nn, change = _select_step(capped, b, load_factor, N, res.z)
-        hist.append((fk, change))
-        if change <= tol:
-            return LimitRun(start, "converged", fk, x, k,
-                            f"fixed point after {k} least-friction solves", hist,
-                            time.perf_counter() - t0)
-        beta, best, since = _damped(beta, best, since, change)
-        N = N + beta * (Nn - N)
-    return LimitRun(start, "undecided", fk, x, max_iter,
-                    f"no fixed point within {max_iter} least-friction solves (last "
-                    f"relative change of the normal forces {hist[-1][1]:.3g})", hist,
-                    time.perf_counter() - t0)
+        return fk, bj + fk * (capped.M @ (unit * N)), res.z, load_factor
+
+    return _iterate(capped, N_start, start, step, "least-friction solves", tol, max_iter)
