@@ -190,7 +190,7 @@ def lmgc90_block(b: float, h: float, f: float) -> Scene:
 
 def lmgc90_pinched(f: float) -> Scene:
     """The unit block between a fixed base and a fixed lintel, both touching it (the
-    scene of tests/test_nonassociative.py)."""
+    scene of tests/conftest.py: pinched)."""
     return _scene2d([{"id": "base", "vertices": _rect(-1, -1, 3, 1), "support": True},
                      {"id": "B", "vertices": _rect(0, 0, 1, 1)},
                      {"id": "lintel", "vertices": _rect(-1, 1, 3, 1), "support": True}], f)

@@ -62,6 +62,17 @@ def make_scene(blocks, **top):
     return scene_from_dict(doc)
 
 
+def pinched(f=0.3, **top):
+    """A unit block between a fixed base and a fixed lintel, both touching it, under a
+    horizontal body force lambda W (W = 10): validation.md, "A block pinched between two
+    fixed parallel faces". ``top``: more scene keys (e.g. ``flow``)."""
+    return make_scene([
+        {"id": "base", "vertices": rect(-1, -1, 3, 1), "support": True},
+        {"id": "B", "vertices": rect(0, 0, 1, 1)},
+        {"id": "lintel", "vertices": rect(-1, 1, 3, 1), "support": True},
+    ], unit_weight=10.0, friction=f, live_body_force=[1, 0], **top)
+
+
 @pytest.fixture
 def block_on_base():
     """A b x h block on a wide support, unit weight 1, live horizontal body force."""

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import EXAMPLES, make_scene, rect
+from conftest import EXAMPLES, make_scene, pinched, rect
 
 import rigidblocks as rb
 from rigidblocks.analyses.na_bounds import safe_multiplier
@@ -44,16 +44,6 @@ def stack(n=3, f=0.3):
     blocks += [{"id": f"B{k}", "vertices": rect(0, k, 1, 1)} for k in range(n)]
     return make_scene(blocks, unit_weight=20.0, friction=f, live_body_force=[1, 0],
                       flow=NA)
-
-
-def pinched(f=0.8):
-    """A unit block between a fixed base and a fixed lintel, both touching it, under a
-    horizontal body force lambda W (W = 10)."""
-    return make_scene([
-        {"id": "base", "vertices": rect(-1, -1, 3, 1), "support": True},
-        {"id": "B", "vertices": rect(0, 0, 1, 1)},
-        {"id": "lintel", "vertices": rect(-1, 1, 3, 1), "support": True},
-    ], unit_weight=10.0, friction=f, live_body_force=[1, 0], flow=NA)
 
 
 def collapse_state_holds(scene, res, tol=1e-7, dilatancy=False):
@@ -160,7 +150,7 @@ def test_pinched_block_safe_value_is_f():
     and the least is the safe value. The frictionless bound is 0 (the block slides
     freely on frictionless faces); the capacity bound reaches 0.8 (the base carries at
     least W in every admissible state)."""
-    scene = pinched(0.8)
+    scene = pinched(0.8, flow=NA)
     res = safe_multiplier(scene, cut=False)
     assert res.capacity_bound == pytest.approx(0.8, rel=RTOL)
     assert res.status == "optimal"
@@ -228,7 +218,7 @@ def test_bounds_that_bind_give_no_value():
     state of the safe value (N_base = W at 0.4 from the centre: 9 on the front point)
     fits. The answer moves with the bound: no safe value, the least state found (0.8)
     as ``upper``."""
-    scene = pinched(0.8)
+    scene = pinched(0.8, flow=NA)
     res = safe_multiplier(scene, force_bound=5.0)
     assert res.status == "bound-dependent" and res.value is None
     assert res.upper == pytest.approx(0.8, rel=RTOL)

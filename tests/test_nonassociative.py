@@ -14,7 +14,7 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import EXAMPLES, make_scene, rect
+from conftest import EXAMPLES, make_scene, pinched, rect
 
 import rigidblocks as rb
 from rigidblocks.analyses.nonassociative import flow_mask, is_nonassociative
@@ -30,16 +30,6 @@ BOTH = ("clarabel", "distortion")
 #: the analyses bisect to 1e-5 relative (the first trial 1e-7 below the associative
 #: multiplier): a closed form is met to that
 RTOL = 2e-5
-
-
-def pinched(f=0.3):
-    """A unit block between a fixed base and a fixed lintel, both touching it, under a
-    horizontal body force lambda W (W = 10)."""
-    return make_scene([
-        {"id": "base", "vertices": rect(-1, -1, 3, 1), "support": True},
-        {"id": "B", "vertices": rect(0, 0, 1, 1)},
-        {"id": "lintel", "vertices": rect(-1, 1, 3, 1), "support": True},
-    ], unit_weight=10.0, friction=f, live_body_force=[1, 0])
 
 
 def block(b=1.0, h=2.0, f=0.3):
