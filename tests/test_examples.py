@@ -105,6 +105,60 @@ def test_cli_bad_parameters_exit_2(argv, capsys):
     assert err.startswith("rigidblocks: error:") and err.count("\n") == 1
 
 
+def _invalid(default):
+    """A value no parameter with this default takes (booleans, counts >= 1, finite
+    sizes, a choice among words, the wall's openings and the stack's offsets)."""
+    if isinstance(default, bool):
+        return "maybe"
+    if isinstance(default, int) or default is None:  # None: a count or a friction
+        return "-1"
+    if isinstance(default, float):
+        return "nan"
+    return "nope"
+
+
+#: the options that make a parameter count (it is ignored otherwise)
+_MODE = {("reference", "unit_weight"): ["--self-weight", "true"],
+         ("arch", "half_angle"): ["--shape", "segmental"],
+         ("arch", "pointedness"): ["--shape", "pointed"],
+         ("corbel_arch", "inclination"): ["--pattern", "inclined"]}
+_EVERY_PARAMETER = [(g.name, p.name) for g in available().values() for p in g.params]
+
+
+@pytest.mark.parametrize("name, param", _EVERY_PARAMETER,
+                         ids=[f"{g}-{p}" for g, p in _EVERY_PARAMETER])
+def test_cli_error_names_the_option_as_typed(name, param, capsys):
+    """`example NAME --some-param BAD` says `example NAME: --some-param ...` on one line
+    and exits 2: the option the user typed, not the Python function or argument
+    (`running_bond_wall: blocks_per_course must be ...`)."""
+    gen = GENERATORS[name]
+    option = "--" + param.replace("_", "-")
+    value = _invalid(next(p.default for p in gen.params if p.name == param))
+    assert main(["example", name, *_MODE.get((name, param), []), option, value]) == 2
+    err = capsys.readouterr().err
+    head = f"rigidblocks: error: example {name}: {option} "
+    assert err.startswith(head) and err.count("\n") == 1, err
+    function, rest = gen.target.split(":")[1], err[len(head):]
+    assert f"{function}:" not in rest and ("_" not in param or param not in rest), err
+
+
+@pytest.mark.parametrize("argv, line", [
+    (["wall", "--blocks_per_course=0"],
+     "example wall: --blocks_per_course must be an integer >= 1, got 0"),
+    (["corbel_dome", "--overhang", "0.6"],  # a parameter not typed: as --list spells it
+     "example corbel_dome: --overhang must be < --ring_thickness (0.5) so that consecutive "
+     "rings overlap, got 0.6"),
+    (["keyed_wall", "--base-friction", "-1"],  # not the scene's friction
+     "example keyed_wall: --base-friction must be >= 0, got -1.0"),
+    (["box_stack", "--offset", "1.5"],
+     "example box_stack: --offset: box1 does not overlap box0 (shift (1.5, 0), a box is "
+     "1 x 1)"),
+])
+def test_cli_error_lines(argv, line, capsys):
+    assert main(["example", *argv]) == 2
+    assert capsys.readouterr().err == f"rigidblocks: error: {line}\n"
+
+
 def _example_files():
     return sorted(EXAMPLES.glob("*.json"))
 

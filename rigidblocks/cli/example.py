@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import re
 import sys
+from collections.abc import Mapping
 from typing import Any
 
 from ..errors import InputError
@@ -18,8 +20,13 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                    help="--PARAM VALUE pairs of the generator")
 
 
-def parse_params(gen, tokens: list[str]) -> dict[str, Any]:
-    """``--name value`` pairs, converted after the type of each parameter's default."""
+def parse_params(gen, tokens: list[str],
+                 typed: dict[str, str] | None = None) -> dict[str, Any]:
+    """``--name value`` pairs, converted after the type of each parameter's default.
+
+    ``typed``, when given, receives each parameter's option as the user wrote it
+    (``"blocks_per_course" -> "--blocks-per-course"``), for :func:`as_options`.
+    """
     known = {p.name: p for p in gen.params}
     out: dict[str, Any] = {}
     i = 0
@@ -27,35 +34,37 @@ def parse_params(gen, tokens: list[str]) -> dict[str, Any]:
         tok = tokens[i]
         if not tok.startswith("--"):
             raise InputError(f"example {gen.name}: expected --PARAM VALUE, got {tok!r}")
-        key = tok[2:].replace("-", "_")
-        if "=" in key:
-            key, value = key.split("=", 1)
+        option, value = tok.split("=", 1) if "=" in tok else (tok, None)
+        key = option[2:].replace("-", "_")
+        if value is not None:
             i += 1
         else:
             if i + 1 >= len(tokens):
-                raise InputError(f"example {gen.name}: --{key} needs a value")
+                raise InputError(f"example {gen.name}: {option} needs a value")
             value = tokens[i + 1]
             i += 2
         if key not in known:
-            raise InputError(f"example {gen.name}: unknown parameter --{key} (parameters: "
+            raise InputError(f"example {gen.name}: unknown parameter {option} (parameters: "
                              f"{', '.join(known)})")
-        out[key] = convert(gen.name, key, value, known[key].default)
+        out[key] = convert(gen.name, option, value, known[key].default)
+        if typed is not None:
+            typed[key] = option
     return out
 
 
-def convert(gen: str, key: str, value: str, default: Any) -> Any:
+def convert(gen: str, option: str, value: str, default: Any) -> Any:
     """A command-line string as the type of ``default`` (numbers may also be words like
-    "infinite", which the generator then validates)."""
+    "infinite", which the generator then validates); errors name ``option`` as typed."""
     if isinstance(default, bool):
         low = value.lower()
         if low not in ("true", "false", "1", "0", "yes", "no"):
-            raise InputError(f"example {gen}: --{key} must be true or false, got {value!r}")
+            raise InputError(f"example {gen}: {option} must be true or false, got {value!r}")
         return low in ("true", "1", "yes")
     if isinstance(default, int):
         try:
             return int(value)
         except ValueError:
-            raise InputError(f"example {gen}: --{key} must be an integer, got {value!r}") \
+            raise InputError(f"example {gen}: {option} must be an integer, got {value!r}") \
                 from None
     if isinstance(default, float):
         try:
@@ -74,9 +83,38 @@ def convert(gen: str, key: str, value: str, default: Any) -> Any:
             return [tuple(int(v) for v in item.split(",")) for item in value.split(";")
                     if item.strip()]
         except ValueError:
-            raise InputError(f"example {gen}: --{key} must look like 'a,b,c,d;a,b,c,d', got "
+            raise InputError(f"example {gen}: {option} must look like 'a,b,c,d;a,b,c,d', got "
                              f"{value!r}") from None
     return value
+
+
+_PREFIX = re.compile(r"(\w+): ")
+_WORD = re.compile(r"(?<![\w#'-])[A-Za-z_]\w*")
+
+
+def as_options(err: InputError, gen, typed: Mapping[str, str]) -> InputError:
+    """The generator's error ``err`` in the command line's words.
+
+    A generator's message reads ``"function: parameter must ..."`` (the Python names).
+    Here it reads ``"example NAME: --option must ..."``: the function's name gives way
+    to the command's, and the parameter the message is about (its first word) and any
+    other parameter it names with an underscore (``ring_thickness``: never a word of
+    prose) become options, spelled as the user typed them (``typed``, from
+    :func:`parse_params`) or, when not typed, as ``--list`` shows them.
+    """
+    names = {p.name for p in gen.params}
+    text = str(err)
+    prefix = _PREFIX.match(text)
+    if prefix and prefix.group(1) not in names:
+        text = text[prefix.end():]
+
+    def option(word: re.Match) -> str:
+        name = word.group(0)
+        if name in names and (word.start() == 0 or "_" in name):
+            return typed.get(name, f"--{name}")
+        return name
+
+    return InputError(_WORD.sub(option, text), f"example {gen.name}")
 
 
 def listing() -> str:
@@ -119,7 +157,12 @@ def run(args: argparse.Namespace) -> int:
         del tokens[k:k + 2]
     if args.output:
         output_path(args.output)  # before any work
-    scene = gen(**parse_params(gen, tokens))
+    typed: dict[str, str] = {}
+    params = parse_params(gen, tokens, typed)
+    try:
+        scene = gen(**params)
+    except InputError as err:
+        raise as_options(err, gen, typed) from None
     if args.output:
         write_scene(scene, args.output)
         print(f"wrote {args.output}: {scene.name} ({len(scene.blocks)} blocks)",
@@ -129,4 +172,5 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-__all__ = ["add_args", "run", "parse_params", "convert", "listing", "describe"]
+__all__ = ["add_args", "run", "parse_params", "convert", "as_options", "listing",
+           "describe"]

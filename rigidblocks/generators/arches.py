@@ -56,13 +56,13 @@ def choice(name: str, value: Any, options: Sequence[str], gen: str) -> str:
     return str(value)
 
 
-def friction_param(value: Any, gen: str) -> float | str:
-    """A generator's friction parameter as the scene stores it (a number or
-    "infinite"), or an error naming the generator."""
+def friction_param(value: Any, gen: str, name: str = "friction") -> float | str:
+    """A generator's friction parameter ``name`` as the scene stores it (a number or
+    "infinite"), or an error naming the generator and the parameter."""
     try:
         return friction_label(value)  # type: ignore[return-value]
-    except InputError as err:
-        raise InputError(f"{gen}: {err}") from None
+    except InputError as err:  # "friction must be ...": the parameter's name for its own
+        raise InputError(f"{gen}: {str(err).replace('friction', name, 1)}") from None
 
 
 def _num(name: str, value: Any, gen: str) -> float:
@@ -200,9 +200,9 @@ def arch(shape: str = "semicircular", voussoirs: int | None = None, thickness: f
             blocks, right, left = _vertical_ring(0.0, ri, ro, t0, t1, n, k, g)
     else:
         if joints == "vertical":
-            raise InputError(f"{g}: a pointed arch takes radial joints only")
+            raise InputError(f"{g}: joints must be radial in a pointed arch, got {joints!r}")
         if n % 2:
-            raise InputError(f"{g}: a pointed arch needs an even number of voussoirs, got {n}")
+            raise InputError(f"{g}: voussoirs must be an even number in a pointed arch, got {n}")
         e = R * non_negative("pointedness", pointedness, g)
         if not e < ri:
             raise InputError(f"{g}: pointedness must be < 1 - t/(2R) so that the intrados "
@@ -212,7 +212,7 @@ def arch(shape: str = "semicircular", voussoirs: int | None = None, thickness: f
         tc = math.acos(e / R)
         ts = np.linspace(0.0, tc, m + 1)
         if m > 1 and not math.acos(e / ri) > ts[m - 1]:
-            raise InputError(f"{g}: with {n} voussoirs the last radial joint of a pointed "
+            raise InputError(f"{g}: voussoirs: with {n}, the last radial joint of a pointed "
                              "arch passes the crown at the intrados; use fewer voussoirs, "
                              "a thinner ring or a smaller pointedness")
         half = []
@@ -254,7 +254,7 @@ def _vertical_ring(cx: float, ri: float, ro: float, t0: float, t1: float, n: int
     for i in range(n):
         piece = ring.intersection(box(xs[i], y0, xs[i + 1], y1))
         if piece.geom_type != "Polygon":
-            raise InputError(f"{g}: vertical joints cut voussoir {i + 1} in pieces; use "
+            raise InputError(f"{g}: voussoirs: vertical joints cut voussoir {i + 1} in pieces; use "
                              "fewer voussoirs or radial joints")
         pts = list(piece.exterior.coords)[:-1]
         blocks.append(block(f"v{i + 1}", pts))

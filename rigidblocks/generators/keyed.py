@@ -81,7 +81,7 @@ def keyed_wall(courses: int = 6, blocks_per_course: int = 3, block_length: float
     k = non_negative("key_height", key_height, g)
     uw = non_negative("unit_weight", unit_weight, g)
     fr = friction_param(friction, g)
-    fb = None if base_friction is None else friction_param(base_friction, g)
+    fb = None if base_friction is None else friction_param(base_friction, g, "base_friction")
     H = _number("horizontal_load", horizontal_load, g)
     if k > 0 and not w < t:
         raise InputError(f"{g}: key_width must be < thickness, got {w:g} >= {t:g}")

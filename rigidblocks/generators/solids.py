@@ -194,12 +194,14 @@ def box_stack(boxes: int = 4, width: float = 1.0, length: float = 1.0,
     az = math.radians(_number("load_azimuth", load_azimuth, g))
     uw = non_negative("unit_weight", unit_weight, g)
     fr = friction_param(friction, g)
-    centres = _offsets(offsets, n, g) or [(k * s, 0.0) for k in range(n)]
+    given = _offsets(offsets, n, g)
+    centres = given or [(k * s, 0.0) for k in range(n)]
     for k in range(1, n):
         (x0, y0), (x1, y1) = centres[k - 1], centres[k]
         if abs(x1 - x0) >= b or abs(y1 - y0) >= a:
-            raise InputError(f"{g}: box{k} does not overlap box{k - 1} (shift "
-                             f"({x1 - x0:g}, {y1 - y0:g}) with boxes {b:g} x {a:g})")
+            shift = "offsets" if given else "offset"
+            raise InputError(f"{g}: {shift}: box{k} does not overlap box{k - 1} (shift "
+                             f"({x1 - x0:g}, {y1 - y0:g}), a box is {b:g} x {a:g})")
     xs = [c[0] for c in centres]
     ys = [c[1] for c in centres]
     mx, my = b + a, b + a
@@ -264,7 +266,7 @@ def corbel_dome(rings: int = 5, blocks_per_ring: int = 12, radius: float = 2.0,
                          f"consecutive rings overlap, got {o:g}")
     r_top = R - (n - 1) * o
     if not r_top > 0:
-        raise InputError(f"{g}: the top ring would close past the axis (inner radius "
+        raise InputError(f"{g}: rings: the top ring would close past the axis (inner radius "
                          f"{r_top:g} <= 0); use fewer rings or a smaller overhang")
     side = R + 2 * w
     blocks = [solid("slab", box(-side, -side, -h, 2 * side, 2 * side, h), support=True)]
@@ -337,7 +339,7 @@ def barrel_vault(voussoirs: int = 9, thickness: float = 0.15, radius: float = 2.
     if ratio >= 2:
         raise InputError(f"{g}: thickness ratio t/R must be < 2, got {ratio:g}")
     if bond == "running" and n < 2:
-        raise InputError(f"{g}: running bond needs at least 2 voussoirs, got {n}")
+        raise InputError(f"{g}: voussoirs must be >= 2 in a running bond, got {n}")
     ri, ro = R * (1 - ratio / 2), R * (1 + ratio / 2)
     a = math.radians(a)
     t0, t1 = math.pi / 2 - a, math.pi / 2 + a

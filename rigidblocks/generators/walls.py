@@ -118,22 +118,22 @@ def running_bond_wall(courses: int = 10, blocks_per_course: int = 10, block_leng
     for k, op in enumerate(openings):
         if not (isinstance(op, Sequence) and len(op) == 4 and all(
                 isinstance(v, int | np.integer) and not isinstance(v, bool) for v in op)):
-            raise InputError(f"running_bond_wall: opening #{k} must be 4 integers "
+            raise InputError(f"running_bond_wall: openings item #{k} must be 4 integers "
                              f"(first_course, n_courses, first_block, n_blocks), got {op!r}")
         c0, nc, b0, nbk = (int(v) for v in op)
         if c0 < 0 or nc < 1 or b0 < 0 or nbk < 1 or c0 + nc > C or b0 + nbk > N + 1:
-            raise InputError(f"running_bond_wall: opening #{k} {tuple(op)!r} does not fit a "
+            raise InputError(f"running_bond_wall: openings item #{k} {tuple(op)!r} does not fit a "
                              f"wall of {C} courses and {N} blocks per course "
                              f"(need 0 <= first, n >= 1, courses up to {C}, blocks up to "
                              f"{N} in even and {N + 1} in odd courses)")
         if b0 + nbk > N and np.any((np.arange(c0, c0 + nc) % 2) == 0):
-            raise InputError(f"running_bond_wall: opening #{k} {tuple(op)!r} reaches block "
+            raise InputError(f"running_bond_wall: openings item #{k} {tuple(op)!r} reaches block "
                              f"index {b0 + nbk - 1}, past the last block ({N - 1}) of an even "
                              "course")
         hit = ((course_of >= c0) & (course_of < c0 + nc) & (index >= b0) & (index < b0 + nbk))
         keep &= ~hit
     if not keep.any():
-        raise InputError("running_bond_wall: the openings remove every block")
+        raise InputError("running_bond_wall: openings remove every block")
     course_of, index, left2, right2 = course_of[keep], index[keep], left2[keep], right2[keep]
 
     half = 0.5 * L
