@@ -522,3 +522,31 @@ def test_cli_names_the_starts_and_bounds(tmp_path, capsys):
     assert "from the associative collapse state: lambda = 0.7142857" in line
     assert "spread" not in line
     assert any(s.startswith("bounds     [0, 0.770492]") for s in out.splitlines())
+
+
+@pytest.mark.parametrize("method", ["clarabel", "distortion"])
+def test_verbose_notes_name_the_associative_bound(method, capsys):
+    """The associative step's note on its own lambda* (its bracket, asked at 1e-9) is
+    about the upper bound, not the non-associative answer: `load --flow
+    non-associative --verbose` words it so, with the associative analysis's multiplier
+    (a cross-check: the Arpino gate, associative 0.1227975, non-associative 0.1187021
+    on the convex path), and the JSON carries the same note under the same keys."""
+    path = str(EXAMPLES / "arpino_gate.json")
+    assoc = rb.max_load_multiplier(read_scene(path), state=False).load_multiplier
+    assert main(["load", path, "--flow", NA, "--method", method, "--verbose"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    notes = [s[11:] for s in lines if s.startswith("note ")]
+    on_bound = [n for n in notes if "the upper end by value" in n]
+    assert len(on_bound) == 1, notes
+    assert on_bound[0].startswith(
+        "on the associative multiplier lambda_a (the upper bound), not on the "
+        f"non-associative answer: lambda_a = {assoc:.7g} is the solver's answer")
+    assert not any("lambda*" in n for n in notes), notes
+    answer = next(s for s in lines if s.startswith("answer"))
+    if method == "clarabel":  # an answer below the bound: the note is not about it
+        assert f"lambda* = {assoc:.6g}" not in answer
+    assert main(["load", path, "--flow", NA, "--method", method, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert on_bound[0] in out["notes"]
+    assert main(["load", path, "--method", method, "--json"]) == 0
+    assert set(json.loads(capsys.readouterr().out)) <= set(out)

@@ -136,6 +136,28 @@ LIMIT_NOTE = ("non-associative sliding (no dilatancy): the answer is a collapse 
               "states are not unique, and other starts may give other answers")
 
 
+#: how a non-associative result shows the associative step's notes on its own lambda*
+#: (its bracket, its accuracy, its mechanism), which is the upper bound, not the answer
+ASSOC_NOTE = ("on the associative multiplier lambda_a (the upper bound), not on the "
+              "non-associative answer: ", "lambda_a")
+
+
+def _bound_notes(na: NonAssociative, cv: ConvexMethod, seen: int, symbol: str,
+                 wording: tuple[str, str]) -> None:
+    """The notes the bound's own analysis added to ``cv`` (from index ``seen`` on) as a
+    non-associative result shows them: those on the bound's number (naming ``symbol``,
+    which the result's answer is also called) say so, ``wording`` = (prefix, the
+    bound's symbol in their text), in ``cv``'s notes and in ``na``'s (the same list on
+    the convex path; merged once on the distortion path). The rest (tolerances, the
+    dead load) are the run's and stay as they are."""
+    prefix, name = wording
+    for k in range(seen, len(cv.notes)):
+        if symbol in cv.notes[k]:
+            cv.notes[k] = prefix + cv.notes[k].replace(symbol, name)
+            if cv.notes is not na.notes and cv.notes[k] not in na.notes:
+                na.notes.append(cv.notes[k])
+
+
 def flow_mask(scene: Scene, contacts: Any, flow: str | None = None) -> np.ndarray:
     """(m,) True where a joint slides without dilatancy.
 
@@ -516,7 +538,9 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
                          "live_body_force): there is nothing to multiply", scene.source)
     f = friction_value(scene.effective_friction if friction is None else friction)
     na, cv = _open(scene, method, flow, **kw)
+    seen = len(cv.notes)
     up = cv.load_limit(f, 1e-9)
+    _bound_notes(na, cv, seen, "lambda*", ASSOC_NOTE)
     # the associative multiplier, within round-off below 0 taken as 0 (as the
     # associative analysis reports it)
     hi = (up.value if up.value > 0 else 0.0) if up.status == "collapse" else None
