@@ -5,7 +5,7 @@ Every generator returns a validated 3D :class:`~rigidblocks.scene.Scene` (z up, 
 load multiplier is a collapse acceleration in g; impossible parameters raise
 :class:`~rigidblocks.errors.InputError` with a one-line message. Lengths are in metres,
 forces in kN, unit weights in kN/m^3. Every block is a convex polyhedron given by its
-corners and faces (the reader orients the faces outward).
+corners and its faces, each counter-clockwise seen from outside.
 """
 
 from __future__ import annotations
@@ -19,6 +19,7 @@ import numpy as np
 from ..errors import InputError
 from ..io.scene_file import scene_from_dict
 from ..scene.model import Scene
+from ..scene.polyhedra import prism_faces
 from .arches import _num as _number
 from .arches import _r, choice, friction_param, integer, non_negative, positive
 
@@ -29,16 +30,14 @@ BONDS = ("stack", "running")
 # -- plumbing ------------------------------------------------------------------------
 def prism(bottom: Sequence[Sequence[float]], top: Sequence[Sequence[float]]) -> tuple[
         list[list[float]], list[list[int]]]:
-    """Vertices and faces of the convex solid between two congruent polygons.
+    """Vertices and faces of the solid between two congruent polygons.
 
     ``bottom[k]`` and ``top[k]`` are joined by an edge; the faces are the two caps and
-    one quadrilateral per side (orientation is left to the scene reader).
+    one quadrilateral per side, each counter-clockwise seen from outside
+    (:func:`~rigidblocks.scene.polyhedra.prism_faces`).
     """
-    n = len(bottom)
     verts = [[_r(c) for c in p] for p in (*bottom, *top)]
-    faces = [list(range(n)), list(range(2 * n - 1, n - 1, -1))]
-    faces += [[k, (k + 1) % n, n + (k + 1) % n, n + k] for k in range(n)]
-    return verts, faces
+    return verts, prism_faces(verts[:len(bottom)], verts[len(bottom):])
 
 
 def box(x0: float, y0: float, z0: float, a: float, b: float, c: float) -> tuple[

@@ -5,6 +5,7 @@ from __future__ import annotations
 from ..errors import InputError
 from .geometry import ccw, signed_area
 from .model import Block, Load, Scene
+from .polyhedra import prism_faces
 
 
 def extrude(scene: Scene, depth: float | None = None) -> Scene:
@@ -27,13 +28,10 @@ def extrude(scene: Scene, depth: float | None = None) -> Scene:
         poly = ccw(b.points)
         if signed_area(poly) <= 0:
             raise InputError("polygon has zero area", f"block {b.id!r}")
-        n = len(poly)
-        verts = [(float(x), 0.0, float(y)) for x, y in poly] + \
-                [(float(x), t, float(y)) for x, y in poly]
-        # outward orientation: the front face (y = 0) seen from -y is clockwise in (x, z)
-        faces = [tuple(range(n)), tuple(range(2 * n - 1, n - 1, -1))]
-        faces += [(k, n + k, n + (k + 1) % n, (k + 1) % n) for k in range(n)]
-        blocks.append(Block(b.id, tuple(verts), tuple(faces), b.support, b.unit_weight))
+        front = [(float(x), 0.0, float(y)) for x, y in poly]
+        back = [(float(x), t, float(y)) for x, y in poly]
+        faces = tuple(map(tuple, prism_faces(front, back)))
+        blocks.append(Block(b.id, (*front, *back), faces, b.support, b.unit_weight))
 
     def v3(v):
         return None if v is None else (float(v[0]), 0.0, float(v[1]))

@@ -236,6 +236,29 @@ def _signed_volume(local: np.ndarray, faces: list[np.ndarray]) -> float:
     return float((a * _cross(b, c)).sum()) / 6.0
 
 
+def prism_faces(bottom: Sequence[Sequence[float]], top: Sequence[Sequence[float]]
+                ) -> list[list[int]]:
+    """The faces of the prism on the vertices ``bottom`` (n points, indices 0..n-1) then
+    ``top`` (n..2n-1), ``top[k]`` joined to ``bottom[k]`` by an edge: the two caps and
+    one quadrilateral per side, each counter-clockwise seen from outside (its normal by
+    the right-hand rule points out), whichever way ``bottom`` turns about the prism's
+    axis; the caps are planar simple polygons, convex or not.
+
+    What the generators and ``extrude`` write: the scene format's reader orients any
+    faces itself, but tools that read the files without doing so need them outward.
+    """
+    n = len(bottom)
+    b = np.asarray(bottom, dtype=float)
+    normal = _newell(b - b[0], [np.arange(n)])[0][0]
+    axis = np.asarray(top, dtype=float).mean(axis=0) - b.mean(axis=0)
+    # bottom turning clockwise about the axis (its normal away from the top): outward
+    faces = [list(range(n)), list(range(2 * n - 1, n - 1, -1))]
+    faces += [[k, n + k, n + (k + 1) % n, (k + 1) % n] for k in range(n)]
+    if normal @ axis > 0:  # counter-clockwise: every face the other way round
+        faces = [[f[0], *f[:0:-1]] for f in faces]
+    return faces
+
+
 def outward_faces(block: Block) -> list[np.ndarray]:
     """The block's faces as vertex-index arrays ordered counter-clockwise seen from outside."""
     return list(shape(block).faces)
