@@ -494,6 +494,11 @@ def _num(x: Any, status: str = "-") -> str:
     return f"{x:.5f}" if math.isfinite(x) else "unbounded"
 
 
+def _percent(gap: float) -> str:
+    """A relative gap in percent, to 0.1% (0.01% below 0.05%, which would read 0.0%)."""
+    return f"{gap:.1%}" if gap >= 5e-4 else f"{gap:.2%}"
+
+
 def lmgc90_verdict(row: dict[str, Any], key: str) -> str:
     """Where our multiplier ``key`` lies against LMGC90's bracket (both time steps):
     inside, below (safe side) or above (unsafe side), with the relative gap."""
@@ -505,9 +510,9 @@ def lmgc90_verdict(row: dict[str, Any], key: str) -> str:
     if not math.isfinite(x):
         return "above (unbounded)"
     if x < lo:
-        return f"below by {(lo - x) / lo:.1%}"
+        return f"below by {_percent((lo - x) / lo)}"
     if x > hi:
-        return f"above by {(x - hi) / hi:.1%}"
+        return f"above by {_percent((x - hi) / hi)}"
     return "inside"
 
 
