@@ -587,7 +587,8 @@ def lmgc90_other_markdown(rows: list[dict[str, Any]]) -> str:
           "The test of `bench_nonassoc_lmgc90.md` on chosen cases, with another threshold "
           "(the travel over the last quarter of the run that makes a trial move, relative "
           "to the smallest block, and in metres) or run time; dt = "
-          f"{LMGC90_DT:g} s and dt / 2 as there. Each row's command is given (run from "
+          f"{LMGC90_DT:g} s and dt / 2 as there (\"same\": the dt bracket's ends hold at "
+          "dt / 2; else a new bisection at dt / 2). Each row's command is given (run from "
           "the repository's root).", "",
           markdown_table(
               ["case", "f", "threshold", "duration (s)", "LMGC90 dt", "LMGC90 dt/2",
