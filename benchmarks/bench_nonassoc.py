@@ -547,8 +547,9 @@ def lmgc90_markdown(rows: list[dict[str, Any]], skipped: str,
            f"{LMGC90_DURATION:g} s at dt = {LMGC90_DT:g} s; at dt / 2 the two ends of "
            "that bracket are run again (\"same\": the lower end stands and the upper "
            "one moves at dt / 2 too; else a new bisection at dt / 2); a trial "
-           f"moves when a block's centroid travels more than {_tol(LMGC90_MOVE_TOL)} of the "
-           "smallest block over the last quarter of the run (a slip that arrests does not count); "
+           f"moves when a block's centroid travels more than {_tol(LMGC90_MOVE_TOL)} of "
+           "the smallest block over the last quarter of the run (a slip that arrests "
+           "does not count); "
            f"bisection to {LMGC90_RTOL:g} relative. CRA: compas_cra (Kao et al. 2022, "
            "Eq. 11, d_bnd = 0.1, eps = 0) on the assembly tilted by atan(lambda), "
            "bisected on its verdict (solved: stands; infeasible: collapses), cases up "
@@ -627,19 +628,19 @@ def lmgc90_other(out: str | None, python: str, rows: list[dict[str, Any]]
 
 def lmgc90_section(out: str | None, python_arg: str | None, tiny: bool,
                    timeout: float = 1800.0, cases: Sequence[str] | None = None,
-                   move_tol: float | None = None, duration: float | None = None
-                   ) -> dict[str, Any]:
+                   move_tol: float | None = None, duration: float | None = None,
+                   command: str = "") -> dict[str, Any]:
     """Run the LMGC90 comparison (or say why not) and write bench_nonassoc_lmgc90;
-    with chosen ``cases`` (names), ``move_tol`` or ``duration``, add those runs to
-    :data:`LMGC90_OTHER` instead."""
+    with chosen ``cases`` (names), ``move_tol`` or ``duration``, add those runs (and
+    the ``command`` that ran them) to :data:`LMGC90_OTHER` instead."""
     python, skipped = lmgc90_python(python_arg)
-    if python is None and (cases or move_tol or duration):
+    other = bool(cases or move_tol or duration)
+    if python is None and other:
         print(skipped, flush=True)  # the recorded tables are left as they are
         return {"skipped": skipped, "rows": []}
-    if cases or move_tol or duration:
+    if other:
         chosen = [c for c in lmgc90_cases(tiny) if not cases or c["name"] in cases]
-        stamp = {"command": shlex.join(["python", "benchmarks/bench_nonassoc.py",
-                                        *sys.argv[1:]]),
+        stamp = {"command": command,
                  "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
 
         def add(rows: list[dict[str, Any]]) -> dict[str, Any]:
@@ -774,6 +775,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
             p.error(f"--{opt.replace('_', '-')}: must be a positive number, not {v:g}")
     other = {"cases": args.lmgc90_case, "move_tol": args.lmgc90_move_tol,
              "duration": args.lmgc90_duration}
+    command = shlex.join(["python", "benchmarks/bench_nonassoc.py",
+                          *(sys.argv[1:] if argv is None else argv)])
     if args.redraw:
         doc = read_results(args.out, "bench_nonassoc_lmgc90")
         rewrite_results(args.out, "bench_nonassoc_lmgc90", doc,
@@ -788,7 +791,7 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         return {"lmgc90": lmgc90_ours_again(args.out)}
     if args.only == "lmgc90" or any(v is not None for v in other.values()):
         return {"lmgc90": lmgc90_section(args.out, args.lmgc90_python, args.tiny,
-                                         **other)}
+                                         command=command, **other)}
     large = large_walls(TINY_LARGE if args.tiny else LARGE_WALLS, LARGE_FRICTIONS,
                         args.large_walls)
     sizes = TINY_WALLS if args.tiny else WALLS
