@@ -17,6 +17,8 @@
    single blocks, the pinched block and running-bond walls in and out of plane
    (``bench_nonassoc_lmgc90.json`` and ``.md``; skipped, with the reason, without the
    peer; ``--only lmgc90`` runs this part alone, ``--redraw`` rewrites its table).
+   ``--lmgc90-case NAME``, ``--lmgc90-move-tol REL`` and ``--lmgc90-duration S`` run
+   chosen cases at another threshold or run time, into ``bench_nonassoc_lmgc90_tol``.
 
 Run as ``python benchmarks/bench_nonassoc.py [--tiny] [--out DIR]``; it writes
 ``bench_nonassoc.json``, ``bench_nonassoc.md`` and ``bench_nonassoc.png`` (see
@@ -29,6 +31,7 @@ import argparse
 import json
 import math
 import os
+import shlex
 import subprocess
 import sys
 import tempfile
@@ -153,10 +156,17 @@ def chart(data: list[dict[str, Any]], path: Path) -> None:
 #: else this path
 LMGC90_RUNNER = Path(__file__).resolve().parent / "lmgc90_runner.py"
 LMGC90_DEFAULT = "/work/venv-peer/bin/python"
-#: the tilting-table test: time step (s), duration (s), bracket width (relative)
+#: the tilting-table test: time step (s), duration (s), bracket width (relative), and
+#: the travel over the last quarter of the run that makes a trial move (relative to the
+#: smallest free block)
 LMGC90_DT = 1e-3
 LMGC90_DURATION = 1.0
 LMGC90_RTOL = 1e-3
+LMGC90_MOVE_TOL = 1e-5
+#: the results of runs at another threshold or duration, or of chosen cases
+#: (``--lmgc90-move-tol``, ``--lmgc90-duration``, ``--lmgc90-case``), kept apart from
+#: the table of the default run
+LMGC90_OTHER = "bench_nonassoc_lmgc90_tol"
 #: compas_cra's CRA-penalty bisected on the tilt up to this many free blocks
 CRA_UP_TO = 12
 #: the time steps of the pinched block's series (its bracket depends on dt)
@@ -268,13 +278,16 @@ def _run_peer_script(python: str, script: Path, args: list[str], case: dict,
 
 
 def lmgc90_tilt(python: str, scene3d: Scene, guess: float, dt: float, tmp: Path,
-                timeout: float, check: Sequence[float] | None = None) -> dict:
+                timeout: float, check: Sequence[float] | None = None,
+                move_tol: float = LMGC90_MOVE_TOL, duration: float = LMGC90_DURATION
+                ) -> dict:
     """LMGC90's bracket of the multiplier at which the scene starts to move (with
     ``check``: only whether that bracket holds at this time step)."""
     direction = [float(x) for x in scene3d.live_body_force]
     case = {"name": scene3d.name, "mu": float(scene3d.friction),
             "blocks": lmgc90_blocks(scene3d), "direction": direction, "dt": dt,
-            "duration": LMGC90_DURATION, "rtol": LMGC90_RTOL, "guess": guess,
+            "duration": duration, "move_tol_rel": move_tol, "rtol": LMGC90_RTOL,
+            "guess": guess,
             "density": 1000.0 * scene3d.effective_unit_weight / 9.81,
             **({"check": list(check)} if check else {})}
     out = _run_peer_script(python, LMGC90_RUNNER, [], case, tmp, timeout)
@@ -379,37 +392,43 @@ def _finite(x: Any) -> float | None:
 
 
 def lmgc90_rows(python: str, tiny: bool, timeout: float, log=sys.stdout,
-                done: Any = None) -> list[dict[str, Any]]:
-    """Every case: ours, LMGC90 at dt and dt / 2 (and the case's series of time
-    steps), CRA (small cases); ``done(rows)`` after each case."""
+                done: Any = None, cases: Sequence[dict[str, Any]] | None = None,
+                move_tol: float = LMGC90_MOVE_TOL, duration: float = LMGC90_DURATION
+                ) -> list[dict[str, Any]]:
+    """Every case (or those of ``cases``): ours, LMGC90 at dt and dt / 2 (and the
+    case's series of time steps), CRA (small cases); ``done(rows)`` after each case.
+    ``move_tol`` and ``duration``: the trials' threshold and run time."""
     from bench_peer import loadavg
 
     rows = []
+    trial = {"move_tol": move_tol, "duration": duration}
     with tempfile.TemporaryDirectory() as tmpd:
         tmp = Path(tmpd)
-        for case in lmgc90_cases(tiny):
+        for case in lmgc90_cases(tiny) if cases is None else cases:
             scene = case["scene"]
             s3 = extrude(scene) if scene.dimension == 2 else scene
             free = sum(not b.support for b in scene.blocks)
             row: dict[str, Any] = {"name": case["name"], "blocks": free,
                                    "friction": float(scene.friction),
                                    "closed": case["closed"], "basis": case["basis"],
-                                   "dimension": scene.dimension, "loadavg_start": loadavg()}
+                                   "dimension": scene.dimension, **trial,
+                                   "loadavg_start": loadavg()}
             row["ours"] = lmgc90_ours(scene, extruded=free <= EXTRUDED_UP_TO)
             # the first trial off our answer, so that no bracket end is ours
             guess = 1.01 * (_finite(row["ours"]["na"]) or _finite(row["ours"]["assoc"])
                             or 1.0)
-            row["lmgc90"] = lmgc90_tilt(python, s3, guess, LMGC90_DT, tmp, timeout)
+            row["lmgc90"] = lmgc90_tilt(python, s3, guess, LMGC90_DT, tmp, timeout,
+                                        **trial)
             # halving the time step: the bracket's two ends again, bisected anew only
             # where they no longer hold
             row["lmgc90_half"] = lmgc90_tilt(python, s3, guess, LMGC90_DT / 2, tmp, timeout,
-                                             check=row["lmgc90"].get("bracket"))
+                                             check=row["lmgc90"].get("bracket"), **trial)
             if row["lmgc90_half"].get("status") == "changed":
                 row["lmgc90_half"] = lmgc90_tilt(python, s3, guess, LMGC90_DT / 2, tmp,
-                                                 timeout)
+                                                 timeout, **trial)
             row["lmgc90_series"] = [
                 {"dt": dt, "bracket": lmgc90_tilt(python, s3, guess, dt, tmp,
-                                                  timeout).get("bracket")}
+                                                  timeout, **trial).get("bracket")}
                 for dt in case.get("dt_series", ())]
             if free <= CRA_UP_TO:
                 row["cra"] = cra_tilt(python, s3, guess, tmp, timeout)
@@ -461,10 +480,23 @@ def _penalty(r: dict | None) -> str:
                       for q in p)
 
 
+def _tol(x: float) -> str:
+    """A threshold as 1e-5, 2e-6, 1.5e-4 (two digits)."""
+    if not math.isfinite(x):
+        return "-"
+    m, e = f"{x:.1e}".split("e")
+    return f"{m.rstrip('0').rstrip('.')}e{int(e)}"
+
+
 def _num(x: Any, status: str = "-") -> str:
     if x is None:
         return status
     return f"{x:.5f}" if math.isfinite(x) else "unbounded"
+
+
+def _percent(gap: float) -> str:
+    """A relative gap in percent, to 0.1% (0.01% below 0.05%, which would read 0.0%)."""
+    return f"{gap:.1%}" if gap >= 5e-4 else f"{gap:.2%}"
 
 
 def lmgc90_verdict(row: dict[str, Any], key: str) -> str:
@@ -478,9 +510,9 @@ def lmgc90_verdict(row: dict[str, Any], key: str) -> str:
     if not math.isfinite(x):
         return "above (unbounded)"
     if x < lo:
-        return f"below by {(lo - x) / lo:.1%}"
+        return f"below by {_percent((lo - x) / lo)}"
     if x > hi:
-        return f"above by {(x - hi) / hi:.1%}"
+        return f"above by {_percent((x - hi) / hi)}"
     return "inside"
 
 
@@ -515,8 +547,9 @@ def lmgc90_markdown(rows: list[dict[str, Any]], skipped: str,
            f"{LMGC90_DURATION:g} s at dt = {LMGC90_DT:g} s; at dt / 2 the two ends of "
            "that bracket are run again (\"same\": the lower end stands and the upper "
            "one moves at dt / 2 too; else a new bisection at dt / 2); a trial "
-           "moves when a block's centroid travels more than 1e-5 of the smallest block "
-           "over the last quarter of the run (a slip that arrests does not count); "
+           f"moves when a block's centroid travels more than {_tol(LMGC90_MOVE_TOL)} of "
+           "the smallest block over the last quarter of the run (a slip that arrests "
+           "does not count); "
            f"bisection to {LMGC90_RTOL:g} relative. CRA: compas_cra (Kao et al. 2022, "
            "Eq. 11, d_bnd = 0.1, eps = 0) on the assembly tilted by atan(lambda), "
            "bisected on its verdict (solved: stands; infeasible: collapses), cases up "
@@ -539,14 +572,84 @@ def lmgc90_markdown(rows: list[dict[str, Any]], skipped: str,
                f"dt = {x['dt']:g}: {_bracket(x)}" for x in r["lmgc90_series"]) + "."
              for r in rows if r["lmgc90_series"]], "",
            "Load average (1, 5, 15 min) at the start and end: "
-           f"{rows[0]['loadavg_start']} / {rows[-1]['loadavg_end']}."]
+           f"{rows[0]['loadavg_start']} / {rows[-1]['loadavg_end']}.", "",
+           f"Chosen cases at another threshold or run time: `{LMGC90_OTHER}.md` "
+           "(`--lmgc90-case`, `--lmgc90-move-tol`, `--lmgc90-duration`)."]
     return "\n".join(md)
 
 
+def lmgc90_other_markdown(rows: list[dict[str, Any]]) -> str:
+    """The markdown of :data:`LMGC90_OTHER`: one row per case and setting."""
+    def trials(r: dict) -> str:
+        return ", ".join(f"{t['lam']:.5f} {'moves' if t['moves'] else 'stands'} "
+                         f"({t['last_quarter']:.2g} m)" for t in r.get("trials", ()))
+
+    md = ["## LMGC90's tilting-table test at other thresholds and durations", "",
+          "The test of `bench_nonassoc_lmgc90.md` on chosen cases, with another threshold "
+          "(the travel over the last quarter of the run that makes a trial move, relative "
+          "to the smallest block, and in metres) or run time; dt = "
+          f"{LMGC90_DT:g} s and dt / 2 as there (\"same\": the dt bracket's ends hold at "
+          "dt / 2; else a new bisection at dt / 2). Each row's command is given (run from "
+          "the repository's root).", "",
+          markdown_table(
+              ["case", "f", "threshold", "duration (s)", "LMGC90 dt", "LMGC90 dt/2",
+               "ours non-assoc", "non-assoc vs LMGC90", "load average start / end",
+               "date"],
+              [[r["name"], r["friction"],
+                f"{_tol(r['move_tol'])} ({_tol(r['lmgc90'].get('move_tol', math.nan))} m)",
+                f"{r['duration']:g}", _bracket(r["lmgc90"]), _bracket(r["lmgc90_half"]),
+                _num(r["ours"]["na"], r["ours"]["na_status"]), _verdicts(r),
+                f"{r['loadavg_start']} / {r['loadavg_end']}", r["date"]] for r in rows]),
+          ""]
+    for r in rows:
+        md += [f"{r['name']}, threshold {_tol(r['move_tol'])}, {r['duration']:g} s: "
+               f"`{r['command']}`; trials (lambda, verdict, largest travel over the last "
+               f"quarter) at dt: {trials(r['lmgc90'])}; at dt / 2: "
+               f"{trials(r['lmgc90_half'])}.", ""]
+    return "\n".join(md)
+
+
+def lmgc90_other(out: str | None, python: str, rows: list[dict[str, Any]]
+                 ) -> dict[str, Any]:
+    """Add ``rows`` to :data:`LMGC90_OTHER` (replacing earlier rows of the same case,
+    threshold and duration) and write it."""
+    key = lambda r: (r["name"], r["move_tol"], r["duration"])  # noqa: E731
+    try:
+        kept = read_results(out, LMGC90_OTHER)["rows"]
+    except FileNotFoundError:
+        kept = []
+    new = {key(r) for r in rows}
+    merged = [r for r in kept if key(r) not in new] + rows
+    data = {"lmgc90_python": python, "dt": LMGC90_DT, "rtol": LMGC90_RTOL,
+            "rows": merged}
+    write_results(out, LMGC90_OTHER, data, lmgc90_other_markdown(merged))
+    return data
+
+
 def lmgc90_section(out: str | None, python_arg: str | None, tiny: bool,
-                   timeout: float = 1800.0) -> dict[str, Any]:
-    """Run the LMGC90 comparison (or say why not) and write bench_nonassoc_lmgc90."""
+                   timeout: float = 1800.0, cases: Sequence[str] | None = None,
+                   move_tol: float | None = None, duration: float | None = None,
+                   command: str = "") -> dict[str, Any]:
+    """Run the LMGC90 comparison (or say why not) and write bench_nonassoc_lmgc90;
+    with chosen ``cases`` (names), ``move_tol`` or ``duration``, add those runs (and
+    the ``command`` that ran them) to :data:`LMGC90_OTHER` instead."""
     python, skipped = lmgc90_python(python_arg)
+    other = bool(cases or move_tol or duration)
+    if python is None and other:
+        print(skipped, flush=True)  # the recorded tables are left as they are
+        return {"skipped": skipped, "rows": []}
+    if other:
+        chosen = [c for c in lmgc90_cases(tiny) if not cases or c["name"] in cases]
+        stamp = {"command": command,
+                 "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
+
+        def add(rows: list[dict[str, Any]]) -> dict[str, Any]:
+            return lmgc90_other(out, python, [{**r, **stamp} for r in rows])
+
+        rows = lmgc90_rows(python, tiny, timeout, done=add, cases=chosen,
+                           move_tol=move_tol or LMGC90_MOVE_TOL,
+                           duration=duration or LMGC90_DURATION)
+        return add(rows)
 
     def write(rows: list[dict[str, Any]]) -> dict[str, Any]:
         data = {"lmgc90_python": python, "skipped": skipped, "dt": LMGC90_DT,
@@ -644,23 +747,51 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     p.add_argument("--only", choices=("walls", "lmgc90"), default=None,
                    help="run one part only")
     p.add_argument("--redraw", action="store_true",
-                   help="rewrite bench_nonassoc_lmgc90.md from its JSON (no runs)")
+                   help="rewrite bench_nonassoc_lmgc90.md (and "
+                   f"{LMGC90_OTHER}.md) from its JSON (no runs)")
     p.add_argument("--ours-again", action="store_true",
                    help="compute our columns of bench_nonassoc_lmgc90 again, keeping "
                    "LMGC90's and CRA's brackets")
     p.add_argument("--large-walls", type=int, default=LARGE_UP_TO,
                    help="largest wall (blocks) of the large-walls table")
+    p.add_argument("--lmgc90-case", action="append", default=None, metavar="NAME",
+                   help="run only this LMGC90 case (repeatable; results added to "
+                   f"{LMGC90_OTHER}.json and .md; implies --only lmgc90)")
+    p.add_argument("--lmgc90-move-tol", type=float, default=None, metavar="REL",
+                   help="a trial moves when a centroid travels more than REL times the "
+                   f"smallest block over the last quarter of the run (default "
+                   f"{_tol(LMGC90_MOVE_TOL)}; results to {LMGC90_OTHER}; implies --only lmgc90)")
+    p.add_argument("--lmgc90-duration", type=float, default=None, metavar="S",
+                   help=f"each trial's run time in seconds (default {LMGC90_DURATION:g}; "
+                   f"results to {LMGC90_OTHER}; implies --only lmgc90)")
     args = p.parse_args(argv)
+    names = [c["name"] for c in lmgc90_cases(args.tiny)]
+    for name in args.lmgc90_case or ():
+        if name not in names:
+            p.error(f"--lmgc90-case: no case {name!r} (cases: {', '.join(names)})")
+    for opt in ("lmgc90_move_tol", "lmgc90_duration"):
+        v = getattr(args, opt)
+        if v is not None and not (math.isfinite(v) and v > 0):
+            p.error(f"--{opt.replace('_', '-')}: must be a positive number, not {v:g}")
+    other = {"cases": args.lmgc90_case, "move_tol": args.lmgc90_move_tol,
+             "duration": args.lmgc90_duration}
+    command = shlex.join(["python", "benchmarks/bench_nonassoc.py",
+                          *(sys.argv[1:] if argv is None else argv)])
     if args.redraw:
         doc = read_results(args.out, "bench_nonassoc_lmgc90")
         rewrite_results(args.out, "bench_nonassoc_lmgc90", doc,
                         lmgc90_markdown(doc["rows"], doc["skipped"],
                                         doc.get("ours_again")))
+        if (out_dir(args.out) / f"{LMGC90_OTHER}.json").exists():
+            other_doc = read_results(args.out, LMGC90_OTHER)
+            rewrite_results(args.out, LMGC90_OTHER, other_doc,
+                            lmgc90_other_markdown(other_doc["rows"]))
         return {"lmgc90": doc}
     if args.ours_again:
         return {"lmgc90": lmgc90_ours_again(args.out)}
-    if args.only == "lmgc90":
-        return {"lmgc90": lmgc90_section(args.out, args.lmgc90_python, args.tiny)}
+    if args.only == "lmgc90" or any(v is not None for v in other.values()):
+        return {"lmgc90": lmgc90_section(args.out, args.lmgc90_python, args.tiny,
+                                         command=command, **other)}
     large = large_walls(TINY_LARGE if args.tiny else LARGE_WALLS, LARGE_FRICTIONS,
                         args.large_walls)
     sizes = TINY_WALLS if args.tiny else WALLS

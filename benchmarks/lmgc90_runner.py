@@ -8,24 +8,24 @@ LMGC90; never a dependency of rigidblocks):
 
 ``CASE.json``: ``{"name", "mu", "blocks": [{"id", "vertices": [[x, y, z], ...],
 "faces": [[i, j, k, ...], ...], "support": bool}, ...], "direction": [dx, dy, dz],
-"dt", "duration", "rtol", "guess", "density"}``, gravity along -z (LMGC90's, g = 9.81
-m/s^2). The contact law is IQS_CLB_g0 (unilateral contact, Coulomb friction ``mu``, no
-dilatancy). Every support has its six velocities held at zero.
+"dt", "duration", "rtol", "guess", "density", "move_tol_rel"}``, gravity along -z
+(LMGC90's, g = 9.81 m/s^2). The contact law is IQS_CLB_g0 (unilateral contact, Coulomb
+friction ``mu``, no dilatancy). Every support has its six velocities held at zero.
 
 A trial at multiplier ``lam`` puts the constant force ``lam m g direction`` on each free
 block (m its mass: ``density`` x volume; LMGC90 has one material, so one density) and
 runs ``duration`` seconds at the time step ``dt`` from rest. The trial **moves** when
-some block's centroid travels more than ``move_tol`` (default 1e-5 of the smallest free
-block's size) over the last quarter of the run: a slip that arrests does not count, a
-block that keeps going does (above the limit it accelerates, so it travels further in
-the last quarter than in any earlier one). The multiplier is bracketed from ``guess``
+some block's centroid travels more than ``move_tol_rel`` (default 1e-5) times the
+smallest free block's size over the last quarter of the run: a slip that arrests does
+not count, a block that keeps going does (above the limit it accelerates, so it travels
+further in the last quarter than in any earlier one). The multiplier is bracketed from ``guess``
 (trials at guess times or divided by 1.03, 1.06, 1.13, 1.27, 1.6, ... until one
 stands and one moves) and bisected until the bracket's width is at most ``rtol`` of
 its upper end. With ``"check": [lo, hi]`` only those two trials run: "confirmed" when
 lo stands and hi moves (a bracket found at another time step holds at this one).
 
 ``OUT.json``: ``{"status": "bracketed" | "no bracket" | "confirmed" | "changed" |
-"error", "bracket": [lo, hi],
+"error", "bracket": [lo, hi], "move_tol" (the length), "move_tol_rel", "dt", "duration",
 "trials": [{"lam", "moves", "last_quarter", "third_quarter", "total", "block",
 "seconds"}, ...], "steps", "seconds", "version", "message"}`` with the lengths in
 the scene's units (the largest centroid displacement over the last and the third
@@ -110,7 +110,8 @@ def bisect(case: dict) -> dict:
     """Bracket and bisect the multiplier at which the assembly moves."""
     dt, duration = float(case.get("dt", 1e-3)), float(case.get("duration", 1.0))
     rtol = float(case.get("rtol", 1e-3))
-    tol = float(case.get("move_tol", 1e-5 * size(case)))
+    rel = float(case.get("move_tol_rel", 1e-5))
+    tol = rel * size(case)
     trials: list[dict] = []
 
     def moves(lam: float) -> bool:
@@ -120,7 +121,7 @@ def bisect(case: dict) -> dict:
         return t["moves"]
 
     out = {"status": "no bracket", "bracket": None, "trials": trials, "move_tol": tol,
-           "dt": dt, "duration": duration, "rtol": rtol}
+           "move_tol_rel": rel, "dt": dt, "duration": duration, "rtol": rtol}
     if case.get("check"):  # only the two ends of a bracket found before
         lo, hi = (float(x) for x in case["check"])
         same = not moves(lo) and moves(hi)

@@ -533,3 +533,61 @@ def test_lmgc90_blocks_face_outwards():
         v = np.asarray(b["vertices"])
         assert runner.volume(v, b["faces"]) == pytest.approx(np.prod(np.ptp(v, axis=0)),
                                                              rel=1e-12)
+
+
+def test_lmgc90_runner_threshold_is_relative(monkeypatch):
+    """The runner's verdict: a trial moves when the last quarter's travel exceeds
+    move_tol_rel times the smallest free block (0.2 here). With a made-up trial that
+    creeps 1e-6 everywhere and travels 1e-3 (lam - 0.5) more above 0.5, the threshold
+    2e-6 (1e-5 x 0.2) is crossed at lam = 0.501 and 2e-5 (1e-4 x 0.2) at lam = 0.519,
+    so the bisected brackets hold those values; the duration reaches every trial."""
+    spec = importlib.util.spec_from_file_location(
+        "lmgc90_runner", ROOT / "benchmarks" / "lmgc90_runner.py")
+    runner = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(runner)
+    durations = []
+
+    def fake(case, lam, dt, duration):
+        durations.append(duration)
+        return {"lam": lam, "last_quarter": 1e-6 + 1e-3 * max(0.0, lam - 0.5)}
+
+    monkeypatch.setattr(runner, "trial", fake)
+    box = [[0, 0, 0], [0.4, 0, 0], [0.4, 0.3, 0], [0, 0.3, 0], [0, 0, 0.2],
+           [0.4, 0, 0.2], [0.4, 0.3, 0.2], [0, 0.3, 0.2]]
+    case = {"blocks": [{"vertices": box, "support": False}], "guess": 0.5, "rtol": 1e-4}
+    out = runner.bisect(case)
+    assert out["move_tol"] == pytest.approx(2e-6) and out["move_tol_rel"] == 1e-5
+    assert out["bracket"][0] <= 0.501 < out["bracket"][1]
+    out = runner.bisect({**case, "move_tol_rel": 1e-4, "duration": 2.0})
+    assert out["move_tol"] == pytest.approx(2e-5) and out["duration"] == 2.0
+    assert out["bracket"][0] <= 0.519 < out["bracket"][1]
+    assert set(durations[-len(out["trials"]):]) == {2.0}
+
+
+def test_bench_nonassoc_lmgc90_other_settings(tmp_path, capsys):
+    """--lmgc90-case names a case or exits 2; without the peer the options write
+    nothing; runs at other settings are added to their own file, a rerun of the same
+    case, threshold and duration replacing its row."""
+    bench = load_nonassoc_bench()
+    with pytest.raises(SystemExit) as err:
+        bench.main(["--lmgc90-case", "no such wall", "--out", str(tmp_path)])
+    assert err.value.code == 2
+    assert "no case 'no such wall'" in capsys.readouterr().err
+    data = bench.main(["--lmgc90-case", "squat block 1 x 0.5", "--lmgc90-move-tol", "1e-4",
+                       "--lmgc90-python", "none", "--out", str(tmp_path)])
+    assert data["lmgc90"]["rows"] == [] and list(tmp_path.iterdir()) == []
+    trials = [{"lam": 0.52, "moves": False, "last_quarter": 1e-7},
+              {"lam": 0.53, "moves": True, "last_quarter": 4e-3}]
+    run = {"status": "bracketed", "bracket": [0.52, 0.53], "trials": trials,
+           "move_tol": 2e-5}
+    row = {"name": "wall", "friction": 0.8, "move_tol": 1e-4, "duration": 1.0,
+           "lmgc90": run, "lmgc90_half": run, "ours": {"na": 0.5288, "na_status": "collapse"},
+           "loadavg_start": [1.0], "loadavg_end": [2.0], "date": "d", "command": "cmd A"}
+    bench.lmgc90_other(str(tmp_path), "py", [row])
+    bench.lmgc90_other(str(tmp_path), "py", [{**row, "command": "cmd B"}])
+    data = bench.lmgc90_other(str(tmp_path), "py", [{**row, "duration": 2.0}])
+    assert [(r["duration"], r["command"]) for r in data["rows"]] == [(1.0, "cmd B"),
+                                                                     (2.0, "cmd A")]
+    md = (tmp_path / f"{bench.LMGC90_OTHER}.md").read_text()
+    assert "| wall | 0.8 | 1e-4 (2e-5 m) | 1 | [0.52000, 0.53000] |" in md
+    assert "inside" in md and "`cmd B`" in md and "0.53000 moves (0.004 m)" in md
