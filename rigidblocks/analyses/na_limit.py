@@ -27,7 +27,11 @@ least squares term alone keeps it (the block pinched under a lintel then settles
 0.345 instead of f = 0.3, the 3 x 3 wall at 0.715918 in 2D and 3D), the total normal
 force alone leaves the step's choice among equal totals to the solver (the 3 x 3 wall
 and the 106-block wall do not settle in 200 steps). The step stops exactly where the
-previous normal forces are themselves selected, the fixed-point condition. In 2D the
+previous normal forces are themselves selected, the fixed-point condition. The
+plain map oscillates about its fixed point and contracts slowly (by about 0.8 a step on
+the 106-block wall, still 2e-7 from it after 500 steps on the 311-block one at f = 0.6):
+the next normal forces combine the last steps (Anderson acceleration, :class:`_Anderson`),
+halving the step where that stalls. In 2D the
 maximum is a linear program solved by HiGHS's dual simplex, warm-started from the
 previous basis (only right-hand sides change); in 3D a second-order cone program solved
 by the convex method's back end; the selection is a quadratic program solved by the
@@ -61,6 +65,8 @@ LIMIT_MAX_ITER = 500
 #: steps without a new smallest change after which the step is halved, down to
 STALL = 12
 MIN_DAMPING = 1.0 / 64
+#: past steps the accelerated update combines (Anderson acceleration)
+MEMORY = 5
 #: weight of the proximal term of the selection step (scaled forces: the largest block
 #: load is 1)
 PROX_WEIGHT = 1.0
@@ -277,13 +283,15 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
     """The fixed-point loop of both runs: ``step(N)`` solves one problem at the caps of
     the normal forces N and gives (value, joint rows' right-hand sides, its solution,
     the multiplier the state must carry), or (status, reason) where it has no answer;
-    then the state is selected (:func:`_select_step`) and the update damped
-    (:func:`_damped`) until the normal forces settle. ``what`` names the solves."""
+    then the state is selected (:func:`_select_step`) and the next normal forces
+    combined from the last steps (:class:`_Anderson`), damped (:func:`_damped`, which
+    starts the combination afresh) until they settle. ``what`` names the solves."""
     t0 = time.perf_counter()
     N = np.maximum(N_start, 0.0)
     hist: list[tuple[float, float]] = []
     beta, best, since = 1.0, math.inf, 0
     value, x = math.nan, None
+    acc = _Anderson(MEMORY)
     for k in range(1, max_iter + 1):
         got = step(N)
         if len(got) == 2:
@@ -295,11 +303,47 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
         if change <= tol:
             return LimitRun(start, "converged", value, x, k,
                             f"fixed point after {k} {what}", hist, time.perf_counter() - t0)
-        beta, best, since = _damped(beta, best, since, change)
-        N = N + beta * (Nn - N)
+        damped, best, since = _damped(beta, best, since, change)
+        if damped != beta:
+            acc.reset()
+        beta = damped
+        N = np.maximum(acc.update(N, Nn - N, beta), 0.0)
     return LimitRun(start, "undecided", value, x, max_iter,
                     f"no fixed point within {max_iter} {what} (last relative change of "
                     f"the normal forces {hist[-1][1]:.3g})", hist, time.perf_counter() - t0)
+
+
+class _Anderson:
+    """Anderson acceleration of the fixed-point map N -> S(N) (Anderson, J. ACM 12, 1965;
+    in the form of Walker & Ni, SIAM J. Numer. Anal. 49, 2011): the next iterate
+    combines the last ``memory`` steps so that their residuals g = S(N) - N cancel in
+    the least-squares sense. On the walls the plain map oscillates about its fixed point
+    and contracts by about 0.8 a step (the 106-block wall at f = 0.8: 61 steps to 1e-7);
+    combined, 26."""
+
+    def __init__(self, memory: int):
+        self.memory = memory
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget the past steps (where the damping changes)."""
+        self.dx: list[np.ndarray] = []
+        self.dg: list[np.ndarray] = []
+        self.last: tuple[np.ndarray, np.ndarray] | None = None
+
+    def update(self, N: np.ndarray, g: np.ndarray, beta: float) -> np.ndarray:
+        """The next iterate from N with residual g = S(N) - N and mixing ``beta``."""
+        if self.last is not None:
+            self.dx.append(N - self.last[0])
+            self.dg.append(g - self.last[1])
+            del self.dx[:-self.memory], self.dg[:-self.memory]
+        self.last = (N, g)
+        if not self.dx:
+            return N + beta * g
+        G = np.array(self.dg).T
+        gamma = np.linalg.lstsq(G, g, rcond=1e-10)[0]
+        nxt = N + beta * g - (np.array(self.dx).T + beta * G) @ gamma
+        return nxt if np.all(np.isfinite(nxt)) else N + beta * g
 
 
 def _select_step(capped: CappedLimit, b: np.ndarray, target: float, N: np.ndarray,
