@@ -289,8 +289,8 @@ def test_wall_geometry_and_loads():
     ({"block_length": -1}, "block_length"), ({"block_height": float("nan")}, "block_height"),
     ({"depth": 0}, "depth"), ({"unit_weight": -1}, "unit_weight"),
     ({"friction": -0.1}, "friction"), ({"horizontal_load": float("inf")}, "horizontal_load"),
-    ({"openings": [(0, 1, 0)]}, "opening #0"), ({"openings": [(9, 2, 0, 1)]}, "opening #0"),
-    ({"openings": [(0, 1, 9, 2)]}, "opening #0"),
+    ({"openings": [(0, 1, 0)]}, "openings item #0"), ({"openings": [(9, 2, 0, 1)]}, "openings item #0"),
+    ({"openings": [(0, 1, 9, 2)]}, "openings item #0"),
     ({"openings": [(0, 1, 3, 1)]}, "even course"),
     ({"openings": [(0, 1, 0, 3), (1, 1, 0, 4), (2, 1, 0, 3)]}, "every block"),
 ])
