@@ -111,7 +111,7 @@ def test_bad_cases_are_recorded_and_the_rest_correct():
     assert list(df["status"]) == ["ok", "failed", "ok", "failed", "failed", "ok"]
     assert res.n_failed == 3
     assert df.loc[1, "error"].startswith("InputError: arch: voussoirs")
-    assert "even number of voussoirs" in df.loc[3, "error"]
+    assert "voussoirs must be an even number" in df.loc[3, "error"]
     assert df.loc[df["status"] == "failed", "friction_factor"].isna().all()
     for i in (0, 2, 5):
         c = cases[i]
