@@ -696,7 +696,10 @@ def large_walls(sizes: Sequence[tuple[int, int]], frictions: Sequence[float],
                 continue
             a, ta = _cpu(rb.max_load_multiplier, scene, state=False)
             v, tv = _cpu(rb.max_load_multiplier, scene, flow=NA, state=False)
-            starts = {h.get("start"): h.get("load_factor") for h in v.history}
+            # a start's multiplier only where its run settled (the history keeps the
+            # last iterate of an undecided one)
+            starts = {h.get("start"): h.get("load_factor") if h.get("converged")
+                      else "undecided" for h in v.history}
             lf = v.load_multiplier if v.status == "collapse" else 0.9 * a.load_multiplier
             fr, tf = _cpu(rb.min_friction, scene, load_factor=lf, flow=NA, state=False)
             row = {"courses": c, "per_course": n, "blocks": len(scene.blocks),
