@@ -98,11 +98,12 @@ MF_TARGETS = {5_000: 3.0, 20_000: 5.0}
 
 
 # -- scenes ------------------------------------------------------------------------------
-def make_scene(dim: int, n_blocks: int):
-    """The running-bond wall of about ``n_blocks`` blocks (3D: extruded to prisms)."""
+def make_scene(dim: int, n_blocks: int, shape: Sequence[int] | None = None):
+    """The running-bond wall of about ``n_blocks`` blocks, or of ``shape`` (courses,
+    blocks per course) where given (3D: extruded to prisms)."""
     from rigidblocks.generators.walls import running_bond_wall
 
-    scene = running_bond_wall(*wall_shape(n_blocks))
+    scene = running_bond_wall(*(shape or wall_shape(n_blocks)))
     if dim == 3:
         from rigidblocks.scene.extrude import extrude
 
@@ -193,15 +194,16 @@ def run_case(spec: dict[str, Any]) -> dict[str, Any]:
         t["read"] = _now() - t0
         a = spec["analysis"]
         kw: dict[str, Any] = dict(spec.get("options", {}))
+        # the minimum-friction request: rtol None is the analysis' default
+        mf = {"rtol": 1e-6, "load_factor": MF_LOAD_FACTOR, **spec.get("mf", {})}
         if kind == "cvxpy":
             kw["solver"] = "cvxpy-CLARABEL"
         if a == "check":
             res = check(scene, **kw)
         elif a == "min_friction":
-            res = min_friction(scene, rtol=1e-6, load_factor=MF_LOAD_FACTOR, **kw)
+            res = min_friction(scene, **mf, **kw)
         elif a == "min_friction_no_state":
-            res = min_friction(scene, rtol=1e-6, load_factor=MF_LOAD_FACTOR, state=False,
-                               **kw)
+            res = min_friction(scene, state=False, **mf, **kw)
         elif a == "max_load_no_state":
             res = max_load_multiplier(scene, state=False, **kw)
         else:
@@ -216,7 +218,8 @@ def run_case(spec: dict[str, Any]) -> dict[str, Any]:
         out["total"] = total
         out.update(status=res.status, n_solves=res.n_solves, iterations=res.iterations,
                    answer=_answer(res), notes=list(res.notes),
-                   bracket=list(getattr(res, "bracket", None) or []))
+                   bracket=list(getattr(res, "bracket", None) or []),
+                   accuracy=getattr(res, "accuracy", None))
         if a.startswith("min_friction") and out["answer"]:
             # the floor at the answer, same process: the plain max-load problem at f*
             # (its lambda* is the load factor, up to the solver's accuracy)
@@ -636,6 +639,54 @@ def plan(tiny: bool, sizes2d: Sequence[int], stage_sizes: Sequence[int],
     return specs, skipped
 
 
+def target(walls: str, rtol: float | None, timeout: float, out: str | None) -> dict[str, Any]:
+    """f* (without and with the force state) on the walls ``COURSESxBLOCKS@LOADFACTOR,...``
+    at ``rtol`` (None: the analysis' default), each in a fresh process with one bare
+    Clarabel solve of the plain problem at its answer in the same process; written to
+    bench_scaling_target.{json,md}."""
+    from rigidblocks.io.scene_file import write_scene
+
+    cases = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for item in walls.split(","):
+            shape, _, lf = item.partition("@")
+            courses, per = (int(v) for v in shape.split("x"))
+            scene = make_scene(2, 0, (courses, per))
+            path = Path(tmp) / f"wall_{courses}x{per}.json"
+            write_scene(scene, path)
+            for a in ("min_friction_no_state", "min_friction"):
+                spec = {"kind": "ours", "dim": 2, "target": len(scene.blocks), "path": str(path),
+                        "blocks": len(scene.blocks), "shape": [courses, per], "analysis": a,
+                        "mf": {"rtol": rtol, "load_factor": float(lf or 1.0)}}
+                res = run_isolated(spec, timeout)
+                print(json.dumps({k: res.get(k) for k in ("analysis", "blocks", "status",
+                                                          "answer", "total", "bare_at_answer",
+                                                          "error")}, default=float),
+                      file=sys.stderr, flush=True)
+                cases.append(res)
+    rows = [[c["blocks"], f"{c['shape'][0]} x {c['shape'][1]}", c["mf"]["load_factor"],
+             c["mf"]["rtol"] or "default", c["analysis"].replace("min_friction", "f*"),
+             c.get("status", c.get("error")), c.get("answer"),
+             " - ".join(f"{v:.7g}" for v in c.get("bracket") or []),
+             c.get("accuracy"), c.get("n_solves"), c.get("iterations"), c.get("total"),
+             c.get("bare_at_answer"), c.get("bare_at_answer_iterations"),
+             c["total"] / c["bare_at_answer"] if c.get("bare_at_answer") else "-",
+             round(c.get("peak_mib", 0)), " - ".join(str(v) for v in c["measured"]["load"]),
+             c["measured"]["utc"]] for c in cases]
+    md = "\n".join([
+        "## f* on large walls against one bare solve at the answer", "",
+        "CPU seconds, one thread, each case in a fresh process; `bare` is one Clarabel "
+        "solve (default settings) of the plain max-load problem at the answer, in the "
+        "same process (the ratio: our total over it); load: 1-minute load average at the "
+        "case's start and end.", "",
+        markdown_table(["blocks", "wall", "load factor", "rtol", "analysis", "status",
+                        "f*", "bracket", "accuracy", "solves", "iterations", "total s",
+                        "bare s", "bare iterations", "ratio", "peak MiB", "load", "UTC"],
+                       rows)])
+    write_results(out, f"{NAME}_target", {"cases": cases}, md)
+    return {"cases": cases}
+
+
 def _key(spec: dict[str, Any]) -> str:
     return json.dumps({k: spec.get(k) for k in ("kind", "dim", "target", "analysis",
                                                  "options", "clock")}, sort_keys=True)
@@ -659,7 +710,15 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     p.add_argument("--cached-only", action="store_true",
                    help="with --resume: report the cached cases, run nothing new")
     p.add_argument("--case", help=argparse.SUPPRESS)
+    p.add_argument("--target", default=None, metavar="CxB@LF,...",
+                   help="only f* on these running-bond walls (courses x blocks per course "
+                        "@ load factor) against a bare solve at the answer: "
+                        "bench_scaling_target.{json,md}")
+    p.add_argument("--target-rtol", type=float, default=None,
+                   help="with --target: the requested accuracy (default: the analysis')")
     args = p.parse_args(argv)
+    if args.target:
+        return target(args.target, args.target_rtol, args.timeout, args.out)
     if args.case:
         res = run_case(json.loads(args.case))
         print(json.dumps(res, default=float))

@@ -39,11 +39,29 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 #: ``--big``: the 1,009-block running-bond wall too, at load factors 1 and 0.5, where
 #: the solver's resolution near f* steers the searches (3 to 4 s each)
 BIG = False
+#: ``--walls``: running-bond walls (courses, blocks per course, load factor) run instead
+#: of the scenes above (the large walls, a solve of minutes each)
+WALLS: list[tuple[int, int, float]] = []
+
+
+def parse_walls(text: str) -> list[tuple[int, int, float]]:
+    """``COURSESxBLOCKS@LOADFACTOR,...`` (e.g. ``100x200@0.2,71x71@1``)."""
+    out = []
+    for item in filter(None, text.split(",")):
+        shape, _, lf = item.partition("@")
+        c, _, b = shape.partition("x")
+        out.append((int(c), int(b), float(lf or 1.0)))
+    return out
 
 
 def scenes() -> list[tuple[str, Any, float | None]]:
     """(name, scene, load factor or None for the scene's own)."""
     out: list[tuple[str, Any, float | None]] = []
+    if WALLS:
+        for c, b, lf in WALLS:
+            wall = running_bond_wall(c, b)
+            out.append((f"wall{len(wall.blocks)}@{lf:g}", wall, lf))
+        return out
     for p in sorted(EXAMPLES.glob("*.json")):
         s = rb.read_scene(p)
         out.append((p.stem, s, None))
@@ -104,17 +122,25 @@ def compare(now: list[dict], before: list[dict]) -> int:
 
 def _rule_sets() -> list[tuple[Any, str]]:
     """(module, attribute) of every rule tuple the f* searches read at run time."""
-    from rigidblocks.methods import convex, load_rules
-    return [(convex, "STOPS"), (convex, "STEPS"), (convex, "AMENDS"),
+    from rigidblocks.methods import friction_search, load_rules
+    return [(friction_search, "STOPS"), (friction_search, "STEPS"),
+            (friction_search, "AMENDS"),
             (load_rules, "STOPS"), (load_rules, "STEPS"), (load_rules, "AMENDS")]
 
 
-def rule_names() -> list[str]:
+def rule_names(only: list[str] | None = None) -> list[str]:
     """The rules that may be left out (not the accuracy stop or the midpoint, which
-    every search needs to end and to converge)."""
+    every search needs to end and to converge), or those of them named in ``only``."""
     keep = {"narrow_enough", "midpoint", "midpoint_resolvable"}
     names = [f.__name__ for m, a in _rule_sets() for f in getattr(m, a)]
-    return [n for n in dict.fromkeys(names) if n not in keep]
+    names = [n for n in dict.fromkeys(names) if n not in keep]
+    if only:
+        unknown = sorted(set(only) - set(names))
+        if unknown:
+            raise SystemExit(f"bench_searches: unknown rules {', '.join(unknown)} "
+                             f"(choose from {', '.join(names)})")
+        names = [n for n in names if n in only]
+    return names
 
 
 def without(name: str | None) -> None:
@@ -134,13 +160,21 @@ def sweep_cases(rtol: float | None) -> list[dict[str, Any]]:
     return rows
 
 
-def ablate(rtol: float | None, out: str) -> None:
-    """Every rule left out in turn against the full set (see the module docstring)."""
+def ablate(rtol: float | None, out: str, only: list[str] | None = None) -> None:
+    """Every rule (or those named in ``only``) left out in turn against the full set
+    (see the module docstring); the report keeps the cases' rows and the load average."""
+    from common import load_average
+
+    names = rule_names(only)
+    load0 = load_average()
     base = sweep_cases(rtol)
     tol = rtol or 2e-3
     report = {"rtol": rtol, "base": {"solves": sum(c.get("n_solves") or 0 for c in base),
-                                     "seconds": sum(c["seconds"] for c in base)}, "rules": {}}
-    for name in rule_names():
+                                     "seconds": sum(c["seconds"] for c in base),
+                                     "rows": base, "load": [load0, load_average()]},
+              "rules": {}}
+    for name in names:
+        load0 = load_average()
         without(name)
         rows = sweep_cases(rtol)
         without(None)
@@ -154,7 +188,8 @@ def ablate(rtol: float | None, out: str) -> None:
                                f"{c.get('f')}")
         report["rules"][name] = {
             "solves": sum(c.get("n_solves") or 0 for c in rows),
-            "seconds": sum(c["seconds"] for c in rows), "changed": changed}
+            "seconds": sum(c["seconds"] for c in rows), "changed": changed,
+            "rows": rows, "load": [load0, load_average()]}
         print(name, json.dumps(report["rules"][name]), flush=True)
         Path(out).write_text(json.dumps(report, indent=1))
 
@@ -162,11 +197,11 @@ def ablate(rtol: float | None, out: str) -> None:
 def ablation_table(report: dict[str, Any]) -> str:
     """The markdown table of an ``--ablate`` report: per rule, its search and kind, the
     case it serves (its docstring's first sentence) and what leaving it out costs."""
-    from rigidblocks.methods import convex
+    from rigidblocks.methods import friction_search
 
     where: dict[str, list[tuple[str, str, str]]] = {}
     for m, a in _rule_sets():
-        search = "R(f)" if m is convex else "lambda*(f)"
+        search = "R(f)" if m is friction_search else "lambda*(f)"
         for f in getattr(m, a):
             doc = " ".join((f.__doc__ or "").split())
             where.setdefault(f.__name__, []).append(
@@ -196,14 +231,19 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--table", action="store_true",
                     help="print the markdown table of an --ablate report OUT")
     ap.add_argument("--big", action="store_true", help="the 1,009-block wall too")
+    ap.add_argument("--walls", default="",
+                    help="only these running-bond walls, COURSESxBLOCKS@LOADFACTOR,...")
+    ap.add_argument("--rules", default="",
+                    help="with --ablate: only these rules (comma-separated names)")
     a = ap.parse_args(argv)
-    global BIG
+    global BIG, WALLS
     BIG = a.big
+    WALLS = parse_walls(a.walls)
     if a.table:
         print(ablation_table(json.loads(Path(a.out).read_text())))
         return 0
     if a.ablate:
-        ablate(a.rtol, a.out)
+        ablate(a.rtol, a.out, [r for r in a.rules.split(",") if r])
         return 0
     if a.without:
         without(a.without)
