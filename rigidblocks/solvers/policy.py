@@ -10,34 +10,36 @@ back end is driven to that answer is decided here, in one place:
   of the largest force, so their solves run at :data:`TIGHT_SETTINGS` (tolerance 1e-10)
   where a back end's defaults are looser, and those whose answer is read as a number
   (lambda*) with the finer KKT regularisation of :data:`VALUE_SETTINGS` (or, tried
-  once where a search needs it, :data:`FINER_SETTINGS`: :meth:`Runner.attempt`);
-* **retries**: a solve that ends short of optimal is retried once with
-  :data:`REFINE_SETTINGS` (stronger regularisation, refined KKT solves; not after
-  :data:`REFINE_WITHIN` iterations or more), then, if the
-  tight tolerances were out of reach, at :data:`NEAR_TIGHT_SETTINGS` (where later tight
-  solves of the same runner start) and at the back end's defaults. Clarabel is given
-  the next of those settings with each solve: where its iteration stalls, or ends, with
-  an iterate that meets their tolerances, that is the next solve's answer
+  once where a search needs it, :data:`FINER_SETTINGS`: :data:`FINER_FIRST`);
+* **rungs and ladders**: a solve climbs the rungs of the ladder of its intent
+  (:class:`Ladder`: :data:`VERDICT` for the relaxations, :data:`VALUE` and
+  :data:`FINER_VALUE` for lambda*, :data:`CONFIRMATION` for a verdict near its
+  threshold, :data:`STATE` for the least-energy QP, :data:`ESTIMATE` at the back end's
+  defaults), in order, until one answers. Each rung (:class:`Rung`) is declared once,
+  above the ladders, with its settings and the condition of it: :data:`TIGHT` (or
+  :data:`TIGHT_VALUE`), the retries :data:`WITHOUT_VALUE` and :data:`REFINED` (within
+  :data:`REFINE_WITHIN` iterations), :data:`NEAR_TIGHT` (or :data:`NEAR_TIGHT_VALUE`;
+  where the runner's later tight rungs start), :data:`DEFAULTS`, :data:`FINER_FIRST`,
+  :data:`CONFIRMING`. Clarabel is given the next rung's settings with a rung that
+  stops where it stalls: where its iteration stalls, or ends, with an iterate that
+  meets their tolerances, that is the next rung's answer
   (:mod:`~rigidblocks.solvers.clarabel_backend`), and that solve is not needed;
-* **ladders**: which of these settings and retries a solve climbs through is declared
-  once per intent (:class:`Ladder`): :data:`VERDICT` (the relaxations), :data:`VALUE`
-  and :data:`FINER_VALUE` (lambda*), :data:`CONFIRMATION` (a verdict near its
-  threshold), :data:`STATE` (the least-energy QP) and :data:`ESTIMATE` (the back end's
-  defaults);
 * **verification**: every answer is checked against the problem itself before it is
   passed on (:func:`~rigidblocks.solvers.base.residuals`: an optimal answer's primal and
   dual residuals and duality gap, an infeasibility certificate's residual and margin)
   to :data:`VERIFY_TOL`. An answer that fails the check, or an infeasible or unbounded
-  status without a certificate to check, is solved again by :data:`FALLBACK` at the
-  tight settings; if that answer fails too, the result is returned with
-  ``verified=False`` and its residuals, and the methods report the verdict as
-  undecided with them (never as a verdict).
+  status without a certificate to check, is solved again by :data:`FALLBACK` up the
+  tight rungs of its ladder (``Ladder.again``); if that answer fails too, the result
+  is returned with ``verified=False`` and its residuals, and the methods report the
+  verdict as undecided with them (never as a verdict).
 """
 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from functools import partial
 from typing import Any
 
 from ..errors import InputError, SolverFailure
@@ -138,53 +140,197 @@ CERT_MARGIN = 1e-9
 
 
 @dataclass(frozen=True)
-class Ladder:
-    """The settings a solve climbs through for one intent (:meth:`Runner.run`): the
-    retries of the module docstring, declared once per intent.
+class _At:
+    """Where a climb starts: the back end, the settings under every rung (``base``: the
+    user's), whether the runner learnt that its tight tolerances are out of reach
+    (``far``, where it has NEAR_TIGHT_SETTINGS) and its VALUE_SETTINGS unless those are
+    (``value``)."""
 
-    ``tight``: first at :data:`TIGHT_SETTINGS` (at :data:`NEAR_TIGHT_SETTINGS` once
-    those were out of the back end's reach), then at 1e-9, then at the back end's
-    defaults; else at the defaults alone. ``value``: a number is read from the answer:
-    the tight rungs take :data:`VALUE_SETTINGS` (retried once without them) and are not
-    stopped where they stall with an iterate that meets the next rung's tolerances.
-    ``finer``: one checked solve at :data:`FINER_SETTINGS` first
-    (:meth:`Runner.attempt`). ``refine``: an end short of optimal within
-    :data:`REFINE_WITHIN` iterations is retried at :data:`REFINE_SETTINGS`.
-    ``confirm``: at the back end's entry of :data:`CONFIRM_BY` (:meth:`Runner.confirm`).
-    Every answer is checked, whatever the ladder (module docstring)."""
+    solver: str
+    base: dict
+    far: bool
+    value: dict
+
+
+@dataclass(frozen=True)
+class Rung:
+    """One solve of a ladder: its settings for a climb (``settings(at, before)``, with
+    ``before`` those of the last rung solved that is not a retry), None where the rung
+    does not apply to the climb (the back end has no such settings, or the rung's
+    condition excludes it). A climb solves its rungs in order until one answers.
+
+    ``stall``: Clarabel is given the settings of the next rung that is not a retry and
+    stops where it stalls with an iterate that meets them; a failure whose last iterate
+    meets them is the next rung's answer, without its solve. ``retry``: a retry of the
+    last rung solved that is not one, only after a failure of it within
+    :data:`REFINE_WITHIN` iterations; never given the next rung's settings (a failure of
+    the rung retried whose last iterate meets them is kept over the retry's failure).
+    ``alone``: a checked solve before the ladder's
+    others (:meth:`Runner.attempt`), whose answer stands only where it is a checked
+    optimum or infeasibility; not climbed again where an answer is solved again by
+    :data:`FALLBACK`. ``tight``: at the tight tolerances. ``reached`` and ``answered``:
+    the set of the :class:`Runner` to which the back end is added where the rung is
+    reached (the rungs before it did not answer at their own tolerances) or answers."""
+
+    name: str
+    settings: Callable[[_At, dict | None], dict | None]
+    stall: bool = False
+    retry: bool = False
+    alone: bool = False
+    tight: bool = False
+    reached: str = ""
+    answered: str = ""
+
+
+def _tight(at: _At, before: dict | None, value: bool = False) -> dict | None:
+    """TIGHT_SETTINGS (NEAR_TIGHT_SETTINGS once out of reach), with ``value`` the
+    back end's VALUE_SETTINGS, the user's settings on top; None without them."""
+    if at.solver not in TIGHT_SETTINGS:
+        return None
+    start = NEAR_TIGHT_SETTINGS[at.solver] if at.far else TIGHT_SETTINGS[at.solver]
+    return {**start, **(at.value if value else {}), **at.base}
+
+
+def _near(at: _At, before: dict | None, value: bool = False) -> dict | None:
+    """NEAR_TIGHT_SETTINGS after a rung at TIGHT_SETTINGS, as :func:`_tight`."""
+    near = NEAR_TIGHT_SETTINGS.get(at.solver)
+    if near is None or at.far or at.solver not in TIGHT_SETTINGS:
+        return None
+    return {**near, **(at.value if value else {}), **at.base}
+
+
+def _defaults(at: _At, before: dict | None) -> dict:
+    return at.base
+
+
+def _refinable(at: _At, before: dict | None) -> bool:
+    """Whether a retry applies: after a rung, with REFINE_SETTINGS for the back end,
+    none of which the user set."""
+    refine = REFINE_SETTINGS.get(at.solver, {})
+    return before is not None and bool(refine) and not refine.keys() & at.base.keys()
+
+
+def _plain(at: _At, settings: dict) -> dict:
+    """``settings`` without the VALUE_SETTINGS the user did not set."""
+    return {k: v for k, v in settings.items() if k not in at.value or k in at.base}
+
+
+def _without_value(at: _At, before: dict | None) -> dict | None:
+    return _plain(at, before) if at.value and _refinable(at, before) else None
+
+
+def _refined(at: _At, before: dict | None) -> dict | None:
+    if not _refinable(at, before):
+        return None
+    return {**_plain(at, before), **REFINE_SETTINGS[at.solver]}
+
+
+def _over_tight(by: dict, at: _At, before: dict | None = None) -> dict | None:
+    """The tight settings with the back end's entry of ``by`` on top, the user's last;
+    None where it has no such entry."""
+    extra = by.get(at.solver)
+    if not extra or at.solver not in TIGHT_SETTINGS:
+        return None
+    return {**TIGHT_SETTINGS[at.solver], **extra, **at.base}
+
+
+def _confirming(at: _At, before: dict | None) -> dict | None:
+    extra = CONFIRM_BY.get(at.solver)
+    return None if extra is None else {**at.base, **extra}
+
+
+#: TIGHT_SETTINGS (NEAR_TIGHT_SETTINGS once those were out of the back end's reach),
+#: stopped where it stalls with an iterate that meets the next rung's tolerances
+TIGHT = Rung("tight", _tight, stall=True, tight=True)
+#: the same with VALUE_SETTINGS (unless those were out of reach), not stopped where it
+#: stalls (on the 20,093- and 50,065-block walls lambda* so stopped at 1e-9 was 1.3e-3
+#: and 4.8e-3 below the 1e-10 answer)
+TIGHT_VALUE = Rung("tight, for a value", partial(_tight, value=True), tight=True)
+#: a retry of the rung before without its VALUE_SETTINGS, after a failure of it within
+#: REFINE_WITHIN iterations, where REFINED applies (the max-load LP of a 1,009-block
+#: wall at f = 1 - 1e-10: AlmostSolved after 44 iterations with them, Solved after 43
+#: without, after 196 refined); where it answers, later solves go without them
+WITHOUT_VALUE = Rung("without VALUE_SETTINGS", _without_value, retry=True,
+                     answered="value_out_of_reach")
+#: a retry of the rung before (without VALUE_SETTINGS) at REFINE_SETTINGS, after a
+#: failure of it within REFINE_WITHIN iterations, unless the user set one of them; not
+#: given the next rung's settings: its regularised iterates
+#: are not the ones that rung goes through (the extruded 1,009-block wall near f*: one
+#: that met 1e-9 after 73 iterations breached the joint laws by 1.8e-5, the 1e-9 solve's
+#: answer by 3.8e-6, under the threshold of 3.9e-6)
+REFINED = Rung("refined", _refined, retry=True)
+#: NEAR_TIGHT_SETTINGS after TIGHT_SETTINGS, stopped where it stalls with an iterate
+#: that meets the back end's defaults; once reached, the runner's later tight rungs
+#: start there
+NEAR_TIGHT = Rung("near-tight", _near, stall=True, reached="out_of_reach")
+#: the same with VALUE_SETTINGS, not stopped where it stalls
+NEAR_TIGHT_VALUE = Rung("near-tight, for a value", partial(_near, value=True),
+                        reached="out_of_reach")
+#: the back end's defaults (under the user's settings, as every rung): where the
+#: tighter rungs before were out of reach, they decide
+DEFAULTS = Rung("defaults", _defaults)
+#: FINER_SETTINGS on top of TIGHT_SETTINGS, checked, alone (:meth:`Runner.attempt`)
+FINER_FIRST = Rung("finer first", partial(_over_tight, FINER_SETTINGS), alone=True,
+                   tight=True)
+#: the back end's entry of CONFIRM_BY (Clarabel at it alone, whatever the user's
+#: settings: :meth:`Runner.confirm`)
+CONFIRMING = Rung("confirming", _confirming)
+
+
+@dataclass(frozen=True)
+class Ladder:
+    """The rungs a solve climbs for one intent (:meth:`Runner.run`), in order, each
+    where it applies (:class:`Rung`), until one answers; a failure of every rung that
+    applies raises :class:`SolverFailure` with the last one's status. ``again``: the
+    rungs :data:`FALLBACK` climbs where an answer fails its check, or the back end fails
+    (module docstring); None: ``rungs``. Every answer is checked, whatever the
+    ladder."""
 
     intent: str
-    tight: bool = False
-    value: bool = False
-    finer: bool = False
-    refine: bool = True
-    confirm: bool = False
+    rungs: tuple[Rung, ...]
+    again: tuple[Rung, ...] | None = None
+
+    @property
+    def tight(self) -> bool:
+        """Whether the ladder has a rung at the tight tolerances."""
+        return any(r.tight for r in self.rungs)
 
     @property
     def stall(self) -> bool:
-        """Whether a solve is stopped where it stalls with an iterate that meets the next
-        rung's tolerances (not for a value: see :data:`VALUE`)."""
-        return not self.value
+        """Whether a rung is stopped where it stalls with an iterate that meets the next
+        rung's tolerances."""
+        return any(r.stall for r in self.rungs)
+
+    @property
+    def refine(self) -> bool:
+        """Whether the ladder has retries."""
+        return any(r.retry for r in self.rungs)
+
+    def without_retries(self) -> Ladder:
+        """The same ladder without its retries."""
+        def bare(rungs: tuple[Rung, ...] | None) -> tuple[Rung, ...] | None:
+            return None if rungs is None else tuple(r for r in rungs if not r.retry)
+        return replace(self, rungs=bare(self.rungs), again=bare(self.again))
 
 
-#: a verdict against a threshold (the relaxations): tight, refined, stopped where stalled
-VERDICT = Ladder("verdict", tight=True)
-#: a number read from the answer (lambda* from the max-load LP): tight with the finer
-#: KKT regularisation, never stopped where stalled (on the 20,093- and 50,065-block walls
-#: lambda* so stopped at 1e-9 was 1.3e-3 and 4.8e-3 below the 1e-10 answer)
-VALUE = Ladder("value", tight=True, value=True)
+#: a verdict against a threshold (the relaxations)
+VERDICT = Ladder("verdict", (TIGHT, REFINED, NEAR_TIGHT, DEFAULTS))
+#: a number read from the answer (lambda* from the max-load LP)
+VALUE = Ladder("value", (TIGHT_VALUE, WITHOUT_VALUE, REFINED, NEAR_TIGHT_VALUE, DEFAULTS))
 #: the same, at FINER_SETTINGS first: the max-load LPs of a search whose values
 #: VALUE_SETTINGS resolve too coarsely
-FINER_VALUE = Ladder("value", tight=True, value=True, finer=True)
-#: a verdict left near its threshold, solved again tighter
-CONFIRMATION = Ladder("confirmation", confirm=True)
+FINER_VALUE = Ladder("value", (FINER_FIRST, *VALUE.rungs))
+#: a verdict left near its threshold, solved again tighter, then the verdict's rungs;
+#: checked, and where the back end's answer fails the check (or it has no entry in
+#: CONFIRM_BY) the verdict's ladder (:meth:`Runner.confirm`)
+CONFIRMATION = Ladder("confirmation", (CONFIRMING, *VERDICT.rungs))
 #: the least-energy force state: the back end's defaults, solved once (where the
 #: interior-point iteration stalls near a limit, a refined retry stalls too: the
 #: 5,006-block wall at f*, AlmostSolved after 200 iterations twice)
-STATE = Ladder("state", refine=False)
+STATE = Ladder("state", (DEFAULTS,), again=(TIGHT, NEAR_TIGHT, DEFAULTS))
 #: an estimate at the back end's defaults, with the refined retry: the first max-load LP
 #: of a search (far from f* as a rule), a bound on the forces of a state
-ESTIMATE = Ladder("estimate")
+ESTIMATE = Ladder("estimate", (DEFAULTS, REFINED), again=VERDICT.rungs)
 
 
 def ladder_of(tight: bool = False, stall: bool = True, refine: bool = True,
@@ -192,13 +338,27 @@ def ladder_of(tight: bool = False, stall: bool = True, refine: bool = True,
     """The ladder of a solve asked for by flags: :data:`CONFIRMATION` (``confirm``),
     :data:`VERDICT` (``tight``), :data:`VALUE` (``tight`` without ``stall``),
     :data:`ESTIMATE`, or :data:`STATE` (without ``refine``); a tight one without
-    ``refine`` is that ladder without its refined retry."""
+    ``refine`` is that ladder without its retries."""
     if confirm:
         return CONFIRMATION
     if not tight:
         return ESTIMATE if refine else STATE
     ladder = VERDICT if stall else VALUE
-    return ladder if refine else replace(ladder, refine=False)
+    return ladder if refine else ladder.without_retries()
+
+
+def _steps(rungs: tuple[Rung, ...], at: _At) -> list[tuple[Rung, dict, dict | None]]:
+    """The rungs that apply to a climb from ``at`` (the checked ones alone aside), with
+    their settings and, for those that stop where they stall, the next rung's."""
+    steps, before = [], None
+    for rung in rungs:
+        settings = None if rung.alone else rung.settings(at, before)
+        if settings is not None:
+            steps.append((rung, settings))
+            before = before if rung.retry else settings
+    return [(rung, settings,
+             next((s for r, s in steps[k + 1:] if not r.retry), None) if rung.stall else None)
+            for k, (rung, settings) in enumerate(steps)]
 
 
 def check_solver(name: str) -> str:
@@ -276,12 +436,13 @@ class Runner:
         """Solve ``problem`` (named ``what`` in errors) up the rungs of ``ladder``:
         optimal, infeasible or unbounded; anything else raises :class:`SolverFailure`
         with the back end's status. With ``verify`` the answer is checked (module
-        docstring): a failed check is solved again by :data:`FALLBACK` at the tight
-        tolerances, and what still fails comes back ``verified=False``."""
-        if ladder.confirm:
+        docstring): a failed check is solved again by :data:`FALLBACK` up the ladder's
+        ``again`` rungs, and what still fails comes back ``verified=False``."""
+        if CONFIRMING in ladder.rungs:
             return self.confirm(problem, what)
-        if ladder.finer:
-            res = self.attempt(problem, what, FINER_SETTINGS)
+        at = self._at(self.solver, self.settings)
+        for rung in (r for r in ladder.rungs if r.alone):
+            res = self._alone(problem, what, rung.settings(at, None))
             if res is not None and res.status in (OPTIMAL, INFEASIBLE) and res.verified:
                 return res
         if self.progress is not None:
@@ -289,7 +450,7 @@ class Runner:
         check = verify and self.verify
         res = None
         try:
-            res = self._run(problem, what, ladder, self.solver, self.settings)
+            res = self._climb(problem, what, ladder.rungs, self.solver, self.settings)
         except SolverFailure as exc:
             if not check or self.solver == FALLBACK:
                 raise
@@ -303,8 +464,8 @@ class Runner:
                 return res
             rejected = f"{res.solver} {res.status}: {describe(res.residuals)}"
         try:
-            again = verified(problem, self._run(problem, what, replace(ladder, tight=True),
-                                                FALLBACK, {}))
+            again = verified(problem, self._climb(problem, what, ladder.again or ladder.rungs,
+                                                  FALLBACK, {}))
         except SolverFailure:
             if res is None:
                 raise
@@ -326,7 +487,8 @@ class Runner:
         if cp is None:
             return res
         try:
-            ans = self._run(cp, f"{what} certificate", VERDICT, self.solver, self.settings)
+            ans = self._climb(cp, f"{what} certificate", VERDICT.rungs, self.solver,
+                              self.settings)
         except SolverFailure:
             return res
         if ans.status != OPTIMAL or not ans.objective < 0:
@@ -340,83 +502,68 @@ class Runner:
         retries or a stall stop; the answer, whatever its status (the caller solves
         again through :meth:`run` where it is not a checked optimum), or None where the
         back end has no such entry."""
-        extra = settings.get(self.solver)
-        if not extra or self.solver not in TIGHT_SETTINGS:
+        at = self._at(self.solver, self.settings)
+        return self._alone(problem, what, _over_tight(settings, at))
+
+    def _alone(self, problem: ConicProblem, what: str,
+               settings: dict | None) -> SolverResult | None:
+        """One solve of this runner's back end at ``settings`` (None: none), checked
+        where it ends with an answer."""
+        if settings is None:
             return None
         if self.progress is not None:
             self.progress.stage = f"{what} problem"
-        res = self._solve(problem, self.solver,
-                          {**TIGHT_SETTINGS[self.solver], **extra, **self.settings})
+        res = self._solve(problem, self.solver, settings)
         return verified(problem, res) if res.status in _DONE else res
 
     def confirm(self, problem: ConicProblem, what: str) -> SolverResult:
         """A tighter, checked solve of a problem whose answer left a verdict near its
-        threshold, by this runner's back end at its entry of :data:`CONFIRM_BY` (the
-        tight solve again where it has none: HiGHS' simplex answers with a vertex);
-        Clarabel's answer (the policy's re-solve, noted) where the back end's own fails
-        its check."""
-        extra = CONFIRM_BY.get(self.solver)
-        if extra is None:
+        threshold, up the rungs of :data:`CONFIRMATION` by this runner's back end
+        (Clarabel at its confirming settings alone, whatever the user's); the verdict's
+        :meth:`run` where the back end has no entry in :data:`CONFIRM_BY` (HiGHS'
+        simplex answers with a vertex), or where its answer fails its check."""
+        if CONFIRM_BY.get(self.solver) is None:
             return self.run(problem, what, VERDICT)
-        # Clarabel confirms at its confirming settings alone, whatever the user's
         own = {} if self.solver == FALLBACK else self.settings
-        res = self._solve(problem, self.solver, {**own, **extra})
-        if res.status not in _DONE:
-            res = self._run(problem, what, VERDICT, self.solver, own)
-        res = verified(problem, res)
+        res = verified(problem, self._climb(problem, what, CONFIRMATION.rungs, self.solver,
+                                            own))
         if res.verified or self.solver == FALLBACK:
             return res
         return self.run(problem, what, VERDICT)
 
-    def _run(self, problem: ConicProblem, what: str, ladder: Ladder, solver: str,
-             base: dict) -> SolverResult:
-        """The rungs of ``ladder`` with ``solver`` on top of the settings ``base``."""
-        tight, stall = ladder.tight, ladder.stall
+    def _at(self, solver: str, base: dict) -> _At:
+        """A climb by ``solver`` on top of ``base``, with what this runner learnt."""
+        far = solver in self.out_of_reach and solver in NEAR_TIGHT_SETTINGS
+        value = {} if solver in self.value_out_of_reach else VALUE_SETTINGS.get(solver, {})
+        return _At(solver, base, far, value)
+
+    def _learn(self, what: str, solver: str) -> None:
+        """``solver`` added to the runner's set named ``what`` (if any: ``out_of_reach``,
+        ``value_out_of_reach``)."""
+        if what:
+            getattr(self, what).add(solver)
+
+    def _climb(self, problem: ConicProblem, what: str, rungs: tuple[Rung, ...],
+               solver: str, base: dict) -> SolverResult:
+        """The ``rungs`` with ``solver`` on top of the settings ``base`` (LP-only back
+        ends hand a QP to :data:`FALLBACK` at its defaults), as :class:`Rung` says."""
         if problem.P is not None and solver in LP_ONLY:
             solver, base = FALLBACK, {}
-        settings = base
-        near = NEAR_TIGHT_SETTINGS.get(solver) if tight else None
-        value = VALUE_SETTINGS.get(solver, {}) if tight and not stall and \
-            solver not in self.value_out_of_reach else {}
-        if tight and solver in TIGHT_SETTINGS:
-            settings = {**TIGHT_SETTINGS[solver], **value, **base}
-            if near and solver in self.out_of_reach:
-                settings, near = {**near, **value, **base}, None
-        # the solve that follows where these settings are out of reach, given to the back
-        # end: Clarabel stops where it stalls with an iterate that meets its tolerances
-        after = None if not stall else {**near, **base} if near else (
-            base if settings is not base else None)
-        res = self._solve(problem, solver, settings, after)
-        refine = REFINE_SETTINGS.get(solver, {})
-        if (res.status not in _DONE and ladder.refine and refine
-                and res.iterations < REFINE_WITHIN
-                and not refine.keys() & base.keys()):
-            # not given the next solve: its regularised iterates are not the ones that
-            # solve would go through (the extruded 1,009-block wall near f*: one that met
-            # 1e-9 after 73 iterations breached the joint laws by 1.8e-5, the 1e-9
-            # solve's answer by 3.8e-6, under the threshold of 3.9e-6)
-            # a solve with VALUE_SETTINGS is retried without them first (the max-load
-            # LP of a 1,009-block wall at f = 1 - 1e-10: AlmostSolved after 44
-            # iterations with them, Solved after 43 without, after 196 refined)
-            plain = {k: v for k, v in settings.items() if k not in value or k in base}
-            for retry_settings in ([plain] if value else []) + [{**plain, **refine}]:
-                again = self._solve(problem, solver, retry_settings)
-                res = again if again.status in _DONE or not res.next_met else res
-                if res.status in _DONE:
-                    if retry_settings is plain:
-                        self.value_out_of_reach.add(solver)
-                    break
+        res = last = None
+        for rung, settings, after in _steps(rungs, self._at(solver, base)):
+            if rung.retry:
+                if res.status not in _DONE and last.iterations < REFINE_WITHIN:
+                    again = self._solve(problem, solver, settings)
+                    res = again if again.status in _DONE or not res.next_met else res
+                    self._learn(rung.answered if res.status in _DONE else "", solver)
+                continue
+            if res is not None and (res := _settled(res)).status in _DONE:
+                # an answer that meets only this rung's tolerances reaches it
+                self._learn(rung.reached if res.next_met else "", solver)
+                break
+            self._learn(rung.reached, solver)
+            res = last = self._solve(problem, solver, settings, after)
         res = _settled(res)
-        if res.next_met and near:
-            self.out_of_reach.add(solver)
-        if res.status not in _DONE and near:
-            self.out_of_reach.add(solver)
-            # near is set only with tight settings: the defaults' solve follows it
-            res = _settled(self._solve(problem, solver, {**near, **value, **base},
-                                       base if stall else None))
-        if res.status not in _DONE and settings is not base:
-            # the tight tolerances were out of reach: the back end's defaults decide
-            res = self._solve(problem, solver, base)
         if res.status not in _DONE:
             raise SolverFailure(f"{res.solver} could not solve the {what} problem of "
                                 f"{self.source or 'the scene'}: status {res.raw_status}",
@@ -473,5 +620,5 @@ def describe(r: dict) -> str:
 __all__ = ["CERT_MARGIN", "CONFIRMATION", "CONFIRM_SETTINGS", "ESTIMATE", "FALLBACK",
            "FINER_SETTINGS", "FINER_VALUE", "LP_ONLY", "REFINE_SETTINGS", "REFINE_WITHIN",
            "RELAX_SETTINGS", "STATE", "TIGHT_SETTINGS", "VALUE", "VALUE_SETTINGS", "VERDICT",
-           "VERIFY_TOL", "Ladder", "Runner", "check_solver", "describe", "ladder_of",
-           "verified"]
+           "VERIFY_TOL", "Ladder", "Rung", "Runner", "check_solver", "describe",
+           "ladder_of", "verified"]
