@@ -321,7 +321,7 @@ def test_two_fixed_points_on_the_3x3_wall():
     assert (np.abs(st.joint_shear) - f * st.joint_normal).max() <= 1e-9 * scale
     nsl, fj = sysm.layout.normal, cm.f_joint(f)
     cap = fj[cm.contacts.point_joint] * np.maximum(x[nsl], 0.0) / cm.scaling.force
-    xc, breach = cna._solve_capped(np.where(mask, 0.0, fj), lam, cap)
+    xc, breach = cna.solve_capped(np.where(mask, 0.0, fj), lam, cap)
     assert breach == 0.0
     assert np.abs(xc[nsl] * cm.scaling.force - x[nsl]).max() <= 1e-6 * scale
     # the two states differ: their normal forces by 2% of the largest force

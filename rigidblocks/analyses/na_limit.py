@@ -396,7 +396,7 @@ def x0_normals(na: Any) -> np.ndarray | None:
     start of the seed's procedure), from a
     :class:`~rigidblocks.analyses.nonassociative.ConvexNonAssociative`."""
     c = na.contacts
-    x0, _ = na._solve_capped(np.full(c.n_joints, math.inf), 0.0, np.zeros(c.n_points))
+    x0, _ = na.solve_capped(np.full(c.n_joints, math.inf), 0.0, np.zeros(c.n_points))
     if x0 is None:
         x0 = na.elastic(0.0)
     return None if x0 is None else np.maximum(x0[na.system.layout.normal], 0.0)

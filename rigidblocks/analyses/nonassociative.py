@@ -296,8 +296,8 @@ class ConvexNonAssociative(NonAssociative):
         b = -sc.row * (sysm.dead + load_factor * sysm.live) / sc.force
         return K * (As.T @ self._lu.solve(b))
 
-    def _solve_capped(self, f_eff: np.ndarray, lf: float, cap: np.ndarray
-                      ) -> tuple[np.ndarray | None, float]:
+    def solve_capped(self, f_eff: np.ndarray, lf: float, cap: np.ndarray
+                     ) -> tuple[np.ndarray | None, float]:
         """The least-energy state under the capped laws, or of their relaxation:
         (x scaled, breach R); x None when the equilibrium equations have no solution."""
         cv = self.cv
@@ -358,7 +358,7 @@ class ConvexNonAssociative(NonAssociative):
         # the start: X0 with the no-tension law imposed (its least-energy state with the
         # normal links alone, whose plastic distortions are openings only), or X0's
         # normal forces with tension cleared when that has no solution
-        x0, _ = self._solve_capped(np.full(c.n_joints, math.inf), load_factor,
+        x0, _ = self.solve_capped(np.full(c.n_joints, math.inf), load_factor,
                                    np.zeros(c.n_points))
         if x0 is None:
             x0 = self.elastic(load_factor)
@@ -372,7 +372,7 @@ class ConvexNonAssociative(NonAssociative):
         hist: list[float] = []
         x, R = x0, math.inf
         for k in range(1, self.max_iter + 1):
-            x, R = self._solve_capped(f_eff, load_factor, f_pt * N)
+            x, R = self.solve_capped(f_eff, load_factor, f_pt * N)
             if x is None:
                 return FixedPoint(INADMISSIBLE, np.full(sysm.layout.size, np.nan), k, True,
                                   math.inf, "the equilibrium equations have no solution",
