@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import pytest
 from conftest import EXAMPLES
@@ -139,15 +140,26 @@ def test_cli_error_names_the_option_as_typed(name, param, capsys):
     head = f"rigidblocks: error: example {name}: {option} "
     assert err.startswith(head) and err.count("\n") == 1, err
     function, rest = gen.target.split(":")[1], err[len(head):]
-    assert f"{function}:" not in rest and ("_" not in param or param not in rest), err
+    assert f"{function}:" not in rest, err
+    # every parameter the message names is an option, not a plain word
+    plain = {p.name for p in gen.params} & set(re.findall(r"(?<![-\w'])\w+", rest))
+    assert not plain, err
 
 
 @pytest.mark.parametrize("argv, line", [
     (["wall", "--blocks_per_course=0"],
      "example wall: --blocks_per_course must be an integer >= 1, got 0"),
     (["corbel_dome", "--overhang", "0.6"],  # a parameter not typed: as --list spells it
-     "example corbel_dome: --overhang must be < --ring_thickness (0.5) so that consecutive "
-     "rings overlap, got 0.6"),
+     "example corbel_dome: --overhang must be < --ring_thickness (0.5) so that each ring "
+     "overlaps the one below, got 0.6"),
+    # every parameter a message names is an option, those without an underscore too
+    (["keyed_wall", "--key-width", "0.4", "--thickness", "0.3"],
+     "example keyed_wall: --key-width must be < --thickness, got 0.4 >= 0.3"),
+    (["corbel_arch", "--block-length", "0.1"],
+     "example corbel_arch: --block-length must exceed the overhang --opening / (2 (--courses "
+     "- 1)) = 0.2, got 0.1"),
+    (["barrel_vault", "--bond", "running", "--voussoirs", "1"],
+     "example barrel_vault: --voussoirs must be >= 2 with --bond 'running', got 1"),
     (["keyed_wall", "--base-friction", "-1"],  # not the scene's friction
      "example keyed_wall: --base-friction must be >= 0, got -1.0"),
     (["box_stack", "--offset", "1.5"],

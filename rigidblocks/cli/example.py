@@ -97,10 +97,12 @@ def as_options(err: InputError, gen, typed: Mapping[str, str]) -> InputError:
 
     A generator's message reads ``"function: parameter must ..."`` (the Python names).
     Here it reads ``"example NAME: --option must ..."``: the function's name gives way
-    to the command's, and the parameter the message is about (its first word) and any
-    other parameter it names with an underscore (``ring_thickness``: never a word of
-    prose) become options, spelled as the user typed them (``typed``, from
-    :func:`parse_params`) or, when not typed, as ``--list`` shows them.
+    to the command's, and every word of the message that is one of the generator's
+    parameters (``key_width must be < thickness``: both) becomes its option, spelled as
+    the user typed it (``typed``, from :func:`parse_params`) or, when not typed, as
+    ``--list`` shows it. Words in quotes (values, ``got 'courses'``) are left alone;
+    the generators word their messages so that a parameter's name is never prose
+    (``so that each ring overlaps the one below``, not ``consecutive rings``).
     """
     names = {p.name for p in gen.params}
     text = str(err)
@@ -110,9 +112,7 @@ def as_options(err: InputError, gen, typed: Mapping[str, str]) -> InputError:
 
     def option(word: re.Match) -> str:
         name = word.group(0)
-        if name in names and (word.start() == 0 or "_" in name):
-            return typed.get(name, f"--{name}")
-        return name
+        return typed.get(name, f"--{name}") if name in names else name
 
     return InputError(_WORD.sub(option, text), f"example {gen.name}")
 

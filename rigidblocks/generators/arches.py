@@ -254,8 +254,8 @@ def _vertical_ring(cx: float, ri: float, ro: float, t0: float, t1: float, n: int
     for i in range(n):
         piece = ring.intersection(box(xs[i], y0, xs[i + 1], y1))
         if piece.geom_type != "Polygon":
-            raise InputError(f"{g}: voussoirs: vertical joints cut voussoir {i + 1} in pieces; use "
-                             "fewer voussoirs or radial joints")
+            raise InputError(f"{g}: voussoirs: with joints 'vertical', voussoir {i + 1} is cut in "
+                             "pieces; use fewer voussoirs or joints 'radial'")
         pts = list(piece.exterior.coords)[:-1]
         blocks.append(block(f"v{i + 1}", pts))
     right = (_pol(ri, t0), _pol(ro, t0))

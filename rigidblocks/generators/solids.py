@@ -261,12 +261,13 @@ def corbel_dome(rings: int = 5, blocks_per_ring: int = 12, radius: float = 2.0,
         raise InputError(f"{g}: cap must be true or false, got {cap!r}")
     d = 2 * math.pi / k
     if not o < w:
-        raise InputError(f"{g}: overhang must be < ring_thickness ({w:g}) so that "
-                         f"consecutive rings overlap, got {o:g}")
+        raise InputError(f"{g}: overhang must be < ring_thickness ({w:g}) so that each "
+                         f"ring overlaps the one below, got {o:g}")
     r_top = R - (n - 1) * o
     if not r_top > 0:
-        raise InputError(f"{g}: rings: the top ring would close past the axis (inner radius "
-                         f"{r_top:g} <= 0); use fewer rings or a smaller overhang")
+        raise InputError(f"{g}: rings: the top ring would close past the axis (its inner "
+                         f"face at {r_top:g} <= 0 from it); use fewer rings or a smaller "
+                         "overhang")
     side = R + 2 * w
     blocks = [solid("slab", box(-side, -side, -h, 2 * side, 2 * side, h), support=True)]
     for j in range(n):
@@ -338,7 +339,7 @@ def barrel_vault(voussoirs: int = 9, thickness: float = 0.15, radius: float = 2.
     if ratio >= 2:
         raise InputError(f"{g}: thickness ratio t/R must be < 2, got {ratio:g}")
     if bond == "running" and n < 2:
-        raise InputError(f"{g}: voussoirs must be >= 2 in a running bond, got {n}")
+        raise InputError(f"{g}: voussoirs must be >= 2 with bond 'running', got {n}")
     ri, ro = R * (1 - ratio / 2), R * (1 + ratio / 2)
     a = math.radians(a)
     t0, t1 = math.pi / 2 - a, math.pi / 2 + a

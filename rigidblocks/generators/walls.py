@@ -122,10 +122,11 @@ def running_bond_wall(courses: int = 10, blocks_per_course: int = 10, block_leng
                              f"(first_course, n_courses, first_block, n_blocks), got {op!r}")
         c0, nc, b0, nbk = (int(v) for v in op)
         if c0 < 0 or nc < 1 or b0 < 0 or nbk < 1 or c0 + nc > C or b0 + nbk > N + 1:
-            raise InputError(f"running_bond_wall: openings item #{k} {tuple(op)!r} does not fit a "
-                             f"wall of {C} courses and {N} blocks per course "
-                             f"(need 0 <= first, n >= 1, courses up to {C}, blocks up to "
-                             f"{N} in even and {N + 1} in odd courses)")
+            raise InputError(f"running_bond_wall: openings item #{k} {tuple(op)!r} does not fit "
+                             f"the wall of courses {C} x blocks_per_course {N} (need "
+                             f"first_course >= 0, n_courses >= 1, first_course + n_courses <= "
+                             f"{C}, first_block >= 0, n_blocks >= 1, first_block + n_blocks "
+                             f"<= {N} in an even course, {N + 1} in an odd one)")
         if b0 + nbk > N and np.any((np.arange(c0, c0 + nc) % 2) == 0):
             raise InputError(f"running_bond_wall: openings item #{k} {tuple(op)!r} reaches block "
                              f"index {b0 + nbk - 1}, past the last block ({N - 1}) of an even "
