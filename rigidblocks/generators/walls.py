@@ -17,6 +17,7 @@ import numpy as np
 
 from ..errors import InputError, finite_number
 from ..scene.model import Block, Scene, Units
+from .limits import MAX_WALL_BLOCKS, at_most
 
 FOUNDATION_ID = "foundation"
 
@@ -93,6 +94,8 @@ def running_bond_wall(courses: int = 10, blocks_per_course: int = 10, block_leng
     """
     C = _count("courses", courses)
     N = _count("blocks_per_course", blocks_per_course)
+    at_most("running_bond_wall", f"courses {C} x blocks_per_course {N}", wall_blocks(C, N),
+            MAX_WALL_BLOCKS)
     L = _positive("block_length", block_length)
     h = _positive("block_height", block_height)
     depth = _positive("depth", depth)
@@ -156,10 +159,16 @@ def running_bond_wall(courses: int = 10, blocks_per_course: int = 10, block_leng
                  live_body_force=(float(horizontal_load), 0.0), load_factor=0.0)
 
 
+def wall_blocks(courses: int, blocks_per_course: int) -> int:
+    """Blocks of a full running-bond wall, the foundation among them:
+    ``N C + floor(C / 2) + 1`` (the odd courses hold one block more)."""
+    return blocks_per_course * courses + courses // 2 + 1
+
+
 def joint_count(courses: int, blocks_per_course: int) -> int:
     """Closed-form joint count ``N (3C - 1) - ceil(C / 2)`` of a full running-bond wall."""
     C, N = courses, blocks_per_course
     return N * (3 * C - 1) - (C + 1) // 2
 
 
-__all__ = ["FOUNDATION_ID", "block_id", "joint_count", "running_bond_wall"]
+__all__ = ["FOUNDATION_ID", "block_id", "joint_count", "running_bond_wall", "wall_blocks"]
