@@ -21,7 +21,11 @@ assembly; otherwise from the caller (``friction=``), else the scene keeps no fri
 Block ids are the graph node keys as strings. The blocks' faces go through the scene's
 own validation, so a block our 3D model cannot take today (a non-convex one) is an
 :class:`~rigidblocks.errors.InputError` naming it, converted faithfully rather than
-convexified.
+convexified. Faces are written outward (counter-clockwise seen from outside, as the
+scene files rigidblocks writes give them): a mesh whose faces all turn inward (negative
+signed volume) is reversed, and the report names it; one whose faces turn both ways
+(two faces running through their common edge in the same direction) is an
+:class:`~rigidblocks.errors.InputError` naming the block, the faces and the edge.
 
 The way back: :func:`write_forces` writes a result's contact forces into the
 assembly's (or model's) own interface objects, in COMPAS's convention (per interface
@@ -56,6 +60,7 @@ import numpy as np
 
 from .errors import InputError
 from .scene.model import Scene, make_block
+from .scene.polyhedra import face_orientation
 from .scene.validate import validate_scene
 
 EXTRA = "compas"
@@ -141,7 +146,10 @@ def _positive_friction(value: Any, where: str) -> float:
     return f
 
 
-def _block_polyhedron(mesh: Any, where: str) -> tuple[list[list[float]], list[list[int]]]:
+def _block_polyhedron(mesh: Any, where: str
+                      ) -> tuple[list[list[float]], list[list[int]], bool]:
+    """The mesh's vertices and faces, the faces outward, and whether they were turned
+    (all inward in the mesh); faces turning both ways are an error naming them."""
     try:
         verts, faces = mesh.to_vertices_and_faces()
     except Exception as exc:  # a node without a mesh, or a broken one
@@ -149,7 +157,26 @@ def _block_polyhedron(mesh: Any, where: str) -> tuple[list[list[float]], list[li
     if len(verts) < 4 or len(faces) < 4:
         raise InputError(f"a block needs a closed mesh: {len(verts)} vertices, "
                          f"{len(faces)} faces", where)
-    return [[float(c) for c in v] for v in verts], [[int(i) for i in f] for f in faces]
+    verts = [[float(c) for c in v] for v in verts]
+    faces = [[int(i) for i in f] for f in faces]
+    way, bad = face_orientation(verts, faces)
+    if way == "mixed" and bad is not None:
+        f, g, (a, b) = bad
+        raise InputError(f"faces {f} and {g} run through their common edge ({a}, {b}) in "
+                         "the same direction: the mesh's faces do not all turn the same "
+                         "way (outward, counter-clockwise seen from outside); unify them "
+                         "(COMPAS: mesh.unify_cycles())", where)
+    if way == "inward":
+        return verts, [f[::-1] for f in faces], True
+    return verts, faces, False
+
+
+def _note_turned(rep: ImportReport, turned: list[str]) -> None:
+    """Say which blocks' faces were reversed (their mesh's faces all turned inward)."""
+    if turned:
+        shown = ", ".join(turned[:10]) + (", ..." if len(turned) > 10 else "")
+        rep.notes.append(f"faces reversed to point outward in {len(turned)} block(s) "
+                         f"whose mesh had them all inward: {shown}")
 
 
 def _supports_given(supports: Sequence[Any] | None, keys: Sequence[Any]) -> set[str]:
@@ -197,13 +224,15 @@ def assembly_to_scene(assembly: Any, *, friction: float | None = None,
     graph = assembly.graph
     nodes = list(graph.nodes())
     extra = _supports_given(supports, nodes)
-    blocks = []
+    blocks, turned = [], []
     for node in nodes:
         where = f"block '{node}'"
         mesh = graph.node_attribute(node, "block")
         if mesh is None:
             raise InputError("the node has no block", where)
-        verts, faces = _block_polyhedron(mesh, where)
+        verts, faces, flipped = _block_polyhedron(mesh, where)
+        if flipped:
+            turned.append(str(node))
         attrs = getattr(mesh, "attributes", {}) or {}
         w = float(attrs["density"]) if attrs.get("density") is not None else float(density)
         sup = bool(graph.node_attribute(node, "is_support")) or str(node) in extra
@@ -222,6 +251,7 @@ def assembly_to_scene(assembly: Any, *, friction: float | None = None,
         friction = _positive_friction(friction, "friction")
     rep.friction, rep.friction_source = friction, f_src
     rep.blocks = len(blocks)
+    _note_turned(rep, turned)
     rep.interfaces_in_file = sum(len(graph.edge_attribute(e, "interfaces") or [])
                                  for e in graph.edges())
     return _scene(blocks, friction, name or (assembly.attributes or {}).get("name"), validate)
@@ -242,11 +272,13 @@ def blockmodel_to_scene(model: Any, *, friction: float | None = None, density: f
     rep.kind = type(model).__name__
     elements = list(model.elements())
     extra = _supports_given(supports, [e.graphnode for e in elements])
-    blocks = []
+    blocks, turned = [], []
     for el in elements:
         key = str(el.graphnode)
         where = f"block '{key}'"
-        verts, faces = _block_polyhedron(el.modelgeometry, where)
+        verts, faces, flipped = _block_polyhedron(el.modelgeometry, where)
+        if flipped:
+            turned.append(key)
         mat = getattr(el, "material", None)
         rho = getattr(mat, "density", None) if mat is not None else None
         w = float(rho) * G_DEM if rho else float(density)
@@ -264,6 +296,7 @@ def blockmodel_to_scene(model: Any, *, friction: float | None = None, density: f
         friction = _positive_friction(friction, "friction")
     rep.friction, rep.friction_source = friction, f_src
     rep.blocks = len(blocks)
+    _note_turned(rep, turned)
     rep.interfaces_in_file = sum(len(model.graph.edge_attribute(e, "contacts") or [])
                                  for e in model.graph.edges())
     return _scene(blocks, friction, name or getattr(model, "name", None), validate)

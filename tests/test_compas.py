@@ -322,3 +322,83 @@ def test_non_convex_block_converted_faithfully_validation_decides():
         assert "block '1'" in str(err) and "convex" in str(err)
     else:
         assert rb.check(checked, load_factor=0).status == "admissible"
+
+
+def _newell_normals_point_out(vertices, faces) -> bool:
+    """Every face's (Newell) normal points away from the block's mean vertex: the faces
+    turn counter-clockwise seen from outside (the test is exact for convex blocks)."""
+    pts = np.asarray(vertices, dtype=float)
+    centre = pts.mean(axis=0)
+    for f in faces:
+        p = pts[list(f)]
+        n = np.cross(p, np.roll(p, -1, axis=0)).sum(axis=0)
+        if not n @ (p.mean(axis=0) - centre) > 0:
+            return False
+    return True
+
+
+def _turned(block, faces):
+    """A copy of a compas_assembly Block with the given faces (vertex keys as indices)."""
+    v, _ = block.to_vertices_and_faces()
+    return Block.from_vertices_and_faces(v, faces)
+
+
+def test_inward_faces_are_written_outward_and_said(tmp_path, capsys):
+    """A block meshed with every face inward (negative signed volume) is imported with
+    its faces reversed, the report saying which; the scene file then has every face
+    counter-clockwise seen from outside, as docs/scene-format.md says of the files
+    rigidblocks writes."""
+    a = two_boxes(0.3)
+    top = a.graph.node_attribute(1, "block")
+    _, faces = top.to_vertices_and_faces()
+    assert _newell_normals_point_out(*top.to_vertices_and_faces())  # COMPAS's box: out
+    a.graph.node_attribute(1, "block", _turned(top, [f[::-1] for f in faces]))
+    path = tmp_path / "inward.json"
+    compas.json_dump(a, str(path))
+    out = tmp_path / "scene.json"
+    assert main(["import-compas", str(path), "-o", str(out), "--friction", "0.6"]) == 0
+    assert ("faces reversed to point outward in 1 block(s) whose mesh had them all "
+            "inward: 1") in capsys.readouterr().out
+    doc = json.loads(out.read_text())
+    for b in doc["blocks"]:
+        assert _newell_normals_point_out(b["vertices"], b["faces"]), b["id"]
+    assert rb.check(read_scene(out), load_factor=0).status == "admissible"
+
+
+def test_faces_turning_both_ways_are_refused_naming_the_block(tmp_path, capsys):
+    """One face of a closed mesh reversed: no single way to turn it outward is implied
+    by the mesh, so the import stops with one line naming the file, the block, the two
+    faces and their common edge."""
+    a = two_boxes(0.3)
+    top = a.graph.node_attribute(1, "block")
+    _, faces = top.to_vertices_and_faces()
+    faces = [list(f) for f in faces]
+    faces[2] = faces[2][::-1]
+    a.graph.node_attribute(1, "block", _turned(top, faces))
+    with pytest.raises(InputError, match=r"block '1': faces (\d+ and 2|2 and \d+) run through "
+                       r"their common edge \(\d+, \d+\) in the same direction"):
+        from_compas(a)
+    path = tmp_path / "mixed.json"
+    compas.json_dump(a, str(path))
+    assert main(["import-compas", str(path), "-o", str(tmp_path / "s.json")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"rigidblocks: error: {path}: block '1': faces ") and \
+        err.count("\n") == 1 and "unify_cycles" in err, err
+    assert not (tmp_path / "s.json").exists()
+
+
+def test_inward_non_convex_block_is_turned_by_its_signed_volume():
+    """The L prism (non-convex: no face plane keeps every vertex on one side) meshed
+    inward: the sign of its volume decides, and every face is reversed; meshed outward
+    it is kept as given."""
+    from rigidblocks.compas import ImportReport, assembly_to_scene
+
+    mesh = l_prism()
+    v, f = mesh.to_vertices_and_faces()
+    for faces, turned in ((f, False), ([x[::-1] for x in f], True)):
+        a = Assembly()
+        a.add_block(Block.from_vertices_and_faces(v, faces), node=0)
+        rep = ImportReport(kind="")
+        scene = assembly_to_scene(a, validate=False, report=rep)
+        assert [list(x) for x in scene.blocks[0].faces] == [list(x) for x in f]
+        assert bool(rep.notes) == turned

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import pytest
 from conftest import EXAMPLES
@@ -139,24 +140,129 @@ def test_cli_error_names_the_option_as_typed(name, param, capsys):
     head = f"rigidblocks: error: example {name}: {option} "
     assert err.startswith(head) and err.count("\n") == 1, err
     function, rest = gen.target.split(":")[1], err[len(head):]
-    assert f"{function}:" not in rest and ("_" not in param or param not in rest), err
+    assert f"{function}:" not in rest, err
+    # every parameter the message names is an option, not a plain word
+    plain = {p.name for p in gen.params} & set(re.findall(r"(?<![-\w'])\w+", rest))
+    assert not plain, err
 
 
 @pytest.mark.parametrize("argv, line", [
     (["wall", "--blocks_per_course=0"],
      "example wall: --blocks_per_course must be an integer >= 1, got 0"),
     (["corbel_dome", "--overhang", "0.6"],  # a parameter not typed: as --list spells it
-     "example corbel_dome: --overhang must be < --ring_thickness (0.5) so that consecutive "
-     "rings overlap, got 0.6"),
+     "example corbel_dome: --overhang must be < --ring_thickness (0.5) so that each ring "
+     "overlaps the one below, got 0.6"),
+    # every parameter a message names is an option, those without an underscore too
+    (["keyed_wall", "--key-width", "0.4", "--thickness", "0.3"],
+     "example keyed_wall: --key-width must be < --thickness, got 0.4 >= 0.3"),
+    (["corbel_arch", "--block-length", "0.1"],
+     "example corbel_arch: --block-length must exceed the overhang --opening / (2 (--courses "
+     "- 1)) = 0.2, got 0.1"),
+    (["barrel_vault", "--bond", "running", "--voussoirs", "1"],
+     "example barrel_vault: --voussoirs must be >= 2 with --bond 'running', got 1"),
     (["keyed_wall", "--base-friction", "-1"],  # not the scene's friction
      "example keyed_wall: --base-friction must be >= 0, got -1.0"),
     (["box_stack", "--offset", "1.5"],
      "example box_stack: --offset: box1 does not overlap box0 (shift (1.5, 0), a box is "
      "1 x 1)"),
+    # N C + floor(C/2) + 1 = 10 x 1e8 + 5e7 + 1 (walls.wall_blocks): refused before any
+    # block is built (the wall used to fill the memory)
+    (["wall", "--courses", "100000000", "--blocks-per-course", "10"],
+     "example wall: --courses 100000000 x --blocks-per-course 10 would make 1,050,000,001 "
+     "blocks; at most 1,000,000"),
+    (["wall3d", "--courses=40000"],  # 4 x 40,000 + 20,000 + 1
+     "example wall3d: --courses 40000 x --blocks_per_course 4 would make 180,001 blocks; "
+     "at most 100,000"),
+    (["flat_arch", "--voussoirs", "20000"],  # 29 s and 1.4 GB to build
+     "example flat_arch: --voussoirs must be <= 10,000, got 20000"),
+    (["arch", "--arc-points", "100000000"],  # 15 voussoirs of 1e8 segments each
+     "example arch: --voussoirs 15 x --arc-points 100000000 would make 1,500,000,000 arc "
+     "segments; at most 1,000,000"),
+    (["arch", "--joints", "vertical", "--voussoirs", "1001"],
+     "example arch: --voussoirs must be <= 1,000 with --joints 'vertical', got 1001"),
+    (["corbel_dome", "--blocks-per-ring", "65"],
+     "example corbel_dome: --blocks-per-ring must be <= 64 with --cap true (the keystone "
+     "over them has 2 x --blocks-per-ring sides), got 65"),
 ])
 def test_cli_error_lines(argv, line, capsys):
     assert main(["example", *argv]) == 2
     assert capsys.readouterr().err == f"rigidblocks: error: {line}\n"
+
+
+#: each generator with parameters that make a small scene of it, and the bound it is held
+#: to (the module and name of the constant); the reference model has no size parameter
+_SIZED = [
+    ("wall", {"courses": 3, "blocks_per_course": 4}, "walls.MAX_WALL_BLOCKS",
+     "courses 3 x blocks_per_course 4"),
+    ("wall3d", {"courses": 3, "blocks_per_course": 2}, "limits.MAX_BLOCKS",
+     "courses 3 x blocks_per_course 2"),
+    ("keyed_wall", {"courses": 2, "blocks_per_course": 2}, "limits.MAX_BLOCKS",
+     "courses 2 x blocks_per_course 2"),
+    ("corbel_arch", {"courses": 3}, "limits.MAX_BLOCKS", "courses 3"),
+    ("arpino_gate", {"courses": 3}, "limits.MAX_BLOCKS", "courses 3"),
+    ("box_stack", {"boxes": 3}, "solids.MAX_STACK", "boxes 3"),
+    ("corbel_dome", {"rings": 2, "blocks_per_ring": 4}, "limits.MAX_BLOCKS",
+     "rings 2 x blocks_per_ring 4"),
+    ("corbel_dome", {"rings": 2, "blocks_per_ring": 4, "cap": False}, "limits.MAX_BLOCKS",
+     "rings 2 x blocks_per_ring 4"),
+    ("barrel_vault", {"rings": 3, "voussoirs": 4}, "limits.MAX_BLOCKS", "rings 3 x voussoirs 4"),
+    ("barrel_vault", {"rings": 3, "voussoirs": 4, "bond": "running"}, "limits.MAX_BLOCKS",
+     "rings 3 x voussoirs 4"),
+]
+
+
+#: the arches' size is their number of voussoirs, a dome's also the blocks in a ring
+#: (the parameter, the bound, and the words after it)
+_FANS = [
+    ("arch", {"voussoirs": 5}, "voussoirs", "limits.MAX_VOUSSOIRS", ""),
+    ("arch", {"shape": "pointed", "voussoirs": 6}, "voussoirs", "limits.MAX_VOUSSOIRS", ""),
+    ("arch", {"voussoirs": 5, "joints": "vertical"}, "voussoirs",
+     "arches.MAX_VERTICAL_VOUSSOIRS", " with joints 'vertical'"),
+    ("stocky_arch", {"voussoirs": 5}, "voussoirs", "limits.MAX_VOUSSOIRS", ""),
+    ("flat_arch", {"voussoirs": 5}, "voussoirs", "limits.MAX_VOUSSOIRS", ""),
+    ("barrel_vault", {"voussoirs": 5, "rings": 2}, "voussoirs", "limits.MAX_VOUSSOIRS", ""),
+    ("corbel_dome", {"blocks_per_ring": 5, "cap": False}, "blocks_per_ring",
+     "limits.MAX_VOUSSOIRS", ""),
+    ("corbel_dome", {"blocks_per_ring": 5}, "blocks_per_ring", "solids.MAX_CAPPED_RING",
+     " with cap true (the keystone over them has 2 x blocks_per_ring sides)"),
+]
+
+
+def test_every_generator_with_a_size_has_a_bound():
+    assert {name for name, *_ in _SIZED + _FANS} == set(available()) - {"reference"}
+
+
+@pytest.mark.parametrize("name, params, param, bound, when", _FANS,
+                         ids=[f"{n}-{'-'.join(map(str, p.values()))}" for n, p, *_ in _FANS])
+def test_fans_of_blocks_bound_their_number(name, params, param, bound, when, monkeypatch):
+    """A fan of thin blocks round a centre (an arch's voussoirs, a dome's ring) is
+    refused above its bound, at the bound built."""
+    n = params[param]
+    target = f"rigidblocks.generators.{bound}"
+    monkeypatch.setattr(target, n)
+    assert build(name, **params)
+    monkeypatch.setattr(target, n - 1)
+    with pytest.raises(InputError, match=re.escape(
+            f": {param} must be <= {n - 1}{when}, got {n}")):
+        build(name, **params)
+
+
+@pytest.mark.parametrize("name, params, bound, asked", _SIZED,
+                         ids=[f"{n}-{'-'.join(map(str, p.values()))}" for n, p, *_ in _SIZED])
+def test_generator_counts_its_blocks_before_building(name, params, bound, asked,
+                                                     monkeypatch):
+    """With the bound set to the scene's own number of blocks the scene is built; one
+    less, and it is refused naming its parameters and that number: the count made
+    before building is the count built."""
+    n = len(build(name, **params).blocks)
+    module, constant = bound.split(".")
+    monkeypatch.setattr(f"rigidblocks.generators.{module}.{constant}", n)
+    assert len(build(name, **params).blocks) == n
+    monkeypatch.setattr(f"rigidblocks.generators.{module}.{constant}", n - 1)
+    with pytest.raises(InputError, match=re.escape(
+            f": {asked} would make {n:,} blocks; at most {n - 1:,}")):
+        build(name, **params)
+
 
 
 def _example_files():

@@ -75,3 +75,51 @@ def test_cli_help_gives_the_bounds_defaults(capsys):
     assert float(RTOL_DEFAULTS["thickness"]) == defaults["rtol"].default
     assert f"default {RTOL_DEFAULTS['thickness']}" in out
     assert "does not stand (default 0.01)" in out and "it stands (default 1)" in out
+
+
+@pytest.mark.parametrize("argv, line", [
+    # a parameter of the generator that is wrong whatever the thickness, named as typed
+    (["arch", "--pier-width", "-1"],
+     "thickness arch: at the upper bound thickness = 1 (--hi): --pier-width must be > 0, "
+     "got -1"),
+    # the bisected parameter named as --param names it, the others as options
+    (["keyed_wall", "--param", "key-height", "--block-height", "0.1", "--hi", "0.5"],
+     "thickness keyed_wall: at the upper bound key-height = 0.5 (--hi): key-height must "
+     "be < --block-height, got 0.5 >= 0.1"),
+    (["arch", "--thickness", "0.2"],
+     "thickness arch: --thickness is the parameter bisected (--param thickness) between "
+     "--lo and --hi; do not give it"),
+    (["wall", "--param", "blocks_per_course"],
+     "thickness wall: --param blocks_per_course: a count or a switch, not a size to "
+     "bisect"),
+    (["arch", "--param", "colour"],
+     "thickness arch: --param colour: no such parameter (parameters: --shape, --voussoirs, "
+     "--thickness, --radius, --joints, --springing, --half_angle, --pointedness, "
+     "--pier_width, --pier_height, --unit_weight, --friction, --depth, --arc_points)"),
+    (["arch", "--colour", "red"],
+     "thickness arch: unknown parameter --colour (parameters: --shape, --voussoirs, "
+     "--thickness, --radius, --joints, --springing, --half_angle, --pointedness, "
+     "--pier_width, --pier_height, --unit_weight, --friction, --depth, --arc_points)"),
+    (["arch", "--voussoirs", "many"],
+     "thickness arch: at the upper bound thickness = 1 (--hi): --voussoirs must be an "
+     "integer, got 'many'"),
+])
+def test_cli_errors_name_the_parameters_as_typed(argv, line, capsys):
+    """The generator's parameters in thickness's errors read as the user gave them
+    (options, and the bisected one as --param names it), not as Python's words
+    (`min_thickness: ... (arch: pier_width must be > 0 ...)`)."""
+    assert main(["thickness", *argv]) == 2
+    assert capsys.readouterr().err == f"rigidblocks: error: {line}\n"
+
+
+def test_cli_prints_the_parameters_as_typed(capsys):
+    assert main(["thickness", "arch", "--voussoirs", "12", "--pier-width=0.8", "--rtol",
+                 "1e-2"]) == 0
+    out = capsys.readouterr().out
+    assert "generator  arch (--voussoirs 12 --pier-width 0.8)" in out, out
+
+
+def test_cli_help_after_the_generator(capsys):
+    assert main(["thickness", "arch", "--help"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("usage: rigidblocks thickness arch") and "--pier_width" in out

@@ -20,52 +20,65 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                    help="--PARAM VALUE pairs of the generator")
 
 
-def parse_params(gen, tokens: list[str],
-                 typed: dict[str, str] | None = None) -> dict[str, Any]:
+def parse_params(gen, tokens: list[str], typed: dict[str, str] | None = None,
+                 command: str = "example") -> dict[str, Any]:
     """``--name value`` pairs, converted after the type of each parameter's default.
 
     ``typed``, when given, receives each parameter's option as the user wrote it
-    (``"blocks_per_course" -> "--blocks-per-course"``), for :func:`as_options`.
+    (``"blocks_per_course" -> "--blocks-per-course"``), for :func:`as_options`;
+    errors begin with ``command`` and the generator's name.
     """
+    where = f"{command} {gen.name}"
     known = {p.name: p for p in gen.params}
     out: dict[str, Any] = {}
     i = 0
     while i < len(tokens):
         tok = tokens[i]
         if not tok.startswith("--"):
-            raise InputError(f"example {gen.name}: expected --PARAM VALUE, got {tok!r}")
+            raise InputError(f"expected --PARAM VALUE, got {tok!r}", where)
         option, value = tok.split("=", 1) if "=" in tok else (tok, None)
-        key = option[2:].replace("-", "_")
+        key = parameter_name(option)
         if value is not None:
             i += 1
         else:
             if i + 1 >= len(tokens):
-                raise InputError(f"example {gen.name}: {option} needs a value")
+                raise InputError(f"{option} needs a value", where)
             value = tokens[i + 1]
             i += 2
         if key not in known:
-            raise InputError(f"example {gen.name}: unknown parameter {option} (parameters: "
-                             f"{', '.join(known)})")
-        out[key] = convert(gen.name, option, value, known[key].default)
+            raise InputError(f"unknown parameter {option} ({options(gen)})", where)
+        out[key] = convert(where, option, value, known[key].default)
         if typed is not None:
             typed[key] = option
     return out
 
 
-def convert(gen: str, option: str, value: str, default: Any) -> Any:
+def parameter_name(option: str) -> str:
+    """The generator's parameter an option or name stands for: ``--blocks-per-course``,
+    ``blocks-per-course`` and ``blocks_per_course`` are ``blocks_per_course``."""
+    return option.removeprefix("--").replace("-", "_")
+
+
+def options(gen) -> str:
+    """``"parameters: --a, --b, ..."``: a generator's parameters as ``--list`` spells
+    them."""
+    return "parameters: " + ", ".join(f"--{p.name}" for p in gen.params)
+
+
+def convert(where: str, option: str, value: str, default: Any) -> Any:
     """A command-line string as the type of ``default`` (numbers may also be words like
-    "infinite", which the generator then validates); errors name ``option`` as typed."""
+    "infinite", which the generator then validates); errors begin with ``where``
+    (``"example arch"``) and name ``option`` as typed."""
     if isinstance(default, bool):
         low = value.lower()
         if low not in ("true", "false", "1", "0", "yes", "no"):
-            raise InputError(f"example {gen}: {option} must be true or false, got {value!r}")
+            raise InputError(f"{option} must be true or false, got {value!r}", where)
         return low in ("true", "1", "yes")
     if isinstance(default, int):
         try:
             return int(value)
         except ValueError:
-            raise InputError(f"example {gen}: {option} must be an integer, got {value!r}") \
-                from None
+            raise InputError(f"{option} must be an integer, got {value!r}", where) from None
     if isinstance(default, float):
         try:
             return float(value)
@@ -83,8 +96,8 @@ def convert(gen: str, option: str, value: str, default: Any) -> Any:
             return [tuple(int(v) for v in item.split(",")) for item in value.split(";")
                     if item.strip()]
         except ValueError:
-            raise InputError(f"example {gen}: {option} must look like 'a,b,c,d;a,b,c,d', got "
-                             f"{value!r}") from None
+            raise InputError(f"{option} must look like 'a,b,c,d;a,b,c,d', got {value!r}",
+                             where) from None
     return value
 
 
@@ -92,15 +105,19 @@ _PREFIX = re.compile(r"(\w+): ")
 _WORD = re.compile(r"(?<![\w#'-])[A-Za-z_]\w*")
 
 
-def as_options(err: InputError, gen, typed: Mapping[str, str]) -> InputError:
+def as_options(err: InputError, gen, typed: Mapping[str, str],
+               command: str = "example") -> InputError:
     """The generator's error ``err`` in the command line's words.
 
     A generator's message reads ``"function: parameter must ..."`` (the Python names).
-    Here it reads ``"example NAME: --option must ..."``: the function's name gives way
-    to the command's, and the parameter the message is about (its first word) and any
-    other parameter it names with an underscore (``ring_thickness``: never a word of
-    prose) become options, spelled as the user typed them (``typed``, from
-    :func:`parse_params`) or, when not typed, as ``--list`` shows them.
+    Here it reads ``"example NAME: --option must ..."`` (``command NAME``): the
+    function's name gives way to the command's, and every word of the message that is
+    one of the generator's parameters (``key_width must be < thickness``: both) becomes
+    its option, spelled as the user typed it (``typed``, from :func:`parse_params`) or,
+    when not typed, as ``--list`` shows it. Words in quotes (values, ``got 'courses'``)
+    are left alone; the generators word their messages so that a parameter's name is
+    never prose (``so that each ring overlaps the one below``, not ``consecutive
+    rings``).
     """
     names = {p.name for p in gen.params}
     text = str(err)
@@ -110,11 +127,9 @@ def as_options(err: InputError, gen, typed: Mapping[str, str]) -> InputError:
 
     def option(word: re.Match) -> str:
         name = word.group(0)
-        if name in names and (word.start() == 0 or "_" in name):
-            return typed.get(name, f"--{name}")
-        return name
+        return typed.get(name, f"--{name}") if name in names else name
 
-    return InputError(_WORD.sub(option, text), f"example {gen.name}")
+    return InputError(_WORD.sub(option, text), f"{command} {gen.name}")
 
 
 def listing() -> str:
@@ -172,5 +187,5 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-__all__ = ["add_args", "run", "parse_params", "convert", "as_options", "listing",
-           "describe"]
+__all__ = ["add_args", "run", "parse_params", "parameter_name", "options", "convert",
+           "as_options", "listing", "describe"]

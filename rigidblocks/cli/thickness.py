@@ -11,8 +11,8 @@ from .options import add_rtol, finite_float, relative_tolerance
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("generator", help="generator name (see `rigidblocks example --list`)")
-    p.add_argument("--param", default="thickness", help="parameter to bisect "
-                   "(default: thickness)")
+    p.add_argument("--param", default="thickness", help="parameter to bisect, as "
+                   "`example NAME --help` lists it (default: thickness)")
     p.add_argument("--lo", type=finite_float, default=0.01,
                    help="a value at which the structure does not stand (default %(default)g)")
     p.add_argument("--hi", type=finite_float, default=1.0,
@@ -29,27 +29,52 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..generators import get
     from ..studies import min_thickness
-    from .example import parse_params
+    from .example import as_options, describe, options, parameter_name, parse_params
 
     gen = get(args.generator)
-    params = parse_params(gen, _own_options(args, list(args.params)))
-    if args.param not in {p.name for p in gen.params}:
-        raise InputError(f"thickness: {args.generator} has no parameter {args.param!r}")
-    res = min_thickness(args.generator, param=args.param, lo=args.lo, hi=args.hi,
-                        rtol=args.rtol, friction=args.friction, method=args.method,
-                        **params)
+    where = f"thickness {gen.name}"
+    tokens = _own_options(args, list(args.params))
+    if "-h" in tokens or "--help" in tokens:
+        print(f"usage: rigidblocks thickness {gen.name} [--param NAME] [--lo LO] [--hi HI] "
+              "[--PARAM VALUE ...]\n")
+        print(describe(gen))
+        return 0
+    param, shown = parameter_name(args.param), args.param  # shown: as the user named it
+    default = {p.name: p.default for p in gen.params}
+    if param not in default:
+        raise InputError(f"--param {shown}: no such parameter ({options(gen)})", where)
+    if isinstance(default[param], int | bool):  # bisection takes every real in between
+        raise InputError(f"--param {shown}: a count or a switch, not a size to bisect",
+                         where)
+    typed: dict[str, str] = {}
+    params = parse_params(gen, tokens, typed, "thickness")
+    if param in params:
+        raise InputError(f"{typed[param]} is the parameter bisected (--param {shown}) "
+                         "between --lo and --hi; do not give it", where)
+    typed[param] = shown
+    try:
+        gen(**params, **{param: args.hi})  # the user's parameters, before any solve
+    except InputError as err:
+        raise InputError(f"at the upper bound {shown} = {args.hi:g} (--hi): "
+                         f"{as_options(err, gen, typed).detail}", where) from None
+    try:
+        res = min_thickness(args.generator, param=param, lo=args.lo, hi=args.hi,
+                            rtol=args.rtol, friction=args.friction, method=args.method,
+                            **params)
+    except InputError as err:
+        raise as_options(err, gen, typed, "thickness") from None
     if args.json:
         print(json.dumps(res.to_dict()))
     else:
-        extra = ", ".join(f"{k}={v}" for k, v in params.items()) or "defaults"
-        what = next((p.help for p in gen.params if p.name == args.param), "") or args.param
+        extra = " ".join(f"{typed[k]} {v}" for k, v in params.items()) or "defaults"
+        what = next((p.help for p in gen.params if p.name == param), "") or shown
         print(f"generator  {res.generator} ({extra})")
         print(f"friction   {res.friction}   load factor 0 (dead load only)")
-        print(f"minimised  {args.param}: {what}")
+        print(f"minimised  {shown}: {what}")
         if res.status == "undecided":
             print("status     UNDECIDED: a check could not decide; the minimum is only "
                   "bracketed")
-        print(f"{res.param:<10} min {res.thickness:.6g}   (bracket [{res.lower:.6g}, "
+        print(f"{shown:<10} min {res.thickness:.6g}   (bracket [{res.lower:.6g}, "
               f"{res.thickness:.6g}], {res.n_checks} checks)")
         for n in res.notes:
             print(f"note       {n}")

@@ -6,6 +6,8 @@ parameters with defaults and help, so that the command line can list them
 (``rigidblocks example NAME --PARAM VALUE ... -o scene.json``).
 :mod:`rigidblocks.generators.catalogue` holds the standard problems with known answers
 (closed forms and published values, with their sources) that every method is tested on.
+Every generator counts the blocks its parameters ask for and refuses more than its bound
+(:mod:`rigidblocks.generators.limits`) before building any.
 
 >>> from rigidblocks.generators import build
 >>> scene = build("flat_arch", voussoirs=5, joints="vertical")

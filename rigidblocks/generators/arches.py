@@ -18,6 +18,7 @@ import numpy as np
 from ..errors import InputError, finite_number
 from ..io.scene_file import scene_from_dict
 from ..scene.model import Scene, friction_label
+from .limits import MAX_ARC_SEGMENTS, MAX_VERTICAL_VOUSSOIRS, at_most, count_at_most
 
 Point = tuple[float, float]
 JOINTS = ("radial", "vertical")
@@ -180,6 +181,10 @@ def arch(shape: str = "semicircular", voussoirs: int | None = None, thickness: f
     pw, ph = positive("pier_width", pier_width, g), positive("pier_height", pier_height, g)
     uw, d = non_negative("unit_weight", unit_weight, g), positive("depth", depth, g)
     k = integer("arc_points", arc_points, g, 1)
+    count_at_most(g, "voussoirs", n)
+    if joints == "vertical" and shape != "pointed":
+        count_at_most(g, "voussoirs", n, MAX_VERTICAL_VOUSSOIRS, " with joints 'vertical'")
+    at_most(g, f"voussoirs {n} x arc_points {k}", n * k, MAX_ARC_SEGMENTS, "arc segments")
     fr = friction_param(friction, g)
     ri, ro = R * (1 - ratio / 2), R * (1 + ratio / 2)
     blocks: list[dict] = []
@@ -254,8 +259,8 @@ def _vertical_ring(cx: float, ri: float, ro: float, t0: float, t1: float, n: int
     for i in range(n):
         piece = ring.intersection(box(xs[i], y0, xs[i + 1], y1))
         if piece.geom_type != "Polygon":
-            raise InputError(f"{g}: voussoirs: vertical joints cut voussoir {i + 1} in pieces; use "
-                             "fewer voussoirs or radial joints")
+            raise InputError(f"{g}: voussoirs: with joints 'vertical', voussoir {i + 1} is cut in "
+                             "pieces; use fewer voussoirs or joints 'radial'")
         pts = list(piece.exterior.coords)[:-1]
         blocks.append(block(f"v{i + 1}", pts))
     right = (_pol(ri, t0), _pol(ro, t0))
@@ -304,6 +309,7 @@ def flat_arch(span: float = 2.0, height: float = 0.4, voussoirs: int = 9,
     n = integer("voussoirs", voussoirs, g, 1)
     joints = choice("joints", joints, JOINTS, g)
     springing = choice("springing", springing, SPRINGINGS, g)
+    count_at_most(g, "voussoirs", n)
     c = positive("centre_depth", centre_depth, g)
     pw, ph = positive("pier_width", pier_width, g), positive("pier_height", pier_height, g)
     uw, d = non_negative("unit_weight", unit_weight, g), positive("depth", depth, g)
@@ -392,6 +398,7 @@ def corbel_arch(opening: float = 2.0, courses: int = 6, course_height: float = 0
     g = "corbel_arch"
     L = positive("opening", opening, g)
     m = integer("courses", courses, g, 2)
+    at_most(g, f"courses {m}", 2 * m + 1)
     hc, w = positive("course_height", course_height, g), positive(
         "block_length", block_length, g)
     pattern = choice("pattern", pattern, ("horizontal", "inclined"), g)
@@ -450,6 +457,7 @@ def arpino_gate(opening: float = 2.4, height: float = 3.6, courses: int = 9,
     g = "arpino_gate"
     L, H = positive("opening", opening, g), positive("height", height, g)
     m = integer("courses", courses, g, 2)
+    at_most(g, f"courses {m}", 2 * m + 1)
     beta = non_negative("joint_inclination", joint_inclination, g)
     if beta >= 45:
         raise InputError(f"{g}: joint_inclination must be < 45 degrees, got "

@@ -16,6 +16,7 @@ from ..io.scene_file import scene_from_dict
 from ..scene.model import Scene
 from .arches import _num as _number
 from .arches import choice, friction_param, integer, non_negative, positive
+from .limits import at_most
 from .solids import LOAD_DIRECTIONS, box, prism, solid
 
 
@@ -68,12 +69,13 @@ def keyed_wall(courses: int = 6, blocks_per_course: int = 3, block_length: float
         takes the same resultant. The plain wall (``key_height = 0``) slides on any bed
         joint at lambda = f: lambda* = min(f, f_base, t / H).
     """
-    from .walls import FOUNDATION_ID, running_bond_wall
+    from .walls import FOUNDATION_ID, running_bond_wall, wall_blocks
 
     g = "keyed_wall"
     direction = choice("load_direction", load_direction, LOAD_DIRECTIONS, g)
     C = integer("courses", courses, g, 1)
     N = integer("blocks_per_course", blocks_per_course, g, 1)
+    at_most(g, f"courses {C} x blocks_per_course {N}", wall_blocks(C, N))
     L = positive("block_length", block_length, g)
     h = positive("block_height", block_height, g)
     t = positive("thickness", thickness, g)

@@ -22,6 +22,7 @@ from ..scene.model import Scene
 from ..scene.polyhedra import prism_faces
 from .arches import _num as _number
 from .arches import _r, choice, friction_param, integer, non_negative, positive
+from .limits import MAX_CAPPED_RING, MAX_STACK, at_most, count_at_most
 
 LOAD_DIRECTIONS = ("in_plane", "out_of_plane")
 BONDS = ("stack", "running")
@@ -103,12 +104,13 @@ def wall3d(courses: int = 6, blocks_per_course: int = 4, block_length: float = 0
         height z at t/2 + lambda (H - z) / 2 <= t from the face and needs |T| / N =
         lambda <= f: admissible for lambda <= min(f, t / H).
     """
-    from .walls import FOUNDATION_ID, running_bond_wall
+    from .walls import FOUNDATION_ID, running_bond_wall, wall_blocks
 
     g = "wall3d"
     direction = choice("load_direction", load_direction, LOAD_DIRECTIONS, g)
     C = integer("courses", courses, g, 1)
     N = integer("blocks_per_course", blocks_per_course, g, 1)
+    at_most(g, f"courses {C} x blocks_per_course {N}", wall_blocks(C, N))
     L = positive("block_length", block_length, g)
     h = positive("block_height", block_height, g)
     t = positive("thickness", thickness, g)
@@ -186,6 +188,7 @@ def box_stack(boxes: int = 4, width: float = 1.0, length: float = 1.0,
     """
     g = "box_stack"
     n = integer("boxes", boxes, g, 1)
+    at_most(g, f"boxes {n}", n + 1, MAX_STACK)
     b = positive("width", width, g)
     a = positive("length", length, g)
     h = positive("height", height, g)
@@ -259,14 +262,20 @@ def corbel_dome(rings: int = 5, blocks_per_ring: int = 12, radius: float = 2.0,
     fr = friction_param(friction, g)
     if not isinstance(cap, bool | np.bool_):
         raise InputError(f"{g}: cap must be true or false, got {cap!r}")
+    at_most(g, f"rings {n} x blocks_per_ring {k}", n * k + 1 + int(cap))
+    count_at_most(g, "blocks_per_ring", k)
+    if cap:
+        count_at_most(g, "blocks_per_ring", k, MAX_CAPPED_RING,
+                      " with cap true (the keystone over them has 2 x blocks_per_ring sides)")
     d = 2 * math.pi / k
     if not o < w:
-        raise InputError(f"{g}: overhang must be < ring_thickness ({w:g}) so that "
-                         f"consecutive rings overlap, got {o:g}")
+        raise InputError(f"{g}: overhang must be < ring_thickness ({w:g}) so that each "
+                         f"ring overlaps the one below, got {o:g}")
     r_top = R - (n - 1) * o
     if not r_top > 0:
-        raise InputError(f"{g}: rings: the top ring would close past the axis (inner radius "
-                         f"{r_top:g} <= 0); use fewer rings or a smaller overhang")
+        raise InputError(f"{g}: rings: the top ring would close past the axis (its inner "
+                         f"face at {r_top:g} <= 0 from it); use fewer rings or a smaller "
+                         "overhang")
     side = R + 2 * w
     blocks = [solid("slab", box(-side, -side, -h, 2 * side, 2 * side, h), support=True)]
     for j in range(n):
@@ -328,6 +337,8 @@ def barrel_vault(voussoirs: int = 9, thickness: float = 0.15, radius: float = 2.
     ln = positive("length", length, g)
     m = integer("rings", rings, g, 1)
     bond = choice("bond", bond, BONDS, g)
+    count_at_most(g, "voussoirs", n)
+    at_most(g, f"rings {m} x voussoirs {n}", m * n + (m // 2 if bond == "running" else 0) + 2)
     a = positive("half_angle", half_angle, g)
     if a > 90 + 1e-12:
         raise InputError(f"{g}: half_angle must be <= 90 degrees, got {half_angle!r}")
@@ -338,7 +349,7 @@ def barrel_vault(voussoirs: int = 9, thickness: float = 0.15, radius: float = 2.
     if ratio >= 2:
         raise InputError(f"{g}: thickness ratio t/R must be < 2, got {ratio:g}")
     if bond == "running" and n < 2:
-        raise InputError(f"{g}: voussoirs must be >= 2 in a running bond, got {n}")
+        raise InputError(f"{g}: voussoirs must be >= 2 with bond 'running', got {n}")
     ri, ro = R * (1 - ratio / 2), R * (1 + ratio / 2)
     a = math.radians(a)
     t0, t1 = math.pi / 2 - a, math.pi / 2 + a

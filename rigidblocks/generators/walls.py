@@ -17,6 +17,7 @@ import numpy as np
 
 from ..errors import InputError, finite_number
 from ..scene.model import Block, Scene, Units
+from .limits import MAX_WALL_BLOCKS, at_most
 
 FOUNDATION_ID = "foundation"
 
@@ -93,6 +94,8 @@ def running_bond_wall(courses: int = 10, blocks_per_course: int = 10, block_leng
     """
     C = _count("courses", courses)
     N = _count("blocks_per_course", blocks_per_course)
+    at_most("running_bond_wall", f"courses {C} x blocks_per_course {N}", wall_blocks(C, N),
+            MAX_WALL_BLOCKS)
     L = _positive("block_length", block_length)
     h = _positive("block_height", block_height)
     depth = _positive("depth", depth)
@@ -122,10 +125,11 @@ def running_bond_wall(courses: int = 10, blocks_per_course: int = 10, block_leng
                              f"(first_course, n_courses, first_block, n_blocks), got {op!r}")
         c0, nc, b0, nbk = (int(v) for v in op)
         if c0 < 0 or nc < 1 or b0 < 0 or nbk < 1 or c0 + nc > C or b0 + nbk > N + 1:
-            raise InputError(f"running_bond_wall: openings item #{k} {tuple(op)!r} does not fit a "
-                             f"wall of {C} courses and {N} blocks per course "
-                             f"(need 0 <= first, n >= 1, courses up to {C}, blocks up to "
-                             f"{N} in even and {N + 1} in odd courses)")
+            raise InputError(f"running_bond_wall: openings item #{k} {tuple(op)!r} does not fit "
+                             f"the wall of courses {C} x blocks_per_course {N} (need "
+                             f"first_course >= 0, n_courses >= 1, first_course + n_courses <= "
+                             f"{C}, first_block >= 0, n_blocks >= 1, first_block + n_blocks "
+                             f"<= {N} in an even course, {N + 1} in an odd one)")
         if b0 + nbk > N and np.any((np.arange(c0, c0 + nc) % 2) == 0):
             raise InputError(f"running_bond_wall: openings item #{k} {tuple(op)!r} reaches block "
                              f"index {b0 + nbk - 1}, past the last block ({N - 1}) of an even "
@@ -155,10 +159,16 @@ def running_bond_wall(courses: int = 10, blocks_per_course: int = 10, block_leng
                  live_body_force=(float(horizontal_load), 0.0), load_factor=0.0)
 
 
+def wall_blocks(courses: int, blocks_per_course: int) -> int:
+    """Blocks of a full running-bond wall, the foundation among them:
+    ``N C + floor(C / 2) + 1`` (the odd courses hold one block more)."""
+    return blocks_per_course * courses + courses // 2 + 1
+
+
 def joint_count(courses: int, blocks_per_course: int) -> int:
     """Closed-form joint count ``N (3C - 1) - ceil(C / 2)`` of a full running-bond wall."""
     C, N = courses, blocks_per_course
     return N * (3 * C - 1) - (C + 1) // 2
 
 
-__all__ = ["FOUNDATION_ID", "block_id", "joint_count", "running_bond_wall"]
+__all__ = ["FOUNDATION_ID", "block_id", "joint_count", "running_bond_wall", "wall_blocks"]

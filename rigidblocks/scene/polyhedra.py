@@ -259,6 +259,28 @@ def prism_faces(bottom: Sequence[Sequence[float]], top: Sequence[Sequence[float]
     return faces
 
 
+def face_orientation(points: Sequence[Sequence[float]], faces: Sequence[Sequence[int]]
+                     ) -> tuple[str, tuple[int, int, tuple[int, int]] | None]:
+    """How the faces of a closed polyhedron turn, as given.
+
+    ``"outward"``: each counter-clockwise seen from outside (the faces run through
+    every shared edge in opposite directions, and the signed volume is >= 0);
+    ``"inward"``: every one the other way (negative signed volume); ``"mixed"``, with
+    the first (face, face, edge) whose two faces run through their common edge in the
+    same direction; ``"open"`` when an edge does not belong to exactly two faces (the
+    validation names it).
+    """
+    table = _edge_table(faces)
+    if any(len(uses) != 2 for uses in table.values()):
+        return "open", None
+    for edge, ((f, df), (g, dg)) in table.items():
+        if df == dg:
+            return "mixed", (f, g, edge)
+    pts = np.asarray(points, dtype=float)
+    volume = _signed_volume(pts - pts[0], [np.asarray(f, dtype=int) for f in faces])
+    return ("inward" if volume < 0 else "outward"), None
+
+
 def outward_faces(block: Block) -> list[np.ndarray]:
     """The block's faces as vertex-index arrays ordered counter-clockwise seen from outside."""
     return list(shape(block).faces)
