@@ -664,12 +664,20 @@ def target(walls: str, rtol: float | None, timeout: float, out: str | None) -> d
                                                           "error")}, default=float),
                       file=sys.stderr, flush=True)
                 cases.append(res)
+    write_results(out, f"{NAME}_target", {"cases": cases}, target_markdown(cases))
+    return {"cases": cases}
+
+
+def target_markdown(cases: list[dict[str, Any]]) -> str:
+    """The table of :func:`target`'s cases."""
     rows = [[c["blocks"], f"{c['shape'][0]} x {c['shape'][1]}", c["mf"]["load_factor"],
              c["mf"]["rtol"] or "default", c["analysis"].replace("min_friction", "f*"),
-             c.get("status", c.get("error")), c.get("answer"),
+             c.get("status", c.get("error")),
+             f"{c['answer']:.7g}" if c.get("answer") is not None else "-",
              " - ".join(f"{v:.7g}" for v in c.get("bracket") or []),
              c.get("accuracy"), c.get("n_solves"), c.get("iterations"), c.get("total"),
              c.get("bare_at_answer"), c.get("bare_at_answer_iterations"),
+             f"{c['bare_at_answer_lambda']:.7g}" if c.get("bare_at_answer_lambda") else "-",
              c["total"] / c["bare_at_answer"] if c.get("bare_at_answer") else "-",
              round(c.get("peak_mib", 0)), " - ".join(str(v) for v in c["measured"]["load"]),
              c["measured"]["utc"]] for c in cases]
@@ -677,14 +685,15 @@ def target(walls: str, rtol: float | None, timeout: float, out: str | None) -> d
         "## f* on large walls against one bare solve at the answer", "",
         "CPU seconds, one thread, each case in a fresh process; `bare` is one Clarabel "
         "solve (default settings) of the plain max-load problem at the answer, in the "
-        "same process (the ratio: our total over it); load: 1-minute load average at the "
+        "same process (the ratio: our total over it; `bare lambda*` its multiplier at "
+        "the answer, where the load factor is carried); load: 1-minute load average at the "
         "case's start and end.", "",
         markdown_table(["blocks", "wall", "load factor", "rtol", "analysis", "status",
                         "f*", "bracket", "accuracy", "solves", "iterations", "total s",
-                        "bare s", "bare iterations", "ratio", "peak MiB", "load", "UTC"],
+                        "bare s", "bare iterations", "bare lambda*", "ratio", "peak MiB",
+                        "load", "UTC"],
                        rows)])
-    write_results(out, f"{NAME}_target", {"cases": cases}, md)
-    return {"cases": cases}
+    return md
 
 
 def _key(spec: dict[str, Any]) -> str:
