@@ -57,6 +57,7 @@ from ..methods.convex import ConvexMethod
 from ..problems.formulation import build_max_load
 from ..solvers import OPTIMAL
 from ..solvers.base import ConicProblem
+from ..solvers.highs_warm import warm_lp
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
 LIMIT_TOL = 1e-7
@@ -90,21 +91,13 @@ class LimitRun:
     reason: str = ""
     history: list[tuple[float, float]] = field(default_factory=list)
     time: float = 0.0
+    #: the multipliers of the lowest and highest collapse states of the mechanism
+    #: reached (:mod:`rigidblocks.analyses.na_mechanism`); None where not computed
+    span: tuple[float, float] | None = None
 
     @property
     def converged(self) -> bool:
         return self.status == "converged"
-
-
-def _has_highspy() -> bool:
-    """Is highspy (the ``solvers`` extra) installed? Without it the 2D limit problem is
-    solved by the conic back end, without warm starts."""
-    from importlib.util import find_spec
-
-    try:
-        return find_spec("highspy") is not None
-    except ValueError:  # in sys.modules as None: import blocked
-        return False
 
 
 class _HighsLimit:
@@ -112,50 +105,20 @@ class _HighsLimit:
     (only the joint rows' right-hand sides change)."""
 
     def __init__(self, prob: ConicProblem):
-        import highspy
-
-        self.hs = highspy
-        n, ne, ni = prob.n, prob.n_eq, prob.n_nonneg
-        self.n, self.ne, self.ni = n, ne, ni
+        ne, ni = prob.n_eq, prob.n_nonneg
+        self.ni = ni
         self.li = prob.cols["lambda"].start
-        A = prob.A.tocsc()
-        lp = highspy.HighsLp()
-        lp.num_col_, lp.num_row_ = n, A.shape[0]
-        inf = highspy.kHighsInf
-        lp.col_cost_ = prob.c
-        lp.col_lower_ = np.full(n, -inf)
-        lp.col_upper_ = np.full(n, inf)
-        lp.row_lower_ = np.concatenate([prob.b[:ne], np.full(ni, -inf)])
-        lp.row_upper_ = prob.b[:ne + ni]
-        lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-        lp.a_matrix_.start_ = A.indptr
-        lp.a_matrix_.index_ = A.indices
-        lp.a_matrix_.value_ = A.data
-        try:  # the core object: highspy.Highs() prints a banner before any option is set
-            from highspy._core import _Highs as Highs
-        except ImportError:  # pragma: no cover - other highspy layouts
-            Highs = highspy.Highs
-        h = Highs()
-        h.setOptionValue("output_flag", False)
-        h.setOptionValue("solver", "simplex")
-        h.setOptionValue("primal_feasibility_tolerance", 1e-9)
-        h.setOptionValue("dual_feasibility_tolerance", 1e-9)
-        h.passModel(lp)
-        self.h = h
-        self.rows = np.arange(ne, ne + ni, dtype=np.int32)
-        self.free = np.full(ni, -inf)
+        self.lp = warm_lp(prob.c, prob.A, np.concatenate([prob.b[:ne], np.full(ni, -math.inf)]),
+                          prob.b[:ne + ni])
+        self.rows = np.arange(ne, ne + ni)
+        self.free = np.full(ni, -math.inf)
 
     def maximise(self, b_joints: np.ndarray) -> tuple[str, float, np.ndarray | None]:
         """max lambda with the joint rows' right-hand sides ``b_joints``."""
-        self.h.changeRowsBounds(self.ni, self.rows, self.free, b_joints)
-        self.h.run()
-        st = self.h.getModelStatus()
-        ms = self.hs.HighsModelStatus
-        if st != ms.kOptimal:
-            return ({ms.kUnbounded: "unbounded", ms.kInfeasible: "infeasible",
-                     ms.kUnboundedOrInfeasible: "unbounded"}.get(st, "failure"),
-                    math.nan, None)
-        z = np.asarray(self.h.getSolution().col_value)
+        st = self.lp.solve(self.rows, self.free, b_joints)
+        if st != OPTIMAL:
+            return ("failure" if st == "failure" else st), math.nan, None
+        z = self.lp.x
         return OPTIMAL, float(z[self.li]), z
 
 
@@ -221,11 +184,18 @@ class CappedLimit:
         # the caps enter the joint rows' right-hand sides linearly: b = b0 + M cap
         self.M = self._cap_matrix()
         lp = prob.is_lp and cv.pyramid is None
-        self.backend = backend or ("highs" if lp and _has_highspy() else "conic")
+        self.backend = backend or ("highs" if lp else "conic")
         self.prob = prob
-        self.solver: Any = _HighsLimit(prob) if self.backend == "highs" else \
-            _ConicLimit(cv, prob)
+        self._solver: Any = None
         self.solves = 0
+
+    @property
+    def solver(self) -> Any:
+        """The maximum-load problem's solver (built at its first use)."""
+        if self._solver is None:
+            self._solver = _HighsLimit(self.prob) if self.backend == "highs" else \
+                _ConicLimit(self.cv, self.prob)
+        return self._solver
 
     def _cap_matrix(self) -> Any:
         """M with b_joints(cap) = b0 + M cap: each friction row's right-hand side holds
@@ -261,8 +231,11 @@ class CappedLimit:
         return self.b0 + self.M @ (self.f_pt * np.maximum(N, 0.0))
 
     def run(self, N_start: np.ndarray, start: str, tol: float = LIMIT_TOL,
-            max_iter: int = LIMIT_MAX_ITER) -> LimitRun:
-        """Iterate from the normal forces ``N_start`` (scaled) to a fixed point."""
+            max_iter: int = LIMIT_MAX_ITER, settle: Any = None) -> LimitRun:
+        """Iterate from the normal forces ``N_start`` (scaled) to a fixed point.
+        ``settle(N)``, called after each step's limit solve at the caps of N, ends the
+        run where it gives a collapse state: (its solution, its multiplier's span)
+        (:mod:`rigidblocks.analyses.na_mechanism`)."""
 
         def step(N: np.ndarray) -> tuple:
             b = self.rhs(N)
@@ -275,17 +248,18 @@ class CappedLimit:
                 return (st if st in why else "undecided"), why.get(st, failed)
             return lam, b, z, lam
 
-        return _iterate(self, N_start, start, step, "limit solves", tol, max_iter)
+        return _iterate(self, N_start, start, step, "limit solves", tol, max_iter, settle)
 
 
 def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, what: str,
-             tol: float, max_iter: int) -> LimitRun:
+             tol: float, max_iter: int, settle: Any = None) -> LimitRun:
     """The fixed-point loop of both runs: ``step(N)`` solves one problem at the caps of
     the normal forces N and gives (value, joint rows' right-hand sides, its solution,
     the multiplier the state must carry), or (status, reason) where it has no answer;
     then the state is selected (:func:`_select_step`) and the next normal forces
     combined from the last steps (:class:`_Anderson`), damped (:func:`_damped`, which
-    starts the combination afresh) until they settle. ``what`` names the solves."""
+    starts the combination afresh) until they settle, or until ``settle(N)`` (see
+    :meth:`CappedLimit.run`) gives a collapse state. ``what`` names the solves."""
     t0 = time.perf_counter()
     N = np.maximum(N_start, 0.0)
     hist: list[tuple[float, float]] = []
@@ -298,6 +272,13 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
             return LimitRun(start, got[0], None, None, k, got[1], hist,
                             time.perf_counter() - t0)
         value, b, z, target = got
+        done = settle(N) if settle is not None else None
+        if done is not None:
+            zs, span = done
+            return LimitRun(start, "converged", float(zs[capped.prob.cols["lambda"].start]),
+                            zs[:capped.cv.system.layout.size], k,
+                            f"the mechanism reached after {k} {what} has collapse states",
+                            hist, time.perf_counter() - t0, span=span)
         x, Nn, change = _select_step(capped, b, target, N, z)
         hist.append((value, change))
         if change <= tol:

@@ -82,6 +82,7 @@ from .na_limit import (
     reached_normals,
     x0_normals,
 )
+from .na_mechanism import limit_runs, walks
 from .search import UNBOUNDED_AT, bisect
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
@@ -134,6 +135,17 @@ LIMIT_NOTE = ("non-associative sliding (no dilatancy): the answer is a collapse 
               "shear capacities f N of the previous state's normal forces (Gilbert, "
               "Casapulla & Ahmed 2006), checked a posteriori; non-associative collapse "
               "states are not unique, and other starts may give other answers")
+
+
+#: the note of the limit analyses in 2D (:mod:`rigidblocks.analyses.na_mechanism`)
+WALK_NOTE = ("non-associative sliding (no dilatancy): the answer is a collapse state "
+             "reached from the elastic state X0 by iterating the limit problem with the "
+             "shear capacities f N of the previous state's normal forces (Gilbert, "
+             "Casapulla & Ahmed 2006) until its mechanism has states that carry their own "
+             "caps (the one nearest the iterate ends it), checked a posteriori; "
+             "non-associative collapse states are not unique: the other states of that "
+             "mechanism, and those from other starts, carry other multipliers (their range "
+             "is given)")
 
 
 #: how a non-associative result shows the associative step's notes on its own lambda*
@@ -216,8 +228,9 @@ class NonAssociative(Method):
         self.runs = 0
         self.fp_iterations = 0
         self.converged_runs = 0
-        #: the limit analyses answered by iterating the limit problem
-        self.limit_path = False
+        #: the limit analyses answered by iterating the limit problem: True, or "walk"
+        #: where they walked to a mechanism (2D)
+        self.limit_path: bool | str = False
 
     @property
     def n_solves(self) -> int:
@@ -466,8 +479,9 @@ def _open(scene: Scene, method: str, flow: str | None, **kw: Any
 def _fields(na: NonAssociative, analysis: str, status: str, friction: Any,
             load_factor: float | None, history: tuple = (), converged: bool | None = None
             ) -> dict[str, Any]:
-    first = LIMIT_NOTE if getattr(na, "limit_path", False) else STATE_NOTE
-    notes = [first] + [n for n in na.notes if n not in (STATE_NOTE, LIMIT_NOTE)]
+    path = getattr(na, "limit_path", False)
+    first = WALK_NOTE if path == "walk" else LIMIT_NOTE if path else STATE_NOTE
+    notes = [first] + [n for n in na.notes if n not in (STATE_NOTE, LIMIT_NOTE, WALK_NOTE)]
     return dict(analysis=analysis, status=status, friction=friction_label(friction),
                 load_factor=load_factor, contacts=na.contacts, solver=na.solver,
                 n_solves=na.n_solves, solve_time=na.solve_time, iterations=na.iterations,
@@ -678,13 +692,14 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
     """The non-associative collapse multiplier as the fixed point of the capped limit
     problem (:mod:`rigidblocks.analyses.na_limit`) from X0, with the answer from the
     associative collapse state beside it."""
-    na.limit_path = True
+    na.limit_path = "walk" if walks(cv) else True
     capped = CappedLimit(cv, na.marked, f)
     verdict, starts = _starts(na, cv, up, f)
-    runs = [capped.run(n, name) for name, n in starts]
-    na.fp_iterations += capped.solves
+    runs, solves = limit_runs(capped, starts)
+    na.fp_iterations += solves
     trials = tuple({"start": r.start, "load_factor": r.lam, "status": r.status,
-                    "iterations": r.iterations, "converged": r.converged} for r in runs)
+                    "iterations": r.iterations, "converged": r.converged,
+                    "span": None if r.span is None else list(r.span)} for r in runs)
     if verdict == INADMISSIBLE:
         na.notes.append("the state reached from the elastic state X0 under the dead load "
                         "alone breaches the joint laws: it does not stand" +
@@ -724,19 +739,31 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
 
 
 def _spread_note(runs: list[LimitRun]) -> str:
-    """The answers from every start, and whether they differ (1e-6 relative)."""
+    """The answers from every start, the range of the collapse states of the mechanism
+    each reached, and whether they differ (1e-6 relative)."""
+    def one(r: LimitRun) -> str:
+        if not r.converged:
+            return f"undecided ({r.reason})"
+        text = f"lambda = {r.lam:.7g}"
+        if r.span is not None and r.span[1] > r.span[0] * (1 + 1e-6):
+            text += (f" (the collapse states of the mechanism reached carry lambda from "
+                     f"{r.span[0]:.7g} to {r.span[1]:.7g})")
+        elif r.span is not None:
+            text += " (the one collapse state of the mechanism reached)"
+        return text
+
     main = runs[0]
-    text = f"non-associative collapse state from {main.start}: lambda = {main.lam:.7g}"
-    others = [r for r in runs[1:] if r.converged]
-    same = [r for r in others if abs(r.lam - main.lam) <= 1e-6 * max(abs(main.lam), 1e-9)]
+    text = f"non-associative collapse state from {main.start}: {one(main)}"
     for r in runs[1:]:
-        text += (f"; from {r.start}: " + (f"lambda = {r.lam:.7g}" if r.converged
-                                          else f"undecided ({r.reason})"))
-    if others and len(same) < len(others):
-        lams = [main.lam] + [r.lam for r in others]
-        text += (f". The collapse states differ: the answers spread over "
-                 f"[{min(lams):.7g}, {max(lams):.7g}] (the answer is X0's)")
-    elif others:
+        same = (r.converged and main.converged and r.span is not None
+                and r.span == main.span)
+        text += f"; from {r.start}: " + ("the same mechanism" if same else one(r))
+    done = [r for r in runs if r.converged]
+    lams = [v for r in done for v in (r.span or (r.lam, r.lam))]
+    if lams and max(lams) > min(lams) * (1 + 1e-6):
+        text += (f". The collapse states found spread over [{min(lams):.7g}, "
+                 f"{max(lams):.7g}] (the answer is X0's)")
+    elif len(done) > 1:
         text += ": the same answer"
     return text
 
@@ -958,21 +985,23 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     from the ``trials``, appended to here."""
     from ..methods.engine import Search, Trial, midpoint, narrow_enough, run, undecided_trial
 
-    na.limit_path = True
+    na.limit_path = "walk" if walks(cv) else True
     n0 = x0_normals(na)
     fs = float(lim.value)
     if n0 is None:
         na.notes.append("the elastic state X0 has no solution")
         return out(UNDECIDED, converged=False)
 
-    direct = _friction_fixed_point(na, cv, lf, fs, n0, out, trials)
+    # in 2D the load's answer is the lowest state of a mechanism (the walk): the search
+    # on it gives the friction at which that answer is lf
+    direct = None if walks(cv) else _friction_fixed_point(na, cv, lf, fs, n0, out, trials)
     if direct is not None:
         return direct
 
     def oracle(fv: float) -> Trial:
         capped = CappedLimit(cv, na.marked, fv)
-        r = capped.run(n0, FROM_X0)
-        na.fp_iterations += capped.solves
+        (r,), solves = limit_runs(capped, [(FROM_X0, n0)])
+        na.fp_iterations += solves
         trials.append({"friction": fv, "load_factor": r.lam, "status": r.status,
                        "iterations": r.iterations, "converged": r.converged})
         v = _verdict(r, cv.scaling.force)

@@ -253,10 +253,15 @@ def _flow_lines(res) -> list[str]:
     if starts:
         def value(h: dict) -> str:
             v = h.get("load_factor")
-            return f"{v:.7g}" if h.get("converged") and v is not None else h.get("status", "-")
+            if not (h.get("converged") and v is not None):
+                return h.get("status", "-")
+            span = h.get("span")
+            if span and span[1] > span[0] * (1 + 1e-6):
+                return f"{v:.7g} (its mechanism's states [{span[0]:.7g}, {span[1]:.7g}])"
+            return f"{v:.7g}"
 
-        vals = [h["load_factor"] for h in starts
-                if h.get("converged") and h.get("load_factor") is not None]
+        vals = [v for h in starts if h.get("converged") and h.get("load_factor") is not None
+                for v in (h.get("span") or (h["load_factor"],))]
         spread = (f"; spread [{min(vals):.7g}, {max(vals):.7g}]"
                   if len(vals) > 1 and max(vals) > min(vals) * (1 + 1e-6) else "")
         out.append("starts     " + "; ".join(f"from {h['start']}: lambda = {value(h)}"

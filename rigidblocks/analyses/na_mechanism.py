@@ -1,0 +1,223 @@
+"""The non-associative collapse states of one mechanism, and the end of the limit
+iteration at them (2D).
+
+A non-associative collapse state (:mod:`rigidblocks.analyses.na_limit`) is a fixed
+point: with the marked joints' shear capped by the state's own normal forces,
+|T| <= f N, the state carries the largest multiplier of the capped problem (phase 1:
+max lambda) and is the least confined of the states that carry it (phase 2: min sum N
+on phase 1's optimal face). In 2D both phases are linear programs whose constraint
+matrices do not depend on the caps (the caps are right-hand sides), so a dual solution
+of each stays dual feasible whatever the caps. Given one dual vertex of each (the
+mechanism: the block velocities and the rows they hold active), a state x is a fixed
+point exactly when
+
+* it is in equilibrium, with every joint law met under the caps of its own normal
+  forces: K x <= b0 with K = A - f M E (E picks the normal forces, M puts them in the
+  friction rows);
+* every row with a non-zero dual in either phase is active: K_i x = b0_i
+  (complementary slackness: x is optimal in both phases at its own caps).
+
+These are linear conditions: the collapse states of one mechanism form a polytope, in
+general more than a point, so that the multiplier of a non-associative collapse state
+is not unique even for one mechanism. Linear programs give its range (min and max
+lambda over the polytope); a least-squares problem gives the state of the polytope
+nearest the iterate that reached the mechanism, the answer "reached" from the start.
+
+The limit iteration (:meth:`~rigidblocks.analyses.na_limit.CappedLimit.run`) follows its
+path from the start as before; after each of its limit solves (phase 1, HiGHS's dual
+simplex warm-started, :mod:`rigidblocks.solvers.highs_warm`) phase 2 is solved at the
+same caps and the rows the two phases hold active are read. Once they settle (they
+change by at most ``SETTLED`` of their number between steps) the polytope of the
+mechanism is sought; where it is not empty its state nearest the iterate ends the run,
+checked by solving both phases again at its own caps. The iteration by itself
+approaches such a state at the rate of its contraction (hundreds of steps on walls of
+hundreds of blocks, not settling in 500 on 1,000); the mechanism settles within tens.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ..errors import SolverFailure
+from ..methods.convex import ConvexMethod
+from ..solvers import OPTIMAL
+from ..solvers.base import ConicProblem
+from ..solvers.highs_warm import nonzero, warm_lp
+from .na_limit import CappedLimit, LimitRun
+
+#: a dual below this fraction of the largest (of its phase) is zero: its row is not
+#: part of the mechanism
+DUAL_ZERO = 1e-9
+#: the mechanism's polytope is sought once its active rows change by at most this
+#: fraction of their number between two steps
+SETTLED = 0.02
+#: the nearest state within this (relative) of the mechanism's lowest or highest
+#: multiplier is that state: the iterate is itself that far from a fixed point when the
+#: mechanism settles (the reference model: 1.199994 and 2.399991, the vertices 1.2 and
+#: 2.4 that the iteration approaches)
+SNAP = 1e-5
+#: the answer passes its check where, at its own caps, phase 1's multiplier and
+#: phase 2's total normal force are its own to this (relative)
+FIXED_TOL = 1e-7
+
+
+class Mechanisms:
+    """The mechanisms of the capped problem ``capped`` (a linear program: 2D, its
+    solver a :class:`~rigidblocks.solvers.highs_warm.WarmLp`, whose last answer is
+    phase 1's) and the collapse states of each."""
+
+    def __init__(self, capped: CappedLimit):
+        import scipy.sparse as sp
+
+        p = capped.prob
+        self.capped, self.cv = capped, capped.cv
+        ne, ni = p.n_eq, p.n_nonneg
+        self.ne, self.ni = ne, ni
+        self.li = p.cols["lambda"].start
+        self.phase1 = capped.solver.lp
+        c2 = np.zeros(p.n)
+        c2[capped.nsl] = 1.0
+        self.phase2 = warm_lp(c2, p.A, np.concatenate([p.b[:ne], np.full(ni, -math.inf)]),
+                              p.b[:ne + ni])
+        self.rows = np.arange(ne, ne + ni)
+        nsl = capped.nsl
+        m = nsl.stop - nsl.start
+        E = sp.csr_matrix((np.ones(m), (np.arange(m), np.arange(nsl.start, nsl.stop))),
+                          shape=(capped.P, p.n))
+        MF = sp.vstack([sp.csr_matrix((ne, capped.P)),
+                        capped.M @ sp.diags(capped.f_pt)]).tocsr()
+        self.K = (p.A.tocsr() - MF @ E).tocsr()
+        self.solves = 0
+
+    def active(self, bj: np.ndarray) -> np.ndarray | None:
+        """The joint rows the mechanism at the caps ``bj`` (joint rows' right-hand
+        sides; phase 1 just solved there) holds active: non-zero duals of phase 1 and
+        of phase 2 at the same caps. None where phase 2 has no answer."""
+        face = nonzero(self.phase1.duals[self.ne:], DUAL_ZERO)
+        st = self.phase2.solve(self.rows, np.where(face, bj, -math.inf), bj)
+        if st != OPTIMAL:
+            return None
+        return face | nonzero(self.phase2.duals[self.ne:], DUAL_ZERO)
+
+    def settler(self) -> Any:
+        """A ``settle`` for one run of :meth:`CappedLimit.run`: at each step the rows of
+        the mechanism; once they settle, the state of its polytope nearest the
+        iterate, checked, with the span of its multipliers (None: go on)."""
+        prev: list[np.ndarray] = []
+
+        def settle(N: np.ndarray) -> tuple[np.ndarray, tuple[float, float]] | None:
+            act = self.active(self.capped.rhs(N))
+            if act is None:
+                return None
+            last = prev[-1] if prev else None
+            prev[:] = [act]
+            if last is None or int((act ^ last).sum()) > SETTLED * act.sum():
+                return None
+            return self.states(act, N)
+
+        return settle
+
+    def states(self, active: np.ndarray, N: np.ndarray
+               ) -> tuple[np.ndarray, tuple[float, float]] | None:
+        """The collapse state of the mechanism (joint rows ``active``) nearest the
+        normal forces ``N``, checked, and the multipliers of the mechanism's lowest and
+        highest states; None where its polytope is empty or the check fails."""
+        lo = self.extreme(active, 1.0)
+        if lo is None:
+            return None
+        z = self.nearest(active, N)
+        if z is None or self.check(z):
+            return None
+        hi = self.extreme(active, -1.0)
+        lam = float(z[self.li])
+        ends = [(float(lo[self.li]), lo)] + ([] if hi is None else [(float(hi[self.li]), hi)])
+        for v, ze in ends:
+            if abs(v - lam) <= SNAP * max(1.0, abs(v)) and not self.check(ze):
+                z, lam = ze, v
+        span = (min(ends[0][0], lam), max(ends[-1][0], lam))
+        return z, tuple(0.0 if abs(v) <= DUAL_ZERO else v for v in span)
+
+    def extreme(self, active: np.ndarray, sense: float) -> np.ndarray | None:
+        """The state of the mechanism (joint rows ``active``) of least (``sense`` 1) or
+        largest (-1) multiplier; None where the polytope is empty or the solver gives no
+        answer."""
+        c = np.zeros(self.capped.prob.n)
+        c[self.li] = sense
+        return self._over_polytope(active, c, None)
+
+    def nearest(self, active: np.ndarray, N: np.ndarray) -> np.ndarray | None:
+        """The state of the mechanism whose normal forces are nearest ``N`` (least
+        squares, scaled forces)."""
+        import scipy.sparse as sp
+
+        n, nsl = self.capped.prob.n, self.capped.nsl
+        d = np.zeros(n)
+        d[nsl] = 1.0
+        c = np.zeros(n)
+        c[nsl] = -N
+        return self._over_polytope(active, c, sp.diags(d, format="csc"))
+
+    def _over_polytope(self, active: np.ndarray, c: np.ndarray, P: Any
+                       ) -> np.ndarray | None:
+        """min c'z (+ z'Pz/2) over the collapse states of the mechanism (joint rows
+        ``active``): one problem by the convex method's back end."""
+        import scipy.sparse as sp
+
+        p, K, ne = self.capped.prob, self.K, self.ne
+        Kj, b0 = K[ne:], self.capped.b0
+        A = sp.vstack([K[:ne], Kj[active], Kj[~active]], format="csc")
+        b = np.concatenate([p.b[:ne], b0[active], b0[~active]])
+        prob = ConicProblem(c=c, A=A, b=b, n_eq=ne + int(active.sum()),
+                            n_nonneg=int((~active).sum()), P=P, cols=p.cols, rows={})
+        self.solves += 1
+        try:
+            res = self.cv.solve(prob, "collapse states of one mechanism", tight=True,
+                                stall=False)
+        except SolverFailure:
+            return None
+        return res.z if res.status == OPTIMAL else None
+
+    def check(self, z: np.ndarray) -> str:
+        """Why the state ``z`` is not a fixed point ("" where it is): at its own caps,
+        phase 1's multiplier and phase 2's total normal force must be its own."""
+        nsl = self.capped.nsl
+        N = np.maximum(z[nsl], 0.0)
+        bj = self.capped.rhs(N)
+        self.solves += 1
+        st, lam, _ = self.capped.solver.maximise(bj)
+        own = float(z[self.li])
+        if st != OPTIMAL:
+            return f"at its own caps the limit problem gave no answer ({st})"
+        if abs(lam - own) > FIXED_TOL * max(1.0, abs(own)):
+            return f"at its own caps the multiplier is {lam:.9g}, not {own:.9g}"
+        if self.active(bj) is None:
+            return "at its own caps the least confined state gave no answer"
+        s2, s = float(self.phase2.x[nsl].sum()), float(N.sum())
+        if abs(s2 - s) > FIXED_TOL * max(1.0, s):
+            return f"at its own caps a less confined state carries it ({s2:.9g} < {s:.9g})"
+        return ""
+
+
+def walks(cv: ConvexMethod) -> bool:
+    """Do the mechanisms' polytopes end the limit iteration on the scene of ``cv``: are
+    its capped problems linear programs (2D)?"""
+    return cv.contacts.dimension == 2 and cv.pyramid is None
+
+
+def limit_runs(capped: CappedLimit, starts: list[tuple[str, np.ndarray]]
+               ) -> tuple[list[LimitRun], int]:
+    """One run of the limit iteration per start (name, scaled normal forces), ended at
+    the collapse states of the mechanism it reaches where the problem is an LP (2D), and
+    the solves they took."""
+    if not walks(capped.cv) or capped.backend != "highs":
+        runs = [capped.run(n, name) for name, n in starts]
+        return runs, capped.solves
+    mech = Mechanisms(capped)
+    runs = [capped.run(n, name, settle=mech.settler()) for name, n in starts]
+    return runs, capped.solves + mech.solves + mech.phase2.solves
+
+
+__all__ = ["Mechanisms", "limit_runs", "walks"]
