@@ -1,0 +1,188 @@
+"""The collapse states of one mechanism (rigidblocks.analyses.na_mechanism) and the
+warm-started LPs they are found with (rigidblocks.solvers.highs_warm)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+from conftest import EXAMPLES
+
+import rigidblocks as rb
+from rigidblocks.analyses import nonassociative
+from rigidblocks.analyses.na_limit import CappedLimit, certificate
+from rigidblocks.analyses.na_mechanism import Mechanisms
+from rigidblocks.generators import build
+from rigidblocks.io import read_scene
+from rigidblocks.solvers import highs_warm
+from rigidblocks.solvers.highs_warm import ColdLp, WarmLp, nonzero
+
+NA = "non-associative"
+
+
+# -- the warm-started LP ---------------------------------------------------------------
+def _lp(seed: int = 4):
+    """A random bounded LP: min c'x s.t. lo <= A x <= up, x free (a box among the rows
+    keeps it bounded)."""
+    rng = np.random.default_rng(seed)
+    m, n = 30, 8
+    A = sp.vstack([sp.random(m, n, density=0.5, random_state=seed, format="csr"),
+                   sp.identity(n, format="csr")]).tocsr()
+    lo = np.concatenate([np.full(m, -np.inf), -np.ones(n)])
+    up = np.concatenate([rng.uniform(0.5, 2.0, m), np.ones(n)])
+    return rng.normal(size=n), A, lo, up
+
+
+@pytest.mark.parametrize("kind", ["warm", "warm-ipm", "cold"])
+def test_warm_lp_follows_changed_bounds(kind, monkeypatch):
+    """The same LP with its row bounds changed three times: each optimum equals
+    scipy's linprog solving that LP from scratch (to 1e-9), warm-started, by IPM
+    with crossover (every warm solve given up: WARM_LIMIT = 0) and through linprog
+    (no highspy); the rows with a non-zero dual are active (complementary slackness,
+    which the mechanisms' polytopes rest on)."""
+    from scipy.optimize import linprog
+
+    if kind == "warm-ipm":
+        monkeypatch.setattr(highs_warm, "WARM_LIMIT", 0)
+    c, A, lo, up = _lp()
+    lp = (ColdLp if kind == "cold" else WarmLp)(c, A, lo, up)
+    rows = np.arange(A.shape[0])
+    rng = np.random.default_rng(7)
+    for k in range(3):
+        up2 = up.copy()
+        up2[:30] = up[:30] * rng.uniform(0.5, 1.5, 30)
+        lo2 = lo.copy()
+        lo2[30 + k] = up2[30 + k] = 0.3  # one row an equality
+        assert lp.solve(rows, lo2, up2) == "optimal"
+        ref = linprog(c, A_ub=sp.vstack([A, -A[lo2 > -np.inf]]),
+                      b_ub=np.concatenate([up2, -lo2[lo2 > -np.inf]]), bounds=(None, None),
+                      method="highs")
+        assert ref.status == 0
+        assert c @ lp.x == pytest.approx(ref.fun, abs=1e-9)
+        act = A @ lp.x
+        held = nonzero(lp.duals, 1e-9)
+        assert held.any()
+        at_bound = np.minimum(np.abs(act - up2), np.abs(act - lo2))
+        assert at_bound[held].max() <= 1e-8
+    if kind == "warm-ipm":
+        assert lp.cold == lp.solves
+    elif kind == "warm":
+        assert lp.cold == 1
+
+
+# -- the collapse states of a mechanism ------------------------------------------------
+def _walls_mechanism(scene, f: float):
+    """The limit iteration from X0 ended at its mechanism's states, with what it ran on."""
+    na, cv = nonassociative._open(scene, "clarabel", NA)
+    up = cv.load_limit(f, 1e-9)
+    _, starts = nonassociative._starts(na, cv, up, f)
+    capped = CappedLimit(cv, na.marked, f)
+    mech = Mechanisms(capped)
+    run = capped.run(starts[0][1], starts[0][0], settle=mech.settler())
+    return cv, capped, mech, run, starts[0][1]
+
+
+def test_a_mechanisms_states_are_collapse_states():
+    """The 10 x 10 running-bond wall at f = 0.8 (106 blocks): the iteration from X0 ends
+    at the states of the mechanism it reached. Its answer, and the lowest and highest
+    states of that mechanism, each pass the a-posteriori check computed independently
+    of the polytope (equilibrium, and Coulomb's law with the state's own normal
+    forces, to 1e-7 of its largest force) and are fixed points: at their own caps the
+    largest multiplier and the least total normal force are their own. The two ends
+    differ (the multiplier of a non-associative collapse state is not unique even for
+    one mechanism), and the answer lies between them."""
+    scene = build("wall", courses=10, blocks_per_course=10, friction=0.8)
+    cv, capped, mech, run, _ = _walls_mechanism(scene, 0.8)
+    assert run.converged and run.span is not None
+    lo, hi = run.span
+    assert lo <= run.lam <= hi and hi > lo * (1 + 1e-5)
+    li = capped.prob.cols["lambda"].start
+    act = mech.active(capped.rhs(np.maximum(run.x[capped.nsl], 0.0)))
+    ends = [mech.extreme(act, 1.0), mech.extreme(act, -1.0)]
+    assert [float(z[li]) for z in ends] == pytest.approx([lo, hi], rel=1e-7)
+    size = cv.system.layout.size
+    for lam, x in [(run.lam, run.x)] + [(float(z[li]), z[:size]) for z in ends]:
+        eq, breach = certificate(cv, 0.8, lam, x * cv.scaling.force)
+        assert eq <= 1e-7 and breach <= 1e-7
+    for z in ends:
+        assert mech.check(z) == ""
+    z = np.concatenate([run.x, [run.lam]])
+    assert mech.check(z) == ""
+
+
+def test_the_check_rejects_a_state_off_its_own_caps():
+    """The fixed-point check can fail: the answer's state with its multiplier raised by
+    1e-4, or its normal forces scaled by 1.01 (caps that are not its own), is not a
+    fixed point at its own caps."""
+    scene = build("wall", courses=5, blocks_per_course=3, friction=0.8)
+    _, capped, mech, run, _ = _walls_mechanism(scene, 0.8)
+    z = np.concatenate([run.x, [run.lam]])
+    assert mech.check(z) == ""
+    raised = z.copy()
+    raised[-1] *= 1 + 1e-4
+    assert mech.check(raised).startswith("at its own caps the multiplier is")
+    scaled = z.copy()
+    scaled[capped.nsl] *= 1.01
+    assert mech.check(scaled) != ""
+
+
+def test_the_iterations_own_fixed_point_is_a_state_of_the_mechanism():
+    """Cross-check of the two ends of one run: the limit iteration run to its own fixed
+    point (no polytope, change of the normal forces below 1e-7, the algorithm before
+    the polytopes) on the 10 x 10 wall at f = 0.6 from X0 settles on a multiplier inside
+    the span of the mechanism the polytope gives, to 1e-6."""
+    scene = build("wall", courses=10, blocks_per_course=10, friction=0.6)
+    _, capped, _, run, n0 = _walls_mechanism(scene, 0.6)
+    own = capped.run(n0, "X0")
+    assert own.converged
+    lo, hi = run.span
+    assert lo * (1 - 1e-6) <= own.lam <= hi * (1 + 1e-6)
+    assert own.iterations > run.iterations
+
+
+def test_the_safe_multiplier_is_the_lowest_state_of_the_mechanism_reached():
+    """The seed's reference model with self-weight: the iteration from X0 reaches the
+    associative multiplier 2.4 (the seed's load path), and the mechanism it reaches has
+    collapse states down to 0.6, the smallest non-associative collapse multiplier over
+    all states, proven by the mixed-integer LP of rigidblocks.analyses.na_bounds
+    (docs/safe-multiplier.md): the span the answer prints names the worst case here."""
+    from rigidblocks.analyses.na_bounds import safe_multiplier
+
+    scene = read_scene(EXAMPLES / "reference_self_weight.json")
+    res = rb.max_load_multiplier(scene, flow=NA, state=False)
+    assert res.load_multiplier == pytest.approx(2.4, rel=1e-9)
+    span = res.history[0]["span"]
+    safe = safe_multiplier(scene, flow=NA)
+    assert safe.status == "optimal"
+    assert span == pytest.approx([safe.value, 2.4], rel=1e-7)
+
+
+def test_the_span_is_printed(tmp_path, capsys):
+    """`load --flow non-associative` names the span of the mechanism each start reached
+    (10 x 10 wall at f = 0.6: an answer strictly inside its span) and the spread."""
+    from rigidblocks.cli.main import main
+    from rigidblocks.io.scene_file import dumps_scene
+
+    p = tmp_path / "wall.json"
+    p.write_text(dumps_scene(build("wall", courses=10, blocks_per_course=10, friction=0.6)))
+    assert main(["load", str(p), "--flow", NA]) == 0
+    line = next(s for s in capsys.readouterr().out.splitlines() if s.startswith("starts"))
+    assert "from the elastic state X0: lambda = " in line
+    assert "(its mechanism's states [" in line and "; spread [" in line
+
+
+@pytest.mark.slow
+def test_1041_block_wall_decided():
+    """The 32 x 32 running-bond wall (1,041 blocks) at f = 0.6: the limit iteration ended
+    undecided after 500 steps from both starts; ended at its mechanism's states it is
+    decided from both, within the frictionless and associative bounds (Drucker 1954;
+    Radenkovic), each start's answer inside its span."""
+    scene = build("wall", courses=32, blocks_per_course=32, friction=0.6)
+    res = rb.max_load_multiplier(scene, flow=NA, state=False)
+    assert res.status == "collapse" and res.converged
+    assert [h["status"] for h in res.history] == ["converged", "converged"]
+    lo, hi = res.load_multiplier_bounds
+    assert lo <= res.load_multiplier <= hi
+    for h in res.history:
+        assert h["span"][0] <= h["load_factor"] <= h["span"][1]
+
