@@ -700,12 +700,16 @@ def large_walls(sizes: Sequence[tuple[int, int]], frictions: Sequence[float],
             # last iterate of an undecided one)
             starts = {h.get("start"): h.get("load_factor") if h.get("converged")
                       else "undecided" for h in v.history}
+            spans = {h.get("start"): h.get("span") for h in v.history}
             lf = v.load_multiplier if v.status == "collapse" else 0.9 * a.load_multiplier
             fr, tf = _cpu(rb.min_friction, scene, load_factor=lf, flow=NA, state=False)
             row = {"courses": c, "per_course": n, "blocks": len(scene.blocks),
                    "friction": f, "assoc_lambda": a.load_multiplier, "assoc_cpu": ta,
                    "na_status": v.status, "na_lambda": v.load_multiplier, "na_cpu": tv,
                    "na_from_assoc": starts.get("the associative collapse state"),
+                   "na_span": spans.get("the elastic state X0"),
+                   "na_from_assoc_span": spans.get("the associative collapse state"),
+                   "load_average": os.getloadavg()[0],
                    "na_solves": v.iterations, "na_ratio": tv / ta if ta else None,
                    "friction_load_factor": lf, "friction_status": fr.status,
                    "na_friction": fr.friction_factor,
@@ -721,20 +725,28 @@ def large_walls(sizes: Sequence[tuple[int, int]], frictions: Sequence[float],
 def large_walls_md(rows: list[dict[str, Any]]) -> list[str]:
     """The markdown of :func:`large_walls`."""
     header = ["wall", "blocks", "f", "lambda assoc", "CPU s", "lambda non-assoc (X0)",
-              "from the assoc. state", "CPU s", "x assoc", "limit solves",
-              "f non-assoc at lambda non-assoc", "CPU s", "x assoc"]
+              "its mechanism's states", "from the assoc. state", "its mechanism's states",
+              "CPU s", "x assoc", "solves", "f non-assoc at lambda non-assoc", "CPU s",
+              "x assoc", "load"]
     body = [[f"{r['courses']} x {r['per_course']}", r["blocks"], r["friction"],
              r["assoc_lambda"], r["assoc_cpu"], _cell(r["na_lambda"]) if r["na_status"]
-             == "collapse" else r["na_status"], _cell(r["na_from_assoc"]), r["na_cpu"],
+             == "collapse" else r["na_status"], _span(r.get("na_span")),
+             _cell(r["na_from_assoc"]), _span(r.get("na_from_assoc_span")), r["na_cpu"],
              _cell(r["na_ratio"]), r["na_solves"], _cell(r["na_friction"]) if
              r["friction_status"] == "stable" else r["friction_status"], r["friction_cpu"],
-             _cell(r["friction_ratio"])] for r in rows]
+             _cell(r["friction_ratio"]), _cell(r.get("load_average"))] for r in rows]
     return ["### Running-bond walls: the limit fixed point against the associative load", "",
-            "Non-associative `load` (the fixed point of the capped limit problem from the "
-            "elastic state X0, and from the associative collapse state: the spread) and "
+            "Non-associative `load` (the limit iteration from the elastic state X0, and "
+            "from the associative collapse state, each ended at the collapse states of the "
+            "mechanism it reaches: the answer, the nearest of them, and their range) and "
             "`friction` at the multiplier found (which should give f back), CPU seconds in "
             "one process on one thread, with the associative `load` of the same run.", "",
             markdown_table(header, body)]
+
+
+def _span(v: Any) -> str:
+    """A mechanism's span of multipliers, or "-"."""
+    return "-" if not v else f"[{v[0]:.7g}, {v[1]:.7g}]"
 
 
 def _cell(v: Any) -> Any:
