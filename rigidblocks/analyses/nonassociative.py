@@ -1098,11 +1098,20 @@ def _secant(s: Any) -> float | None:
 
 
 def _across(s: Any) -> float | None:
-    """After a secant step, a point a third of the requested accuracy past it towards
-    the other end: where the secant's root was close, the bracket closes in two trials."""
+    """After a secant step whose root, by the secant through it and the bracket's other
+    end, lies within the requested accuracy: a point a third of that accuracy past it
+    towards the other end, where the bracket closes in two trials."""
     t = s.last
     if t is None or t.rule != "_secant" or t.side is None:
         return None
+    o = s.end(not t.side)
+    if o is not None and math.isfinite(o.value) and math.isfinite(t.value) \
+            and o.value != t.value:
+        # the root by the secant through this trial and the other end: step across
+        # only where it lies within the requested accuracy (else another secant step)
+        root = t.x - t.value * (t.x - o.x) / (t.value - o.value)
+        if abs(root - t.x) > s.rtol * abs(t.x):
+            return None
     other = s.bad if t.side else s.good
     x = t.x + math.copysign(s.rtol * abs(t.x) / 3.0, other - t.x)
     return x if s.lower < x < s.upper else None
