@@ -140,6 +140,30 @@ def test_the_iterations_own_fixed_point_is_a_state_of_the_mechanism():
     assert own.iterations > run.iterations
 
 
+def test_vertex_steps_end_at_a_checked_state(monkeypatch):
+    """Where the least-squares path has not reached a mechanism with collapse states
+    within PATH_STEPS steps, the run goes on by vertex steps; with PATH_STEPS = 1 on the
+    20 x 15 wall at f = 0.8 (311 blocks) every step of both starts is one: each ends
+    at a collapse state (equilibrium and Coulomb's law with its own normal forces to
+    1e-7 of its largest force, checked here independently) inside its mechanism's span
+    and the reason says how it was reached."""
+    from rigidblocks.analyses import na_mechanism
+
+    monkeypatch.setattr(na_mechanism, "PATH_STEPS", 1)
+    scene = build("wall", courses=20, blocks_per_course=15, friction=0.8)
+    na, cv = nonassociative._open(scene, "clarabel", NA)
+    up = cv.load_limit(0.8, 1e-9)
+    _, starts = nonassociative._starts(na, cv, up, 0.8)
+    capped = CappedLimit(cv, na.marked, 0.8)
+    mech = Mechanisms(capped)
+    for name, n in starts:
+        run = capped.run(n, name, settle=mech.settler())
+        assert run.converged and "by vertex steps after 0 least-squares steps" in run.reason
+        assert run.span[0] <= run.lam <= run.span[1] < up.value
+        eq, breach = certificate(cv, 0.8, run.lam, run.x * cv.scaling.force)
+        assert eq <= 1e-7 and breach <= 1e-7
+
+
 def test_the_safe_multiplier_is_the_lowest_state_of_the_mechanism_reached():
     """The seed's reference model with self-weight: the iteration from X0 reaches the
     associative multiplier 2.4 (the seed's load path), and the mechanism it reaches has

@@ -234,8 +234,8 @@ class CappedLimit:
             max_iter: int = LIMIT_MAX_ITER, settle: Any = None) -> LimitRun:
         """Iterate from the normal forces ``N_start`` (scaled) to a fixed point.
         ``settle(N)``, called after each step's limit solve at the caps of N, ends the
-        run where it gives a collapse state: (its solution, its multiplier's span)
-        (:mod:`rigidblocks.analyses.na_mechanism`)."""
+        run where it gives a collapse state: (its solution, its multiplier's span, how
+        it was reached) (:mod:`rigidblocks.analyses.na_mechanism`)."""
 
         def step(N: np.ndarray) -> tuple:
             b = self.rhs(N)
@@ -274,11 +274,11 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
         value, b, z, target = got
         done = settle(N) if settle is not None else None
         if done is not None:
-            zs, span = done
+            zs, span, how = done
             return LimitRun(start, "converged", float(zs[capped.prob.cols["lambda"].start]),
                             zs[:capped.cv.system.layout.size], k,
-                            f"the mechanism reached after {k} {what} has collapse states",
-                            hist, time.perf_counter() - t0, span=span)
+                            f"the mechanism reached after {k} {what}{how} has collapse "
+                            "states", hist, time.perf_counter() - t0, span=span)
         x, Nn, change = _select_step(capped, b, target, N, z)
         hist.append((value, change))
         if change <= tol:

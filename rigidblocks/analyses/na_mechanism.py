@@ -54,6 +54,14 @@ DUAL_ZERO = 1e-9
 #: the mechanism's polytope is sought once its active rows change by at most this
 #: fraction of their number between two steps
 SETTLED = 0.02
+#: least-squares steps of the limit iteration after which it goes on by vertex steps
+#: (:meth:`Mechanisms.walk`): the least-squares path can cycle on a face (the 311-block
+#: wall at f = 0.8 from the associative state: a change of about 1e-3 for 500 steps),
+#: and each of its steps costs a QP (1.3 s on the 1,041-block wall, whose mechanism
+#: from X0 it reaches in 52 steps); the walls up to 311 blocks settle from X0 within 17
+PATH_STEPS = 20
+#: vertex steps of one walk
+WALK_STEPS = 100
 #: the nearest state within this (relative) of the mechanism's lowest or highest
 #: multiplier is that state: the iterate is itself that far from a fixed point when the
 #: mechanism settles (the reference model: 1.199994 and 2.399991, the vertices 1.2 and
@@ -105,20 +113,49 @@ class Mechanisms:
     def settler(self) -> Any:
         """A ``settle`` for one run of :meth:`CappedLimit.run`: at each step the rows of
         the mechanism; once they settle, the state of its polytope nearest the
-        iterate, checked, with the span of its multipliers (None: go on)."""
+        iterate, checked, with the span of its multipliers and how it was reached
+        (None: go on). After ``PATH_STEPS`` steps without one, the run goes on by
+        :meth:`walk` from where it is."""
         prev: list[np.ndarray] = []
+        steps = [0]
 
-        def settle(N: np.ndarray) -> tuple[np.ndarray, tuple[float, float]] | None:
+        def settle(N: np.ndarray) -> tuple[np.ndarray, tuple[float, float], str] | None:
+            steps[0] += 1
+            if steps[0] == PATH_STEPS:
+                return self.walk(N)
             act = self.active(self.capped.rhs(N))
             if act is None:
                 return None
             last = prev[-1] if prev else None
             prev[:] = [act]
-            if last is None or int((act ^ last).sum()) > SETTLED * act.sum():
+            if not _settled(act, last):
                 return None
-            return self.states(act, N)
+            got = self.states(act, N)
+            return None if got is None else (*got, "")
 
         return settle
+
+    def walk(self, N: np.ndarray, max_steps: int = WALK_STEPS
+             ) -> tuple[np.ndarray, tuple[float, float], str] | None:
+        """From the normal forces ``N`` by steps to phase 2's vertex (no least-squares
+        term) until the mechanism's rows settle and its polytope has a state, as
+        :meth:`settler`; None where it does not within ``max_steps``."""
+        last = None
+        for k in range(1, max_steps + 1):
+            bj = self.capped.rhs(N)
+            self.solves += 1
+            st, _, _ = self.capped.solver.maximise(bj)
+            act = self.active(bj) if st == OPTIMAL else None
+            if act is None:
+                return None
+            if _settled(act, last):
+                got = self.states(act, N)
+                if got is not None:
+                    return (*got, f" ({k} of them by vertex steps after "
+                                  f"{PATH_STEPS - 1} least-squares steps)")
+            last = act
+            N = np.maximum(self.phase2.x[self.capped.nsl], 0.0)
+        return None
 
     def states(self, active: np.ndarray, N: np.ndarray
                ) -> tuple[np.ndarray, tuple[float, float]] | None:
@@ -199,6 +236,12 @@ class Mechanisms:
         if abs(s2 - s) > FIXED_TOL * max(1.0, s):
             return f"at its own caps a less confined state carries it ({s2:.9g} < {s:.9g})"
         return ""
+
+
+def _settled(act: np.ndarray, last: np.ndarray | None) -> bool:
+    """Have the mechanism's rows settled: do they differ from the last step's by at most
+    ``SETTLED`` of their number?"""
+    return last is not None and int((act ^ last).sum()) <= SETTLED * act.sum()
 
 
 def walks(cv: ConvexMethod) -> bool:
