@@ -183,8 +183,8 @@ class CappedLimit:
         self.b0 = prob.b[prob.n_eq:].copy()
         # the caps enter the joint rows' right-hand sides linearly: b = b0 + M cap
         self.M = self._cap_matrix()
-        lp = prob.is_lp and cv.pyramid is None
-        self.backend = backend or ("highs" if lp else "conic")
+        # a linear program (2D, or 3D with pyramids) by HiGHS, warm-started
+        self.backend = backend or ("highs" if prob.is_lp else "conic")
         self.prob = prob
         self._solver: Any = None
         self.solves = 0

@@ -246,8 +246,9 @@ def _settled(act: np.ndarray, last: np.ndarray | None) -> bool:
 
 def walks(cv: ConvexMethod) -> bool:
     """Do the mechanisms' polytopes end the limit iteration on the scene of ``cv``: are
-    its capped problems linear programs (2D)?"""
-    return cv.contacts.dimension == 2 and cv.pyramid is None
+    its capped problems linear programs (2D, or 3D with Coulomb's cones linearised as
+    pyramids)?"""
+    return cv.contacts.dimension == 2 or cv.pyramid is not None
 
 
 def limit_runs(capped: CappedLimit, starts: list[tuple[str, np.ndarray]]
