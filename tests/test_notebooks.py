@@ -33,6 +33,8 @@ NOTEBOOKS = ROOT / "notebooks"
 NAMES = ["01_quick_start", "02_seed_examples", "03_parametric_study", "04_methods_compared",
          "05_nonassociative"]
 TIMEOUT = 120
+#: seconds a cell may take at the notebooks' full sizes
+FULL_TIMEOUT = 1800
 
 
 def _kernel_manager(tmp: Path):
@@ -49,15 +51,18 @@ def _kernel_manager(tmp: Path):
     return KernelManager(kernel_name="rigidblocks-test", kernel_spec_manager=ksm)
 
 
-def execute(name: str, tmp: Path):
-    """Run notebook ``name`` on small sizes; return it with its outputs."""
+def execute(name: str, tmp: Path, small: bool = True):
+    """Run notebook ``name`` on small sizes (or its full sizes); return it with its
+    outputs."""
     nb = nbformat.read(NOTEBOOKS / f"{name}.ipynb", as_version=4)
-    env = {"RIGIDBLOCKS_NOTEBOOK_SMALL": "1", "MPLBACKEND": "module://matplotlib_inline"
-           ".backend_inline", "PYTHONWARNINGS": "ignore"}
+    env = {"RIGIDBLOCKS_NOTEBOOK_SMALL": "1" if small else "0",
+           "MPLBACKEND": "module://matplotlib_inline.backend_inline",
+           "PYTHONWARNINGS": "ignore"}
     old = {k: os.environ.get(k) for k in env}
     os.environ.update(env)
     try:
-        client = nbclient.NotebookClient(nb, km=_kernel_manager(tmp), timeout=TIMEOUT,
+        client = nbclient.NotebookClient(nb, km=_kernel_manager(tmp),
+                                         timeout=TIMEOUT if small else FULL_TIMEOUT,
                                          resources={"metadata": {"path": str(ROOT)}})
         client.execute(cwd=str(ROOT))
     finally:
@@ -180,3 +185,11 @@ def test_nonassociative(tmp_path):
     # associative one), and the notebook prints the status where there is no number
     assert "arch f = 0.20: associative UNSTABLE, non-associative UNSTABLE" in text
     assert images_of(nb) >= 1
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", NAMES)
+def test_notebook_runs_in_full(name, tmp_path):
+    """Each notebook at its full sizes, as a user runs it: no cell fails (the small mode
+    of the default run must not hide a failure of the full one)."""
+    text_of(execute(name, tmp_path, small=False))
