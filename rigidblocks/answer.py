@@ -293,11 +293,22 @@ class _Words:
                   f"{self.deg})")
         why = []
         f = self.scene.effective_friction
+        na = getattr(res, "flow", "associative") != "associative"
         if not isinstance(f, str) and math.isfinite(float(f)):
-            enough = "enough" if float(f) >= fs else "NOT enough"
+            lo = res.lower if res.lower is not None else fs
+            if lo < float(f) < fs:
+                enough = (f"within f*'s bracket [{lo:.9g}, {fs:.9g}]: at the limit, not "
+                          "decided at this accuracy")
+            else:
+                enough = "enough" if float(f) >= fs else "NOT enough"
             why.append(f"the scene's friction f = {float(f):g} is {enough}")
+        if na:
+            why.append("without dilatancy a larger f need not carry more: f* is where the "
+                       "state reached from X0 carries the load, not a bound for every f "
+                       "above it (check a given f with `rigidblocks load --friction F`)")
         names = [f"{a}-{b}" for a, b in res.governing_joints]
-        return ("STANDS with friction f >= f*", number,
+        verdict = "STANDS at friction f = f*" if na else "STANDS with friction f >= f*"
+        return (verdict, number,
                 joint_list(names) + ((" (at its friction limit)" if len(names) == 1 else
                                       " (at their friction limit)") if names else ""), why)
 
@@ -305,6 +316,10 @@ class _Words:
         if res.status == "unbounded":
             return ("UNBOUNDED: no multiple of the live load makes it collapse", "", "", [])
         if res.status != "collapse":
+            if getattr(res, "flow", "associative") != "associative":
+                return ("UNSTABLE: the state reached from X0 under the dead load alone "
+                        "breaches the joint laws (without dilatancy; other states may "
+                        "stand: `rigidblocks check` without --flow)", "", "", [])
             return ("UNSTABLE: the dead load alone has no admissible state", "", "", [])
         lm = float(res.load_multiplier)
         size = self.live_size
@@ -316,6 +331,12 @@ class _Words:
             why.append(f"tilt angle atan({self.lam}* a) = {res.tilt_angle_deg:.4f}{self.deg}, "
                        f"a = {a:g} the horizontal body force per unit weight (in g): the "
                        "ground tilted by this angle loads it the same way")
+        span = next((h.get("span") for h in (res.history or ())
+                     if isinstance(h, dict) and h.get("span")), None)
+        if span and span[0] < lm * (1 - 1e-6):
+            why.append(f"not a lower bound: collapse states of the same mechanism carry "
+                       f"{self.lam} from {span[0]:.6g} (the answer is the state reached from "
+                       "X0; `--safe` gives the smallest over all states)")
         lf = self.scene.load_factor
         if lf:
             ok = "carries" if lm >= lf else "does NOT carry"

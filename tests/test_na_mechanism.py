@@ -183,7 +183,10 @@ def test_the_safe_multiplier_is_the_lowest_state_of_the_mechanism_reached():
 
 def test_the_span_is_printed(tmp_path, capsys):
     """`load --flow non-associative` names the span of the mechanism each start reached
-    (10 x 10 wall at f = 0.6: an answer strictly inside its span) and the spread."""
+    (10 x 10 wall at f = 0.6: both starts reach one mechanism, at different states of
+    it) and the spread of the starts' answers; on the reference model with self-weight
+    the answer line is followed by the warning that it is no lower bound (the same
+    mechanism collapses from 0.6)."""
     from rigidblocks.cli.main import main
     from rigidblocks.io.scene_file import dumps_scene
 
@@ -192,7 +195,12 @@ def test_the_span_is_printed(tmp_path, capsys):
     assert main(["load", str(p), "--flow", NA]) == 0
     line = next(s for s in capsys.readouterr().out.splitlines() if s.startswith("starts"))
     assert "from the elastic state X0: lambda = " in line
-    assert "(its mechanism's states [" in line and "; spread [" in line
+    assert "(its mechanism's states [" in line and "(the same mechanism)" in line
+    assert "; the answers differ: [" in line
+    assert main(["load", str(EXAMPLES / "reference_self_weight.json"), "--flow", NA]) == 0
+    why = [s for s in capsys.readouterr().out.splitlines() if s.startswith("why")]
+    assert why[1].startswith("why        not a lower bound: collapse states of the same "
+                             "mechanism carry lambda from 0.6 ")
 
 
 @pytest.mark.slow
@@ -210,3 +218,26 @@ def test_1041_block_wall_decided():
     for h in res.history:
         assert h["span"][0] <= h["load_factor"] <= h["span"][1]
 
+
+
+def test_nonassociative_friction_claims_no_bound_above(tmp_path, capsys):
+    """Without dilatancy lambda(f) need not grow with f (the 10 x 10 wall at f = 0.8:
+    0.5288166 at f = 0.79915, 0.5287345 at 0.7993): `friction --flow non-associative`
+    says it stands at f*, not for every f above it, and a scene friction inside f*'s
+    bracket is at the limit, neither enough nor not."""
+    from rigidblocks.cli.main import main
+    from rigidblocks.io.scene_file import dumps_scene
+
+    p = tmp_path / "wall.json"
+    p.write_text(dumps_scene(build("wall", courses=10, blocks_per_course=10, friction=0.6)))
+    assert main(["load", str(p), "--flow", NA, "--json"]) == 0
+    import json
+
+    lam = json.loads(capsys.readouterr().out)["load_multiplier"]
+    assert main(["friction", str(p), "--flow", NA, "--load-factor", repr(lam)]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert next(s for s in out if s.startswith("verdict")) == \
+        "verdict    STANDS at friction f = f*"
+    enough = next(s for s in out if "the scene's friction" in s)
+    assert "NOT enough" not in enough
+    assert any("a larger f need not carry more" in s for s in out)

@@ -127,18 +127,22 @@ class _ConicLimit:
 
     def __init__(self, cv: ConvexMethod, prob: ConicProblem):
         self.cv, self.prob = cv, prob
+        #: the last answer (its duals read by :mod:`rigidblocks.analyses.na_mechanism`)
+        self.last: Any = None
 
     def maximise(self, b_joints: np.ndarray) -> tuple[str, float, np.ndarray | None]:
         p = self.prob
         b = np.concatenate([p.b[:p.n_eq], b_joints])
         prob = ConicProblem(c=p.c, A=p.A, b=b, n_eq=p.n_eq, n_nonneg=p.n_nonneg, soc=p.soc,
                             cols=p.cols, rows=p.rows)
+        self.last = None
         try:
             res = self.cv.solve(prob, "maximum load (capped laws)", tight=True, stall=False)
         except SolverFailure:
             return "failure", math.nan, None
         if res.status != OPTIMAL:
             return res.status, math.nan, None
+        self.last = res
         return OPTIMAL, float(res.z[p.cols["lambda"]][0]), res.z
 
 

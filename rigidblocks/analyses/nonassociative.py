@@ -144,8 +144,7 @@ WALK_NOTE = ("non-associative sliding (no dilatancy): the answer is a collapse s
              "Casapulla & Ahmed 2006) until its mechanism has states that carry their own "
              "caps (the one nearest the iterate ends it), checked a posteriori; "
              "non-associative collapse states are not unique: the other states of that "
-             "mechanism, and those from other starts, carry other multipliers (their range "
-             "is given)")
+             "mechanism, and those from other starts, carry other multipliers")
 
 
 #: how a non-associative result shows the associative step's notes on its own lambda*
@@ -739,12 +738,15 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
 
 
 def _spread_note(runs: list[LimitRun]) -> str:
-    """The answers from every start, the range of the collapse states of the mechanism
-    each reached, and whether they differ (1e-6 relative)."""
-    def one(r: LimitRun) -> str:
+    """The answer from every start, the multipliers the collapse states of the mechanism
+    each reached carry (where they were computed), and whether the answers differ (1e-6
+    relative)."""
+    def one(r: LimitRun, same: bool) -> str:
         if not r.converged:
             return f"undecided ({r.reason})"
         text = f"lambda = {r.lam:.7g}"
+        if same:
+            return text + " (the same mechanism)"
         if r.span is not None and r.span[1] > r.span[0] * (1 + 1e-6):
             text += (f" (the collapse states of the mechanism reached carry lambda from "
                      f"{r.span[0]:.7g} to {r.span[1]:.7g})")
@@ -753,18 +755,16 @@ def _spread_note(runs: list[LimitRun]) -> str:
         return text
 
     main = runs[0]
-    text = f"non-associative collapse state from {main.start}: {one(main)}"
+    text = f"non-associative collapse state from {main.start}: {one(main, False)}"
     for r in runs[1:]:
         same = (r.converged and main.converged and r.span is not None
                 and r.span == main.span)
-        text += f"; from {r.start}: " + ("the same mechanism" if same else one(r))
-    done = [r for r in runs if r.converged]
-    lams = [v for r in done for v in (r.span or (r.lam, r.lam))]
-    if lams and max(lams) > min(lams) * (1 + 1e-6):
-        text += (f". The collapse states found spread over [{min(lams):.7g}, "
-                 f"{max(lams):.7g}] (the answer is X0's)")
-    elif len(done) > 1:
-        text += ": the same answer"
+        text += f"; from {r.start}: {one(r, same)}"
+    lams = [r.lam for r in runs if r.converged]
+    if len(lams) > 1:
+        text += (f". The answers from the starts differ: [{min(lams):.7g}, {max(lams):.7g}] "
+                 "(the answer is X0's)" if max(lams) > min(lams) * (1 + 1e-6)
+                 else ": the same answer")
     return text
 
 

@@ -251,21 +251,26 @@ def _flow_lines(res) -> list[str]:
                    "upper bound)")
     starts = [h for h in (res.history or ()) if isinstance(h, dict) and "start" in h]
     if starts:
-        def value(h: dict) -> str:
+        def value(h: dict, same: bool) -> str:
             v = h.get("load_factor")
             if not (h.get("converged") and v is not None):
                 return h.get("status", "-")
             span = h.get("span")
+            if same:
+                return f"{v:.7g} (the same mechanism)"
             if span and span[1] > span[0] * (1 + 1e-6):
                 return f"{v:.7g} (its mechanism's states [{span[0]:.7g}, {span[1]:.7g}])"
             return f"{v:.7g}"
 
-        vals = [v for h in starts if h.get("converged") and h.get("load_factor") is not None
-                for v in (h.get("span") or (h["load_factor"],))]
-        spread = (f"; spread [{min(vals):.7g}, {max(vals):.7g}]"
+        first = starts[0].get("span")
+        vals = [h["load_factor"] for h in starts
+                if h.get("converged") and h.get("load_factor") is not None]
+        spread = (f"; the answers differ: [{min(vals):.7g}, {max(vals):.7g}]"
                   if len(vals) > 1 and max(vals) > min(vals) * (1 + 1e-6) else "")
-        out.append("starts     " + "; ".join(f"from {h['start']}: lambda = {value(h)}"
-                                             for h in starts) + spread)
+        same = [k > 0 and first is not None and h.get("span") == first
+                for k, h in enumerate(starts)]
+        out.append("starts     " + "; ".join(f"from {h['start']}: lambda = {value(h, s)}"
+                                             for h, s in zip(starts, same, strict=True)) + spread)
     return out
 
 
