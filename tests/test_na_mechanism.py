@@ -158,7 +158,8 @@ def test_vertex_steps_end_at_a_checked_state(monkeypatch):
     mech = Mechanisms(capped)
     for name, n in starts:
         run = capped.run(n, name, settle=mech.settler())
-        assert run.converged and "by vertex steps after 0 least-squares steps" in run.reason
+        assert run.converged
+        assert "by steps to the least confined state after 0 least-squares" in run.reason
         assert run.span[0] <= run.lam <= run.span[1] < up.value
         eq, breach = certificate(cv, 0.8, run.lam, run.x * cv.scaling.force)
         assert eq <= 1e-7 and breach <= 1e-7

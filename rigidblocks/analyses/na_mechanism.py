@@ -100,6 +100,15 @@ class Mechanisms:
         self.K = (p.A.tocsr() - MF @ E).tocsr()
         self.solves = 0
 
+    @property
+    def phase2_x(self) -> np.ndarray:
+        """Phase 2's last solution."""
+        return self.phase2.x
+
+    def key(self, mech: Any) -> np.ndarray:
+        """What of the mechanism ``mech`` is compared between steps (its active rows)."""
+        return mech
+
     def active(self, bj: np.ndarray) -> np.ndarray | None:
         """The joint rows the mechanism at the caps ``bj`` (joint rows' right-hand
         sides; phase 1 just solved there) holds active: non-zero duals of phase 1 and
@@ -127,8 +136,8 @@ class Mechanisms:
             if act is None:
                 return None
             last = prev[-1] if prev else None
-            prev[:] = [act]
-            if not _settled(act, last):
+            prev[:] = [self.key(act)]
+            if not _settled(prev[0], last):
                 return None
             got = self.states(act, N)
             return None if got is None else (*got, "")
@@ -148,13 +157,13 @@ class Mechanisms:
             act = self.active(bj) if st == OPTIMAL else None
             if act is None:
                 return None
-            if _settled(act, last):
+            if _settled(self.key(act), last):
                 got = self.states(act, N)
                 if got is not None:
-                    return (*got, f" ({k} of them by vertex steps after "
-                                  f"{PATH_STEPS - 1} least-squares steps)")
-            last = act
-            N = np.maximum(self.phase2.x[self.capped.nsl], 0.0)
+                    return (*got, f" ({k} of them by steps to the least confined state "
+                                  f"after {PATH_STEPS - 1} least-squares steps)")
+            last = self.key(act)
+            N = np.maximum(self.phase2_x[self.capped.nsl], 0.0)
         return None
 
     def states(self, active: np.ndarray, N: np.ndarray
@@ -201,14 +210,7 @@ class Mechanisms:
                        ) -> np.ndarray | None:
         """min c'z (+ z'Pz/2) over the collapse states of the mechanism (joint rows
         ``active``): one problem by the convex method's back end."""
-        import scipy.sparse as sp
-
-        p, K, ne = self.capped.prob, self.K, self.ne
-        Kj, b0 = K[ne:], self.capped.b0
-        A = sp.vstack([K[:ne], Kj[active], Kj[~active]], format="csc")
-        b = np.concatenate([p.b[:ne], b0[active], b0[~active]])
-        prob = ConicProblem(c=c, A=A, b=b, n_eq=ne + int(active.sum()),
-                            n_nonneg=int((~active).sum()), P=P, cols=p.cols, rows={})
+        prob = self._polytope(active, c, P)
         self.solves += 1
         try:
             res = self.cv.solve(prob, "collapse states of one mechanism", tight=True,
@@ -216,6 +218,18 @@ class Mechanisms:
         except SolverFailure:
             return None
         return res.z if res.status == OPTIMAL else None
+
+    def _polytope(self, active: np.ndarray, c: np.ndarray, P: Any) -> ConicProblem:
+        """The problem min c'z (+ z'Pz/2) over the states in equilibrium under their own
+        caps (K z <= b0) with the rows ``active`` held."""
+        import scipy.sparse as sp
+
+        p, K, ne = self.capped.prob, self.K, self.ne
+        Kj, b0 = K[ne:], self.capped.b0
+        A = sp.vstack([K[:ne], Kj[active], Kj[~active]], format="csc")
+        b = np.concatenate([p.b[:ne], b0[active], b0[~active]])
+        return ConicProblem(c=c, A=A, b=b, n_eq=ne + int(active.sum()),
+                            n_nonneg=int((~active).sum()), P=P, cols=p.cols, rows={})
 
     def check(self, z: np.ndarray) -> str:
         """Why the state ``z`` is not a fixed point ("" where it is): at its own caps,
@@ -232,7 +246,7 @@ class Mechanisms:
             return f"at its own caps the multiplier is {lam:.9g}, not {own:.9g}"
         if self.active(bj) is None:
             return "at its own caps the least confined state gave no answer"
-        s2, s = float(self.phase2.x[nsl].sum()), float(N.sum())
+        s2, s = float(self.phase2_x[nsl].sum()), float(N.sum())
         if abs(s2 - s) > FIXED_TOL * max(1.0, s):
             return f"at its own caps a less confined state carries it ({s2:.9g} < {s:.9g})"
         return ""
