@@ -204,6 +204,24 @@ def test_the_span_is_printed(tmp_path, capsys):
                              "mechanism carry lambda from 0.6 ")
 
 
+def test_cone_mechanisms_of_the_extruded_wall():
+    """The 10 x 10 wall at f = 0.8 extruded to 3D (Coulomb's cones, 4 points a joint):
+    the limit iteration ends at the collapse states of the mechanism it reaches (the
+    cones' duals fix each sliding contact's direction), whose range is the 2D wall's
+    to 1e-7 (one mechanism, in plane), and its answer is the 2D answer to 1e-4 (issue
+    #30: a wall and its extrusion agree to 1e-3); the answer is a checked collapse
+    state."""
+    from rigidblocks.scene.extrude import extrude
+
+    wall = build("wall", courses=10, blocks_per_course=10, friction=0.8)
+    r2 = rb.max_load_multiplier(wall, flow=NA, state=False)
+    r3 = rb.max_load_multiplier(extrude(wall), flow=NA, state=False)
+    assert r3.status == "collapse" and r3.history[0]["span"] is not None
+    assert r3.history[0]["span"] == pytest.approx(r2.history[0]["span"], rel=1e-7)
+    assert r3.load_multiplier == pytest.approx(r2.load_multiplier, rel=1e-4)
+    assert not any("fails its check" in n for n in r3.notes)
+
+
 @pytest.mark.slow
 def test_1041_block_wall_decided():
     """The 32 x 32 running-bond wall (1,041 blocks) at f = 0.6: the limit iteration ended

@@ -51,6 +51,9 @@ from .na_limit import CappedLimit, LimitRun
 #: a dual below this fraction of the largest (of its phase) is zero: its row is not
 #: part of the mechanism
 DUAL_ZERO = 1e-9
+#: an interior-point dual below this fraction of the largest is zero (the solver's
+#: duals of rows that do not hold are about its gap over their slack, 1e-10 and less)
+CONE_DUAL_ZERO = 1e-6
 #: the mechanism's polytope is sought once its active rows change by at most this
 #: fraction of their number between two steps
 SETTLED = 0.02
@@ -85,12 +88,8 @@ class Mechanisms:
         ne, ni = p.n_eq, p.n_nonneg
         self.ne, self.ni = ne, ni
         self.li = p.cols["lambda"].start
-        self.phase1 = capped.solver.lp
-        c2 = np.zeros(p.n)
-        c2[capped.nsl] = 1.0
-        self.phase2 = warm_lp(c2, p.A, np.concatenate([p.b[:ne], np.full(ni, -math.inf)]),
-                              p.b[:ne + ni])
         self.rows = np.arange(ne, ne + ni)
+        self._make_phase2()
         nsl = capped.nsl
         m = nsl.stop - nsl.start
         E = sp.csr_matrix((np.ones(m), (np.arange(m), np.arange(nsl.start, nsl.stop))),
@@ -99,6 +98,15 @@ class Mechanisms:
                         capped.M @ sp.diags(capped.f_pt)]).tocsr()
         self.K = (p.A.tocsr() - MF @ E).tocsr()
         self.solves = 0
+
+    def _make_phase2(self) -> None:
+        """Phase 1's LP (the capped problem's own model) and phase 2's (min sum N)."""
+        p, ne, ni = self.capped.prob, self.ne, self.ni
+        self.phase1 = self.capped.solver.lp
+        c2 = np.zeros(p.n)
+        c2[self.capped.nsl] = 1.0
+        self.phase2 = warm_lp(c2, p.A, np.concatenate([p.b[:ne], np.full(ni, -math.inf)]),
+                              p.b[:ne + ni])
 
     @property
     def phase2_x(self) -> np.ndarray:
@@ -252,6 +260,116 @@ class Mechanisms:
         return ""
 
 
+class ConeMechanisms(Mechanisms):
+    """The mechanisms of a capped problem with Coulomb's cones (3D; its solver the
+    convex method's back end, whose last answer is phase 1's). Complementarity with a
+    cone's dual z != 0 puts the cone's slack s on the ray of (z0, -z1, -z2): the
+    contact slides in the direction the dual gives, with |T| at its cap; two linear
+    conditions per cone (s_v z0 + s0 z_v = 0), so that the collapse states of one
+    mechanism are a convex set (the cones of the other contacts remain), its range two
+    second-order cone programs. A row or cone holds where its dual is not zero (to
+    ``CONE_DUAL_ZERO``: an interior-point answer's duals are never exactly zero)."""
+
+    def __init__(self, capped: CappedLimit):
+        Mechanisms.__init__(self, capped)
+        p = capped.prob
+        self.nc = len(p.soc)
+        self._z2 = np.zeros(p.n)
+        self.A = p.A.tocsr()
+
+    def _make_phase2(self) -> None:
+        """Phase 2 is a second-order cone program solved at each step (no warm LP)."""
+
+    @property
+    def phase2_x(self) -> np.ndarray:
+        return self._z2
+
+    def key(self, mech: Any) -> np.ndarray:
+        lin, cones = mech
+        ray = np.zeros(self.nc, dtype=bool)
+        ray[[k for k, _ in cones]] = True
+        return np.concatenate([lin, ray])
+
+    def _held(self, y: np.ndarray, n_eq: int, ni: int
+              ) -> tuple[np.ndarray, list[tuple[int, np.ndarray]]]:
+        """The ``ni`` linear rows (after the first ``n_eq``) and the cones (with their
+        duals' unit vectors) whose duals ``y`` (of an interior-point answer) are not
+        zero: holding fewer would admit states that are not fixed points (the check
+        finds them: on the extruded 10 x 10 wall, states down to 0.5096697 when the
+        rows whose duals exceed their slacks were held)."""
+        nc = self.nc
+        scale = max(1.0, float(np.abs(y).max(initial=0.0)))
+        yl = y[n_eq:n_eq + ni]
+        lin = yl > CONE_DUAL_ZERO * scale
+        zc = y[n_eq + ni:].reshape(nc, 3)
+        nz = np.linalg.norm(zc, axis=1)
+        ray = nz > CONE_DUAL_ZERO * scale
+        return lin, [(int(k), zc[k] / nz[k]) for k in np.flatnonzero(ray)]
+
+    def _conditions(self, A: Any, b: np.ndarray, lin: np.ndarray,
+                    cones: list[tuple[int, np.ndarray]]) -> tuple[Any, np.ndarray]:
+        """The rows (G, g) of G x = g that hold the linear rows ``lin`` of the joint rows
+        (A, b) and put each of ``cones``' slacks on the ray of its dual."""
+        import scipy.sparse as sp
+
+        ne, ni = self.ne, self.ni
+        rows = [A[ne:ne + ni][lin]]
+        rhs = [b[ne:ne + ni][lin]]
+        if cones:
+            r0 = ne + ni + 3 * np.array([k for k, _ in cones])
+            d = np.array([u for _, u in cones])
+            for v in (1, 2):
+                rows.append(sp.diags(d[:, 0]) @ A[r0 + v] + sp.diags(d[:, v]) @ A[r0])
+                rhs.append(d[:, 0] * b[r0 + v] + d[:, v] * b[r0])
+        return sp.vstack(rows, format="csr"), np.concatenate(rhs)
+
+    def _problem(self, A: Any, b: np.ndarray, mech: Any, c: np.ndarray, P: Any
+                 ) -> ConicProblem:
+        """min c'x (+ x'Px/2) over the states of (A, b) (equilibrium rows first, then
+        the joint rows) that hold the mechanism ``mech``."""
+        import scipy.sparse as sp
+
+        ne, ni = self.ne, self.ni
+        lin, cones = mech
+        G, g = self._conditions(A, b, lin, cones)
+        free = np.flatnonzero(~lin)
+        AA = sp.vstack([A[:ne], G, A[ne:ne + ni][free], A[ne + ni:]], format="csc")
+        bb = np.concatenate([b[:ne], g, b[ne:ne + ni][free], b[ne + ni:]])
+        p = self.capped.prob
+        return ConicProblem(c=c, A=AA, b=bb, n_eq=ne + G.shape[0], n_nonneg=len(free),
+                            soc=p.soc, P=P, cols=p.cols, rows={})
+
+    def active(self, bj: np.ndarray) -> Any:
+        last = self.capped.solver.last
+        if last is None:
+            return None
+        p = self.capped.prob
+        b = np.concatenate([p.b[:self.ne], bj])
+        lin, cones = self._held(last.y, self.ne, self.ni)
+        c2 = np.zeros(p.n)
+        c2[self.capped.nsl] = 1.0
+        prob = self._problem(self.A, b, (lin, cones), c2, None)
+        try:
+            res = self.cv.solve(prob, "least confined collapse state", tight=True,
+                                stall=False)
+        except SolverFailure:
+            return None
+        if res.status != OPTIMAL:
+            return None
+        self._z2 = res.z
+        # phase 2's own rows, read on its problem (its conditions are equalities there)
+        lin2, cones2 = self._held(res.y, prob.n_eq, prob.n_nonneg)
+        free = np.flatnonzero(~lin)
+        lin_all = lin.copy()
+        lin_all[free[lin2]] = True
+        return lin_all, cones + cones2
+
+    def _polytope(self, mech: Any, c: np.ndarray, P: Any) -> ConicProblem:
+        p = self.capped.prob
+        return self._problem(self.K, np.concatenate([p.b[:self.ne], self.capped.b0]),
+                             mech, c, P)
+
+
 def _settled(act: np.ndarray, last: np.ndarray | None) -> bool:
     """Have the mechanism's rows settled: do they differ from the last step's by at most
     ``SETTLED`` of their number?"""
@@ -270,12 +388,15 @@ def limit_runs(capped: CappedLimit, starts: list[tuple[str, np.ndarray]]
     """One run of the limit iteration per start (name, scaled normal forces), ended at
     the collapse states of the mechanism it reaches where the problem is an LP (2D), and
     the solves they took."""
-    if not walks(capped.cv) or capped.backend != "highs":
+    if walks(capped.cv) and capped.backend == "highs":
+        mech: Mechanisms = Mechanisms(capped)
+    elif capped.prob.soc and set(capped.prob.soc) == {3}:
+        mech = ConeMechanisms(capped)
+    else:
         runs = [capped.run(n, name) for name, n in starts]
         return runs, capped.solves
-    mech = Mechanisms(capped)
     runs = [capped.run(n, name, settle=mech.settler()) for name, n in starts]
-    return runs, capped.solves + mech.solves + mech.phase2.solves
+    return runs, capped.solves + mech.solves + getattr(mech, "phase2", mech).solves
 
 
-__all__ = ["Mechanisms", "limit_runs", "walks"]
+__all__ = ["ConeMechanisms", "Mechanisms", "limit_runs", "walks"]
