@@ -257,8 +257,8 @@ class CappedLimit:
 
 def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, what: str,
              tol: float, max_iter: int, settle: Any = None) -> LimitRun:
-    """The fixed-point loop of both runs: ``step(N)`` solves one problem at the caps of
-    the normal forces N and gives (value, joint rows' right-hand sides, its solution,
+    """The fixed-point loop of :meth:`CappedLimit.run`: ``step(N)`` solves one problem at
+    the caps of the normal forces N and gives (value, joint rows' right-hand sides, its solution,
     the multiplier the state must carry), or (status, reason) where it has no answer;
     then the state is selected (:func:`_select_step`) and the next normal forces
     combined from the last steps (:class:`_Anderson`), damped (:func:`_damped`, which
@@ -402,49 +402,3 @@ def certificate(cv: ConvexMethod, f: float, lam: float, x: np.ndarray
     v = joint_violations(prob, jr, z, cv.contacts.n_joints)
     return (float(np.abs(res).max(initial=0.0)) / scale,
             float(v.max(initial=0.0)) * cv.scaling.force / scale)
-
-
-def friction_fixed_point(capped: CappedLimit, unit: np.ndarray, load_factor: float,
-                         N_start: np.ndarray, start: str, tol: float = LIMIT_TOL,
-                         max_iter: int = LIMIT_MAX_ITER) -> LimitRun:
-    """The fixed point on the friction: each step the smallest uniform f whose caps
-    f ``unit`` N_prev (plus the fixed caps of joints with their own friction) carry
-    ``load_factor`` (one LP in (x, f)), then the state selected as in
-    :meth:`CappedLimit.run` at that f; a fixed point is a non-associative collapse state
-    at exactly ``load_factor`` with friction f. ``capped`` is built at any f with the
-    uniform joints marked; ``unit`` (P,) is 1 at the points of the uniform joints. The
-    run's ``lam`` is the friction f."""
-    import scipy.sparse as sp
-
-    cv, p = capped.cv, capped.prob
-    ne, n = p.n_eq, p.n
-    li = p.cols["lambda"].start
-    A = p.A.tocsc()
-    live = A[:ne, li].toarray().ravel()
-    fixed = np.where(unit > 0, 0.0, capped.f_pt)
-    b_eq = p.b[:ne] - load_factor * live
-    keep = sp.csc_matrix(A[:, :li])
-    def step(N: np.ndarray) -> tuple:
-        col = -(capped.M @ (unit * N))
-        Af = sp.vstack([sp.hstack([keep[:ne], sp.csc_matrix((ne, 1))]),
-                        sp.csc_matrix(([-1.0], ([0], [li])), shape=(1, n)),
-                        sp.hstack([keep[ne:], sp.csc_matrix(col[:, None])])], format="csc")
-        bj = capped.b0 + capped.M @ (fixed * N)
-        c = np.zeros(n)
-        c[li] = 1.0
-        prob = ConicProblem(c=c, A=Af, b=np.concatenate([b_eq, [0.0], bj]), n_eq=ne,
-                            n_nonneg=p.n_nonneg + 1, soc=p.soc, cols={"x": p.cols["x"]},
-                            rows={})
-        capped.solves += 1
-        try:
-            res = cv.solve(prob, "least friction (capped laws)", tight=True, stall=False)
-        except SolverFailure:
-            res = None
-        if res is None or res.status != OPTIMAL:
-            st = "failure" if res is None else res.status
-            return ("infeasible" if st == "infeasible" else "undecided",
-                    f"the least-friction problem: {st}")
-        fk = float(res.z[li])
-        return fk, bj + fk * (capped.M @ (unit * N)), res.z, load_factor
-
-    return _iterate(capped, N_start, start, step, "least-friction solves", tol, max_iter)

@@ -78,7 +78,6 @@ from .na_limit import (
     CappedLimit,
     LimitRun,
     certificate,
-    friction_fixed_point,
     reached_normals,
     x0_normals,
 )
@@ -992,12 +991,6 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
         na.notes.append("the elastic state X0 has no solution")
         return out(UNDECIDED, converged=False)
 
-    # in 2D the load's answer is the lowest state of a mechanism (the walk): the search
-    # on it gives the friction at which that answer is lf
-    direct = None if walks(cv) else _friction_fixed_point(na, cv, lf, fs, n0, out, trials)
-    if direct is not None:
-        return direct
-
     def oracle(fv: float) -> Trial:
         capped = CappedLimit(cv, na.marked, fv)
         (r,), solves = limit_runs(capped, [(FROM_X0, n0)])
@@ -1043,41 +1036,6 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
                     f"{at.value + lf:.9g} >= {lf:g}; at f = {s.bad:.9g} "
                     f"{s.end(False).value + lf:.9g}")
     return out("stable", s.good, at.data, s.lower, s.upper, True)
-
-
-def _friction_fixed_point(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, fs: float,
-                          n0: np.ndarray, out: Any, trials: list[dict[str, Any]]
-                          ) -> FrictionResult | None:
-    """The friction as a fixed point on f (:func:`~rigidblocks.analyses.na_limit.
-    friction_fixed_point`) from X0, where every joint of the uniform friction slides
-    without dilatancy (f then enters only the caps); None where it does not apply, does
-    not settle, or its answer fails the a-posteriori check (equilibrium at
-    ``load_factor`` and Coulomb's law at f with the state's own normal forces, f >= the
-    static f*): the search answers then."""
-    fj = cv.f_joint(1.0)
-    uni = na.uniform & np.isfinite(fj)
-    if not uni.any() or not np.array_equal(na.marked & uni, uni):
-        return None
-    capped = CappedLimit(cv, na.marked, 1.0, backend="conic")
-    unit = uni[cv.contacts.point_joint].astype(float)
-    r = friction_fixed_point(capped, unit, lf, n0, FROM_X0)
-    na.fp_iterations += capped.solves
-    trials.append({"friction": r.lam, "load_factor": lf, "status": r.status,
-                   "iterations": r.iterations, "converged": r.converged})
-    if not r.converged or r.lam is None or r.lam < fs * (1.0 - 1e-6):
-        na.notes.append(f"the fixed point on f from X0 gave no answer ({r.reason}): "
-                        "searched on the load's fixed point instead")
-        return None
-    eq, breach = certificate(cv, r.lam, lf, r.x * cv.scaling.force)
-    if eq > CERT_TOL or breach > CERT_TOL:
-        na.notes.append(f"the fixed point on f from X0 (f = {r.lam:.9g}) fails its check "
-                        f"(equilibrium {eq:.2g}, Coulomb {breach:.2g}): searched instead")
-        return None
-    f = max(float(r.lam), fs)
-    na.notes.append(f"f = {f:.9g} is the fixed point on the friction from X0 after "
-                    f"{r.iterations} least-friction solves: the least f whose caps f N "
-                    f"carry lambda = {lf:g} with N its own normal forces")
-    return out("stable", f, _verdict(r, cv.scaling.force), f, f, True)
 
 
 def _secant(s: Any) -> float | None:
