@@ -83,6 +83,14 @@ def test_non_finite_numbers_are_usage_errors(value, capsys):
         one_line_error(capsys, value)
 
 
+@pytest.mark.parametrize("value", ["nan", "-1", "x"])
+def test_friction_option_names_what_it_takes(value, capsys):
+    """--friction takes a number >= 0 or "infinite"; nan is neither (it read "must be
+    >= 0, got nan")."""
+    assert main(["load", str(EXAMPLES / "arch.json"), f"--friction={value}"]) == 2
+    one_line_error(capsys, "friction must be")
+
+
 def test_every_float_option_of_every_command_is_finite():
     parser = build_parser()
     sub = next(a for a in parser._actions if a.dest == "command")

@@ -59,6 +59,8 @@ def friction_value(f: object) -> float:
     except (TypeError, ValueError):
         raise InputError(f'friction must be a number >= 0 or "infinite", got {f!r}') \
             from None
+    if math.isnan(v):
+        raise InputError('friction must be a number >= 0 or "infinite", got nan')
     if not (v >= 0):
         raise InputError(f"friction must be >= 0, got {v}")
     return v
