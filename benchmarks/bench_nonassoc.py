@@ -666,6 +666,9 @@ def lmgc90_section(out: str | None, python_arg: str | None, tiny: bool,
 #: the large walls (courses, blocks per course) at both frictions, and the largest wall
 #: run by default (70 x 70 with --large-walls 5000)
 LARGE_WALLS = ((10, 10), (20, 15), (32, 32), (70, 70))
+#: ``--walls3d``: wall3d (courses, blocks per course, load direction), Coulomb's cones
+LARGE_WALLS3D = ((20, 24, "in_plane"), (20, 24, "out_of_plane"), (32, 31, "in_plane"),
+                 (32, 31, "out_of_plane"))
 LARGE_FRICTIONS = (0.6, 0.8)
 LARGE_UP_TO = 1100
 TINY_LARGE = ((3, 3),)
@@ -679,19 +682,25 @@ def _cpu(fn: Any, *args: Any, **kw: Any) -> tuple[Any, float]:
     return r, time.process_time() - t0
 
 
-def large_walls(sizes: Sequence[tuple[int, int]], frictions: Sequence[float],
-                up_to: int) -> list[dict[str, Any]]:
+def large_walls(sizes: Sequence[tuple], frictions: Sequence[float],
+                up_to: int, friction_too: bool = True) -> list[dict[str, Any]]:
     """Non-associative load and friction on running-bond walls against the associative
-    load in the same run (CPU seconds): the limit fixed point from X0 and from the
-    associative collapse state (the spread), and the friction whose fixed point from X0
-    carries the multiplier found at f (it should give f back)."""
+    load in the same run (CPU seconds): the limit iteration from X0 and from the
+    associative collapse state (the spread), and the friction whose answer from X0
+    carries the multiplier found at f (it should give f back). ``sizes``: (courses,
+    blocks per course) of 2D walls, or with a third item the load direction of a
+    wall3d."""
     warm = build("wall", courses=2, blocks_per_course=2, friction=0.6)
     rb.max_load_multiplier(warm, state=False)  # imports and first calls out of the timing
     rb.max_load_multiplier(warm, flow=NA, state=False)
     rows = []
-    for c, n in sizes:
+    for c, n, *direction in sizes:
         for f in frictions:
-            scene = build("wall", courses=c, blocks_per_course=n, friction=f)
+            if direction:
+                scene = build("wall3d", courses=c, blocks_per_course=n, friction=f,
+                              load_direction=direction[0])
+            else:
+                scene = build("wall", courses=c, blocks_per_course=n, friction=f)
             if len(scene.blocks) > up_to:
                 continue
             a, ta = _cpu(rb.max_load_multiplier, scene, state=False)
@@ -702,8 +711,11 @@ def large_walls(sizes: Sequence[tuple[int, int]], frictions: Sequence[float],
                       else "undecided" for h in v.history}
             spans = {h.get("start"): h.get("span") for h in v.history}
             lf = v.load_multiplier if v.status == "collapse" else 0.9 * a.load_multiplier
-            fr, tf = _cpu(rb.min_friction, scene, load_factor=lf, flow=NA, state=False)
+            fr, tf = _cpu(rb.min_friction, scene, load_factor=lf, flow=NA, state=False) \
+                if friction_too else (None, None)
             row = {"courses": c, "per_course": n, "blocks": len(scene.blocks),
+                   "wall": f"{c} x {n}" + (f" wall3d {direction[0].replace('_', ' ')}"
+                                           if direction else ""),
                    "friction": f, "assoc_lambda": a.load_multiplier, "assoc_cpu": ta,
                    "na_status": v.status, "na_lambda": v.load_multiplier, "na_cpu": tv,
                    "na_from_assoc": starts.get("the associative collapse state"),
@@ -711,14 +723,15 @@ def large_walls(sizes: Sequence[tuple[int, int]], frictions: Sequence[float],
                    "na_from_assoc_span": spans.get("the associative collapse state"),
                    "load_average": os.getloadavg()[0],
                    "na_solves": v.iterations, "na_ratio": tv / ta if ta else None,
-                   "friction_load_factor": lf, "friction_status": fr.status,
-                   "na_friction": fr.friction_factor,
-                   "friction_bracket": fr.bracket, "friction_cpu": tf,
-                   "friction_ratio": tf / ta if ta else None}
+                   "friction_load_factor": lf,
+                   "friction_status": fr.status if fr else "not run",
+                   "na_friction": fr.friction_factor if fr else None,
+                   "friction_bracket": fr.bracket if fr else None, "friction_cpu": tf,
+                   "friction_ratio": tf / ta if ta and tf is not None else None}
             rows.append(row)
-            print(f"wall {c}x{n} f={f}: assoc {a.load_multiplier:.6g} ({ta:.2f} s), "
+            print(f"{row['wall']} f={f}: assoc {a.load_multiplier:.6g} ({ta:.2f} s), "
                   f"non-assoc {v.status} {v.load_multiplier} ({tv:.2f} s), friction "
-                  f"{fr.status} {fr.friction_factor} ({tf:.2f} s)", flush=True)
+                  f"{row['friction_status']} {row['na_friction']} ({tf} s)", flush=True)
     return rows
 
 
@@ -728,12 +741,12 @@ def large_walls_md(rows: list[dict[str, Any]]) -> list[str]:
               "its mechanism's states", "from the assoc. state", "its mechanism's states",
               "CPU s", "x assoc", "solves", "f non-assoc at lambda non-assoc", "CPU s",
               "x assoc", "load"]
-    body = [[f"{r['courses']} x {r['per_course']}", r["blocks"], r["friction"],
+    body = [[r.get("wall", f"{r['courses']} x {r['per_course']}"), r["blocks"], r["friction"],
              r["assoc_lambda"], r["assoc_cpu"], _cell(r["na_lambda"]) if r["na_status"]
              == "collapse" else r["na_status"], _span(r.get("na_span")),
              _cell(r["na_from_assoc"]), _span(r.get("na_from_assoc_span")), r["na_cpu"],
              _cell(r["na_ratio"]), r["na_solves"], _cell(r["na_friction"]) if
-             r["friction_status"] == "stable" else r["friction_status"], r["friction_cpu"],
+             r["friction_status"] == "stable" else r["friction_status"], _cell(r["friction_cpu"]),
              _cell(r["friction_ratio"]), _cell(r.get("load_average"))] for r in rows]
     return ["### Running-bond walls: the limit fixed point against the associative load", "",
             "Non-associative `load` (the limit iteration from the elastic state X0, and "
@@ -767,6 +780,9 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     p.add_argument("--ours-again", action="store_true",
                    help="compute our columns of bench_nonassoc_lmgc90 again, keeping "
                    "LMGC90's and CRA's brackets")
+    p.add_argument("--walls3d", action="store_true",
+                   help="the wall3d walls of LARGE_WALLS3D (load only), into "
+                        "bench_nonassoc_walls3d")
     p.add_argument("--large-walls", type=int, default=LARGE_UP_TO,
                    help="largest wall (blocks) of the large-walls table")
     p.add_argument("--lmgc90-case", action="append", default=None, metavar="NAME",
@@ -807,6 +823,13 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
     if args.only == "lmgc90" or any(v is not None for v in other.values()):
         return {"lmgc90": lmgc90_section(args.out, args.lmgc90_python, args.tiny,
                                          command=command, **other)}
+    if args.walls3d:
+        rows3 = large_walls(LARGE_WALLS3D, LARGE_FRICTIONS, args.large_walls, False)
+        doc = {"walls3d": rows3, "command": command}
+        write_results(args.out, "bench_nonassoc_walls3d", doc,
+                      "\n".join(["## Non-associative sliding on wall3d walls (Coulomb's "
+                                 "cones)", ""] + large_walls_md(rows3)[2:]))
+        return doc
     large = large_walls(TINY_LARGE if args.tiny else LARGE_WALLS, LARGE_FRICTIONS,
                         args.large_walls)
     sizes = TINY_WALLS if args.tiny else WALLS
