@@ -15,7 +15,10 @@ or amend rule of :mod:`rigidblocks.methods.friction_rules` or
 :mod:`rigidblocks.methods.load_rules`, by name); ``--ablate`` runs every such rule left
 out in turn and writes, per rule, the cases whose answer changed (status, or f* by more
 than the requested accuracy), the solves and the CPU seconds against the full rule set:
-what each rule earns.
+what each rule earns. ``--without-rung RETRY`` and ``--ablate-rungs`` do the same for
+the solver policy's retries (:data:`RETRIES`). ``--tests PATHS`` (with either ablation)
+also runs those test files with each rule or retry left out, in a fresh interpreter
+each, and records the tests that fail.
 """
 
 from __future__ import annotations
@@ -144,11 +147,67 @@ def rule_names(only: list[str] | None = None) -> list[str]:
 
 
 def without(name: str | None) -> None:
-    """Leave the rule ``name`` out of every rule set (None: restore them all)."""
-    for m, a in _rule_sets():
+    """Leave the rule ``name`` out of every rule set (None: restore them all), where the
+    searches read them and where the tests' synthetic searches do
+    (:mod:`rigidblocks.methods.friction_rules`)."""
+    from rigidblocks.methods import friction_rules
+    sets = _rule_sets() + [(friction_rules, a) for a in ("STOPS", "STEPS", "AMENDS")]
+    for m, a in sets:
         full = getattr(m, f"_FULL_{a}", None) or getattr(m, a)
         setattr(m, f"_FULL_{a}", full)
         setattr(m, a, tuple(f for f in full if f.__name__ != name))
+
+
+#: the solver policy's retries that ``--without-rung`` / ``--ablate-rungs`` leave out
+#: (:mod:`rigidblocks.solvers.policy`): the refined retry (REFINED), the retry without
+#: VALUE_SETTINGS (WITHOUT_VALUE), the 1e-9 rungs (NEAR_TIGHT, NEAR_TIGHT_VALUE), the
+#: defaults after tight rungs (DEFAULTS where a tight rung comes before it), the stall
+#: stop (no rung given the next one's settings), FINER_SETTINGS for the max-load LP
+#: (FINER_FIRST, never asked: load_search.FINER_WHEN infinite) and the confirming solve
+#: (CONFIRMING: a verdict near its threshold is not solved again tighter)
+RETRIES = ("refined", "without-value", "near-tight", "defaults-after-tight", "stall",
+           "finer", "confirming")
+_LADDERS: dict[int, tuple[Any, tuple, tuple | None]] = {}
+
+
+def _kept(name: str, rungs: tuple) -> tuple:
+    """``rungs`` without the retry ``name`` (see :data:`RETRIES`)."""
+    from dataclasses import replace
+
+    from rigidblocks.solvers import policy as p
+    drop = {"refined": (p.REFINED,), "without-value": (p.WITHOUT_VALUE,),
+            "near-tight": (p.NEAR_TIGHT, p.NEAR_TIGHT_VALUE), "finer": (p.FINER_FIRST,),
+            "confirming": (p.CONFIRMING,)}.get(name, ())
+    out = []
+    for r in rungs:
+        if any(r is d for d in drop):
+            continue
+        if name == "defaults-after-tight" and r is p.DEFAULTS and any(u.tight for u in out):
+            continue
+        out.append(replace(r, stall=False) if name == "stall" else r)
+    return tuple(out)
+
+
+def without_rung(name: str | None) -> None:
+    """Leave the retry ``name`` (:data:`RETRIES`) out of every ladder of the solver
+    policy, in place, so that every module holding a ladder reads it so (None: restore
+    them all)."""
+    from rigidblocks.methods import load_search
+    from rigidblocks.solvers import policy as p
+    if name is not None and name not in RETRIES:
+        raise SystemExit(f"bench_searches: unknown retry {name} (choose from "
+                         f"{', '.join(RETRIES)})")
+    for ladder in (v for v in vars(p).values() if isinstance(v, p.Ladder)):
+        _LADDERS.setdefault(id(ladder), (ladder, ladder.rungs, ladder.again))
+    _LADDERS.setdefault(0, (load_search, load_search.FINER_WHEN, None))
+    for key, (ladder, rungs, again) in _LADDERS.items():
+        if key == 0:
+            ladder.FINER_WHEN = float("inf") if name == "finer" else rungs
+            continue
+        # the ladders are frozen: they are changed where every module holds them
+        object.__setattr__(ladder, "rungs", _kept(name, rungs) if name else rungs)
+        object.__setattr__(ladder, "again",
+                           _kept(name, again) if name and again is not None else again)
 
 
 def sweep_cases(rtol: float | None) -> list[dict[str, Any]]:
@@ -160,24 +219,48 @@ def sweep_cases(rtol: float | None) -> list[dict[str, Any]]:
     return rows
 
 
-def ablate(rtol: float | None, out: str, only: list[str] | None = None) -> None:
-    """Every rule (or those named in ``only``) left out in turn against the full set
-    (see the module docstring); the report keeps the cases' rows and the load average."""
+def tests_without(leave_out: str, name: str | None, paths: list[str]) -> dict[str, Any]:
+    """The test files ``paths`` run (pytest, in a fresh interpreter, from the checkout)
+    with ``leave_out`` ("without" or "without_rung") of ``name`` (None: nothing left
+    out): the tests that fail and pytest's summary line."""
+    import subprocess
+    args = ["-q", "-rfE", "-p", "no:cacheprovider", *paths]
+    code = (f"import sys; sys.path.insert(0, {str(Path(__file__).parent)!r}); "
+            f"import bench_searches as b; b.{leave_out}({name!r}); import pytest; "
+            f"sys.exit(pytest.main({args!r}))")
+    done = subprocess.run([sys.executable, "-c", code], cwd=EXAMPLES.parent,
+                          capture_output=True, text=True, check=False)
+    lines = done.stdout.splitlines()
+    failed = [ln.split(" ", 1)[1].split(" - ")[0] for ln in lines
+              if ln.startswith(("FAILED ", "ERROR "))]
+    return {"failed": failed, "summary": lines[-1] if lines else done.stderr[-500:]}
+
+
+def ablate(rtol: float | None, out: str, names: list[str], leave_out: str = "without",
+           tests: list[str] | None = None) -> None:
+    """Every rule (``leave_out`` "without") or retry ("without_rung") of ``names`` left
+    out in turn against the full set (see the module docstring), on the scenes and, with
+    ``tests``, on those test files; the report keeps the cases' rows and the load
+    average."""
     from common import load_average
 
-    names = rule_names(only)
+    drop = globals()[leave_out]
     load0 = load_average()
     base = sweep_cases(rtol)
     tol = rtol or 2e-3
-    report = {"rtol": rtol, "base": {"solves": sum(c.get("n_solves") or 0 for c in base),
-                                     "seconds": sum(c["seconds"] for c in base),
-                                     "rows": base, "load": [load0, load_average()]},
-              "rules": {}}
+    report: dict[str, Any] = {
+        "rtol": rtol, "left_out": leave_out, "tests": tests or [],
+        "base": {"solves": sum(c.get("n_solves") or 0 for c in base),
+                 "seconds": sum(c["seconds"] for c in base), "rows": base,
+                 "load": [load0, load_average()]},
+        "rules": {}}
+    if tests:
+        report["base"]["tests"] = tests_without(leave_out, None, tests)
     for name in names:
         load0 = load_average()
-        without(name)
+        drop(name)
         rows = sweep_cases(rtol)
-        without(None)
+        drop(None)
         changed = []
         for b, c in zip(base, rows, strict=True):
             moved = b["status"] != c["status"]
@@ -190,6 +273,9 @@ def ablate(rtol: float | None, out: str, only: list[str] | None = None) -> None:
             "solves": sum(c.get("n_solves") or 0 for c in rows),
             "seconds": sum(c["seconds"] for c in rows), "changed": changed,
             "rows": rows, "load": [load0, load_average()]}
+        if tests:
+            report["rules"][name]["tests"] = tests_without(leave_out, name, tests)
+            report["rules"][name]["load"].append(load_average())
         print(name, json.dumps(report["rules"][name]), flush=True)
         Path(out).write_text(json.dumps(report, indent=1))
 
@@ -206,16 +292,20 @@ def ablation_table(report: dict[str, Any]) -> str:
             doc = " ".join((f.__doc__ or "").split())
             where.setdefault(f.__name__, []).append(
                 (search, a.lower()[:-1], doc.split(". ")[0].rstrip(".")))
+    for name in RETRIES:
+        where[name] = [("solver policy", "retry", "")]
     base = report["base"]
     rows = []
     for name, r in report["rules"].items():
         ds, dt = r["solves"] - base["solves"], r["seconds"] - base["seconds"]
         answers = f"{len(r['changed'])} changed" if r["changed"] else "same"
+        failed = ", ".join(t.split("::")[-1] for t in r.get("tests", {}).get("failed", []))
         for search, kind, case in where.get(name, []):
             rows.append(f"| `{name}` | {search} {kind} | {case} | {ds:+d} | {dt:+.2f} | "
-                        f"{answers} |")
+                        f"{answers} | {failed or '-'} |")
     head = ("| rule | search, kind | the case it serves | solves without it | CPU s "
-            "without it | answers without it |\n|---|---|---|---|---|---|")
+            "without it | answers without it | tests failing without it |\n"
+            "|---|---|---|---|---|---|---|")
     return head + "\n" + "\n".join(rows)
 
 
@@ -234,7 +324,15 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--walls", default="",
                     help="only these running-bond walls, COURSESxBLOCKS@LOADFACTOR,...")
     ap.add_argument("--rules", default="",
-                    help="with --ablate: only these rules (comma-separated names)")
+                    help="with --ablate or --ablate-rungs: only these rules or retries "
+                         "(comma-separated names)")
+    ap.add_argument("--without-rung", default=None,
+                    help=f"a retry of the solver policy to leave out ({', '.join(RETRIES)})")
+    ap.add_argument("--ablate-rungs", action="store_true",
+                    help="leave every retry of the solver policy out in turn")
+    ap.add_argument("--tests", default="",
+                    help="with --ablate or --ablate-rungs: also run these test files "
+                         "(comma-separated) with each one left out")
     a = ap.parse_args(argv)
     global BIG, WALLS
     BIG = a.big
@@ -242,11 +340,22 @@ def main(argv: list[str] | None = None) -> int:
     if a.table:
         print(ablation_table(json.loads(Path(a.out).read_text())))
         return 0
+    only = [r for r in a.rules.split(",") if r]
+    tests = [t for t in a.tests.split(",") if t]
     if a.ablate:
-        ablate(a.rtol, a.out, [r for r in a.rules.split(",") if r])
+        ablate(a.rtol, a.out, rule_names(only), "without", tests)
+        return 0
+    if a.ablate_rungs:
+        unknown = sorted(set(only) - set(RETRIES))
+        if unknown:
+            raise SystemExit(f"bench_searches: unknown retries {', '.join(unknown)}")
+        ablate(a.rtol, a.out, [r for r in RETRIES if not only or r in only],
+               "without_rung", tests)
         return 0
     if a.without:
         without(a.without)
+    if a.without_rung:
+        without_rung(a.without_rung)
     rows = []
     for name, scene, lf in scenes():
         rows.append(run(name, scene, lf, a.rtol))
