@@ -42,28 +42,45 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 #: ``--big``: the 1,009-block running-bond wall too, at load factors 1 and 0.5, where
 #: the solver's resolution near f* steers the searches (3 to 4 s each)
 BIG = False
-#: ``--walls``: running-bond walls (courses, blocks per course, load factor) run instead
-#: of the scenes above (the large walls, a solve of minutes each)
-WALLS: list[tuple[int, int, float]] = []
+#: ``--walls``: running-bond walls (courses, blocks per course, load factor, whether its
+#: live load is made a dead load) run instead of the scenes above (the large walls, a
+#: solve of minutes each)
+WALLS: list[tuple[int, int, float, bool]] = []
 
 
-def parse_walls(text: str) -> list[tuple[int, int, float]]:
-    """``COURSESxBLOCKS@LOADFACTOR,...`` (e.g. ``100x200@0.2,71x71@1``)."""
+def parse_walls(text: str) -> list[tuple[int, int, float, bool]]:
+    """``COURSESxBLOCKS@LOADFACTOR[:dead],...`` (e.g. ``100x200@0.2,71x71@1:dead``):
+    with ``:dead`` the wall's horizontal body force at that factor is a dead load, so
+    that f* is sought on R(f), not on lambda*(f)."""
     out = []
     for item in filter(None, text.split(",")):
         shape, _, lf = item.partition("@")
+        lf, _, dead = lf.partition(":")
         c, _, b = shape.partition("x")
-        out.append((int(c), int(b), float(lf or 1.0)))
+        out.append((int(c), int(b), float(lf or 1.0), dead == "dead"))
     return out
+
+
+def as_dead(scene: Any, load_factor: float) -> Any:
+    """``scene`` with its live body force at ``load_factor`` made a dead load on every
+    free block."""
+    from rigidblocks.methods import open_method
+    from rigidblocks.scene.model import Load
+    system = open_method(scene).system
+    v = np.asarray(scene.live_body_force, float)
+    dead = tuple(Load(scene.blocks[b].id, tuple(float(system.weights[b] * load_factor) * v),
+                      live=False) for b in system.free_blocks)
+    return scene.with_changes(loads=scene.loads + dead, live_body_force=None)
 
 
 def scenes() -> list[tuple[str, Any, float | None]]:
     """(name, scene, load factor or None for the scene's own)."""
     out: list[tuple[str, Any, float | None]] = []
     if WALLS:
-        for c, b, lf in WALLS:
+        for c, b, lf, dead in WALLS:
             wall = running_bond_wall(c, b)
-            out.append((f"wall{len(wall.blocks)}@{lf:g}", wall, lf))
+            name = f"wall{len(wall.blocks)}@{lf:g}"
+            out.append((f"{name}:dead", as_dead(wall, lf), 0.0) if dead else (name, wall, lf))
         return out
     for p in sorted(EXAMPLES.glob("*.json")):
         s = rb.read_scene(p)
@@ -87,12 +104,19 @@ def scenes() -> list[tuple[str, Any, float | None]]:
 
 def run(name: str, scene: Any, lf: float | None, rtol: float | None = None
         ) -> dict[str, Any]:
+    """One case: status, f*, bracket, solves and, under ``fired``, how often each rule
+    of the f* searches answered (a stop rule ended the search, a step rule proposed the
+    trial, an amend rule moved or refused it)."""
+    without(LEFT_OUT)
+    FIRED.clear()
     try:
         r = rb.min_friction(scene, load_factor=lf, state=False, rtol=rtol)
     except Exception as exc:  # noqa: BLE001 - recorded as the case's outcome
-        return {"name": name, "status": f"error: {type(exc).__name__}: {exc}"}
+        return {"name": name, "status": f"error: {type(exc).__name__}: {exc}",
+                "fired": dict(FIRED)}
     return {"name": name, "status": r.status, "f": r.friction_factor,
-            "lower": r.lower, "upper": r.upper, "n_solves": r.n_solves}
+            "lower": r.lower, "upper": r.upper, "n_solves": r.n_solves,
+            "fired": dict(FIRED)}
 
 
 def compare(now: list[dict], before: list[dict]) -> int:
@@ -146,16 +170,37 @@ def rule_names(only: list[str] | None = None) -> list[str]:
     return names
 
 
+#: how often each rule answered in the current case (:func:`run`)
+FIRED: dict[str, int] = {}
+#: the rule left out (None: none)
+LEFT_OUT: str | None = None
+
+
+def _counted(rule: Any, amend: bool = False) -> Any:
+    """``rule`` counting its answers in FIRED, under its own name."""
+    import functools
+
+    @functools.wraps(rule)
+    def counted(*args: Any) -> Any:
+        out = rule(*args)
+        if (out != args[1]) if amend else (out is not None and out is not False):
+            FIRED[rule.__name__] = FIRED.get(rule.__name__, 0) + 1
+        return out
+    return counted
+
+
 def without(name: str | None) -> None:
     """Leave the rule ``name`` out of every rule set (None: restore them all), where the
     searches read them and where the tests' synthetic searches do
-    (:mod:`rigidblocks.methods.friction_rules`)."""
+    (:mod:`rigidblocks.methods.friction_rules`); the rules kept count their answers."""
+    global LEFT_OUT
     from rigidblocks.methods import friction_rules
+    LEFT_OUT = name
     sets = _rule_sets() + [(friction_rules, a) for a in ("STOPS", "STEPS", "AMENDS")]
     for m, a in sets:
         full = getattr(m, f"_FULL_{a}", None) or getattr(m, a)
         setattr(m, f"_FULL_{a}", full)
-        setattr(m, a, tuple(f for f in full if f.__name__ != name))
+        setattr(m, a, tuple(_counted(f, a == "AMENDS") for f in full if f.__name__ != name))
 
 
 #: the solver policy's retries that ``--without-rung`` / ``--ablate-rungs`` leave out
