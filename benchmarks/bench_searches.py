@@ -282,11 +282,13 @@ def tests_without(leave_out: str, name: str | None, paths: list[str]) -> dict[st
 
 
 def ablate(rtol: float | None, out: str, names: list[str], leave_out: str = "without",
-           tests: list[str] | None = None) -> None:
+           tests: list[str] | None = None, fired_only: bool = False) -> None:
     """Every rule (``leave_out`` "without") or retry ("without_rung") of ``names`` left
     out in turn against the full set (see the module docstring), on the scenes and, with
     ``tests``, on those test files; the report keeps the cases' rows and the load
-    average."""
+    average. With ``fired_only``, a rule that answered in no case of the full set is not
+    run again (its runs are those of the full set: the rules are functions of the
+    record, the solves deterministic) and is listed under ``never_fired``."""
     from common import load_average
 
     drop = globals()[leave_out]
@@ -301,6 +303,10 @@ def ablate(rtol: float | None, out: str, names: list[str], leave_out: str = "wit
         "rules": {}}
     if tests:
         report["base"]["tests"] = tests_without(leave_out, None, tests)
+    if fired_only and leave_out == "without":
+        fired = {n for c in base for n in c.get("fired", {})}
+        report["never_fired"] = [n for n in names if n not in fired]
+        names = [n for n in names if n in fired]
     for name in names:
         load0 = load_average()
         drop(name)
@@ -375,6 +381,9 @@ def main(argv: list[str] | None = None) -> int:
                     help=f"a retry of the solver policy to leave out ({', '.join(RETRIES)})")
     ap.add_argument("--ablate-rungs", action="store_true",
                     help="leave every retry of the solver policy out in turn")
+    ap.add_argument("--fired-only", action="store_true",
+                    help="with --ablate: leave out only the rules that answered in the "
+                         "full set's runs")
     ap.add_argument("--tests", default="",
                     help="with --ablate or --ablate-rungs: also run these test files "
                          "(comma-separated) with each one left out")
@@ -388,7 +397,7 @@ def main(argv: list[str] | None = None) -> int:
     only = [r for r in a.rules.split(",") if r]
     tests = [t for t in a.tests.split(",") if t]
     if a.ablate:
-        ablate(a.rtol, a.out, rule_names(only), "without", tests)
+        ablate(a.rtol, a.out, rule_names(only), "without", tests, a.fired_only)
         return 0
     if a.ablate_rungs:
         unknown = sorted(set(only) - set(RETRIES))
