@@ -307,6 +307,7 @@ def ablate(rtol: float | None, out: str, names: list[str], leave_out: str = "wit
         fired = {n for c in base for n in c.get("fired", {})}
         report["never_fired"] = [n for n in names if n not in fired]
         names = [n for n in names if n in fired]
+    Path(out).write_text(json.dumps(report, indent=1))
     for name in names:
         load0 = load_average()
         drop(name)
