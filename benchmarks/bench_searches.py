@@ -152,7 +152,7 @@ def _rule_sets() -> list[tuple[Any, str]]:
     from rigidblocks.methods import friction_search, load_rules
     return [(friction_search, "STOPS"), (friction_search, "STEPS"),
             (friction_search, "AMENDS"),
-            (load_rules, "STOPS"), (load_rules, "STEPS"), (load_rules, "AMENDS")]
+            (load_rules, "STOPS"), (load_rules, "STEPS")]
 
 
 def rule_names(only: list[str] | None = None) -> list[str]:

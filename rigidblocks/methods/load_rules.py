@@ -10,15 +10,13 @@ than its resolution; -inf where no multiplier is admissible), **unresolved** (wi
 that resolution: f* is about there) or **hand-back** (an answer that cannot be used:
 the search on R(f) takes over). ``data`` holds ``margin`` (what lambda*'s duals could
 account for, its resolution at that trial), ``tight`` (solved at the tight
-tolerances), ``finer`` (this trial put the later ones at finer settings) and
-``attempts`` (solves it took).
+tolerances) and ``finer`` (this trial put the later ones at finer settings).
 
 The rules, in the order they are asked: stop where the oracle hands back, at the
 requested accuracy (:data:`STOPS`); step above and below the first unresolved trial, to
 a first upper end, by Newton, down from the upper end, on the chord, just below the
 upper end, to the midpoint,
-each moved where lambda* is predicted resolvable (:data:`STEPS`); within the budget of
-solves (:data:`AMENDS`).
+each moved where lambda* is predicted resolvable (:data:`STEPS`); at most BUDGET trials.
 """
 
 from __future__ import annotations
@@ -38,8 +36,8 @@ UP_REACH = 0.125
 #: below the load factor: the largest resolution seen, as it varies twofold from trial
 #: to trial (2.4e-6 to 5.2e-6 on the 1,009-block wall near f*)
 LOW_REACH = 1.5
-#: solves (a first trial at the defaults and again tight counts two) before the search
-#: hands back
+#: trials (the first may take two solves: at the defaults, then tight) before the
+#: search hands back ("budget")
 BUDGET = 40
 #: the trial above the first unresolved one goes this much (relative) further than
 #: predicted, to certify from above: CERTIFY_OFFSET x 1e-7, as tuned at that accuracy.
@@ -212,13 +210,5 @@ STEPS = (above_the_unresolved, below_the_unresolved, first_upper_end, newton_ste
          midpoint_resolvable)
 
 
-# -- amend rule --------------------------------------------------------------------------
-def within_budget(s: Search, trial: float) -> float | str:
-    """No trial past BUDGET solves ("budget": the search hands back)."""
-    return "budget" if sum(t.data.attempts for t in s.trials) >= BUDGET else trial
-
-
-AMENDS = (within_budget,)
-
-__all__ = ["AMENDS", "BUDGET", "LOW_REACH", "STEPS", "STOPS", "UP_REACH", "reach",
+__all__ = ["BUDGET", "LOW_REACH", "STEPS", "STOPS", "UP_REACH", "reach",
            "start_at"]
