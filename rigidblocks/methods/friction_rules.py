@@ -30,10 +30,6 @@ from .engine import WIDE, Search, Trial, midpoint, narrow_enough
 #: the certified upper end and the bracket is narrower than :data:`WIDE`: closer, R(f)
 #: is below what the solver resolves
 NEAR_STOP = 1e-5
-#: a bracket narrower than this (relative) whose lower end's Newton step lands about at
-#: the upper end is not probed just below the upper end where R is predicted below what
-#: the solver certifies (:func:`probe_below_upper_end`)
-NARROW = 1e-3
 #: trials in a row whose relaxation has no checked answer (the solver failed, or its
 #: answer fails the check; lower points by value, unchecked too, do not break the row)
 #: before the search gives up: undecided with the bracket, or a failure where the solver
@@ -55,6 +51,9 @@ CLOSE_BELOW = 1e-4
 #: each trial followed above one the solver left undecided goes this many times further
 #: than the previous one
 PAST_GROWTH = 4.0
+#: two trials this close (relative) are the same point (a Newton step or a midpoint
+#: computed again from the same bracket, to round-off)
+SAME_POINT = 1e-12
 #: the kinds of trial that decide nothing and are stepped past
 UNDECIDED_KINDS = ("missed", "threshold")
 
@@ -129,7 +128,7 @@ def _close_below(s: Search, t: Trial) -> bool:
 def _among(f: float, trials: list[float]) -> bool:
     """Whether ``f`` is one of ``trials``, to round-off (a Newton step or a midpoint
     computed again from the same bracket)."""
-    return any(abs(f - t) <= 1e-12 * max(abs(t), 1.0) for t in trials)
+    return any(abs(f - t) <= SAME_POINT * max(abs(t), 1.0) for t in trials)
 
 
 # -- stop rules --------------------------------------------------------------------------
@@ -227,7 +226,7 @@ def newton_step(s: Search) -> float | None:
 
 def probe_below_upper_end(s: Search) -> float | str | None:
     """Once after each midpoint: a probe just below the upper end, or, where R is about
-    linear across a bracket narrower than NARROW and predicted below what the solver
+    linear across a bracket narrower than WIDE and predicted below what the solver
     certifies there, the end ("resolution_reached"); where Newton's step lands about
     at the upper end, no closer than where R is predicted resolved (:func:`midpoint` if
     that is below the midpoint)."""
@@ -240,7 +239,7 @@ def probe_below_upper_end(s: Search) -> float | str | None:
     if lower is None or newton > 2 * hi - lo:
         return trial
     predicted = lower.slope * (hi - trial)
-    if hi - lo <= NARROW * hi and predicted < lower.data.by_value_floor \
+    if hi - lo <= WIDE * hi and predicted < lower.data.by_value_floor \
             and predicted < lower.data.shortfall:
         return "resolution_reached"
     trial = min(trial, _resolved_below(s, hi))
@@ -287,5 +286,5 @@ def root_step(R: float, s: float, f: float, prev: tuple[float, float] | None,
     return R / s
 
 
-__all__ = ["AMENDS", "BUDGET", "MISSED_LIMIT", "NARROW", "NEAR_STOP", "STEPS", "STOPS",
+__all__ = ["AMENDS", "BUDGET", "MISSED_LIMIT", "NEAR_STOP", "STEPS", "STOPS",
            "THRESHOLD_TRIALS", "UNDECIDED_KINDS", "root_step"]
