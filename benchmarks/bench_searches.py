@@ -108,15 +108,17 @@ def run(name: str, scene: Any, lf: float | None, rtol: float | None = None
     of the f* searches answered (a stop rule ended the search, a step rule proposed the
     trial, an amend rule moved or refused it)."""
     without(LEFT_OUT)
+    _trace_rungs()
     FIRED.clear()
+    SOLVED.clear()
     try:
         r = rb.min_friction(scene, load_factor=lf, state=False, rtol=rtol)
     except Exception as exc:  # noqa: BLE001 - recorded as the case's outcome
         return {"name": name, "status": f"error: {type(exc).__name__}: {exc}",
-                "fired": dict(FIRED)}
+                "fired": dict(FIRED), "rungs": dict(SOLVED)}
     return {"name": name, "status": r.status, "f": r.friction_factor,
             "lower": r.lower, "upper": r.upper, "n_solves": r.n_solves,
-            "fired": dict(FIRED)}
+            "fired": dict(FIRED), "rungs": dict(SOLVED)}
 
 
 def compare(now: list[dict], before: list[dict]) -> int:
@@ -189,6 +191,34 @@ def _counted(rule: Any, amend: bool = False) -> Any:
     return counted
 
 
+#: the solves of the current case by the rung of the solver policy that made them, and
+#: under "stalled" the answers taken at the next rung's tolerances (:func:`run`)
+SOLVED: dict[str, int] = {}
+
+
+def _trace_rungs() -> None:
+    """``Runner._solve`` counting its solves in SOLVED by the rung its caller climbs
+    (the ``rung`` of ``Runner._climb``, or of ``Runner.run`` for a rung solved alone)."""
+    from rigidblocks.solvers import policy
+    solve = policy.Runner._solve
+    if getattr(solve, "traced", False):
+        return
+
+    def traced(runner: Any, problem: Any, solver: str, settings: dict,
+               after: dict | None = None) -> Any:
+        res = solve(runner, problem, solver, settings, after)
+        caller = sys._getframe(1)
+        rung = caller.f_locals.get("rung") or caller.f_back.f_locals.get("rung")
+        key = rung.name if rung is not None else "other"
+        SOLVED[key] = SOLVED.get(key, 0) + 1
+        if res.next_met:
+            SOLVED["stalled"] = SOLVED.get("stalled", 0) + 1
+        return res
+
+    traced.traced = True  # type: ignore[attr-defined]
+    policy.Runner._solve = traced  # type: ignore[method-assign]
+
+
 def without(name: str | None) -> None:
     """Leave the rule ``name`` out of every rule set (None: restore them all), where the
     searches read them and where the tests' synthetic searches do
@@ -212,6 +242,11 @@ def without(name: str | None) -> None:
 #: (CONFIRMING: a verdict near its threshold is not solved again tighter)
 RETRIES = ("refined", "without-value", "near-tight", "defaults-after-tight", "stall",
            "finer", "confirming")
+#: the retries whose runs are those of the full set where none of these rungs solved
+#: (a retry is never given as the next rung's settings; the confirming rung is a
+#: ladder's first): ``--fired-only`` does not run them again
+RETRY_RUNGS = {"refined": ("refined",), "without-value": ("without VALUE_SETTINGS",),
+               "confirming": ("confirming",)}
 _LADDERS: dict[int, tuple[Any, tuple, tuple | None]] = {}
 
 
@@ -303,8 +338,10 @@ def ablate(rtol: float | None, out: str, names: list[str], leave_out: str = "wit
         "rules": {}}
     if tests:
         report["base"]["tests"] = tests_without(leave_out, None, tests)
-    if fired_only and leave_out == "without":
-        fired = {n for c in base for n in c.get("fired", {})}
+    if fired_only:
+        fired = {n for c in base for n in c.get("fired", {})} if leave_out == "without" \
+            else {r for c in base for n in c.get("rungs", {}) for r, rungs in
+                  RETRY_RUNGS.items() if n in rungs} | (set(RETRIES) - set(RETRY_RUNGS))
         report["never_fired"] = [n for n in names if n not in fired]
         names = [n for n in names if n in fired]
     Path(out).write_text(json.dumps(report, indent=1))
@@ -383,8 +420,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--ablate-rungs", action="store_true",
                     help="leave every retry of the solver policy out in turn")
     ap.add_argument("--fired-only", action="store_true",
-                    help="with --ablate: leave out only the rules that answered in the "
-                         "full set's runs")
+                    help="leave out only the rules that answered in the full set's runs "
+                         "(with --ablate-rungs: the retries of RETRY_RUNGS only where "
+                         "they solved)")
     ap.add_argument("--tests", default="",
                     help="with --ablate or --ablate-rungs: also run these test files "
                          "(comma-separated) with each one left out")
@@ -405,7 +443,7 @@ def main(argv: list[str] | None = None) -> int:
         if unknown:
             raise SystemExit(f"bench_searches: unknown retries {', '.join(unknown)}")
         ablate(a.rtol, a.out, [r for r in RETRIES if not only or r in only],
-               "without_rung", tests)
+               "without_rung", tests, a.fired_only)
         return 0
     if a.without:
         without(a.without)
