@@ -220,9 +220,10 @@ def _trace_rungs() -> None:
 
 
 def without(name: str | None) -> None:
-    """Leave the rule ``name`` out of every rule set (None: restore them all), where the
-    searches read them and where the tests' synthetic searches do
-    (:mod:`rigidblocks.methods.friction_rules`); the rules kept count their answers."""
+    """Leave the rule ``name`` (or the comma-separated rules) out of every rule set
+    (None: restore them all), where the searches read them and where the tests'
+    synthetic searches do (:mod:`rigidblocks.methods.friction_rules`); the rules kept
+    count their answers."""
     global LEFT_OUT
     from rigidblocks.methods import friction_rules
     LEFT_OUT = name
@@ -230,7 +231,8 @@ def without(name: str | None) -> None:
     for m, a in sets:
         full = getattr(m, f"_FULL_{a}", None) or getattr(m, a)
         setattr(m, f"_FULL_{a}", full)
-        setattr(m, a, tuple(_counted(f, a == "AMENDS") for f in full if f.__name__ != name))
+        setattr(m, a, tuple(_counted(f, a == "AMENDS") for f in full
+                            if f.__name__ not in (name or "").split(",")))
 
 
 #: the solver policy's retries that ``--without-rung`` / ``--ablate-rungs`` leave out
@@ -404,7 +406,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--compare", default=None)
     ap.add_argument("--rtol", type=float, default=None,
                     help="the requested accuracy (default: the analysis's)")
-    ap.add_argument("--without", default=None, help="a rule of the f* searches to leave out")
+    ap.add_argument("--without", default=None,
+                    help="rules of the f* searches to leave out (comma-separated)")
     ap.add_argument("--ablate", action="store_true",
                     help="leave every rule out in turn; OUT gets what each one earns")
     ap.add_argument("--table", action="store_true",
