@@ -318,6 +318,26 @@ def tests_without(leave_out: str, name: str | None, paths: list[str]) -> dict[st
     return {"failed": failed, "summary": lines[-1] if lines else done.stderr[-500:]}
 
 
+def trace_tests(paths: list[str], out: str) -> None:
+    """The test files ``paths`` run (in this interpreter) with every rule counting its
+    answers: OUT gets, per test, how often each rule of the f* searches answered."""
+    import pytest
+
+    per_test: dict[str, dict[str, int]] = {}
+
+    class Tracer:
+        @pytest.hookimpl(hookwrapper=True)
+        def pytest_runtest_call(self, item: Any) -> Any:
+            FIRED.clear()
+            yield
+            if FIRED:
+                per_test[item.nodeid] = dict(FIRED)
+
+    without(None)
+    pytest.main(["-q", "-p", "no:cacheprovider", *paths], plugins=[Tracer()])
+    Path(out).write_text(json.dumps(per_test, indent=1))
+
+
 def ablate(rtol: float | None, out: str, names: list[str], leave_out: str = "without",
            tests: list[str] | None = None, fired_only: bool = False) -> None:
     """Every rule (``leave_out`` "without") or retry ("without_rung") of ``names`` left
@@ -426,6 +446,9 @@ def main(argv: list[str] | None = None) -> int:
                     help="leave out only the rules that answered in the full set's runs "
                          "(with --ablate-rungs: the retries of RETRY_RUNGS only where "
                          "they solved)")
+    ap.add_argument("--trace-tests", default="",
+                    help="run these test files (comma-separated) and write to OUT how "
+                         "often each rule answered in each test")
     ap.add_argument("--tests", default="",
                     help="with --ablate or --ablate-rungs: also run these test files "
                          "(comma-separated) with each one left out")
@@ -435,6 +458,9 @@ def main(argv: list[str] | None = None) -> int:
     WALLS = parse_walls(a.walls)
     if a.table:
         print(ablation_table(json.loads(Path(a.out).read_text())))
+        return 0
+    if a.trace_tests:
+        trace_tests(a.trace_tests.split(","), a.out)
         return 0
     only = [r for r in a.rules.split(",") if r]
     tests = [t for t in a.tests.split(",") if t]
