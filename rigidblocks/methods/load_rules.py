@@ -14,9 +14,9 @@ tolerances) and ``finer`` (this trial put the later ones at finer settings).
 
 The rules, in the order they are asked: stop where the oracle hands back, at the
 requested accuracy (:data:`STOPS`); step above and below the first unresolved trial, to
-a first upper end, by Newton, down from the upper end, on the chord, just below the
-upper end, to the midpoint,
-each moved where lambda* is predicted resolvable (:data:`STEPS`); at most BUDGET trials.
+a first upper end, by Newton, down from the upper end, just below the upper end, to the
+midpoint, each moved where lambda* is predicted resolvable (:data:`STEPS`); at most
+BUDGET trials.
 """
 
 from __future__ import annotations
@@ -182,15 +182,9 @@ def down_from_upper_end(s: Search) -> float | str | None:
     return _resolvable(s, down) if s.bad < down < s.good else None
 
 
-def chord_between_ends(s: Search) -> float | str | None:
-    """Where the chord between the ends reaches lf."""
-    chord = _on_chord(s, 0.0)
-    return _resolvable(s, chord) if s.bad < chord < s.good else None
-
-
 def probe_below_upper_end(s: Search) -> float | str | None:
-    """Where Newton's step, the step down and the chord all land at or past the upper
-    end (lambda* about linear with its root at the upper end): once after each
+    """Where Newton's step and the step down land at or past the upper end (lambda*
+    about linear with its root at the upper end): once after each
     midpoint, a probe CERTIFY_OFFSET x rtol below it, to certify the bracket from
     below (moved where lambda* is resolvable)."""
     rules = [t.rule for t in s.trials if t.rule in ("probe_below_upper_end",
@@ -206,8 +200,7 @@ def midpoint_resolvable(s: Search) -> float | str:
 
 
 STEPS = (above_the_unresolved, below_the_unresolved, first_upper_end, newton_step,
-         down_from_upper_end, chord_between_ends, probe_below_upper_end,
-         midpoint_resolvable)
+         down_from_upper_end, probe_below_upper_end, midpoint_resolvable)
 
 
 __all__ = ["BUDGET", "LOW_REACH", "STEPS", "STOPS", "UP_REACH", "reach",
