@@ -13,11 +13,11 @@ smallest value read as a lower point on its value) and ``shortfall`` (how far it
 bound fell short of its value), read by the rules below.
 
 The rules, in the order they are asked: stop at the requested accuracy, after too many
-trials without a checked answer or at the threshold, where forces go beyond resolution,
-where nothing lies past an undecided trial, or where trials at the threshold close the
-bracket (:data:`STOPS`); step below trials at the threshold, past an undecided trial, to
-a first upper end, by Newton, to a probe just below the upper end, to the midpoint
-(:data:`STEPS`); never again where the solver decided nothing (:data:`AMENDS`).
+trials without a checked answer or at the threshold, or where forces go beyond
+resolution (:data:`STOPS`); step below trials at the threshold, past an undecided
+trial, to a first upper end, by Newton, to a probe just below the upper end, to the
+midpoint (:data:`STEPS`); never again where the solver decided nothing
+(:data:`AMENDS`).
 """
 
 from __future__ import annotations
@@ -26,10 +26,6 @@ import math
 
 from .engine import WIDE, Search, Trial, midpoint, narrow_enough
 
-#: the search ends when a trial left at the threshold lies within this (relative) of
-#: the certified upper end and the bracket is narrower than :data:`WIDE`: closer, R(f)
-#: is below what the solver resolves
-NEAR_STOP = 1e-5
 #: trials in a row whose relaxation has no checked answer (the solver failed, or its
 #: answer fails the check; lower points by value, unchecked too, do not break the row)
 #: before the search gives up: undecided with the bracket, or a failure where the solver
@@ -77,6 +73,15 @@ def _newton(s: Search) -> float:
 def _inside(s: Search) -> list[float]:
     """The trials left at the threshold strictly inside the bracket."""
     return [t.x for t in s.of_kind("threshold") if s.bad < t.x < s.good]
+
+
+def _above_thresholds(s: Search) -> bool:
+    """The upper end is certified within half of WIDE above a trial at the threshold
+    but bounds nothing from below (R may be zero there with a state the solver cannot
+    certify), and the bracket is wider than WIDE."""
+    inside = _inside(s)
+    return bool(inside) and math.isfinite(s.good) and s.good - max(inside) \
+        <= 0.5 * WIDE * s.good and s.width > WIDE * s.good
 
 
 def _resolved_below(s: Search, end: float) -> float:
@@ -150,37 +155,7 @@ def forces_beyond_resolution(s: Search) -> bool:
     return s.last is not None and s.last.kind == "forces-span"
 
 
-def nothing_past_the_undecided(s: Search) -> bool:
-    """The last trial decided nothing and there is nowhere to step past it."""
-    return s.last is not None and s.last.kind in UNDECIDED_KINDS and _past(s, s.last) is None
-
-
-def certified_next_to_threshold(s: Search) -> bool:
-    """Certified within NEAR_STOP just above a trial at the threshold, where the
-    solver's resolution ends, with a lower end within WIDE: f* is there."""
-    inside = _inside(s)
-    return bool(inside) and math.isfinite(s.good) and s.good - max(inside) \
-        <= NEAR_STOP * s.good and s.width <= WIDE * s.good
-
-
-def _above_thresholds(s: Search) -> bool:
-    """The upper end is certified within half of WIDE above a trial at the threshold
-    but bounds nothing from below (R may be zero there with a state the solver cannot
-    certify), and the bracket is wider than WIDE."""
-    inside = _inside(s)
-    return bool(inside) and math.isfinite(s.good) and s.good - max(inside) \
-        <= 0.5 * WIDE * s.good and s.width > WIDE * s.good
-
-
-def thresholds_reach_lower_end(s: Search) -> bool:
-    """As :func:`_above_thresholds`, with the lowest such trial within WIDE of the
-    lower end: the rest of the bracket holds only trials at the threshold."""
-    return _above_thresholds(s) and min(_inside(s)) - s.bad <= WIDE * s.good
-
-
-STOPS = (narrow_enough, missed_too_often, too_many_at_threshold, forces_beyond_resolution,
-         nothing_past_the_undecided, certified_next_to_threshold,
-         thresholds_reach_lower_end)
+STOPS = (narrow_enough, missed_too_often, too_many_at_threshold, forces_beyond_resolution)
 
 
 # -- step rules --------------------------------------------------------------------------
@@ -286,5 +261,5 @@ def root_step(R: float, s: float, f: float, prev: tuple[float, float] | None,
     return R / s
 
 
-__all__ = ["AMENDS", "BUDGET", "MISSED_LIMIT", "NEAR_STOP", "STEPS", "STOPS",
+__all__ = ["AMENDS", "BUDGET", "MISSED_LIMIT", "STEPS", "STOPS",
            "THRESHOLD_TRIALS", "UNDECIDED_KINDS", "root_step"]
