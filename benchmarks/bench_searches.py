@@ -159,10 +159,14 @@ def _rule_sets() -> list[tuple[Any, str]]:
 
 def rule_names(only: list[str] | None = None) -> list[str]:
     """The rules that may be left out (not the accuracy stop or the midpoint, which
-    every search needs to end and to converge), or those of them named in ``only``."""
+    every search needs to end and to converge), or those of them named in ``only``; a
+    rule of the same name in both searches may also be named ``friction_rules.NAME`` or
+    ``load_rules.NAME``, to leave it out of that search alone."""
     keep = {"narrow_enough", "midpoint", "midpoint_resolvable"}
     names = [f.__name__ for m, a in _rule_sets() for f in getattr(m, a)]
+    shared = [n for n in dict.fromkeys(names) if names.count(n) > 1 and n not in keep]
     names = [n for n in dict.fromkeys(names) if n not in keep]
+    names += [f"{m}.{n}" for n in shared for m in ("friction_rules", "load_rules")]
     if only:
         unknown = sorted(set(only) - set(names))
         if unknown:
@@ -228,11 +232,13 @@ def without(name: str | None) -> None:
     from rigidblocks.methods import friction_rules
     LEFT_OUT = name
     sets = _rule_sets() + [(friction_rules, a) for a in ("STOPS", "STEPS", "AMENDS")]
+    out = (name or "").split(",")
     for m, a in sets:
         full = getattr(m, f"_FULL_{a}", None) or getattr(m, a)
         setattr(m, f"_FULL_{a}", full)
+        search = "load_rules" if m.__name__.endswith("load_rules") else "friction_rules"
         setattr(m, a, tuple(_counted(f, a == "AMENDS") for f in full
-                            if f.__name__ not in (name or "").split(",")))
+                            if f.__name__ not in out and f"{search}.{f.__name__}" not in out))
 
 
 #: the solver policy's retries that ``--without-rung`` / ``--ablate-rungs`` leave out
