@@ -244,7 +244,7 @@ def without(name: str | None) -> None:
 #: the solver policy's retries that ``--without-rung`` / ``--ablate-rungs`` leave out
 #: (:mod:`rigidblocks.solvers.policy`): the refined retry (REFINED), the retry without
 #: VALUE_SETTINGS (WITHOUT_VALUE), the 1e-9 rungs (NEAR_TIGHT, NEAR_TIGHT_VALUE), the
-#: defaults after tight rungs (DEFAULTS where a tight rung comes before it), the stall
+#: defaults after tight rungs (DEFAULTS where a rung before it applies), the stall
 #: stop (no rung given the next one's settings), FINER_SETTINGS for the max-load LP
 #: (FINER_FIRST, never asked: load_search.FINER_WHEN infinite) and the confirming solve
 #: (CONFIRMING: a verdict near its threshold is not solved again tighter)
@@ -270,8 +270,6 @@ def _kept(name: str, rungs: tuple) -> tuple:
     for r in rungs:
         if any(r is d for d in drop):
             continue
-        if name == "defaults-after-tight" and r is p.DEFAULTS and any(u.tight for u in out):
-            continue
         out.append(replace(r, stall=False) if name == "stall" else r)
     return tuple(out)
 
@@ -296,6 +294,23 @@ def without_rung(name: str | None) -> None:
         object.__setattr__(ladder, "rungs", _kept(name, rungs) if name else rungs)
         object.__setattr__(ladder, "again",
                            _kept(name, again) if name and again is not None else again)
+    _STEPS.setdefault("steps", p._steps)
+    p._steps = _without_defaults if name == "defaults-after-tight" else _STEPS["steps"]
+
+
+_STEPS: dict[str, Any] = {}
+
+
+def _without_defaults(rungs: tuple, at: Any) -> list:
+    """The policy's steps of a climb without DEFAULTS where a rung before it applies to
+    the climb's back end (those without tight settings keep it: it is their only
+    rung)."""
+    from rigidblocks.solvers import policy as p
+    steps = _STEPS["steps"](rungs, at)
+    names = [rung.name for rung, _, _ in steps if not rung.retry]
+    if p.DEFAULTS.name in names[1:]:
+        return _STEPS["steps"](tuple(r for r in rungs if r is not p.DEFAULTS), at)
+    return steps
 
 
 def sweep_cases(rtol: float | None) -> list[dict[str, Any]]:
