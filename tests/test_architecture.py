@@ -137,6 +137,58 @@ def test_lower_stages_do_not_reach_up():
                                             "rigidblocks.cli"}
 
 
+#: the largest function the numerical core may hold (lines, docstring included)
+FUNCTION_LINES = 80
+#: the largest the convex method's module may grow (lines)
+CONVEX_LINES = 700
+
+
+def _functions(path: Path) -> list[ast.FunctionDef | ast.AsyncFunctionDef]:
+    return [n for n in ast.walk(ast.parse(path.read_text()))
+            if isinstance(n, ast.FunctionDef | ast.AsyncFunctionDef)]
+
+
+def test_no_function_of_the_numerical_core_is_over_80_lines():
+    """methods/, analyses/ and solvers/: one screen per function (a search's rules are
+    small named functions, not one loop with its cases inline)."""
+    long = [f"{p.relative_to(PACKAGE)}:{f.lineno} {f.name} ({f.end_lineno - f.lineno + 1})"
+            for sub in ("methods", "analyses", "solvers")
+            for p in sorted((PACKAGE / sub).rglob("*.py")) for f in _functions(p)
+            if f.end_lineno - f.lineno + 1 > FUNCTION_LINES]
+    assert long == []
+    assert len((PACKAGE / "methods" / "convex.py").read_text().splitlines()) <= CONVEX_LINES
+
+
+def private_calls_outside_methods() -> list[str]:
+    """Where a module outside rigidblocks/methods reads a private member (``x._name``,
+    ``x`` not ``self`` or ``cls``) of the name of one defined in a class of
+    rigidblocks/methods."""
+    private = set()
+    for p in (PACKAGE / "methods").rglob("*.py"):
+        for cls in (n for n in ast.walk(ast.parse(p.read_text()))
+                    if isinstance(n, ast.ClassDef)):
+            for n in ast.walk(cls):
+                name = n.name if isinstance(n, ast.FunctionDef) else \
+                    n.attr if isinstance(n, ast.Attribute) else ""
+                if name.startswith("_") and not name.startswith("__"):
+                    private.add(name)
+    out = []
+    for p in sorted(PACKAGE.rglob("*.py")):
+        if (PACKAGE / "methods") in p.parents:
+            continue
+        for n in ast.walk(ast.parse(p.read_text())):
+            if isinstance(n, ast.Attribute) and n.attr in private and not (
+                    isinstance(n.value, ast.Name) and n.value.id in ("self", "cls")):
+                out.append(f"{p.relative_to(PACKAGE)}:{n.lineno} .{n.attr}")
+    return out
+
+
+def test_no_module_outside_methods_reads_a_private_member_of_a_method():
+    """The analyses, the CLI and the studies use the methods' public interface: a
+    private member may change with the method's inside."""
+    assert private_calls_outside_methods() == []
+
+
 def test_options_that_do_not_apply_to_a_method_are_errors():
     scene = rb.read_scene(Path(__file__).parents[1] / "examples" / "reference.json")
     for kw, word in (({"solver": "highs"}, "solver"), ({"pyramid": 8}, "pyramid"),

@@ -16,7 +16,7 @@ from typing import Any
 
 from ..errors import InputError, finite_number
 from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_method
-from ..methods.convex import FRICTION_ATOL, FRICTION_RTOL, VERDICT_RTOL
+from ..methods.convex import ADMISSIBLE_TOL, FRICTION_ATOL, FRICTION_RTOL, VERDICT_RTOL
 from ..results import CheckResult, FrictionResult, LoadResult, relative_width, within
 from ..scene.model import Scene, friction_label, friction_value
 from ..scene.validate import check_load_factor
@@ -233,7 +233,7 @@ def min_friction(scene: Scene, load_factor: float | None = None,
     if m.contacts.n_joints and not m.uniform.any():
         raise InputError("every joint has its own friction override: there is no uniform "
                          "friction to minimise", scene.source)
-    lim = m.friction_limit(lf, rtol) or friction_by_bisection(m, lf, max(rtol, 1e-9))
+    lim = m.friction_limit(lf, rtol) or friction_by_bisection(m, lf, max(rtol, ADMISSIBLE_TOL))
     lim = certified(m, lim, rtol, "f*", FRICTION_ATOL)
     reached = dict(rtol=rtol, accuracy=lim.accuracy)
     if lim.status != "stable":

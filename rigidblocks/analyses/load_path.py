@@ -34,13 +34,12 @@ import numpy as np
 
 from ..errors import InputError
 from ..methods import open_method
+from ..methods.distortion import AT_THRESHOLD
 from ..scene.model import Scene, friction_label, friction_value
 from ..solvers.distortion import TOL, Run
 from .nonassociative import _UNSETTLED, flow_mask
 from .search import bisect
 
-#: a joint is at its threshold when its shear is within this fraction of it
-AT_THRESHOLD = 1e-5
 #: relative step below an event's bracket over which its margin is extrapolated
 EXTRAPOLATE = 1e-4
 #: an undecided run within this (relative) of an admissible load puts the collapse at

@@ -16,6 +16,7 @@ from typing import Any
 
 from ..methods import FAILURE, Limit, Method, Verdict
 from ..methods.engine import (
+    MAX_TRIALS,
     WIDE,
     Oracle,
     Search,
@@ -68,7 +69,7 @@ class Bracket:
 
 
 def bisect(decide: Decide, bad: float, good: float, rtol: float, atol: float = 0.0,
-           steps: int = 200) -> Bracket:
+           steps: int = MAX_TRIALS) -> Bracket:
     """Halve [bad, good] (either order) until |good - bad| <= rtol max(|good|, |bad|) +
     atol, at most ``steps`` times; an undecided trial stops it (the engine's
     :func:`~rigidblocks.methods.engine.bisection`)."""

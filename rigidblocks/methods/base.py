@@ -228,8 +228,12 @@ class Method:
         self.notes.extend(n for n in verdict.notes if n not in self.notes)
 
 
+#: the breaches a verdict lists: down to this fraction of the largest
+BREACH_SHARE = 1e-3
+
+
 def ranked_breaches(system: EquilibriumSystem, x: np.ndarray, f_joint: np.ndarray,
-                    rel: float = 1e-3) -> tuple[tuple[int, float], ...]:
+                    rel: float = BREACH_SHARE) -> tuple[tuple[int, float], ...]:
     """(joint, breach) of the state ``x`` (force units), largest first, down to ``rel``
     of the largest breach."""
     if not np.all(np.isfinite(x)):
@@ -244,4 +248,4 @@ def ranked_breaches(system: EquilibriumSystem, x: np.ndarray, f_joint: np.ndarra
 
 
 __all__ = ["ADMISSIBLE", "FAILURE", "INADMISSIBLE", "Limit", "Method", "Progress", "Timings",
-           "UNDECIDED", "Verdict", "ranked_breaches"]
+           "BREACH_SHARE", "UNDECIDED", "Verdict", "ranked_breaches"]

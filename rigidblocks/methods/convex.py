@@ -47,6 +47,9 @@ from .vertex import vertex_dual
 #: at which every wall of the speed-accuracy chart gets a number (docs/methods.md: the
 #: 20,051-block wall at load factor 0.2 reaches 1.1e-3 at its solver's resolution)
 FRICTION_RTOL = 2e-3
+#: a mechanism drawn from an extreme point next to the optimal face that balances at a
+#: multiplier more than this (relative, plus ADMISSIBLE_TOL) above lambda* is said so
+OFF_FACE = 1e-6
 
 
 class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
@@ -234,7 +237,7 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
                               "be found)")
             return res.y[eq], "blend"
         work_at = float(prob.b @ vd[0])
-        if work_at > lam * (1 + 1e-6) + 1e-9:
+        if work_at > lam * (1 + OFF_FACE) + ADMISSIBLE_TOL:
             self.notes.append(f"mechanism: the one drawn (an extreme point next to the "
                               f"optimal face) balances at lambda = {work_at:.6g}, "
                               f"{work_at / lam - 1:.1e} (relative) above {what}")

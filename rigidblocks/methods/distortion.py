@@ -20,6 +20,11 @@ from ..scene.model import Scene
 from ..solvers.distortion import MAX_ITER, TOL, DistortionSolver, Run
 from .base import ADMISSIBLE, Method, Progress, Timings, Verdict, ranked_breaches
 
+#: a joint is at its friction threshold where its shear is within this fraction of it
+AT_THRESHOLD = 1e-5
+#: joints whose threshold is below this fraction of the largest force (unloaded ones)
+#: are at no threshold
+LOADED = 1e-6
 #: the refusal of a 3D scene, in words for the API and the command line alike
 NOT_3D = ("the distortion method is not supported for 3D scenes; use the convex path "
           '(method "clarabel", the default)')
@@ -123,7 +128,7 @@ class DistortionMethod(Method):
             return self.admissible(f, load_factor, for_state=True)
         return verdict
 
-    def at_threshold(self, r: Run, f: float, rel: float = 1e-5,
+    def at_threshold(self, r: Run, f: float, rel: float = AT_THRESHOLD,
                      laws: Any = None) -> tuple[int, ...]:
         """Loaded joints whose shear is at the friction threshold (within ``rel``), under
         uniform friction ``f`` or, given, the joint ``laws`` of the run (``f`` unused);
@@ -137,7 +142,7 @@ class DistortionMethod(Method):
                                    + laws.h[:, 2]), 0.0)
         gap = laws.rows(v)[:, 2:].max(axis=1)
         big = float(np.abs(v).max(initial=0.0))
-        hit = fin & (thr > 1e-6 * big) & (gap >= -rel * thr)
+        hit = fin & (thr > LOADED * big) & (gap >= -rel * thr)
         return tuple(int(j) for j in np.flatnonzero(hit))
 
     def governing_friction(self, f: float, verdict: Verdict) -> tuple[int, ...]:
@@ -151,4 +156,4 @@ class DistortionMethod(Method):
         return self.at_threshold(verdict.data, f)
 
 
-__all__ = ["DistortionMethod", "distortion_solver"]
+__all__ = ["AT_THRESHOLD", "LOADED", "DistortionMethod", "distortion_solver"]

@@ -32,6 +32,8 @@ from ..results import within
 #: number for the engineer is the requested accuracy's call (the analyses give one
 #: only where the bracket meets ``rtol``)
 WIDE = 1e-3
+#: trials a search makes at most where its caller sets no budget of its own
+MAX_TRIALS = 200
 
 
 @dataclass(eq=False)
@@ -148,7 +150,7 @@ Oracle = Callable[[float], Trial]
 
 def run(search: Search, oracle: Oracle, stops: Sequence[StopRule],
         steps: Sequence[StepRule], amends: Sequence[AmendRule] = (),
-        budget: int = 200) -> Search:
+        budget: int = MAX_TRIALS) -> Search:
     """Run ``search`` to its end (see the module docstring); returns it."""
     for _ in range(budget):
         for stop in stops:
@@ -204,7 +206,7 @@ def midpoint(s: Search) -> float:
 
 
 def bisection(decide: Callable[[float], tuple[bool | None, Any]], bad: float, good: float,
-              rtol: float, atol: float = 0.0, steps: int = 200) -> Search:
+              rtol: float, atol: float = 0.0, steps: int = MAX_TRIALS) -> Search:
     """Halve [bad, good] (either order) on ``decide(x) -> (True: good, False: bad, None:
     undecided; data)`` until it is :meth:`Search.narrow` (stop "narrow_enough"), at most
     ``steps`` times (stop "budget"); an undecided trial stops it ("undecided_trial")."""
@@ -216,5 +218,5 @@ def bisection(decide: Callable[[float], tuple[bool | None, Any]], bad: float, go
                (midpoint,), budget=steps)
 
 
-__all__ = ["WIDE", "AmendRule", "Oracle", "Search", "StepRule", "StopRule", "Trial", "bisection",
-           "midpoint", "narrow_enough", "run", "undecided_trial"]
+__all__ = ["MAX_TRIALS", "WIDE", "AmendRule", "Oracle", "Search", "StepRule", "StopRule",
+           "Trial", "bisection", "midpoint", "narrow_enough", "run", "undecided_trial"]

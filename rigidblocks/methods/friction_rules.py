@@ -13,11 +13,11 @@ smallest value read as a lower point on its value) and ``shortfall`` (how far it
 bound fell short of its value), read by the rules below.
 
 The rules, in the order they are asked: stop at the requested accuracy, after too many
-trials without a checked answer or at the threshold, where forces go beyond resolution,
-where nothing lies past an undecided trial, or where trials at the threshold close the
-bracket (:data:`STOPS`); step below trials at the threshold, past an undecided trial, to
-a first upper end, by Newton, to a probe just below the upper end, to the midpoint
-(:data:`STEPS`); never again where the solver decided nothing (:data:`AMENDS`).
+trials without a checked answer or at the threshold, or where forces go beyond
+resolution (:data:`STOPS`); step below trials at the threshold, past an undecided
+trial, to a first upper end, by Newton, to a probe just below the upper end, to the
+midpoint (:data:`STEPS`); never again where the solver decided nothing
+(:data:`AMENDS`).
 """
 
 from __future__ import annotations
@@ -26,14 +26,6 @@ import math
 
 from .engine import WIDE, Search, Trial, midpoint, narrow_enough
 
-#: the search ends when a trial left at the threshold lies within this (relative) of
-#: the certified upper end and the bracket is narrower than :data:`WIDE`: closer, R(f)
-#: is below what the solver resolves
-NEAR_STOP = 1e-5
-#: a bracket narrower than this (relative) whose lower end's Newton step lands about at
-#: the upper end is not probed just below the upper end where R is predicted below what
-#: the solver certifies (:func:`probe_below_upper_end`)
-NARROW = 1e-3
 #: trials in a row whose relaxation has no checked answer (the solver failed, or its
 #: answer fails the check; lower points by value, unchecked too, do not break the row)
 #: before the search gives up: undecided with the bracket, or a failure where the solver
@@ -55,6 +47,9 @@ CLOSE_BELOW = 1e-4
 #: each trial followed above one the solver left undecided goes this many times further
 #: than the previous one
 PAST_GROWTH = 4.0
+#: two trials this close (relative) are the same point (a Newton step or a midpoint
+#: computed again from the same bracket, to round-off)
+SAME_POINT = 1e-12
 #: the kinds of trial that decide nothing and are stepped past
 UNDECIDED_KINDS = ("missed", "threshold")
 
@@ -78,6 +73,15 @@ def _newton(s: Search) -> float:
 def _inside(s: Search) -> list[float]:
     """The trials left at the threshold strictly inside the bracket."""
     return [t.x for t in s.of_kind("threshold") if s.bad < t.x < s.good]
+
+
+def _above_thresholds(s: Search) -> bool:
+    """The upper end is certified within half of WIDE above a trial at the threshold
+    but bounds nothing from below (R may be zero there with a state the solver cannot
+    certify), and the bracket is wider than WIDE."""
+    inside = _inside(s)
+    return bool(inside) and math.isfinite(s.good) and s.good - max(inside) \
+        <= 0.5 * WIDE * s.good and s.width > WIDE * s.good
 
 
 def _resolved_below(s: Search, end: float) -> float:
@@ -129,7 +133,7 @@ def _close_below(s: Search, t: Trial) -> bool:
 def _among(f: float, trials: list[float]) -> bool:
     """Whether ``f`` is one of ``trials``, to round-off (a Newton step or a midpoint
     computed again from the same bracket)."""
-    return any(abs(f - t) <= 1e-12 * max(abs(t), 1.0) for t in trials)
+    return any(abs(f - t) <= SAME_POINT * max(abs(t), 1.0) for t in trials)
 
 
 # -- stop rules --------------------------------------------------------------------------
@@ -151,37 +155,7 @@ def forces_beyond_resolution(s: Search) -> bool:
     return s.last is not None and s.last.kind == "forces-span"
 
 
-def nothing_past_the_undecided(s: Search) -> bool:
-    """The last trial decided nothing and there is nowhere to step past it."""
-    return s.last is not None and s.last.kind in UNDECIDED_KINDS and _past(s, s.last) is None
-
-
-def certified_next_to_threshold(s: Search) -> bool:
-    """Certified within NEAR_STOP just above a trial at the threshold, where the
-    solver's resolution ends, with a lower end within WIDE: f* is there."""
-    inside = _inside(s)
-    return bool(inside) and math.isfinite(s.good) and s.good - max(inside) \
-        <= NEAR_STOP * s.good and s.width <= WIDE * s.good
-
-
-def _above_thresholds(s: Search) -> bool:
-    """The upper end is certified within half of WIDE above a trial at the threshold
-    but bounds nothing from below (R may be zero there with a state the solver cannot
-    certify), and the bracket is wider than WIDE."""
-    inside = _inside(s)
-    return bool(inside) and math.isfinite(s.good) and s.good - max(inside) \
-        <= 0.5 * WIDE * s.good and s.width > WIDE * s.good
-
-
-def thresholds_reach_lower_end(s: Search) -> bool:
-    """As :func:`_above_thresholds`, with the lowest such trial within WIDE of the
-    lower end: the rest of the bracket holds only trials at the threshold."""
-    return _above_thresholds(s) and min(_inside(s)) - s.bad <= WIDE * s.good
-
-
-STOPS = (narrow_enough, missed_too_often, too_many_at_threshold, forces_beyond_resolution,
-         nothing_past_the_undecided, certified_next_to_threshold,
-         thresholds_reach_lower_end)
+STOPS = (narrow_enough, missed_too_often, too_many_at_threshold, forces_beyond_resolution)
 
 
 # -- step rules --------------------------------------------------------------------------
@@ -227,7 +201,7 @@ def newton_step(s: Search) -> float | None:
 
 def probe_below_upper_end(s: Search) -> float | str | None:
     """Once after each midpoint: a probe just below the upper end, or, where R is about
-    linear across a bracket narrower than NARROW and predicted below what the solver
+    linear across a bracket narrower than WIDE and predicted below what the solver
     certifies there, the end ("resolution_reached"); where Newton's step lands about
     at the upper end, no closer than where R is predicted resolved (:func:`midpoint` if
     that is below the midpoint)."""
@@ -240,7 +214,7 @@ def probe_below_upper_end(s: Search) -> float | str | None:
     if lower is None or newton > 2 * hi - lo:
         return trial
     predicted = lower.slope * (hi - trial)
-    if hi - lo <= NARROW * hi and predicted < lower.data.by_value_floor \
+    if hi - lo <= WIDE * hi and predicted < lower.data.by_value_floor \
             and predicted < lower.data.shortfall:
         return "resolution_reached"
     trial = min(trial, _resolved_below(s, hi))
@@ -287,5 +261,5 @@ def root_step(R: float, s: float, f: float, prev: tuple[float, float] | None,
     return R / s
 
 
-__all__ = ["AMENDS", "BUDGET", "MISSED_LIMIT", "NARROW", "NEAR_STOP", "STEPS", "STOPS",
+__all__ = ["AMENDS", "BUDGET", "MISSED_LIMIT", "STEPS", "STOPS",
            "THRESHOLD_TRIALS", "UNDECIDED_KINDS", "root_step"]

@@ -28,6 +28,9 @@ from .relaxation import (
 #: a uniform joint governs f* where its share of dR/df (or dlambda*/df) exceeds this
 #: fraction of the largest joint's
 GOVERNING_SHARE = 1e-3
+#: joints whose shares agree to this many digits (relative to the largest) are ranked
+#: in the joints' order (symmetric joints, round-off apart)
+TIE_DIGITS = 6
 
 
 class FrictionSearch:
@@ -172,17 +175,16 @@ class FrictionSearch:
     def _governing(self, res: SolverResult, jr: Any, prob: Any) -> tuple[int, ...]:
         """The uniform joints that govern f* below it, ranked by their share of
         :meth:`friction_shares` (largest first: a long list is read from its head;
-        shares equal to 1e-6 of the largest in the joints' order), those above GOVERNING_SHARE of
-        the largest; a joint whose normal force vanishes (an opening joint carrying only
-        a relaxation's slack) does not govern."""
+        shares equal to TIE_DIGITS digits in the joints' order), those above
+        GOVERNING_SHARE of the largest; a joint whose normal force vanishes (an opening
+        joint carrying only a relaxation's slack) does not govern."""
         w = self.friction_shares(res, jr, prob)
         if not (w.size and w.max() > 0):
             return ()
         strong = w > GOVERNING_SHARE * w.max()
         share = np.bincount(jr.fric_joint[strong], w[strong])
         joints = np.flatnonzero(share)
-        # shares equal to 1e-6 (symmetric joints, round-off apart) keep the joints' order
-        rank = np.round(share[joints] / share.max(), 6)
+        rank = np.round(share[joints] / share.max(), TIE_DIGITS)
         return tuple(int(j) for j in joints[np.argsort(-rank, kind="stable")])
 
     def _infimum_note(self, hi: float, load_factor: float, at_hi: Relaxation, lo: float,
@@ -241,4 +243,4 @@ def trial_of(f: float, rx: Relaxation, solver: str = "") -> Trial:
     return Trial(f, False, "lower", rx.R, rx.slope, rx)
 
 
-__all__ = ["GOVERNING_SHARE", "FrictionSearch", "trial_of"]
+__all__ = ["GOVERNING_SHARE", "TIE_DIGITS", "FrictionSearch", "trial_of"]

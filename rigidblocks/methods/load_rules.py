@@ -10,15 +10,13 @@ than its resolution; -inf where no multiplier is admissible), **unresolved** (wi
 that resolution: f* is about there) or **hand-back** (an answer that cannot be used:
 the search on R(f) takes over). ``data`` holds ``margin`` (what lambda*'s duals could
 account for, its resolution at that trial), ``tight`` (solved at the tight
-tolerances), ``finer`` (this trial put the later ones at finer settings) and
-``attempts`` (solves it took).
+tolerances) and ``finer`` (this trial put the later ones at finer settings).
 
 The rules, in the order they are asked: stop where the oracle hands back, at the
 requested accuracy (:data:`STOPS`); step above and below the first unresolved trial, to
-a first upper end, by Newton, down from the upper end, on the chord, just below the
-upper end, to the midpoint,
-each moved where lambda* is predicted resolvable (:data:`STEPS`); within the budget of
-solves (:data:`AMENDS`).
+a first upper end, by Newton, down from the upper end, just below the upper end, to the
+midpoint, each moved where lambda* is predicted resolvable (:data:`STEPS`); at most
+BUDGET trials.
 """
 
 from __future__ import annotations
@@ -38,8 +36,8 @@ UP_REACH = 0.125
 #: below the load factor: the largest resolution seen, as it varies twofold from trial
 #: to trial (2.4e-6 to 5.2e-6 on the 1,009-block wall near f*)
 LOW_REACH = 1.5
-#: solves (a first trial at the defaults and again tight counts two) before the search
-#: hands back
+#: trials (the first may take two solves: at the defaults, then tight) before the
+#: search hands back ("budget")
 BUDGET = 40
 #: the trial above the first unresolved one goes this much (relative) further than
 #: predicted, to certify from above: CERTIFY_OFFSET x 1e-7, as tuned at that accuracy.
@@ -184,15 +182,9 @@ def down_from_upper_end(s: Search) -> float | str | None:
     return _resolvable(s, down) if s.bad < down < s.good else None
 
 
-def chord_between_ends(s: Search) -> float | str | None:
-    """Where the chord between the ends reaches lf."""
-    chord = _on_chord(s, 0.0)
-    return _resolvable(s, chord) if s.bad < chord < s.good else None
-
-
 def probe_below_upper_end(s: Search) -> float | str | None:
-    """Where Newton's step, the step down and the chord all land at or past the upper
-    end (lambda* about linear with its root at the upper end): once after each
+    """Where Newton's step and the step down land at or past the upper end (lambda*
+    about linear with its root at the upper end): once after each
     midpoint, a probe CERTIFY_OFFSET x rtol below it, to certify the bracket from
     below (moved where lambda* is resolvable)."""
     rules = [t.rule for t in s.trials if t.rule in ("probe_below_upper_end",
@@ -208,17 +200,8 @@ def midpoint_resolvable(s: Search) -> float | str:
 
 
 STEPS = (above_the_unresolved, below_the_unresolved, first_upper_end, newton_step,
-         down_from_upper_end, chord_between_ends, probe_below_upper_end,
-         midpoint_resolvable)
+         down_from_upper_end, probe_below_upper_end, midpoint_resolvable)
 
 
-# -- amend rule --------------------------------------------------------------------------
-def within_budget(s: Search, trial: float) -> float | str:
-    """No trial past BUDGET solves ("budget": the search hands back)."""
-    return "budget" if sum(t.data.attempts for t in s.trials) >= BUDGET else trial
-
-
-AMENDS = (within_budget,)
-
-__all__ = ["AMENDS", "BUDGET", "LOW_REACH", "STEPS", "STOPS", "UP_REACH", "reach",
+__all__ = ["BUDGET", "LOW_REACH", "STEPS", "STOPS", "UP_REACH", "reach",
            "start_at"]

@@ -91,13 +91,12 @@ class LoadSearch:
         at the upper end, where the state at f* needs forces above FORCE_WARN times
         the loads that may have grown from the first upper end's as towards an infimum
         (:func:`infimum_growth`; the relaxation search says whether f* is one; where
-        they did not, the notes give them), where no upper end is found in 40 solves,
+        they did not, the notes give them), where no upper end is found in 40 trials,
         or where no trial gave a lower end and the bracket is wider than WIDE.
         """
         search = Search(0.0, math.inf, rtol, FRICTION_ATOL)
         run(search, lambda f: self._load_trial(f, lf, search), load_rules.STOPS,
-            (load_rules.start_at(first), *load_rules.STEPS), load_rules.AMENDS,
-            budget=load_rules.BUDGET)
+            (load_rules.start_at(first), *load_rules.STEPS), budget=load_rules.BUDGET)
         if search.stopped in ("handed_back", "budget"):
             return None
         return self._by_load_end(search, lf)
@@ -110,11 +109,9 @@ class LoadSearch:
         FINER_WHEN times WIDE, the later ones are solved at FINER_SETTINGS first."""
         tight = bool(search.trials)
         finer = any(t.data.finer for t in search.trials)
-        attempts = 0
         while True:
-            attempts += 1
-            data = SimpleNamespace(attempts=attempts, tight=tight, margin=0.0, finer=False,
-                                   at=None, by_value=False)
+            data = SimpleNamespace(tight=tight, margin=0.0, finer=False, at=None,
+                                   by_value=False)
             try:
                 prob, jr, res = self.max_load(f, (FINER_VALUE if finer else VALUE)
                                                if tight else ESTIMATE)
