@@ -91,6 +91,15 @@ def test_friction_option_names_what_it_takes(value, capsys):
     one_line_error(capsys, "friction must be")
 
 
+def test_usage_error_names_the_program_once(capsys):
+    """A usage error reads "rigidblocks: error: load: argument ..." (it read
+    "rigidblocks: error: rigidblocks load: argument ...")."""
+    assert main(["load", str(EXAMPLES / "arch.json"), "--rtol=x"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("rigidblocks: error: load: argument --rtol"), err
+    assert err.count("rigidblocks") == 1, err
+
+
 def test_every_float_option_of_every_command_is_finite():
     parser = build_parser()
     sub = next(a for a in parser._actions if a.dest == "command")

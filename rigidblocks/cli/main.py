@@ -42,7 +42,9 @@ COMMANDS: dict[str, tuple[str, str]] = {
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str):  # usage errors: one line, exit 2
-        raise InputError(f"{self.prog}: {message}")
+        # "rigidblocks: error: load: argument ...": the program is named once
+        command = self.prog.removeprefix("rigidblocks").strip()
+        raise InputError(f"{command}: {message}" if command else message)
 
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:
