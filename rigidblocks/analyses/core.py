@@ -97,7 +97,7 @@ def certified(m: Method, lim: Limit, rtol: float, what: str, atol: float = 0.0) 
     return replace(lim, status="undecided", value=None, at=None)
 
 
-def _reached(res: Any, rtol: float) -> Any:
+def _reached(res: Any, rtol: float | None) -> Any:
     """A result with the accuracy asked for and the one its bracket reached."""
     b = res.bracket
     return replace(res, rtol=rtol, accuracy=relative_width(*b) if b else None)
@@ -289,10 +289,13 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
                          "live_body_force): there is nothing to multiply", scene.source)
     if is_nonassociative(scene, flow):
         na_rtol = requested_rtol(rtol, NA_RTOL)
-        res = _reached(max_load_nonassociative(
+        res = max_load_nonassociative(
             scene, friction, method, flow=flow, state=state, solver=solver,
             settings=settings, pyramid=pyramid, contact_tol=contact_tol, progress=progress,
-            mechanism=mechanism, rtol=na_rtol), na_rtol)
+            mechanism=mechanism, rtol=na_rtol)
+        # a collapse state reached by the iteration has no bracket: no accuracy was
+        # asked of it (bisection on the distortion method's verdicts has one)
+        res = _reached(res, na_rtol if res.bracket else None)
         return replace(res, tilt_angle_deg=tilt_angle_deg(scene, res.load_multiplier)
                        if res.status == "collapse" else None)
     rtol = requested_rtol(rtol, LOAD_RTOL)
