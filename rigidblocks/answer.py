@@ -20,7 +20,7 @@ import numpy as np
 
 from .results import Result
 from .scene.geometry import scene_weights
-from .scene.model import Scene
+from .scene.model import Scene, friction_value
 
 #: the statuses that are verdicts (any other is none: undecided, failure, ...)
 VERDICTS = ("admissible", "inadmissible", "stable", "unstable", "collapse", "unbounded")
@@ -263,14 +263,21 @@ class _Words:
         why: list[str] = []
         if res.status == "admissible":
             fd = res.friction_demand
+            state = ("the state reached from the elastic state X0"
+                     if getattr(res, "flow", "associative") != "associative"
+                     else "the state of least complementary energy")
             if fd is not None and fd[0] > 1e-9:
                 a, b = res.joint_name(fd[1])
+                f = friction_value(res.friction) if res.friction is not None else math.inf
+                # a ratio above f within the verdict's tolerance (of the largest force:
+                # |T|/N = 0.60008 at f = 0.6 on a joint carrying 6e-4 of it) is f
+                reach = (f"the friction limit f = {f:g}" if fd[0] >= f * (1 - 1e-4)
+                         else f"{fd[0]:.4g}")
                 # not "needs": another admissible state may do with less (f*)
-                why.append(f"in the state of least complementary energy |T|/N reaches "
-                           f"{fd[0]:.4g} (joint {a}-{b}); the least friction any state "
-                           "needs is f* (`rigidblocks friction`)")
+                why.append(f"in {state} |T|/N reaches {reach} (joint {a}-{b}); the least "
+                           "friction any state needs is f* (`rigidblocks friction`)")
             elif fd is not None:
-                why.append("the state of least complementary energy uses no friction")
+                why.append(f"{state} uses no friction")
             return ("ADMISSIBLE: it stands (an equilibrium state with every joint in "
                     "compression and within friction exists)", "", "", why)
         number = ""

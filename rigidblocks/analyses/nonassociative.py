@@ -94,6 +94,9 @@ STALL = 12
 MIN_DAMPING = 1.0 / 64
 #: relative accuracy of the non-associative multiplier and friction
 NA_RTOL = 1e-5
+#: the opening of the note that gives the answer from every start (a terminal prints
+#: the same as its ``starts`` line)
+SPREAD_NOTE = "non-associative collapse state from "
 #: the first trial of the multiplier lies this far (relative) below the associative one
 TOP_RTOL = 1e-6
 #: normal forces below this fraction of the largest force are not resolved: the state
@@ -754,7 +757,7 @@ def _spread_note(runs: list[LimitRun]) -> str:
         return text
 
     main = runs[0]
-    text = f"non-associative collapse state from {main.start}: {one(main, False)}"
+    text = f"{SPREAD_NOTE}{main.start}: {one(main, False)}"
     for r in runs[1:]:
         same = (r.converged and main.converged and r.span is not None
                 and r.span == main.span)
@@ -1086,6 +1089,6 @@ def _verdict(r: LimitRun, force: float) -> Verdict:
 
 
 __all__ = ["ConvexNonAssociative", "DistortionNonAssociative", "FixedPoint",
-           "NonAssociative", "STATE_NOTE", "check_nonassociative", "flow_mask",
+           "NonAssociative", "SPREAD_NOTE", "STATE_NOTE", "check_nonassociative", "flow_mask",
            "is_nonassociative", "max_load_nonassociative", "min_friction_nonassociative",
            "nonassociative_method"]

@@ -6,9 +6,11 @@ import argparse
 import json
 import math
 import sys
+from dataclasses import replace
 from typing import Any
 
 from ..analyses import analysis
+from ..analyses.nonassociative import SPREAD_NOTE
 from ..answer import answer_block
 from ..errors import InputError
 from ..io import read_scene
@@ -197,10 +199,14 @@ def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
     lines = [f"scene      {scene.name or scene.source}",
              f"blocks     {len(scene.blocks)} ({supports}), "
              f"joints {res.contacts.n_joints}"]
-    lines += answer_block(scene, res).lines(verbose)
+    block = answer_block(scene, res)
+    flow = _flow_lines(res) if res.flow != "associative" else []
+    if any(line.startswith("starts ") for line in flow):  # the spread note, once
+        block = replace(block, reasons=tuple(r for r in block.reasons
+                                             if not r.startswith(SPREAD_NOTE)))
+    lines += block.lines(verbose)
     lines += _accuracy(res)
-    if res.flow != "associative":
-        lines += _flow_lines(res)
+    lines += flow
     if joints:
         lines += _table(res, scene)
     if verbose:
