@@ -35,16 +35,33 @@ def test_bisection_of_a_decreasing_verdict_keeps_its_order():
     assert s.good <= 2.5 < s.bad and s.upper - s.lower <= 1e-9 * 2.5 + 1e-15
 
 
-def test_an_undecided_trial_stops_the_bisection_with_its_bracket():
-    """A solver that cannot tell within 0.01 of x* = 0.5: the search stops at the first
-    such trial, with the bracket it had (still holding x*) and that trial last."""
-    def noisy(x):
-        return (None if abs(x - 0.5) < 0.01 else x >= 0.5), None
+def test_the_bisection_narrows_the_bracket_beside_undecided_trials():
+    """A solver that cannot tell within w of x* = 0.4993 (the 7th midpoint of [0, 0.77]
+    falls 3.1e-6 from it): the first undecided trial used to stop the search with the
+    bracket it had (0.012 wide for w = 1e-5, 0.048 for w = 0.01). Past it the
+    bisection halves the parts of the bracket beside the undecided trials: where the band
+    is narrower than the requested accuracy the answer is a number as without the noise
+    (w = 1e-5 at rtol = 1e-3 and 1e-4); where it is wider, the bracket ends at the band
+    plus at most the accuracy (w = 0.01: within 0.03, at most UNDECIDED_TRIALS
+    undecided trials)."""
+    from rigidblocks.methods.engine import UNDECIDED_TRIALS
 
-    s = bisection(noisy, 0.0, 0.77, 1e-9)
-    assert s.stopped == "undecided_trial"
-    assert s.last.side is None and abs(s.last.x - 0.5) < 0.01
-    assert s.bad < 0.5 <= s.good and s.width > 1e-9
+    x_star = 0.4993
+
+    def noisy(w):
+        def decide(x):
+            return (None if abs(x - x_star) < w else x >= x_star), None
+        return decide
+
+    for rtol in (1e-3, 1e-4):
+        s = bisection(noisy(1e-5), 0.0, 0.77, rtol)
+        assert any(t.side is None for t in s.trials)  # the case the rule is for
+        assert s.stopped == "narrow_enough", (rtol, s.stopped)
+        assert s.bad < x_star <= s.good and s.width <= rtol * s.upper
+    s = bisection(noisy(0.01), 0.0, 0.77, 1e-9)
+    assert s.stopped == "undecided_band"
+    assert sum(t.side is None for t in s.trials) <= UNDECIDED_TRIALS
+    assert s.bad < x_star <= s.good and 0.02 <= s.width < 0.03
 
 
 def test_a_failing_oracle_propagates_its_error_and_a_budget_ends_a_search():

@@ -71,7 +71,7 @@ from ..methods import ADMISSIBLE, FAILURE, INADMISSIBLE, UNDECIDED, Method, Verd
 from ..methods.convex import ADMISSIBLE_TOL, STATE_SLACK, VERDICT_RTOL, ConvexMethod
 from ..methods.distortion import DistortionMethod
 from ..problems.formulation import build_energy_qp, build_max_load, build_relaxation, flexibility
-from ..results import CheckResult, ForceState, FrictionResult, LoadResult
+from ..results import CheckResult, ForceState, FrictionResult, LoadResult, relative_width
 from ..scene.model import NON_ASSOCIATIVE, Scene, flow_value, friction_label, friction_value
 from ..solvers import OPTIMAL
 from .na_limit import (
@@ -82,7 +82,7 @@ from .na_limit import (
     x0_normals,
 )
 from .na_mechanism import limit_runs, walks
-from .search import UNBOUNDED_AT, bisect
+from .search import BRACKET_ATOL, UNBOUNDED_AT, bisect
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
 FIXED_POINT_TOL = 1e-6
@@ -636,8 +636,8 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
         last = trials[-1]
         na.notes.append(f"the iteration did not settle at lambda = {br.undecided_at:.9g}: "
                         f"the multiplier is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
-        if br.too_wide(1e-3, 1e-6):
-            na.notes.append("bracket wider than 1e-3 relative: undecided, no number")
+        if br.too_wide(rtol, BRACKET_ATOL):
+            na.notes.append(_too_wide_note(br, rtol))
             return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None,
                                         tuple(trials), bool(last["converged"])),
                               load_multiplier_bounds=bounds, bracket=(br.lower, br.upper))
@@ -646,6 +646,13 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
                         f"bound {lo:.6g}: the state reached from the elastic state "
                         "collapses earlier than some other state would")
     return result("collapse", br.good, best_v, True, (br.lower, br.upper))
+
+
+def _too_wide_note(br: Any, rtol: float) -> str:
+    """Why a bisection stopped by an undecided trial gives no number (as
+    :func:`~rigidblocks.analyses.core.certified` says it of every other limit)."""
+    return (f"accuracy {relative_width(br.lower, br.upper):.1e} reached, {rtol:.1e} "
+            "requested (rtol): undecided, no number")
 
 
 def _starts(na: ConvexNonAssociative, cv: ConvexMethod, up: Any, f: float
@@ -970,8 +977,8 @@ def _friction_by_verdicts(na: NonAssociative, lf: float, lim: Any, rtol: float, 
     if br.undecided_at is not None:
         na.notes.append(f"the iteration did not settle at f = {br.undecided_at:.9g}: the "
                         f"friction is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
-        if br.too_wide(1e-3, 1e-6):
-            na.notes.append("bracket wider than 1e-3 relative: undecided, no number")
+        if br.too_wide(rtol, BRACKET_ATOL):
+            na.notes.append(_too_wide_note(br, rtol))
             return out(UNDECIDED, lower=br.lower, upper=br.upper, converged=False)
     return out("stable", br.good, best, br.lower, br.upper, True)
 

@@ -22,10 +22,12 @@ from ..methods.engine import (
     Search,
     StepRule,
     Trial,
+    beside_the_undecided,
     bisection,
     midpoint,
     narrow_enough,
     run,
+    undecided_band,
 )
 
 #: a bisection stopped by an undecided trial with a bracket wider than the requested
@@ -71,12 +73,19 @@ class Bracket:
 def bisect(decide: Decide, bad: float, good: float, rtol: float, atol: float = 0.0,
            steps: int = MAX_TRIALS) -> Bracket:
     """Halve [bad, good] (either order) until |good - bad| <= rtol max(|good|, |bad|) +
-    atol, at most ``steps`` times; an undecided trial stops it (the engine's
+    atol, at most ``steps`` times; past undecided trials it narrows the bracket beside
+    them until they fill it (the engine's
     :func:`~rigidblocks.methods.engine.bisection`)."""
     s = bisection(decide, bad, good, rtol, atol, steps)
     passed = s.end(True)
-    return Bracket(s.bad, s.good, passed.data if passed else None,
-                   s.last.x if s.stopped == "undecided_trial" else None)
+    return Bracket(s.bad, s.good, passed.data if passed else None, _undecided_at(s))
+
+
+def _undecided_at(s: Search) -> float | None:
+    """The latest undecided trial of a search that its undecided trials ended."""
+    if s.stopped != "undecided_band":
+        return None
+    return next(t.x for t in reversed(s.trials) if t.side is None)
 
 
 def _verdicts(m: Method, call: Callable[[float], Verdict]) -> Decide:
@@ -112,13 +121,8 @@ def undecided_while_bracketing(s: Search) -> bool:
     return _bracketing(s) and s.last.side is None and s.bad > s.good
 
 
-def undecided_while_bisecting(s: Search) -> bool:
-    """A bisection trial decided nothing: the bracket stands as it is."""
-    return s.last is not None and s.last.side is None and not _bracketing(s)
-
-
-STOPS = (failed_while_bracketing, undecided_while_bracketing, undecided_while_bisecting,
-         narrow_enough)
+STOPS = (failed_while_bracketing, undecided_while_bracketing, narrow_enough,
+         undecided_band)
 
 
 def doubling(ceiling: float) -> StepRule:
@@ -138,7 +142,8 @@ def friction_by_bisection(m: Method, load_factor: float, rtol: float) -> Limit:
     f = infinite first (not admissible: "unstable"; undecided or failed: so stated),
     then f = 0, then doubling from 1 to bracket f* (an undecided trial does not raise the
     lower end), then bisection to ``rtol`` (the engine's rules :data:`STOPS` and
-    :func:`doubling`). An undecided trial ends the bisection: f* is the upper
+    :func:`doubling`). Past an undecided trial the bisection halves the parts of the
+    bracket beside the undecided ones until they fill it: f* is the upper
     (certified admissible) end of the bracket, which goes into ``lower``, ``upper`` and
     the notes; if it is wider than ``rtol`` relative (plus ``BRACKET_ATOL``)
     the status is "undecided" and no f* is given.
@@ -155,7 +160,7 @@ def friction_by_bisection(m: Method, load_factor: float, rtol: float) -> Limit:
     if ok0 is True:
         return Limit("stable", 0.0, 0.0, 0.0, at=v0)
     s = run(Search(0.0, math.inf, rtol), _oracle(decide), STOPS,
-            (doubling(FRICTION_CEILING), midpoint), budget=BUDGET)
+            (doubling(FRICTION_CEILING), beside_the_undecided, midpoint), budget=BUDGET)
     for t in s.trials:
         if _bracket_trial(t) and t.side is None and t.kind != "failure":
             m.notes.append(f"the iteration could not decide at f = {t.x:.9g}")
@@ -191,7 +196,8 @@ def load_by_bisection(m: Method, f: float, rtol: float) -> Limit:
         return Limit("undecided" if ok0 is None else "unstable")
     s = Search(math.inf, 0.0, rtol)
     s.record(Trial(0.0, True, data=v0))
-    run(s, _oracle(decide), STOPS, (doubling(UNBOUNDED_AT), midpoint), budget=BUDGET)
+    run(s, _oracle(decide), STOPS, (doubling(UNBOUNDED_AT), beside_the_undecided, midpoint),
+        budget=BUDGET)
     if s.stopped == "failed_while_bracketing":
         return Limit(FAILURE)
     if s.stopped == "undecided_while_bracketing":  # lambda* is not bracketed
@@ -213,8 +219,7 @@ def _limit(m: Method, s: Search, name: str, status: str) -> Limit:
     """The limit a search found: its certified end (``good``), or "undecided" when an
     undecided bisection trial stopped it with a bracket wider than the requested
     accuracy (plus ``BRACKET_ATOL``); the bracket goes into the notes either way."""
-    br = Bracket(s.bad, s.good, s.end(True).data,
-                 s.last.x if s.stopped == "undecided_while_bisecting" else None)
+    br = Bracket(s.bad, s.good, s.end(True).data, _undecided_at(s))
     if br.undecided_at is not None:
         m.notes.append(f"the iteration could not decide at {name} = {br.undecided_at:.9g}: "
                        f"{name}* is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")

@@ -189,7 +189,12 @@ def _propose(search: Search, steps: Sequence[StepRule],
     return point, step.__name__
 
 
-# -- bisection: one step rule, two stop rules --------------------------------------------
+# -- bisection: two step rules, two stop rules -------------------------------------------
+#: undecided trials a bisection makes at most: past them the band of x where the method
+#: cannot decide is taken to fill what is left of the bracket beside the decided ends
+UNDECIDED_TRIALS = 4
+
+
 def narrow_enough(s: Search) -> bool:
     """The bracket meets the requested accuracy."""
     return s.narrow()
@@ -205,18 +210,51 @@ def midpoint(s: Search) -> float:
     return 0.5 * (s.bad + s.good)
 
 
+def _undecided_inside(s: Search) -> tuple[float, float] | None:
+    """The span of the undecided trials strictly inside the bracket (None: none)."""
+    xs = [t.x for t in s.trials if t.side is None and s.lower < t.x < s.upper]
+    return (min(xs), max(xs)) if xs else None
+
+
+def undecided_band(s: Search) -> bool:
+    """Undecided trials fill the bracket: UNDECIDED_TRIALS of them were made, or the
+    parts of the bracket beside them are each narrower than half the requested
+    accuracy (what is left is the band where the method cannot decide)."""
+    band = _undecided_inside(s)
+    if band is None:
+        return False
+    if sum(t.side is None for t in s.trials) >= UNDECIDED_TRIALS:
+        return True
+    half = 0.5 * (s.rtol * max(abs(s.good), abs(s.bad)) + s.atol)
+    return band[0] - s.lower <= half and s.upper - band[1] <= half
+
+
+def beside_the_undecided(s: Search) -> float | None:
+    """Halve the wider part of the bracket beside its undecided trials (a method that
+    cannot decide near the limit still decides farther from it); None where no trial
+    inside the bracket is undecided."""
+    band = _undecided_inside(s)
+    if band is None:
+        return None
+    if band[0] - s.lower >= s.upper - band[1]:
+        return 0.5 * (s.lower + band[0])
+    return 0.5 * (band[1] + s.upper)
+
+
 def bisection(decide: Callable[[float], tuple[bool | None, Any]], bad: float, good: float,
               rtol: float, atol: float = 0.0, steps: int = MAX_TRIALS) -> Search:
     """Halve [bad, good] (either order) on ``decide(x) -> (True: good, False: bad, None:
     undecided; data)`` until it is :meth:`Search.narrow` (stop "narrow_enough"), at most
-    ``steps`` times (stop "budget"); an undecided trial stops it ("undecided_trial")."""
+    ``steps`` times (stop "budget"); past an undecided trial it halves the parts of the
+    bracket beside the undecided ones until they fill it (stop "undecided_band")."""
     def oracle(x: float) -> Trial:
         side, data = decide(x)
         return Trial(x, side, data=data)
 
-    return run(Search(bad, good, rtol, atol), oracle, (undecided_trial, narrow_enough),
-               (midpoint,), budget=steps)
+    return run(Search(bad, good, rtol, atol), oracle, (narrow_enough, undecided_band),
+               (beside_the_undecided, midpoint), budget=steps)
 
 
-__all__ = ["MAX_TRIALS", "WIDE", "AmendRule", "Oracle", "Search", "StepRule", "StopRule",
-           "Trial", "bisection", "midpoint", "narrow_enough", "run", "undecided_trial"]
+__all__ = ["MAX_TRIALS", "UNDECIDED_TRIALS", "WIDE", "AmendRule", "Oracle", "Search",
+           "StepRule", "StopRule", "Trial", "beside_the_undecided", "bisection", "midpoint",
+           "narrow_enough", "run", "undecided_band", "undecided_trial"]
