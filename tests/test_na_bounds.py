@@ -360,6 +360,13 @@ def test_cli_load_safe(capsys, tmp_path):
     assert doc["load_multiplier"] == pytest.approx(2.4, rel=1e-6)
     assert doc["safe_multiplier"]["status"] == "optimal"
     assert doc["safe_multiplier"]["value"] == pytest.approx(0.6, rel=1e-6)
+    # --safe-time-limit reaches HiGHS: at 1e-9 s nothing is proven, the status says so
+    assert main(["load", path, "--flow", "non-associative", "--safe",
+                 "--safe-time-limit", "1e-9"]) == 0
+    line = next(s for s in capsys.readouterr().out.splitlines() if s.startswith("safe"))
+    assert line.startswith("safe       undecided: bracket [") and "Time limit" in line
+    assert main(["load", path, "--safe-time-limit", "0"]) == 2
+    assert "--safe-time-limit: not a number of seconds > 0" in capsys.readouterr().err
     from rigidblocks.io import write_scene
 
     wall = tmp_path / "wall.json"  # 10 x 10: 106 blocks, 285 joints

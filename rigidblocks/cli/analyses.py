@@ -15,7 +15,7 @@ from ..answer import answer_block
 from ..errors import InputError
 from ..io import read_scene
 from ..methods import METHODS, Progress
-from .options import add_rtol
+from .options import add_rtol, finite_float
 from .options import load_factor as load_factor_type
 from .progress import run_interruptible
 
@@ -65,8 +65,11 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
         p.add_argument("--safe", action="store_true",
                        help="with non-associative joints, scenes of up to 50 joints: also "
                        "the smallest non-associative collapse multiplier over all states "
-                       "(a mixed-integer LP solved by HiGHS, at most 60 s per solve; "
-                       "docs/safe-multiplier.md)")
+                       "(a mixed-integer LP solved by HiGHS, at most --safe-time-limit "
+                       "per solve; docs/safe-multiplier.md)")
+        p.add_argument("--safe-time-limit", type=_seconds, default=60.0, metavar="S",
+                       help="the time limit of each mixed-integer solve of --safe, in "
+                       "seconds (default 60); past it the safe multiplier is a bracket")
     if name in ("friction", "load"):
         add_rtol(p, name)
     p.add_argument("--joints", nargs="?", const="-", default=None, metavar="CSV",
@@ -114,6 +117,14 @@ def run(args: argparse.Namespace) -> int:
     return EXIT.get(res.status, 0)
 
 
+def _seconds(text: str) -> float:
+    """argparse type of ``--safe-time-limit``: a number of seconds > 0."""
+    value = finite_float(text)
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"not a number of seconds > 0: {text!r}")
+    return value
+
+
 def _safe(scene: Any, args: argparse.Namespace) -> dict[str, Any]:
     """The safe multiplier of ``load --safe`` as a dict: status, value, bracket, notes
     (or the reason it was not computed)."""
@@ -127,7 +138,8 @@ def _safe(scene: Any, args: argparse.Namespace) -> dict[str, Any]:
                           "non-associative): with associative joints the collapse "
                           "multiplier is unique, the answer above"}
     try:
-        r = safe_multiplier(scene, friction=q.get("friction"), flow=q.get("flow"))
+        r = safe_multiplier(scene, friction=q.get("friction"), flow=q.get("flow"),
+                            time_limit=args.safe_time_limit)
     except InputError as err:
         return {"status": "not computed", "reason": str(err).split(": ", 1)[-1]}
     return {"status": r.status, "value": r.value, "lower": r.lower, "upper": r.upper,
