@@ -14,9 +14,9 @@ tolerances) and ``finer`` (this trial put the later ones at finer settings).
 
 The rules, in the order they are asked: stop where the oracle hands back, at the
 requested accuracy (:data:`STOPS`); step above and below the first unresolved trial, to
-a first upper end, by Newton, down from the upper end, just below the upper end, to the
-midpoint, each moved where lambda* is predicted resolvable (:data:`STEPS`); at most
-BUDGET trials.
+a first upper end (Newton's step up), down from the upper end, just below the upper end,
+to the midpoint, each moved where lambda* is predicted resolvable (:data:`STEPS`); at
+most BUDGET trials.
 """
 
 from __future__ import annotations
@@ -167,12 +167,6 @@ def first_upper_end(s: Search) -> float | None:
     return newton if math.isfinite(newton) else max(2.0 * s.last.x, 1.0)
 
 
-def newton_step(s: Search) -> float | str | None:
-    """Newton's step up from the lower end, where it lands inside the bracket."""
-    newton = _newton(s)
-    return _resolvable(s, newton) if s.bad < newton < s.good else None
-
-
 def down_from_upper_end(s: Search) -> float | str | None:
     """Newton's step down from the upper end (below the root where lambda* is concave,
     as Newton's step up falls short of it elsewhere: the chord would stay above it and
@@ -199,8 +193,8 @@ def midpoint_resolvable(s: Search) -> float | str:
     return _resolvable(s, 0.5 * (s.bad + s.good))
 
 
-STEPS = (above_the_unresolved, below_the_unresolved, first_upper_end, newton_step,
-         down_from_upper_end, probe_below_upper_end, midpoint_resolvable)
+STEPS = (above_the_unresolved, below_the_unresolved, first_upper_end, down_from_upper_end,
+         probe_below_upper_end, midpoint_resolvable)
 
 
 __all__ = ["BUDGET", "LOW_REACH", "STEPS", "STOPS", "UP_REACH", "reach",
