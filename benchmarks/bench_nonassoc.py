@@ -722,7 +722,7 @@ def large_walls(sizes: Sequence[tuple], frictions: Sequence[float],
                    "na_span": spans.get("the elastic state X0"),
                    "na_from_assoc_span": spans.get("the associative collapse state"),
                    "load_average": os.getloadavg()[0],
-                   "na_solves": v.iterations, "na_ratio": tv / ta if ta else None,
+                   "na_steps": v.iterations, "na_ratio": tv / ta if ta else None,
                    "friction_load_factor": lf,
                    "friction_status": fr.status if fr else "not run",
                    "na_friction": fr.friction_factor if fr else None,
@@ -739,13 +739,13 @@ def large_walls_md(rows: list[dict[str, Any]]) -> list[str]:
     """The markdown of :func:`large_walls`."""
     header = ["wall", "blocks", "f", "lambda assoc", "CPU s", "lambda non-assoc (X0)",
               "its mechanism's states", "from the assoc. state", "its mechanism's states",
-              "CPU s", "x assoc", "solves", "f non-assoc at lambda non-assoc", "CPU s",
+              "CPU s", "x assoc", "limit steps", "f non-assoc at lambda non-assoc", "CPU s",
               "x assoc", "load"]
     body = [[r.get("wall", f"{r['courses']} x {r['per_course']}"), r["blocks"], r["friction"],
              r["assoc_lambda"], r["assoc_cpu"], _cell(r["na_lambda"]) if r["na_status"]
              == "collapse" else r["na_status"], _span(r.get("na_span")),
              _cell(r["na_from_assoc"]), _span(r.get("na_from_assoc_span")), r["na_cpu"],
-             _cell(r["na_ratio"]), r["na_solves"], _cell(r["na_friction"]) if
+             _cell(r["na_ratio"]), r["na_steps"], _cell(r["na_friction"]) if
              r["friction_status"] == "stable" else r["friction_status"], _cell(r["friction_cpu"]),
              _cell(r["friction_ratio"]), _cell(r.get("load_average"))] for r in rows]
     return ["### Running-bond walls: the limit fixed point against the associative load", "",

@@ -703,8 +703,9 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
     na.limit_path = "walk" if walks(cv) else True
     capped = CappedLimit(cv, na.marked, f)
     verdict, starts = _starts(na, cv, up, f)
-    runs, solves = limit_runs(capped, starts)
-    na.fp_iterations += solves
+    runs, _ = limit_runs(capped, starts)
+    # the iterations are the limit steps of the runs, as each start's history gives them
+    na.fp_iterations += sum(r.iterations for r in runs)
     trials = tuple({"start": r.start, "load_factor": r.lam, "status": r.status,
                     "iterations": r.iterations, "converged": r.converged,
                     "span": None if r.span is None else list(r.span)} for r in runs)
@@ -1003,8 +1004,8 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
 
     def oracle(fv: float) -> Trial:
         capped = CappedLimit(cv, na.marked, fv)
-        (r,), solves = limit_runs(capped, [(FROM_X0, n0)])
-        na.fp_iterations += solves
+        (r,), _ = limit_runs(capped, [(FROM_X0, n0)])
+        na.fp_iterations += r.iterations
         trials.append({"friction": fv, "load_factor": r.lam, "status": r.status,
                        "iterations": r.iterations, "converged": r.converged})
         v = _verdict(r, cv.scaling.force)
