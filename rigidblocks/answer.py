@@ -34,6 +34,10 @@ _SOLVER_NOTE = re.compile(
     r"iteration|extreme point|\bLPs?\b|\bSOCPs?\b|mechanism: ", re.I)
 
 
+#: the verdict of a non-associative check that fails
+NA_INADMISSIBLE = ("NOT ADMISSIBLE: the state reached from the elastic state X0 breaches the "
+                   "joint laws (sliding without dilatancy; another state may stand)")
+
 _SOLVED_AGAIN = re.compile(r"answers of (\S+) that failed their check .*? solved again "
                            r"by (\w+)")
 
@@ -280,16 +284,19 @@ class _Words:
                 why.append(f"{state} uses no friction")
             return ("ADMISSIBLE: it stands (an equilibrium state with every joint in "
                     "compression and within friction exists)", "", "", why)
+        na = getattr(res, "flow", "associative") != "associative"
         number = ""
         if math.isfinite(res.violation):
-            number = (f"smallest breach of the joint laws {self.force(res.violation)} "
-                      "(0 would stand)")
+            number = (f"{'its' if na else 'smallest'} breach of the joint laws "
+                      f"{self.force(res.violation)} (0 would stand)")
         names = [f"{a}-{b} ({fmt(v, 3)} {self.fu})" for a, b, v in
                  ((*res.joint_name(k), v) for k, v in res.breaches)]
         why += self.live_hint(res)
-        return ("NOT ADMISSIBLE: no equilibrium state keeps every joint in compression "
-                "and within friction", number,
-                ("breached at " + joint_list(names)) if names else "", why)
+        # without dilatancy only the state reached from X0 is judged: other states may
+        # stand (the associative check, over every state, says whether one does)
+        verdict = (NA_INADMISSIBLE if na else "NOT ADMISSIBLE: no equilibrium state keeps "
+                   "every joint in compression and within friction")
+        return (verdict, number, ("breached at " + joint_list(names)) if names else "", why)
 
     def friction(self, res: Any) -> tuple[str, str, str, list[str]]:
         if res.status != "stable":

@@ -281,3 +281,21 @@ def test_check_names_the_state_it_judges():
                           "the friction limit f = 0.6 (joint "), why
     assoc = answer_block(scene, rb.check(scene, load_factor=0.4)).reasons[0]
     assert assoc.startswith("in the state of least complementary energy |T|/N reaches "), assoc
+
+
+def test_a_failed_non_associative_check_claims_no_more_than_its_state():
+    """The flat arch with vertical joints under self-weight: the state reached from X0
+    breaches the laws without dilatancy, while the associative check finds an admissible
+    state; the non-associative verdict must not say that no equilibrium state exists (it
+    did: "no equilibrium state keeps every joint in compression and within friction")."""
+    from rigidblocks.answer import answer_block
+
+    scene = read_scene(EXAMPLES / "flat_arch_vertical.json")
+    na = rb.check(scene, load_factor=0.0, flow=NA)
+    assert na.status == "inadmissible"
+    assert rb.check(scene, load_factor=0.0).status == "admissible"
+    block = answer_block(scene, na)
+    assert block.verdict.startswith("NOT ADMISSIBLE: the state reached from the elastic "
+                                    "state X0 breaches the joint laws"), block.verdict
+    assert "no equilibrium state" not in block.verdict
+    assert block.number.startswith("its breach of the joint laws")

@@ -40,6 +40,7 @@ from typing import Any
 
 import numpy as np
 
+from ..answer import NA_INADMISSIBLE
 from ..scene.geometry import block_weights, scene_size
 from ..scene.model import Scene
 from .marks import (
@@ -222,7 +223,8 @@ def _no_state(ax: Any, result: Any, unit: str = "") -> None:
     status = getattr(result, "status", "")
     if status == "inadmissible":
         v = getattr(result, "violation", None)
-        msg = "NOT ADMISSIBLE: no equilibrium state within the joint laws exists"
+        msg = (NA_INADMISSIBLE if getattr(result, "flow", "associative") != "associative"
+               else "NOT ADMISSIBLE: no equilibrium state within the joint laws exists")
         if v is not None and math.isfinite(float(v)):
             msg += f"\n(smallest breach of the joint laws {float(v):.3g} {unit})".replace(" )", ")")
         colour = "tab:red"
