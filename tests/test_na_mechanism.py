@@ -195,6 +195,9 @@ def test_the_span_is_printed(tmp_path, capsys):
     p.write_text(dumps_scene(build("wall", courses=10, blocks_per_course=10, friction=0.6)))
     assert main(["load", str(p), "--flow", NA]) == 0
     out = capsys.readouterr().out.splitlines()
+    flow = next(s for s in out if s.startswith("flow"))
+    # the steps of each start, summed (it printed every LP and QP as an iteration)
+    assert " limit step(s) over 2 start(s) (" in flow and " + " in flow, flow
     line = next(s for s in out if s.startswith("starts"))
     # said once: the note that carries the same to the report is not a "why" line too
     assert not [s for s in out if "collapse state from the elastic state" in s]

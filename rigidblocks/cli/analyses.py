@@ -259,15 +259,20 @@ def _table(res, scene) -> list[str]:
 
 def _flow_lines(res) -> list[str]:
     """The non-associative analysis: its iterations and bounds."""
-    out = [f"flow       {res.flow}: {res.iterations} iteration(s), "
-           f"{'converged' if res.converged else 'not converged'}"]
+    starts = [h for h in (res.history or ()) if isinstance(h, dict) and "start" in h]
+    done = "converged" if res.converged else "not converged"
+    if starts:  # the limit iteration: its steps, summed over the starts
+        steps = " + ".join(str(h.get("iterations", "?")) for h in starts)
+        out = [f"flow       {res.flow}: {res.iterations} limit step(s) over "
+               f"{len(starts)} start(s) ({steps}), {done}"]
+    else:
+        out = [f"flow       {res.flow}: {res.iterations} iteration(s), {done}"]
     b = getattr(res, "load_multiplier_bounds", None)
     if b is not None:
         lo = "-" if b[0] is None else f"{b[0]:.6g}"
         hi = "-" if b[1] is None else f"{b[1]:.6g}"
         out.append(f"bounds     [{lo}, {hi}]   (frictionless lower bound, associative "
                    "upper bound)")
-    starts = [h for h in (res.history or ()) if isinstance(h, dict) and "start" in h]
     if starts:
         def value(h: dict, same: bool) -> str:
             v = h.get("load_factor")
