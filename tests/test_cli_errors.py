@@ -98,6 +98,10 @@ def test_usage_error_names_the_program_once(capsys):
     err = capsys.readouterr().err
     assert err.startswith("rigidblocks: error: load: argument --rtol"), err
     assert err.count("rigidblocks") == 1, err
+    # an option the command does not know is named with the command (it was not)
+    assert main(["load", str(EXAMPLES / "arch.json"), "--frobnicate"]) == 2
+    err = capsys.readouterr().err
+    assert err == "rigidblocks: error: load: unrecognized arguments: --frobnicate\n", err
 
 
 def test_every_float_option_of_every_command_is_finite():

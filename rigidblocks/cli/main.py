@@ -88,7 +88,11 @@ def _main(argv: Sequence[str] | None) -> int:
     try:
         words = list(sys.argv[1:] if argv is None else argv)
         parser = build_parser(words[0] if words and words[0] in COMMANDS else None)
-        args = parser.parse_args(words)
+        args, extra = parser.parse_known_args(words)
+        if extra:  # named with the command it was given to
+            command = getattr(args, "command", None)
+            raise InputError(f"{command + ': ' if command else ''}unrecognized "
+                             f"arguments: {' '.join(extra)}")
         if not getattr(args, "_run", None):
             parser.print_help()
             return 2
