@@ -38,6 +38,14 @@ _SOLVER_NOTE = re.compile(
 NA_INADMISSIBLE = ("NOT ADMISSIBLE: the state reached from the elastic state X0 breaches the "
                    "joint laws (sliding without dilatancy; another state may stand)")
 
+
+
+def without_dilatancy(result: Any) -> bool:
+    """Was ``result`` analysed with joints that slide without dilatancy (its answer is
+    the state reached from X0, not one over every state)?"""
+    return getattr(result, "flow", "associative") != "associative"
+
+
 _SOLVED_AGAIN = re.compile(r"answers of (\S+) that failed their check .*? solved again "
                            r"by (\w+)")
 
@@ -237,8 +245,7 @@ class _Words:
         a = getattr(result, "analysis", "")
         lf = getattr(result, "load_factor", None)
         f = getattr(result, "friction", None)
-        flow = getattr(result, "flow", "associative")
-        rule = "" if flow == "associative" else ", sliding without dilatancy"
+        rule = ", sliding without dilatancy" if without_dilatancy(result) else ""
         if a == "check":
             return f"does it stand under {self.load_case(lf)}, at {self.friction_text(f)}{rule}?"
         if a == "min_friction":
@@ -265,10 +272,10 @@ class _Words:
 
     def check(self, res: Any) -> tuple[str, str, str, list[str]]:
         why: list[str] = []
+        na = without_dilatancy(res)
         if res.status == "admissible":
             fd = res.friction_demand
-            state = ("the state reached from the elastic state X0"
-                     if getattr(res, "flow", "associative") != "associative"
+            state = ("the state reached from the elastic state X0" if na
                      else "the state of least complementary energy")
             if fd is not None and fd[0] > 1e-9:
                 a, b = res.joint_name(fd[1])
@@ -284,7 +291,6 @@ class _Words:
                 why.append(f"{state} uses no friction")
             return ("ADMISSIBLE: it stands (an equilibrium state with every joint in "
                     "compression and within friction exists)", "", "", why)
-        na = getattr(res, "flow", "associative") != "associative"
         number = ""
         if math.isfinite(res.violation):
             number = (f"{'its' if na else 'smallest'} breach of the joint laws "
@@ -307,7 +313,7 @@ class _Words:
                   f"{self.deg})")
         why = []
         f = self.scene.effective_friction
-        na = getattr(res, "flow", "associative") != "associative"
+        na = without_dilatancy(res)
         if not isinstance(f, str) and math.isfinite(float(f)):
             lo = res.lower if res.lower is not None else fs
             if lo < float(f) < fs:
@@ -330,7 +336,7 @@ class _Words:
         if res.status == "unbounded":
             return ("UNBOUNDED: no multiple of the live load makes it collapse", "", "", [])
         if res.status != "collapse":
-            if getattr(res, "flow", "associative") != "associative":
+            if without_dilatancy(res):
                 return ("UNSTABLE: the state reached from X0 under the dead load alone "
                         "breaches the joint laws (without dilatancy; other states may "
                         "stand: `rigidblocks check` without --flow)", "", "", [])
@@ -493,6 +499,6 @@ def mechanism_text(res: Any) -> str:
             + f" and {len(order) - FIRST} more")
 
 
-__all__ = ["AnswerBlock", "answer_block", "block_reach", "bodies_text", "joint_list",
-           "live_load_size", "live_load_text", "mechanism_groups", "mechanism_text", "rigid_bodies",
-           "split_notes"]
+__all__ = ["NA_INADMISSIBLE", "AnswerBlock", "answer_block", "block_reach", "bodies_text",
+           "joint_list", "live_load_size", "live_load_text", "mechanism_groups",
+           "mechanism_text", "rigid_bodies", "split_notes", "without_dilatancy"]

@@ -191,7 +191,6 @@ class CappedLimit:
         self.backend = backend or ("highs" if prob.is_lp else "conic")
         self.prob = prob
         self._solver: Any = None
-        self.solves = 0
 
     @property
     def solver(self) -> Any:
@@ -223,7 +222,6 @@ class CappedLimit:
         """The state at lambda >= ``lam`` under the caps selected by
         :func:`_select_problem`."""
         prob = _select_problem(self.prob, self.nsl, b_joints, lam, N_prev)
-        self.solves += 1
         try:
             res = self.cv.solve(prob, "nearest capped state", tight=True, stall=False)
         except SolverFailure:
@@ -244,7 +242,6 @@ class CappedLimit:
         def step(N: np.ndarray) -> tuple:
             b = self.rhs(N)
             st, lam, z = self.solver.maximise(b)
-            self.solves += 1
             if st != OPTIMAL:
                 why = {"infeasible": "the capped laws carry not even the dead load",
                        "unbounded": "no multiplier makes the capped problem collapse"}

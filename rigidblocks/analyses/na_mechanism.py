@@ -97,7 +97,6 @@ class Mechanisms:
         MF = sp.vstack([sp.csr_matrix((ne, capped.P)),
                         capped.M @ sp.diags(capped.f_pt)]).tocsr()
         self.K = (p.A.tocsr() - MF @ E).tocsr()
-        self.solves = 0
 
     def _make_phase2(self) -> None:
         """Phase 1's LP (the capped problem's own model) and phase 2's (min sum N)."""
@@ -160,7 +159,6 @@ class Mechanisms:
         last = None
         for k in range(1, max_steps + 1):
             bj = self.capped.rhs(N)
-            self.solves += 1
             st, _, _ = self.capped.solver.maximise(bj)
             act = self.active(bj) if st == OPTIMAL else None
             if act is None:
@@ -219,7 +217,6 @@ class Mechanisms:
         """min c'z (+ z'Pz/2) over the collapse states of the mechanism (joint rows
         ``active``): one problem by the convex method's back end."""
         prob = self._polytope(active, c, P)
-        self.solves += 1
         try:
             res = self.cv.solve(prob, "collapse states of one mechanism", tight=True,
                                 stall=False)
@@ -245,7 +242,6 @@ class Mechanisms:
         nsl = self.capped.nsl
         N = np.maximum(z[nsl], 0.0)
         bj = self.capped.rhs(N)
-        self.solves += 1
         st, lam, _ = self.capped.solver.maximise(bj)
         own = float(z[self.li])
         if st != OPTIMAL:
@@ -384,19 +380,17 @@ def walks(cv: ConvexMethod) -> bool:
 
 
 def limit_runs(capped: CappedLimit, starts: list[tuple[str, np.ndarray]]
-               ) -> tuple[list[LimitRun], int]:
+               ) -> list[LimitRun]:
     """One run of the limit iteration per start (name, scaled normal forces), ended at
-    the collapse states of the mechanism it reaches where the problem is an LP (2D), and
-    the solves they took."""
+    the collapse states of the mechanism it reaches where it has them: LPs (2D, 3D
+    pyramids) and Coulomb's cones."""
     if walks(capped.cv) and capped.backend == "highs":
         mech: Mechanisms = Mechanisms(capped)
     elif capped.prob.soc and set(capped.prob.soc) == {3}:
         mech = ConeMechanisms(capped)
     else:
-        runs = [capped.run(n, name) for name, n in starts]
-        return runs, capped.solves
-    runs = [capped.run(n, name, settle=mech.settler()) for name, n in starts]
-    return runs, capped.solves + mech.solves + getattr(mech, "phase2", mech).solves
+        return [capped.run(n, name) for name, n in starts]
+    return [capped.run(n, name, settle=mech.settler()) for name, n in starts]
 
 
 __all__ = ["ConeMechanisms", "Mechanisms", "limit_runs", "walks"]

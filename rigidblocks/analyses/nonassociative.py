@@ -703,7 +703,7 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
     na.limit_path = "walk" if walks(cv) else True
     capped = CappedLimit(cv, na.marked, f)
     verdict, starts = _starts(na, cv, up, f)
-    runs, _ = limit_runs(capped, starts)
+    runs = limit_runs(capped, starts)
     # the iterations are the limit steps of the runs, as each start's history gives them
     na.fp_iterations += sum(r.iterations for r in runs)
     trials = tuple({"start": r.start, "load_factor": r.lam, "status": r.status,
@@ -1004,7 +1004,7 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
 
     def oracle(fv: float) -> Trial:
         capped = CappedLimit(cv, na.marked, fv)
-        (r,), _ = limit_runs(capped, [(FROM_X0, n0)])
+        (r,) = limit_runs(capped, [(FROM_X0, n0)])
         na.fp_iterations += r.iterations
         trials.append({"friction": fv, "load_factor": r.lam, "status": r.status,
                        "iterations": r.iterations, "converged": r.converged})

@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from ..answer import NA_INADMISSIBLE
+from ..answer import NA_INADMISSIBLE, without_dilatancy
 from ..scene.geometry import block_weights, scene_size
 from ..scene.model import Scene
 from .marks import (
@@ -223,7 +223,7 @@ def _no_state(ax: Any, result: Any, unit: str = "") -> None:
     status = getattr(result, "status", "")
     if status == "inadmissible":
         v = getattr(result, "violation", None)
-        msg = (NA_INADMISSIBLE if getattr(result, "flow", "associative") != "associative"
+        msg = (NA_INADMISSIBLE if without_dilatancy(result)
                else "NOT ADMISSIBLE: no equilibrium state within the joint laws exists")
         if v is not None and math.isfinite(float(v)):
             msg += f"\n(smallest breach of the joint laws {float(v):.3g} {unit})".replace(" )", ")")
