@@ -127,6 +127,38 @@ def split_notes(notes: Any) -> tuple[tuple[str, ...], tuple[str, ...]]:
     return tuple(reasons), tuple(solver)
 
 
+def _own_friction(res: Any, f: Any) -> str:
+    """Whether the scene's friction ``f`` suffices without dilatancy, from the trial the
+    search made at it (lambda(f) need not grow with f, so f* does not tell)."""
+    t = next((t for t in res.history if isinstance(t, dict) and t.get("friction") == f),
+             None)
+    if t is None:  # not tried: below the static f*, where no state stands at all
+        return ("NOT enough: below the static f* no equilibrium state stands" if
+                res.lower is not None and f < res.lower else "not tried (without "
+                "dilatancy f* does not tell whether it is enough)")
+    if "load_factor" in t:  # a limit run: the multiplier the state from X0 carries
+        lam, st = t["load_factor"], t["status"]
+        if st in ("infeasible", "unbounded"):
+            ok = st == "unbounded"
+            there = ("there no multiple of the live load makes it collapse" if ok else
+                     "there the capped laws carry not even the dead load")
+        elif st != "converged" or lam is None:
+            return "not decided (the limit iteration did not settle there)"
+        else:
+            ok = lam >= float(res.load_factor) * (1.0 - 1e-9)
+            there = (f"there the state reached from X0 carries lambda = {lam:.7g} "
+                     f"({'>=' if ok else '<'} {res.load_factor:g})")
+    elif t["status"] in ("admissible", "inadmissible"):
+        ok = t["status"] == "admissible"
+        there = ("there the state reached from X0 " +
+                 ("stands" if ok else "breaches the joint laws"))
+    else:
+        return "not decided (the iteration did not settle there)"
+    below = (" although below f*: without dilatancy the frictions that carry the load "
+             "need not be one interval") if ok and f < res.friction_factor else ""
+    return f"{'enough' if ok else 'NOT enough'}: {there}{below}"
+
+
 def joint_list(names: list[str], first: int = FIRST) -> str:
     """``a-b, c-d, ... and N more`` (the first ``first``)."""
     if len(names) <= first:
@@ -314,7 +346,9 @@ class _Words:
         why = []
         f = self.scene.effective_friction
         na = without_dilatancy(res)
-        if not isinstance(f, str) and math.isfinite(float(f)):
+        if na and not isinstance(f, str) and math.isfinite(float(f)):
+            why.append(f"the scene's friction f = {float(f):g} is {_own_friction(res, f)}")
+        elif not isinstance(f, str) and math.isfinite(float(f)):
             lo = res.lower if res.lower is not None else fs
             if lo < float(f) < fs:
                 enough = (f"within f*'s bracket [{lo:.9g}, {fs:.9g}]: at the limit, not "

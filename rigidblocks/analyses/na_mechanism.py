@@ -58,11 +58,12 @@ CONE_DUAL_ZERO = 1e-6
 #: fraction of their number between two steps
 SETTLED = 0.02
 #: least-squares steps of the limit iteration after which it goes on by vertex steps
-#: (:meth:`Mechanisms.walk`): the least-squares path can cycle on a face (the 311-block
-#: wall at f = 0.8 from the associative state: a change of about 1e-3 for 500 steps),
-#: and each of its steps costs a QP (1.3 s on the 1,041-block wall, whose mechanism
-#: from X0 it reaches in 52 steps); the walls up to 311 blocks settle from X0 within 17
-PATH_STEPS = 20
+#: (:meth:`Mechanisms.walk`): each least-squares step costs a QP (0.8 s on the
+#: 1,041-block wall, 0.16 s on the 311-block one) and the path can cycle on a face (the
+#: 311-block wall at f = 0.8 from the associative state); a vertex step costs two warm
+#: LPs. With 20 the 1,041-block wall at f = 0.6 took 91 s (38 QPs), with 5 45 s (8),
+#: the 311-block one 7.4 s and 3.6 s; the answers move within their mechanisms' ranges
+PATH_STEPS = 5
 #: vertex steps of one walk
 WALK_STEPS = 100
 #: the nearest state within this (relative) of the mechanism's lowest or highest

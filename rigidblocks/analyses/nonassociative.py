@@ -904,18 +904,33 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
     if lim.status != "stable":
         na.notes.append("no friction admits an equilibrium state (static problem)")
         return out("unstable" if lim.status == "unstable" else lim.status, converged=True)
+    # without dilatancy f* does not say whether the scene's own friction suffices
+    # (lambda(f) need not grow with f): that friction is tried as well
+    fsc = scene.effective_friction
+    own = float(fsc) if not isinstance(fsc, str) and 0 < float(fsc) < _m.inf else None
+    if own is not None and lim.status == "stable" and own < (
+            lim.lower if lim.lower is not None else lim.value):
+        own = None  # below the static f* no state stands at all: nothing to try
     if isinstance(na, ConvexNonAssociative) and scene.has_live_load and lf > 0:
         # (without a live load, or at lambda = 0, there is no limit to iterate: the
         # state reached from X0 answers below)
-        return _friction_by_limit(na, cv, lf, lim, rtol, out, trials)
-    return _friction_by_verdicts(na, lf, lim, rtol, out, trials)
+        return _friction_by_limit(na, cv, lf, lim, rtol, out, trials, own)
+    return _friction_by_verdicts(na, lf, lim, rtol, out, trials, own)
+
+
+def _also_at(own: float | None, trials: list[dict[str, Any]], probe: Any) -> None:
+    """Try the scene's own friction ``own`` (by ``probe``, which records its trial)
+    unless a trial was made there."""
+    if own is not None and all(t.get("friction") != own for t in trials):
+        probe(own)
 
 
 def _friction_by_verdicts(na: NonAssociative, lf: float, lim: Any, rtol: float, out: Any,
-                          trials: list[dict[str, Any]]) -> FrictionResult:
+                          trials: list[dict[str, Any]], own: float | None = None
+                          ) -> FrictionResult:
     """The smallest f at which the state reached from X0 stands at ``lf``: bisection
     upwards from the static f* (``lim``) on the verdicts (the distortion path, and the
-    convex path without a live load). ``out`` and ``trials`` as in
+    convex path without a live load). ``out``, ``trials`` and ``own`` as in
     :func:`_friction_by_limit`."""
     fs = float(lim.value)
 
@@ -935,6 +950,7 @@ def _friction_by_verdicts(na: NonAssociative, lf: float, lim: Any, rtol: float, 
                             if first == fs else
                             f"the non-associative friction is within {rtol:g} (relative) "
                             f"above the static f* = {fs:.9g}")
+            _also_at(own, trials, decide)
             return out("stable", first, v, low, first, True)
     bad, good, best = first, max(2.0 * fs, 1e-3), None
     breach = [(first, v.violation)] if ok is False else []
@@ -981,18 +997,20 @@ def _friction_by_verdicts(na: NonAssociative, lf: float, lim: Any, rtol: float, 
         if br.too_wide(rtol, BRACKET_ATOL):
             na.notes.append(_too_wide_note(br, rtol))
             return out(UNDECIDED, lower=br.lower, upper=br.upper, converged=False)
+    _also_at(own, trials, decide)
     return out("stable", br.good, best, br.lower, br.upper, True)
 
 
 def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, lim: Any,
-                       rtol: float, out: Any, trials: list[dict[str, Any]]
-                       ) -> FrictionResult:
+                       rtol: float, out: Any, trials: list[dict[str, Any]],
+                       own: float | None = None) -> FrictionResult:
     """The smallest f whose limit fixed point from X0 (:func:`_load_by_limit`'s answer)
     carries ``load_factor``: the search engine between the static f* (no state at all
     below it) and the first of 2 f*, 4 f*, ... that carries it, stepping by the secant
     of lambda(f) - load_factor (:func:`_secant`, :func:`_across`) where it can, else
     halving. ``out`` builds the result (as :func:`min_friction_nonassociative` does)
-    from the ``trials``, appended to here."""
+    from the ``trials``, appended to here; the scene's own friction ``own`` is tried too
+    where the search did not (whether it suffices is not read from f*)."""
     from ..methods.engine import Search, Trial, midpoint, narrow_enough, run, undecided_trial
 
     na.limit_path = "walk" if walks(cv) else True
@@ -1020,6 +1038,7 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     s.record(t)
     if t.side:
         na.notes.append("the non-associative friction equals the static f*")
+        _also_at(own, trials, oracle)
         return out("stable", fs, t.data, lim.lower if lim.lower is not None else fs, fs,
                    True)
     good = max(2.0 * fs, 1e-3)
@@ -1043,6 +1062,7 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
                         f"bracket [{s.lower:.9g}, {s.upper:.9g}] wider than 1e-3")
         return out(UNDECIDED, lower=s.lower, upper=s.upper, converged=False)
     at = s.end(True)
+    _also_at(own, trials, oracle)
     na.notes.append(f"at f = {s.good:.9g} the limit fixed point from X0 carries lambda = "
                     f"{at.value + lf:.9g} >= {lf:g}; at f = {s.bad:.9g} "
                     f"{s.end(False).value + lf:.9g}")
