@@ -708,7 +708,8 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
     na.fp_iterations += sum(r.iterations for r in runs)
     trials = tuple({"start": r.start, "load_factor": r.lam, "status": r.status,
                     "iterations": r.iterations, "converged": r.converged,
-                    "span": None if r.span is None else list(r.span)} for r in runs)
+                    "span": None if r.span is None else list(r.span), "reason": r.reason}
+                   for r in runs)
     if verdict == INADMISSIBLE:
         na.notes.append("the state reached from the elastic state X0 under the dead load "
                         "alone breaches the joint laws: it does not stand" +
@@ -730,7 +731,7 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
         na.notes.extend(bad)
         return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
                                     True), load_multiplier_bounds=bounds)
-    na.notes.append(_spread_note(runs))
+    na.notes.append(_spread_note(trials))
     lam = float(main.lam)
     hi = bounds[1]
     if hi is not None and math.isfinite(hi) and abs(lam - hi) <= 1e-6 * max(abs(hi), 1.0):
@@ -747,34 +748,76 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
                       load_multiplier_bounds=bounds, mechanism=mech, governing=gov)
 
 
-def _spread_note(runs: list[LimitRun]) -> str:
-    """The answer from every start, the multipliers the collapse states of the mechanism
-    each reached carry (where they were computed), and whether the answers differ (1e-6
-    relative)."""
-    def one(r: LimitRun, same: bool) -> str:
-        if not r.converged:
-            return f"undecided ({r.reason})"
-        text = f"lambda = {r.lam:.7g}"
-        if same:
-            return text + " (the same mechanism)"
-        if r.span is not None and r.span[1] > r.span[0] * (1 + 1e-6):
-            text += (f" (the collapse states of the mechanism reached carry lambda from "
-                     f"{r.span[0]:.7g} to {r.span[1]:.7g})")
-        elif r.span is not None:
-            text += " (the one collapse state of the mechanism reached)"
-        return text
+@dataclass(frozen=True)
+class StartAnswer:
+    """One start's answer as the history gives it (:func:`compare_starts`)."""
 
-    main = runs[0]
-    text = f"{SPREAD_NOTE}{main.start}: {one(main, False)}"
-    for r in runs[1:]:
-        same = (r.converged and main.converged and r.span is not None
-                and r.span == main.span)
-        text += f"; from {r.start}: {one(r, same)}"
-    lams = [r.lam for r in runs if r.converged]
-    if len(lams) > 1:
-        text += (f". The answers from the starts differ: [{min(lams):.7g}, {max(lams):.7g}] "
-                 "(the answer is X0's)" if max(lams) > min(lams) * (1 + 1e-6)
-                 else ": the same answer")
+    start: str
+    #: its multiplier; None where its run did not converge
+    lam: float | None
+    status: str
+    reason: str
+    #: the multipliers of its mechanism's lowest and highest collapse states, where they
+    #: differ (more than SAME_ANSWER); None otherwise
+    span: tuple[float, float] | None
+    #: its mechanism has one collapse state
+    one_state: bool
+    #: its mechanism is the first start's (the same range)
+    same_mechanism: bool
+
+
+#: two multipliers within this (relative) are one answer, and a mechanism's range that
+#: narrow one state
+SAME_ANSWER = 1e-6
+
+
+def compare_starts(history: Any) -> tuple[list[StartAnswer], tuple[float, float] | None]:
+    """The answer from every start of the limit iteration (the history's entries with a
+    ``start``) and the spread of their multipliers where they differ (None where they
+    agree, or fewer than two converged): what the report's note and a terminal's
+    ``starts`` line say."""
+    entries = [h for h in (history or ()) if isinstance(h, dict) and "start" in h]
+    out: list[StartAnswer] = []
+    for k, h in enumerate(entries):
+        lam = h.get("load_factor") if h.get("converged") else None
+        span = h.get("span")
+        wide = span is not None and span[1] > span[0] * (1 + SAME_ANSWER)
+        out.append(StartAnswer(
+            h["start"], lam, h.get("status", "-"), h.get("reason", ""),
+            (float(span[0]), float(span[1])) if wide else None,
+            span is not None and not wide,
+            k > 0 and lam is not None and out[0].lam is not None and span is not None
+            and span == entries[0].get("span")))
+    lams = [a.lam for a in out if a.lam is not None]
+    spread = ((min(lams), max(lams)) if len(lams) > 1
+              and max(lams) > min(lams) * (1 + SAME_ANSWER) else None)
+    return out, spread
+
+
+def _spread_note(history: Any) -> str:
+    """The answer from every start, the multipliers the collapse states of the mechanism
+    each reached carry (where they were computed), and whether the answers differ
+    (:func:`compare_starts`)."""
+    def one(a: StartAnswer) -> str:
+        if a.lam is None:
+            return f"undecided ({a.reason})"
+        text = f"lambda = {a.lam:.7g}"
+        if a.same_mechanism:
+            return text + " (the same mechanism)"
+        if a.span is not None:
+            return text + (f" (the collapse states of the mechanism reached carry lambda "
+                           f"from {a.span[0]:.7g} to {a.span[1]:.7g})")
+        return text + (" (the one collapse state of the mechanism reached)"
+                       if a.one_state else "")
+
+    answers, spread = compare_starts(history)
+    text = f"{SPREAD_NOTE}{answers[0].start}: {one(answers[0])}"
+    text += "".join(f"; from {a.start}: {one(a)}" for a in answers[1:])
+    if spread is not None:
+        text += (f". The answers from the starts differ: [{spread[0]:.7g}, "
+                 f"{spread[1]:.7g}] (the answer is X0's)")
+    elif sum(a.lam is not None for a in answers) > 1:
+        text += ": the same answer"
     return text
 
 
@@ -1117,6 +1160,7 @@ def _verdict(r: LimitRun, force: float) -> Verdict:
 
 
 __all__ = ["ConvexNonAssociative", "DistortionNonAssociative", "FixedPoint",
-           "NonAssociative", "SPREAD_NOTE", "STATE_NOTE", "check_nonassociative", "flow_mask",
-           "is_nonassociative", "max_load_nonassociative", "min_friction_nonassociative",
+           "NonAssociative", "SPREAD_NOTE", "STATE_NOTE", "StartAnswer",
+           "check_nonassociative", "compare_starts", "flow_mask", "is_nonassociative",
+           "max_load_nonassociative", "min_friction_nonassociative",
            "nonassociative_method"]

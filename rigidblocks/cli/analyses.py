@@ -10,7 +10,7 @@ from dataclasses import replace
 from typing import Any
 
 from ..analyses import analysis
-from ..analyses.nonassociative import SPREAD_NOTE
+from ..analyses.nonassociative import SPREAD_NOTE, StartAnswer, compare_starts
 from ..answer import answer_block
 from ..errors import InputError
 from ..io import read_scene
@@ -274,26 +274,21 @@ def _flow_lines(res) -> list[str]:
         out.append(f"bounds     [{lo}, {hi}]   (frictionless lower bound, associative "
                    "upper bound)")
     if starts:
-        def value(h: dict, same: bool) -> str:
-            v = h.get("load_factor")
-            if not (h.get("converged") and v is not None):
-                return h.get("status", "-")
-            span = h.get("span")
-            if same:
-                return f"{v:.7g} (the same mechanism)"
-            if span and span[1] > span[0] * (1 + 1e-6):
-                return f"{v:.7g} (its mechanism's states [{span[0]:.7g}, {span[1]:.7g}])"
-            return f"{v:.7g}"
+        answers, spread = compare_starts(starts)
 
-        first = starts[0].get("span")
-        vals = [h["load_factor"] for h in starts
-                if h.get("converged") and h.get("load_factor") is not None]
-        spread = (f"; the answers differ: [{min(vals):.7g}, {max(vals):.7g}]"
-                  if len(vals) > 1 and max(vals) > min(vals) * (1 + 1e-6) else "")
-        same = [k > 0 and first is not None and h.get("span") == first
-                for k, h in enumerate(starts)]
-        out.append("starts     " + "; ".join(f"from {h['start']}: lambda = {value(h, s)}"
-                                             for h, s in zip(starts, same, strict=True)) + spread)
+        def value(a: StartAnswer) -> str:
+            if a.lam is None:
+                return a.status
+            if a.same_mechanism:
+                return f"{a.lam:.7g} (the same mechanism)"
+            if a.span is not None:
+                return f"{a.lam:.7g} (its mechanism's states [{a.span[0]:.7g}, {a.span[1]:.7g}])"
+            return f"{a.lam:.7g}"
+
+        out.append("starts     " + "; ".join(f"from {a.start}: lambda = {value(a)}"
+                                             for a in answers) +
+                   (f"; the answers differ: [{spread[0]:.7g}, {spread[1]:.7g}]"
+                    if spread is not None else ""))
     return out
 
 
