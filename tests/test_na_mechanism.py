@@ -159,10 +159,30 @@ def test_vertex_steps_end_at_a_checked_state(monkeypatch):
     for name, n in starts:
         run = capped.run(n, name, settle=mech.settler())
         assert run.converged
-        assert "by steps to the least confined state after 0 least-squares" in run.reason
+        assert (f"after {run.iterations} limit solves ({run.iterations} of them by steps "
+                "to the least confined state after 0 least-squares") in run.reason
         assert run.span[0] <= run.lam <= run.span[1] < up.value
         eq, breach = certificate(cv, 0.8, run.lam, run.x * cv.scaling.force)
         assert eq <= 1e-7 and breach <= 1e-7
+
+
+def test_a_walk_that_finds_no_state_ends_the_run_undecided(monkeypatch):
+    """Vertex steps that reach no mechanism with collapse states within WALK_STEPS end
+    the run undecided, saying so, with the steps they took counted (one vertex step
+    cannot settle: settling compares two). The 10 x 10 wall at f = 0.8 from X0 by
+    vertex steps alone has no settled mechanism with states within 3 steps."""
+    from rigidblocks.analyses import na_mechanism
+
+    monkeypatch.setattr(na_mechanism, "PATH_STEPS", 1)
+    monkeypatch.setattr(na_mechanism, "WALK_STEPS", 3)
+    scene = build("wall", courses=10, blocks_per_course=10, friction=0.8)
+    na, cv = nonassociative._open(scene, "clarabel", NA)
+    capped = CappedLimit(cv, na.marked, 0.8)
+    run = capped.run(nonassociative.x0_normals(na), "X0",
+                     settle=Mechanisms(capped).settler())
+    assert run.status == "undecided" and run.iterations == 3
+    assert run.reason == ("no mechanism with collapse states within 3 vertex steps after "
+                          "0 least-squares steps")
 
 
 def test_the_safe_multiplier_is_the_lowest_state_of_the_mechanism_reached():

@@ -237,7 +237,9 @@ class CappedLimit:
         """Iterate from the normal forces ``N_start`` (scaled) to a fixed point.
         ``settle(N)``, called after each step's limit solve at the caps of N, ends the
         run where it gives a collapse state: (its solution, its multiplier's span, how
-        it was reached) (:mod:`rigidblocks.analyses.na_mechanism`)."""
+        it was reached, the limit solves it took beyond the run's own), or (None, None,
+        why, solves) where it ends the run undecided
+        (:mod:`rigidblocks.analyses.na_mechanism`)."""
 
         def step(N: np.ndarray) -> tuple:
             b = self.rhs(N)
@@ -275,11 +277,14 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
         value, b, z, target = got
         done = settle(N) if settle is not None else None
         if done is not None:
-            zs, span, how = done
+            zs, span, how, extra = done
+            if zs is None:
+                return LimitRun(start, "undecided", value, x, k + extra, how, hist,
+                                time.perf_counter() - t0)
             return LimitRun(start, "converged", float(zs[capped.prob.cols["lambda"].start]),
-                            zs[:capped.cv.system.layout.size], k,
-                            f"the mechanism reached after {k} {what}{how} has collapse "
-                            "states", hist, time.perf_counter() - t0, span=span)
+                            zs[:capped.cv.system.layout.size], k + extra,
+                            f"the mechanism reached after {k + extra} {what}{how} has "
+                            "collapse states", hist, time.perf_counter() - t0, span=span)
         x, Nn, change = _select_step(capped, b, target, N, z)
         hist.append((value, change))
         if change <= tol:

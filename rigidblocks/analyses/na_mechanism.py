@@ -130,13 +130,14 @@ class Mechanisms:
     def settler(self) -> Any:
         """A ``settle`` for one run of :meth:`CappedLimit.run`: at each step the rows of
         the mechanism; once they settle, the state of its polytope nearest the
-        iterate, checked, with the span of its multipliers and how it was reached
-        (None: go on). After ``PATH_STEPS`` steps without one, the run goes on by
-        :meth:`walk` from where it is."""
+        iterate, checked, with the span of its multipliers, how it was reached and the
+        limit solves it took beyond the run's own (None: go on). After ``PATH_STEPS``
+        steps without one, the run goes on by :meth:`walk` from where it is and ends
+        with it (its state None, and why, where the walk finds none)."""
         prev: list[np.ndarray] = []
         steps = [0]
 
-        def settle(N: np.ndarray) -> tuple[np.ndarray, tuple[float, float], str] | None:
+        def settle(N: np.ndarray) -> tuple[Any, Any, str, int] | None:
             steps[0] += 1
             if steps[0] == PATH_STEPS:
                 return self.walk(N)
@@ -148,30 +149,37 @@ class Mechanisms:
             if not _settled(prev[0], last):
                 return None
             got = self.states(act, N)
-            return None if got is None else (*got, "")
+            return None if got is None else (*got, "", 0)
 
         return settle
 
-    def walk(self, N: np.ndarray, max_steps: int = WALK_STEPS
-             ) -> tuple[np.ndarray, tuple[float, float], str] | None:
+    def walk(self, N: np.ndarray, max_steps: int | None = None
+             ) -> tuple[Any, Any, str, int]:
         """From the normal forces ``N`` by steps to phase 2's vertex (no least-squares
         term) until the mechanism's rows settle and its polytope has a state, as
-        :meth:`settler`; None where it does not within ``max_steps``."""
+        :meth:`settler`, the first step at ``N`` itself (the limit solve the run made
+        there); no state, and why, where none is found within ``max_steps``
+        (``WALK_STEPS``)."""
+        max_steps = max_steps or WALK_STEPS
         last = None
+        after = f"after {PATH_STEPS - 1} least-squares steps"
         for k in range(1, max_steps + 1):
             bj = self.capped.rhs(N)
             st, _, _ = self.capped.solver.maximise(bj)
             act = self.active(bj) if st == OPTIMAL else None
             if act is None:
-                return None
+                why = f"the limit problem gave no answer ({st})" if st != OPTIMAL else \
+                    "the least confined state gave no answer"
+                return None, None, f"{why} at vertex step {k} {after}", k - 1
             if _settled(self.key(act), last):
                 got = self.states(act, N)
                 if got is not None:
                     return (*got, f" ({k} of them by steps to the least confined state "
-                                  f"after {PATH_STEPS - 1} least-squares steps)")
+                                  f"{after})", k - 1)
             last = self.key(act)
             N = np.maximum(self.phase2_x[self.capped.nsl], 0.0)
-        return None
+        return None, None, (f"no mechanism with collapse states within {max_steps} vertex "
+                            f"steps {after}"), max_steps - 1
 
     def states(self, active: np.ndarray, N: np.ndarray
                ) -> tuple[np.ndarray, tuple[float, float]] | None:
