@@ -138,10 +138,12 @@ def _own_friction(res: Any, f: Any) -> str:
                 "dilatancy f* does not tell whether it is enough)")
     if "load_factor" in t:  # a limit run: the multiplier the state from X0 carries
         lam, st = t["load_factor"], t["status"]
-        if st in ("infeasible", "unbounded"):
+        if st in ("infeasible", "unbounded", "unstable"):
             ok = st == "unbounded"
-            there = ("there no multiple of the live load makes it collapse" if ok else
-                     "there the capped laws carry not even the dead load")
+            there = {"unbounded": "there no multiple of the live load makes it collapse",
+                     "infeasible": "there the capped laws carry not even the dead load",
+                     "unstable": "there the state reached from X0 under the dead load "
+                                 "alone breaches the joint laws"}[st]
         elif st != "converged" or lam is None:
             return "not decided (the limit iteration did not settle there)"
         else:

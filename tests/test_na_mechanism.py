@@ -10,7 +10,7 @@ from conftest import EXAMPLES
 
 import rigidblocks as rb
 from rigidblocks.analyses import nonassociative
-from rigidblocks.analyses.na_limit import CappedLimit, certificate
+from rigidblocks.analyses.na_limit import CappedLimit, certificate, x0_normals
 from rigidblocks.analyses.na_mechanism import Mechanisms
 from rigidblocks.generators import build
 from rigidblocks.io import read_scene
@@ -166,23 +166,29 @@ def test_vertex_steps_end_at_a_checked_state(monkeypatch):
         assert eq <= 1e-7 and breach <= 1e-7
 
 
-def test_a_walk_that_finds_no_state_ends_the_run_undecided(monkeypatch):
-    """Vertex steps that reach no mechanism with collapse states within WALK_STEPS end
-    the run undecided, saying so, with the steps they took counted (one vertex step
+def test_a_walk_that_finds_no_state_goes_on_by_least_squares(monkeypatch):
+    """Vertex steps that reach no mechanism with collapse states within WALK_STEPS hand
+    the run back to least-squares steps, and the run counts both (one vertex step
     cannot settle: settling compares two). The 10 x 10 wall at f = 0.8 from X0 by
-    vertex steps alone has no settled mechanism with states within 3 steps."""
+    vertex steps alone has no settled mechanism with states within 2 steps."""
     from rigidblocks.analyses import na_mechanism
 
     monkeypatch.setattr(na_mechanism, "PATH_STEPS", 1)
-    monkeypatch.setattr(na_mechanism, "WALK_STEPS", 3)
+    monkeypatch.setattr(na_mechanism, "WALK_STEPS", 2)
     scene = build("wall", courses=10, blocks_per_course=10, friction=0.8)
     na, cv = nonassociative._open(scene, "clarabel", NA)
     capped = CappedLimit(cv, na.marked, 0.8)
-    run = capped.run(nonassociative.x0_normals(na), "X0",
-                     settle=Mechanisms(capped).settler())
-    assert run.status == "undecided" and run.iterations == 3
-    assert run.reason == ("no mechanism with collapse states within 3 vertex steps after "
-                          "0 least-squares steps")
+    mech = Mechanisms(capped)
+    walked = []
+    walk = mech.walk
+    monkeypatch.setattr(mech, "walk", lambda N: walked.append(walk(N)) or walked[-1])
+    run = capped.run(x0_normals(na), "X0", settle=mech.settler())
+    assert walked[0][0] is None and walked[0][2] == (
+        "no mechanism with collapse states within 2 vertex steps after 0 least-squares "
+        "steps")
+    assert run.converged
+    assert f"after {run.iterations} limit solves" in run.reason
+    assert run.iterations == len(run.history) + 1 + 1  # its steps, the walk's second
 
 
 def test_the_safe_multiplier_is_the_lowest_state_of_the_mechanism_reached():

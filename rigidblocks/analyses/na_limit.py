@@ -238,7 +238,7 @@ class CappedLimit:
         ``settle(N)``, called after each step's limit solve at the caps of N, ends the
         run where it gives a collapse state: (its solution, its multiplier's span, how
         it was reached, the limit solves it took beyond the run's own), or (None, None,
-        why, solves) where it ends the run undecided
+        why, solves) where it found none and the run goes on
         (:mod:`rigidblocks.analyses.na_mechanism`)."""
 
         def step(N: np.ndarray) -> tuple:
@@ -269,6 +269,7 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
     beta, best, since = 1.0, math.inf, 0
     value, x = math.nan, None
     acc = _Anderson(MEMORY)
+    extra = 0  # limit solves made by ``settle`` (vertex steps)
     for k in range(1, max_iter + 1):
         got = step(N)
         if len(got) == 2:
@@ -277,14 +278,14 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
         value, b, z, target = got
         done = settle(N) if settle is not None else None
         if done is not None:
-            zs, span, how, extra = done
-            if zs is None:
-                return LimitRun(start, "undecided", value, x, k + extra, how, hist,
-                                time.perf_counter() - t0)
-            return LimitRun(start, "converged", float(zs[capped.prob.cols["lambda"].start]),
-                            zs[:capped.cv.system.layout.size], k + extra,
-                            f"the mechanism reached after {k + extra} {what}{how} has "
-                            "collapse states", hist, time.perf_counter() - t0, span=span)
+            zs, span, how, more = done
+            extra += more
+            if zs is not None:
+                return LimitRun(start, "converged",
+                                float(zs[capped.prob.cols["lambda"].start]),
+                                zs[:capped.cv.system.layout.size], k + extra,
+                                f"the mechanism reached after {k + extra} {what}{how} has "
+                                "collapse states", hist, time.perf_counter() - t0, span=span)
         x, Nn, change = _select_step(capped, b, target, N, z)
         hist.append((value, change))
         if change <= tol:
@@ -295,7 +296,7 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
             acc.reset()
         beta = damped
         N = np.maximum(acc.update(N, Nn - N, beta), 0.0)
-    return LimitRun(start, "undecided", value, x, max_iter,
+    return LimitRun(start, "undecided", value, x, max_iter + extra,
                     f"no fixed point within {max_iter} {what} (last relative change of "
                     f"the normal forces {hist[-1][1]:.3g})", hist, time.perf_counter() - t0)
 

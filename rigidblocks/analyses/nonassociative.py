@@ -79,7 +79,6 @@ from .na_limit import (
     LimitRun,
     certificate,
     reached_normals,
-    x0_normals,
 )
 from .na_mechanism import limit_runs, walks
 from .search import BRACKET_ATOL, UNBOUNDED_AT, bisect
@@ -129,6 +128,11 @@ STATE_NOTE = ("non-associative sliding (no dilatancy): the answer is the one rea
               "the elastic state X0 (least complementary energy under equilibrium alone, "
               "the starting state of the distortion method), with no pinch the loads do "
               "not cause; other states, and so other answers, may exist")
+
+
+#: why the limit iteration has no start at a friction
+DEAD_LOAD_BREACH = ("the state reached from the elastic state X0 under the dead load "
+                    "alone breaches the joint laws")
 
 
 #: the note of the limit analyses on the convex path
@@ -711,8 +715,7 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
                     "span": None if r.span is None else list(r.span), "reason": r.reason}
                    for r in runs)
     if verdict == INADMISSIBLE:
-        na.notes.append("the state reached from the elastic state X0 under the dead load "
-                        "alone breaches the joint laws: it does not stand" +
+        na.notes.append(f"{DEAD_LOAD_BREACH}: it does not stand" +
                         (f"; from the associative collapse state: lambda = {runs[0].lam:.7g}"
                          if runs and runs[0].converged else ""))
         return LoadResult(**_fields(na, "max_load_multiplier", "unstable", f, None, trials,
@@ -1054,18 +1057,33 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     halving. ``out`` builds the result (as :func:`min_friction_nonassociative` does)
     from the ``trials``, appended to here; the scene's own friction ``own`` is tried too
     where the search did not (whether it suffices is not read from f*)."""
-    from ..methods.engine import Search, Trial, midpoint, narrow_enough, run, undecided_trial
+    from ..methods.engine import (
+        Search,
+        Trial,
+        beside_the_undecided,
+        midpoint,
+        narrow_enough,
+        run,
+        undecided_band,
+    )
 
     na.limit_path = "walk" if walks(cv) else True
-    n0 = x0_normals(na)
     fs = float(lim.value)
-    if n0 is None:
-        na.notes.append("the elastic state X0 has no solution")
-        return out(UNDECIDED, converged=False)
 
     def oracle(fv: float) -> Trial:
+        # the start `load` takes at fv: the state reached from X0 under the dead load
+        verdict, start = reached_normals(na, fv)
+        if start is None:
+            decided = verdict == INADMISSIBLE  # else X0 itself has no solution
+            why = (DEAD_LOAD_BREACH if decided else "the elastic state X0 has no solution")
+            trials.append({"friction": fv, "load_factor": None,
+                           "status": "unstable" if decided else UNDECIDED,
+                           "iterations": 0, "converged": decided})
+            return Trial(fv, False if decided else None,
+                         data=Verdict(INADMISSIBLE if decided else UNDECIDED,
+                                      notes=(why,)), why=why)
         capped = CappedLimit(cv, na.marked, fv)
-        (r,) = limit_runs(capped, [(FROM_X0, n0)])
+        (r,) = limit_runs(capped, [(FROM_X0, start)])
         na.fp_iterations += r.iterations
         trials.append({"friction": fv, "load_factor": r.lam, "status": r.status,
                        "iterations": r.iterations, "converged": r.converged})
@@ -1099,10 +1117,12 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
             na.notes.append(f"no friction up to {NA_FRICTION_CEILING:g} carries the load "
                             "at the limit fixed point reached from X0")
             return out("unstable", converged=True)
-    run(s, oracle, (undecided_trial, narrow_enough), (_across, _secant, midpoint))
-    if s.stopped == "undecided_trial" and not s.narrow(1e-3):
-        na.notes.append(f"the limit iteration did not settle at f = {s.last.x:.9g}: "
-                        f"bracket [{s.lower:.9g}, {s.upper:.9g}] wider than 1e-3")
+    run(s, oracle, (undecided_band, narrow_enough),
+        (beside_the_undecided, _across, _secant, midpoint))
+    if not s.narrow():
+        at = ", ".join(f"{t.x:.9g}" for t in s.trials if t.side is None)
+        na.notes.append(f"the limit iteration did not settle at f = {at}: bracket "
+                        f"[{s.lower:.9g}, {s.upper:.9g}] wider than {rtol:g}")
         return out(UNDECIDED, lower=s.lower, upper=s.upper, converged=False)
     at = s.end(True)
     _also_at(own, trials, oracle)
