@@ -340,7 +340,8 @@ def test_cli_load_safe(capsys, tmp_path):
     """`load --flow non-associative --safe`: the reference model with self-weight has a
     collapse state at 0.6 below the answer from X0, 2.4 (the top block on the right
     block alone, the left block sliding out under its own weight: 50 N = f x 100 N),
-    proven the smallest; a scene of more than 50 joints gets the reason, and the
+    proven the smallest; undecided in its time limit, its bracket ends at the answer
+    (a checked collapse state); a scene of more than 50 joints gets the reason, and the
     analysis' own answer and exit status are unchanged."""
     import json
 
@@ -365,6 +366,8 @@ def test_cli_load_safe(capsys, tmp_path):
                  "--safe-time-limit", "1e-9"]) == 0
     line = next(s for s in capsys.readouterr().out.splitlines() if s.startswith("safe"))
     assert line.startswith("safe       undecided: bracket [") and "Time limit" in line
+    # its upper end, with no state from HiGHS, is the answer's checked collapse state
+    assert ", 2.4] (mixed-integer LP" in line and "(2.4: the answer's collapse state)" in line
     assert main(["load", path, "--safe-time-limit", "0"]) == 2
     assert "--safe-time-limit: not a number of seconds > 0" in capsys.readouterr().err
     from rigidblocks.io import write_scene

@@ -471,7 +471,8 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
                     force_bound: float | None = None, velocity_bound: float | None = None,
                     time_limit: float = 60.0, node_limit: int | None = None,
                     double_check: bool = True, cut: bool = True,
-                    pyramid: int | None = None) -> SafeMultiplier:
+                    pyramid: int | None = None,
+                    collapse_at: float | None = None) -> SafeMultiplier:
     """The smallest non-associative collapse multiplier over all states, as a
     mixed-integer LP solved by HiGHS (see the module docstring).
 
@@ -487,8 +488,10 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
     then prunes below it; without it the MILP's value is independent of the bound.
     ``pyramid`` (3D only; default ``PYRAMID``): the Coulomb cones are replaced by
     inscribed pyramids of that many facets (a linear law: the answer is that law's, and
-    a note says so). Scenes of more than ``max_joints`` joints are refused with an
-    :class:`InputError`.
+    a note says so). ``collapse_at``: the multiplier of a collapse state known already
+    (the limit iteration's checked answer), the upper end of an undecided bracket where
+    HiGHS found no lower one. Scenes of more than ``max_joints`` joints are refused
+    with an :class:`InputError`.
     """
     from ..methods import open_method
 
@@ -529,7 +532,8 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
     low = _frictionless_bound(cv, marked, f)
     s_max = _static_slack_max(m, assoc)
     cap, rounds = _capacity_bound(m, cv, marked, f, max(low or 0.0, 0.0), assoc)
-    ctx = _Context(m, cv, f, S, V, low, assoc, s_max, cap, rounds, cut, node_limit)
+    ctx = _Context(m, cv, f, S, V, low, assoc, s_max, cap, rounds, cut, node_limit,
+                   collapse_at=collapse_at)
     ctx.notes.extend(n for n in cv.notes if n.startswith("friction cones linearised"))
     return _decide(ctx, time_limit, double_check)
 
@@ -552,6 +556,8 @@ class _Context:
     rounds: int
     cut: bool
     node_limit: int | None = None
+    #: the multiplier of a collapse state known already (see :func:`safe_multiplier`)
+    collapse_at: float | None = None
     #: a mixed-integer solve was made
     ran: bool = False
     trials: list[tuple[float, float | None]] = field(default_factory=list)
@@ -590,13 +596,17 @@ def _decide(ctx: _Context, time_limit: float, double_check: bool) -> SafeMultipl
             run = dict(run, status=0, dual=ctx.cap)
         if run["status"] not in (0, 2) or (run["status"] == 0 and got is None):
             up = None if got is None else got[0]
+            found = "a collapse state found"
+            known = ctx.collapse_at
+            if known is not None and (up is None or known < up):
+                up, found = known, "the answer's collapse state"
             lo = ctx.cap if run["dual"] is None else max(float(run["dual"]), ctx.cap)
             gap = "" if run["gap"] is None else f", gap {100 * float(run['gap']):.3g}%"
             ctx.notes.append(f"HiGHS did not prove the least multiplier ({run['message']}"
                              f", {run['nodes']} nodes{gap}) within the bounds"
                              f"{' doubled' if k > 1 else ''}: it lies in [{_fmt(lo)}, "
                              f"{_fmt(up)}]" + ("" if up is None else
-                                              f" ({_fmt(up)}: a collapse state found)"))
+                                              f" ({_fmt(up)}: {found})"))
             return _result(ctx, UNDECIDED, None, run["dual"], up, got)
         ctx.trials.append((k * ctx.S * F, None if got is None else got[0]))
         if got is None:

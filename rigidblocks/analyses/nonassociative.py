@@ -797,6 +797,19 @@ def compare_starts(history: Any) -> tuple[list[StartAnswer], tuple[float, float]
     return out, spread
 
 
+def collapse_state_at(res: Any) -> float | None:
+    """The multiplier of the collapse state the answer ``res`` rests on, checked (the
+    limit iteration's state from X0, converged: a ``load`` whose history has starts)
+    under the linear laws of 2D; None otherwise (a bisection's value, an associative
+    answer, Coulomb's cones)."""
+    starts = [h for h in (getattr(res, "history", None) or ())
+              if isinstance(h, dict) and "start" in h]
+    if getattr(res, "status", None) != "collapse" or not starts \
+            or not starts[0].get("converged") or res.contacts.dimension != 2:
+        return None
+    return float(starts[0]["load_factor"])
+
+
 def _spread_note(history: Any) -> str:
     """The answer from every start, the multipliers the collapse states of the mechanism
     each reached carry (where they were computed), and whether the answers differ
@@ -1181,6 +1194,6 @@ def _verdict(r: LimitRun, force: float) -> Verdict:
 
 __all__ = ["ConvexNonAssociative", "DistortionNonAssociative", "FixedPoint",
            "NonAssociative", "SPREAD_NOTE", "STATE_NOTE", "StartAnswer",
-           "check_nonassociative", "compare_starts", "flow_mask", "is_nonassociative",
-           "max_load_nonassociative", "min_friction_nonassociative",
+           "check_nonassociative", "collapse_state_at", "compare_starts", "flow_mask",
+           "is_nonassociative", "max_load_nonassociative", "min_friction_nonassociative",
            "nonassociative_method"]

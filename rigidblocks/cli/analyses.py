@@ -102,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
         show=not args.json and sys.stderr.isatty())
     if csv_path is not None:
         _write_csv(res, csv_path)
-    safe = _safe(scene, args) if getattr(args, "safe", False) else None
+    safe = _safe(scene, args, res) if getattr(args, "safe", False) else None
     if args.json:
         doc = res.to_dict(joints=args.joints == "-")
         if safe is not None:
@@ -125,11 +125,12 @@ def _seconds(text: str) -> float:
     return value
 
 
-def _safe(scene: Any, args: argparse.Namespace) -> dict[str, Any]:
+def _safe(scene: Any, args: argparse.Namespace, res: Any) -> dict[str, Any]:
     """The safe multiplier of ``load --safe`` as a dict: status, value, bracket, notes
-    (or the reason it was not computed)."""
+    (or the reason it was not computed); the answer ``res``, where the limit iteration
+    ended at a checked collapse state, bounds it from above."""
     from ..analyses.na_bounds import safe_multiplier
-    from ..analyses.nonassociative import is_nonassociative
+    from ..analyses.nonassociative import collapse_state_at, is_nonassociative
 
     q = question(args)
     if not is_nonassociative(scene, q.get("flow")):
@@ -139,7 +140,8 @@ def _safe(scene: Any, args: argparse.Namespace) -> dict[str, Any]:
                           "multiplier is unique, the answer above"}
     try:
         r = safe_multiplier(scene, friction=q.get("friction"), flow=q.get("flow"),
-                            time_limit=args.safe_time_limit)
+                            time_limit=args.safe_time_limit,
+                            collapse_at=collapse_state_at(res))
     except InputError as err:
         return {"status": "not computed", "reason": str(err).split(": ", 1)[-1]}
     return {"status": r.status, "value": r.value, "lower": r.lower, "upper": r.upper,
