@@ -276,7 +276,9 @@ def test_nonassociative_friction_claims_no_bound_above(tmp_path, capsys):
     0.5288166 at f = 0.79915, 0.5287345 at 0.7993): `friction --flow non-associative`
     says it stands at f*, not for every f above it, and whether the scene's friction
     suffices is read from a run at that friction, not from f*: at the multiplier `load`
-    found at f = 0.6, f = 0.6 is enough whatever f* is (the same run)."""
+    found at f = 0.6, f = 0.6 is enough (the same run), and f* is at most 0.6 (the
+    search tries the scene's friction first; doubling up from the static f* it found
+    a crossing at 0.600233 above it)."""
     from rigidblocks.cli.main import main
     from rigidblocks.io.scene_file import dumps_scene
 
@@ -292,6 +294,9 @@ def test_nonassociative_friction_claims_no_bound_above(tmp_path, capsys):
         "verdict    STANDS at friction f = f*"
     enough = next(s for s in out if "the scene's friction" in s)
     assert f"is enough: there the state reached from X0 carries lambda = {lam:.7g}" in enough
+    # the scene's friction is tried first, and f* sought below it where it carries
+    fstar = float(next(s for s in out if s.startswith("answer")).split()[3])
+    assert fstar <= 0.6
     assert any("a larger f need not carry more" in s for s in out)
 
 

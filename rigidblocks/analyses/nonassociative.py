@@ -1116,7 +1116,14 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
         return out("stable", fs, t.data, lim.lower if lim.lower is not None else fs, fs,
                    True)
     good = max(2.0 * fs, 1e-3)
-    while True:
+    if own is not None and own > fs:
+        # the scene's own friction first: where it carries the load, f* is sought below
+        # it (lambda(f) need not grow with f: above the static f* the first f that
+        # carries it, doubling, can lie above one that does)
+        t = oracle(own)
+        s.record(t)
+        good = own if t.side else max(good, 2.0 * own) if t.side is False else good
+    while not (t.side and good == t.x):
         t = oracle(good)
         s.record(t)
         if t.side is None:
