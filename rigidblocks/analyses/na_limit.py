@@ -61,8 +61,12 @@ from ..solvers.highs_warm import warm_lp
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
 LIMIT_TOL = 1e-7
-#: iteration budget of one run
-LIMIT_MAX_ITER = 500
+#: limit solves of one run, its vertex steps (:mod:`rigidblocks.analyses.na_mechanism`)
+#: included: runs that end at their mechanism's states take 6 to 120 on the walls up to
+#: 1,041 blocks, and one that does not settle costs a least-squares step each (1.5 s at
+#: 1,041 blocks: the 32 x 32 wall's friction search at f = 0.8 spent over 20 minutes in
+#: the run of its first trial, at the static f*, with a budget of 500)
+LIMIT_MAX_ITER = 200
 #: steps without a new smallest change after which the step is halved, down to
 STALL = 12
 MIN_DAMPING = 1.0 / 64
@@ -270,7 +274,9 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
     value, x = math.nan, None
     acc = _Anderson(MEMORY)
     extra = 0  # limit solves made by ``settle`` (vertex steps)
-    for k in range(1, max_iter + 1):
+    k = 0
+    while k + extra < max_iter:
+        k += 1
         got = step(N)
         if len(got) == 2:
             return LimitRun(start, got[0], None, None, k, got[1], hist,
@@ -289,16 +295,18 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
         x, Nn, change = _select_step(capped, b, target, N, z)
         hist.append((value, change))
         if change <= tol:
-            return LimitRun(start, "converged", value, x, k,
-                            f"fixed point after {k} {what}", hist, time.perf_counter() - t0)
+            return LimitRun(start, "converged", value, x, k + extra,
+                            f"fixed point after {k + extra} {what}", hist,
+                            time.perf_counter() - t0)
         damped, best, since = _damped(beta, best, since, change)
         if damped != beta:
             acc.reset()
         beta = damped
         N = np.maximum(acc.update(N, Nn - N, beta), 0.0)
-    return LimitRun(start, "undecided", value, x, max_iter + extra,
-                    f"no fixed point within {max_iter} {what} (last relative change of "
-                    f"the normal forces {hist[-1][1]:.3g})", hist, time.perf_counter() - t0)
+    last = f" (last relative change of the normal forces {hist[-1][1]:.3g})" if hist else ""
+    return LimitRun(start, "undecided", value, x, k + extra,
+                    f"no fixed point within {max_iter} {what}{last}", hist,
+                    time.perf_counter() - t0)
 
 
 class _Anderson:
