@@ -1060,31 +1060,14 @@ def _friction_by_verdicts(na: NonAssociative, lf: float, lim: Any, rtol: float, 
     return out("stable", br.good, best, br.lower, br.upper, True)
 
 
-def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, lim: Any,
-                       rtol: float, out: Any, trials: list[dict[str, Any]],
-                       own: float | None = None) -> FrictionResult:
-    """The smallest f whose limit fixed point from X0 (:func:`_load_by_limit`'s answer)
-    carries ``load_factor``: the search engine between the static f* (no state at all
-    below it) and the first of 2 f*, 4 f*, ... that carries it, stepping by the secant
-    of lambda(f) - load_factor (:func:`_secant`, :func:`_across`) where it can, else
-    halving. ``out`` builds the result (as :func:`min_friction_nonassociative` does)
-    from the ``trials``, appended to here; the scene's own friction ``own`` is tried too
-    where the search did not (whether it suffices is not read from f*)."""
-    from ..methods.engine import (
-        Search,
-        Trial,
-        beside_the_undecided,
-        midpoint,
-        narrow_enough,
-        run,
-        undecided_band,
-    )
-
-    na.limit_path = "walk" if walks(cv) else True
-    fs = float(lim.value)
+def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
+                  trials: list[dict[str, Any]]) -> Any:
+    """The trial of :func:`_friction_by_limit` at a friction fv: the limit iteration from
+    the start `load` takes at fv (the state reached from X0 under the dead load), which
+    carries ``lf`` or not (None: undecided), its record appended to ``trials``."""
+    from ..methods.engine import Trial
 
     def oracle(fv: float) -> Trial:
-        # the start `load` takes at fv: the state reached from X0 under the dead load
         verdict, start = reached_normals(na, fv)
         if start is None:
             decided = verdict == INADMISSIBLE  # else X0 itself has no solution
@@ -1106,6 +1089,33 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
         if not r.converged or _limit_checks(cv, fv, r, (None, None)):
             return Trial(fv, None, data=v, why=r.reason)
         return Trial(fv, r.lam >= lf * (1.0 - 1e-9), value=r.lam - lf, data=v)
+
+    return oracle
+
+
+def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, lim: Any,
+                       rtol: float, out: Any, trials: list[dict[str, Any]],
+                       own: float | None = None) -> FrictionResult:
+    """The smallest f whose limit fixed point from X0 (:func:`_load_by_limit`'s answer)
+    carries ``load_factor``: the search engine between the static f* (no state at all
+    below it) and the first of 2 f*, 4 f*, ... that carries it, stepping by the secant
+    of lambda(f) - load_factor (:func:`_secant`, :func:`_across`) where it can, else
+    halving. ``out`` builds the result (as :func:`min_friction_nonassociative` does)
+    from the ``trials``, appended to here; the scene's own friction ``own`` is tried too
+    where the search did not (whether it suffices is not read from f*)."""
+    from ..methods.engine import (
+        Search,
+        beside_the_undecided,
+        midpoint,
+        narrow_enough,
+        run,
+        undecided_band,
+    )
+
+    na.limit_path = "walk" if walks(cv) else True
+    fs = float(lim.value)
+
+    oracle = _limit_oracle(na, cv, lf, trials)
 
     s = Search(fs, fs, rtol)
     t = oracle(fs)
