@@ -39,7 +39,6 @@ NA_INADMISSIBLE = ("NOT ADMISSIBLE: the state reached from the elastic state X0 
                    "joint laws (sliding without dilatancy; another state may stand)")
 
 
-
 def without_dilatancy(result: Any) -> bool:
     """Was ``result`` analysed with joints that slide without dilatancy (its answer is
     the state reached from X0, not one over every state)?"""
@@ -348,11 +347,11 @@ class _Words:
         why = []
         f = self.scene.effective_friction
         na = without_dilatancy(res)
-        if na and not isinstance(f, str) and math.isfinite(float(f)):
-            why.append(f"the scene's friction f = {float(f):g} is {_own_friction(res, f)}")
-        elif not isinstance(f, str) and math.isfinite(float(f)):
+        if not isinstance(f, str) and math.isfinite(float(f)):
             lo = res.lower if res.lower is not None else fs
-            if lo < float(f) < fs:
+            if na:
+                enough = _own_friction(res, f)
+            elif lo < float(f) < fs:
                 enough = (f"within f*'s bracket [{lo:.9g}, {fs:.9g}]: at the limit, not "
                           "decided at this accuracy")
             else:

@@ -279,7 +279,7 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
         k += 1
         got = step(N)
         if len(got) == 2:
-            return LimitRun(start, got[0], None, None, k, got[1], hist,
+            return LimitRun(start, got[0], None, None, k + extra, got[1], hist,
                             time.perf_counter() - t0)
         value, b, z, target = got
         done = settle(N) if settle is not None else None

@@ -774,12 +774,17 @@ class StartAnswer:
 SAME_ANSWER = 1e-6
 
 
+def start_entries(history: Any) -> list[dict[str, Any]]:
+    """The entries of a result's history that are runs of the limit iteration (one per
+    start, with a ``start``)."""
+    return [h for h in (history or ()) if isinstance(h, dict) and "start" in h]
+
+
 def compare_starts(history: Any) -> tuple[list[StartAnswer], tuple[float, float] | None]:
-    """The answer from every start of the limit iteration (the history's entries with a
-    ``start``) and the spread of their multipliers where they differ (None where they
-    agree, or fewer than two converged): what the report's note and a terminal's
-    ``starts`` line say."""
-    entries = [h for h in (history or ()) if isinstance(h, dict) and "start" in h]
+    """The answer from every start of the limit iteration (:func:`start_entries`) and
+    the spread of their multipliers where they differ (None where they agree, or fewer
+    than two converged): what the report's note and a terminal's ``starts`` line say."""
+    entries = start_entries(history)
     out: list[StartAnswer] = []
     for k, h in enumerate(entries):
         lam = h.get("load_factor") if h.get("converged") else None
@@ -802,8 +807,7 @@ def collapse_state_at(res: Any) -> float | None:
     limit iteration's state from X0, converged: a ``load`` whose history has starts)
     under the linear laws of 2D; None otherwise (a bisection's value, an associative
     answer, Coulomb's cones)."""
-    starts = [h for h in (getattr(res, "history", None) or ())
-              if isinstance(h, dict) and "start" in h]
+    starts = start_entries(getattr(res, "history", None))
     if getattr(res, "status", None) != "collapse" or not starts \
             or not starts[0].get("converged") or res.contacts.dimension != 2:
         return None
@@ -967,8 +971,7 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
     # (lambda(f) need not grow with f): that friction is tried as well
     fsc = scene.effective_friction
     own = float(fsc) if not isinstance(fsc, str) and 0 < float(fsc) < _m.inf else None
-    if own is not None and lim.status == "stable" and own < (
-            lim.lower if lim.lower is not None else lim.value):
+    if own is not None and own < (lim.lower if lim.lower is not None else lim.value):
         own = None  # below the static f* no state stands at all: nothing to try
     if isinstance(na, ConvexNonAssociative) and scene.has_live_load and lf > 0:
         # (without a live load, or at lambda = 0, there is no limit to iterate: the
@@ -1132,8 +1135,11 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
         # carries it, doubling, can lie above one that does)
         t = oracle(own)
         s.record(t)
-        good = own if t.side else max(good, 2.0 * own) if t.side is False else good
-    while not (t.side and good == t.x):
+        if t.side:
+            good = own
+        elif t.side is False:
+            good = max(good, 2.0 * own)
+    while not t.side:
         t = oracle(good)
         s.record(t)
         if t.side is None:
@@ -1213,4 +1219,4 @@ __all__ = ["ConvexNonAssociative", "DistortionNonAssociative", "FixedPoint",
            "NonAssociative", "SPREAD_NOTE", "STATE_NOTE", "StartAnswer",
            "check_nonassociative", "collapse_state_at", "compare_starts", "flow_mask",
            "is_nonassociative", "max_load_nonassociative", "min_friction_nonassociative",
-           "nonassociative_method"]
+           "nonassociative_method", "start_entries"]

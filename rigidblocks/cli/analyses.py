@@ -10,7 +10,12 @@ from dataclasses import replace
 from typing import Any
 
 from ..analyses import analysis
-from ..analyses.nonassociative import SPREAD_NOTE, StartAnswer, compare_starts
+from ..analyses.nonassociative import (
+    SPREAD_NOTE,
+    StartAnswer,
+    compare_starts,
+    start_entries,
+)
 from ..answer import answer_block
 from ..errors import InputError
 from ..io import read_scene
@@ -261,7 +266,7 @@ def _table(res, scene) -> list[str]:
 
 def _flow_lines(res) -> list[str]:
     """The non-associative analysis: its iterations and bounds."""
-    starts = [h for h in (res.history or ()) if isinstance(h, dict) and "start" in h]
+    starts = start_entries(res.history)
     done = "converged" if res.converged else "not converged"
     if starts:  # the limit iteration: its steps, summed over the starts
         steps = " + ".join(str(h.get("iterations", "?")) for h in starts)

@@ -223,10 +223,14 @@ def _no_state(ax: Any, result: Any, unit: str = "") -> None:
     status = getattr(result, "status", "")
     if status == "inadmissible":
         v = getattr(result, "violation", None)
-        msg = (NA_INADMISSIBLE if without_dilatancy(result)
+        na = without_dilatancy(result)
+        msg = (NA_INADMISSIBLE if na
                else "NOT ADMISSIBLE: no equilibrium state within the joint laws exists")
         if v is not None and math.isfinite(float(v)):
-            msg += f"\n(smallest breach of the joint laws {float(v):.3g} {unit})".replace(" )", ")")
+            # the state from X0's own breach, or the smallest over every state (as the
+            # text answer says it)
+            msg += (f"\n({'its' if na else 'smallest'} breach of the joint laws "
+                    f"{float(v):.3g} {unit})").replace(" )", ")")
         colour = "tab:red"
     elif status in VERDICTS:
         msg = f"{status.upper()}: no force state to draw"
