@@ -278,3 +278,8 @@ def test_the_json_answer_names_the_back_ends_that_answered(tmp_path, capsys):
     out = json.loads(capsys.readouterr().out)
     assert out["answered_by"] == ["scs"] and out["rejected"] == []
     assert out["friction_factor"] == pytest.approx(0.5, rel=1e-4)  # as asked (--rtol)
+    # the distortion iteration answers by itself, with either flow
+    for flow in ("associative", "non-associative"):
+        assert main(["check", str(path), "--method", "distortion", "--flow", flow,
+                     "--json"]) == 0
+        assert json.loads(capsys.readouterr().out)["answered_by"] == ["distortion"]

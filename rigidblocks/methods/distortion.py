@@ -74,6 +74,11 @@ class DistortionMethod(Method):
         return self._time
 
     @property
+    def answered_by(self) -> tuple[str, ...]:
+        """The distortion iteration itself, once it has run."""
+        return (self.name,) if self.runs else ()
+
+    @property
     def iterations(self) -> int:
         return self._iterations
 
