@@ -61,6 +61,10 @@ from ..solvers.highs_warm import warm_lp
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
 LIMIT_TOL = 1e-7
+#: ... with Coulomb's cones (3D): the interior-point steps do not settle much below 1e-7
+#: (the corbel dome: 68 steps to 1e-7, none within 200 to 1e-8, and none within 200 at
+#: f = 0.59995; to 1e-6 in 44 steps, its multiplier 2e-9 from the one at 1e-7)
+CONE_LIMIT_TOL = 1e-6
 #: limit solves of one run, its vertex steps (:mod:`rigidblocks.analyses.na_mechanism`)
 #: included: runs that end at their mechanism's states take 6 to 120 on the walls up to
 #: 1,041 blocks, and one that does not settle costs a least-squares step each (1.5 s at
@@ -210,8 +214,10 @@ class CappedLimit:
         self.backend = backend or ("highs" if prob.is_lp else "conic")
         self.prob = prob
         self._solver: Any = None
-        #: how far (relative) below a step's maximum its selected state may carry
-        self.slack = PROX_SLACK if self.backend == "highs" else CONE_PROX_SLACK
+        #: how far (relative) below a step's maximum its selected state may carry, and
+        #: the change of the normal forces that ends a run
+        self.slack, self.tol = (PROX_SLACK, LIMIT_TOL) if self.backend == "highs" else \
+            (CONE_PROX_SLACK, CONE_LIMIT_TOL)
 
     @property
     def solver(self) -> Any:
@@ -253,14 +259,14 @@ class CappedLimit:
         """The joint rows' right-hand sides with caps f N (N scaled, per point)."""
         return self.b0 + self.M @ (self.f_pt * np.maximum(N, 0.0))
 
-    def run(self, N_start: np.ndarray, start: str, tol: float = LIMIT_TOL,
+    def run(self, N_start: np.ndarray, start: str, tol: float | None = None,
             max_iter: int = LIMIT_MAX_ITER, settle: Any = None) -> LimitRun:
-        """Iterate from the normal forces ``N_start`` (scaled) to a fixed point.
-        ``settle(N)``, called after each step's limit solve at the caps of N, ends the
-        run where it gives a collapse state: (its solution, its multiplier's span, how
-        it was reached, the limit solves it took beyond the run's own), or (None, None,
-        why, solves) where it found none and the run goes on
-        (:mod:`rigidblocks.analyses.na_mechanism`)."""
+        """Iterate from the normal forces ``N_start`` (scaled) to a fixed point (their
+        change below ``tol``, :attr:`tol` by default). ``settle(N)``, called after each
+        step's limit solve at the caps of N, ends the run where it gives a collapse
+        state: (its solution, its multiplier's span, how it was reached, the limit
+        solves it took beyond the run's own), or (None, None, why, solves) where it
+        found none and the run goes on (:mod:`rigidblocks.analyses.na_mechanism`)."""
 
         def step(N: np.ndarray) -> tuple:
             b = self.rhs(N)
@@ -272,7 +278,8 @@ class CappedLimit:
                 return (st if st in why else "undecided"), why.get(st, failed)
             return lam, b, z, lam
 
-        return _iterate(self, N_start, start, step, "limit solves", tol, max_iter, settle)
+        return _iterate(self, N_start, start, step, "limit solves", tol or self.tol, max_iter,
+                        settle)
 
 
 def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, what: str,
