@@ -81,6 +81,9 @@ class Mechanisms:
     solver a :class:`~rigidblocks.solvers.highs_warm.WarmLp`, whose last answer is
     phase 1's) and the collapse states of each."""
 
+    #: does a walk go on past a settled mechanism that gave no collapse state before?
+    walk_past_failures = True
+
     def __init__(self, capped: CappedLimit):
         import scipy.sparse as sp
 
@@ -193,6 +196,9 @@ class Mechanisms:
                     "the least confined state gave no answer"
                 return None, None, f"{why} at vertex step {k} {after}", k - 1
             if _settled(self.key(act), last):
+                if not self.walk_past_failures and self.tried(act):
+                    return None, None, (f"the mechanism settled at vertex step {k} {after} "
+                                        "gave no collapse state before"), k - 1
                 got = self.states(act, N)
                 if got is not None:
                     return (*got, f" ({k} of them by steps to the least confined state "
@@ -301,6 +307,12 @@ class ConeMechanisms(Mechanisms):
     mechanism are a convex set (the cones of the other contacts remain), its range two
     second-order cone programs. A row or cone holds where its dual is not zero (to
     ``CONE_DUAL_ZERO``: an interior-point answer's duals are never exactly zero)."""
+
+    #: no: the walk's cone steps cost a cone program each, and its mechanism, once
+    #: settled, stays within SETTLED of the one that failed (the 491-block wall3d in
+    #: plane at f = 0.6: 100 vertex steps per run after one failed attempt, 270 s of its
+    #: 465)
+    walk_past_failures = False
 
     def __init__(self, capped: CappedLimit):
         Mechanisms.__init__(self, capped)
