@@ -308,10 +308,10 @@ class ConeMechanisms(Mechanisms):
     second-order cone programs. A row or cone holds where its dual is not zero (to
     ``CONE_DUAL_ZERO``: an interior-point answer's duals are never exactly zero)."""
 
-    #: no: the walk's cone steps cost a cone program each, and its mechanism, once
+    #: no: the walk's steps cost two cone programs each, and its mechanism, once
     #: settled, stays within SETTLED of the one that failed (the 491-block wall3d in
-    #: plane at f = 0.6: 100 vertex steps per run after one failed attempt, 270 s of its
-    #: 465)
+    #: plane at f = 0.6: 100 vertex steps per run after one failed attempt, 465 s; ended
+    #: there, 204 s, the same answer)
     walk_past_failures = False
 
     def __init__(self, capped: CappedLimit):
