@@ -130,7 +130,8 @@ class Result:
     cpu_timings: dict[str, float] = field(default_factory=dict, repr=False)
     #: the sliding rule of the analysis ("associative", or "non-associative" where some
     #: joint slides without dilatancy); ``converged`` and ``history`` describe the
-    #: non-associative iteration (its trials, each with its status and iterations)
+    #: non-associative iteration (its trials, each a dict with its status and
+    #: iterations; a check's one trial also with the changes of its iterations)
     flow: str = "associative"
     converged: bool | None = None
     history: tuple = field(default=(), repr=False)

@@ -385,6 +385,11 @@ def test_cli_flow(tmp_path, capsys):
     assert main(["check", str(p), "--load-factor", "0.4", "--flow", NA, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["admissible"] is False
+    # its history is one trial shaped as load's and friction's, with its iterations'
+    # changes
+    (trial,) = out["history"]
+    assert trial["load_factor"] == 0.4 and trial["status"] == "inadmissible"
+    assert len(trial["changes"]) >= trial["iterations"] >= 1
     assert main(["check", str(p), "--load-factor", "0.4", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["admissible"] is True and out["friction_demand"] is not None

@@ -512,7 +512,6 @@ def check_nonassociative(scene: Scene, friction: Any = None, load_factor: float 
     f = friction_value(scene.effective_friction if friction is None else friction)
     lf = float(load_factor)
     na, cv = _open(scene, method, flow, **kw)
-    hist: list[dict[str, Any]] = []
     static = cv.admissible(f, lf)
     if static.status != ADMISSIBLE:
         na.notes.append("no admissible state exists at all (the associative, static "
@@ -520,12 +519,14 @@ def check_nonassociative(scene: Scene, friction: Any = None, load_factor: float 
         return CheckResult(**_fields(na, "check", INADMISSIBLE, f, lf, (), True),
                            admissible=False, violation=static.violation)
     v = na.admissible(f, lf)
-    hist.append(_trial("load_factor", lf, v))
+    # one trial, as those of load and friction, with the changes of its iterations
+    trial = {**_trial("load_factor", lf, v), "friction": f,
+             "changes": [float(c) for c in v.data.history] if v.data else []}
     na.explain(v)
     st = na.state(f, lf, v)
     d = v.data
     status = v.status if v.status in (ADMISSIBLE, INADMISSIBLE, UNDECIDED) else FAILURE
-    return CheckResult(**_fields(na, "check", status, f, lf, tuple(d.history) if d else (),
+    return CheckResult(**_fields(na, "check", status, f, lf, (trial,),
                                  bool(d.converged) if d else None),
                        state=st if state else None, admissible=v.admissible,
                        violation=0.0 if v.status == ADMISSIBLE else v.violation)
