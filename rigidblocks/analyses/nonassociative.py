@@ -519,12 +519,12 @@ def check_nonassociative(scene: Scene, friction: Any = None, load_factor: float 
         return CheckResult(**_fields(na, "check", INADMISSIBLE, f, lf, (), True),
                            admissible=False, violation=static.violation)
     v = na.admissible(f, lf)
+    d = v.data
     # one trial, as those of load and friction, with the changes of its iterations
     trial = {**_trial("load_factor", lf, v), "friction": f,
-             "changes": [float(c) for c in v.data.history] if v.data else []}
+             "changes": [float(c) for c in d.history] if d else []}
     na.explain(v)
     st = na.state(f, lf, v)
-    d = v.data
     status = v.status if v.status in (ADMISSIBLE, INADMISSIBLE, UNDECIDED) else FAILURE
     return CheckResult(**_fields(na, "check", status, f, lf, (trial,),
                                  bool(d.converged) if d else None),
@@ -684,8 +684,8 @@ def _limit_checks(cv: ConvexMethod, f: float, run: LimitRun,
     equilibrium to CERT_TOL of its largest force, Coulomb's law with its own normal
     forces to CERT_TOL plus f times the distance of those forces from the caps it was
     solved under (:attr:`~rigidblocks.analyses.na_limit.LimitRun.resolution`: a plain
-    fixed point's last change; the corbel dome's cone steps settle to 5e-7 of its
-    largest force, its breach 1.5e-7), lo <= lambda <= hi (Drucker 1954; Radenkovic's
+    fixed point's last change; the corbel dome's cone runs end 3e-6 of its largest
+    force from their caps), lo <= lambda <= hi (Drucker 1954; Radenkovic's
     first theorem)."""
     lam, x = run.lam, run.x * cv.scaling.force
     eq, breach = certificate(cv, f, lam, x)
