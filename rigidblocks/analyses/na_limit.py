@@ -47,7 +47,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -322,8 +322,9 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
             run = LimitRun(start, "converged", own, x, k + extra,
                            f"fixed point after {k + extra} {what}", hist,
                            time.perf_counter() - t0)
-            return replace(run, reason=f"{run.reason} (its normal forces "
-                               f"{run.resolution:.1g} of its largest force from their caps)")
+            run.reason += f" (its normal forces {run.resolution:.1g} of its largest force " \
+                          "from their caps)"
+            return run
         damped, best, since = _damped(beta, best, since, change)
         if damped != beta:
             acc.reset()

@@ -93,7 +93,7 @@ class Mechanisms:
         self.ne, self.ni = ne, ni
         self.li = p.cols["lambda"].start
         self.rows = np.arange(ne, ne + ni)
-        #: the mechanisms (:meth:`polytope_id`) whose polytopes were found empty
+        #: the mechanisms (their packed rows) whose polytopes were found empty
         self.empty: set[bytes] = set()
         self._make_phase2()
         nsl = capped.nsl
@@ -122,22 +122,16 @@ class Mechanisms:
         """What of the mechanism ``mech`` is compared between steps (its active rows)."""
         return mech
 
-    def polytope_id(self, mech: Any) -> bytes | None:
-        """What the polytope of the mechanism ``mech`` depends on alone (its rows), or
-        None where it cannot be told by less than the whole mechanism."""
-        return np.packbits(mech).tobytes()
-
     def tried(self, mech: Any) -> bool:
-        """Is the mechanism ``mech`` one whose polytope was found empty before?"""
-        seen = self.polytope_id(mech)
-        return seen is not None and seen in self.empty
+        """Is the mechanism ``mech`` (its rows, on which alone its polytope depends) one
+        whose polytope was found empty before?"""
+        return np.packbits(mech).tobytes() in self.empty
 
     def failed(self, mech: Any, empty: bool) -> None:
         """Record that the mechanism ``mech`` gave no collapse state (``empty``: its
         polytope is empty; else its nearest state failed or failed its check)."""
-        seen = self.polytope_id(mech)
-        if empty and seen is not None:
-            self.empty.add(seen)
+        if empty:
+            self.empty.add(np.packbits(mech).tobytes())
 
     def active(self, bj: np.ndarray) -> np.ndarray | None:
         """The joint rows the mechanism at the caps ``bj`` (joint rows' right-hand
@@ -330,11 +324,9 @@ class ConeMechanisms(Mechanisms):
     def phase2_x(self) -> np.ndarray:
         return self._z2
 
-    def polytope_id(self, mech: Any) -> bytes | None:
-        return None  # the cones' directions take part: not one polytope per key
-
     def tried(self, mech: Any) -> bool:
-        """Is ``mech`` within ``SETTLED`` of a mechanism that gave no collapse state?
+        """Is ``mech`` within ``SETTLED`` of a mechanism that gave no collapse state
+        (the cones' directions take part in its polytope, so no key identifies one)?
         Each attempt costs four or five cone programs, and a run's mechanism, once
         settled, changes by a few rows a step: the 491-block wall3d in plane at
         f = 0.6 spent 1,631 of its 2,152 s in 470 attempts that gave none (164 of
