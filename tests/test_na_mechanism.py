@@ -191,6 +191,36 @@ def test_a_walk_that_finds_no_state_goes_on_by_least_squares(monkeypatch):
     assert run.iterations == len(run.history) + 1 + 1  # its steps, the walk's second
 
 
+def test_states_of_the_first_phase_rows_alone_end_a_run_that_finds_none_else():
+    """The 10 x 10 wall at f = 0.956: from X0 the run reaches a mechanism with one
+    collapse state (0.5428571) 12 least-squares steps after a walk that found none; from
+    the associative state no polytope of both phases' rows has states within its budget
+    (undecided before), and LOOSE_AFTER steps after its walk it ends at states of the
+    maximum-load problem's rows alone, which its reason says. That state is checked
+    independently of the polytope: equilibrium and Coulomb's law with its own normal
+    forces to 1e-7 of its largest force, and at the caps of its own normal forces a
+    fresh maximum-load LP (its own HiGHS model, solved from scratch) carries exactly its
+    multiplier: a non-associative collapse state, below the associative multiplier."""
+    from rigidblocks.analyses.na_mechanism import LOOSE
+
+    f = 0.956
+    scene = build("wall", courses=10, blocks_per_course=10, friction=f)
+    na, cv = nonassociative._open(scene, "clarabel", NA)
+    up = cv.load_limit(f, 1e-9)
+    _, starts = nonassociative._starts(na, cv, up, f)
+    capped = CappedLimit(cv, na.marked, f)
+    x0, assoc = limit_runs(capped, starts)
+    assert x0.converged and LOOSE not in x0.reason
+    assert x0.lam == pytest.approx(0.5428571, abs=1e-7) and x0.span[0] == x0.span[1]
+    assert assoc.converged and assoc.reason.endswith(f"{LOOSE} has collapse states")
+    assert assoc.span[0] <= assoc.lam <= assoc.span[1] < up.value
+    eq, breach = certificate(cv, f, assoc.lam, assoc.x * cv.scaling.force)
+    assert eq <= 1e-7 and breach <= 1e-7
+    fresh = CappedLimit(cv, na.marked, f)
+    st, lam, _ = fresh.solver.maximise(fresh.rhs(np.maximum(assoc.x[fresh.nsl], 0.0)))
+    assert st == "optimal" and lam == pytest.approx(assoc.lam, rel=1e-7)
+
+
 def test_the_safe_multiplier_is_the_lowest_state_of_the_mechanism_reached():
     """The seed's reference model with self-weight: the iteration from X0 reaches the
     associative multiplier 2.4 (the seed's load path), and the mechanism it reaches has

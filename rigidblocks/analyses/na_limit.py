@@ -106,6 +106,10 @@ class LimitRun:
     #: the multipliers of the lowest and highest collapse states of the mechanism
     #: reached (:mod:`rigidblocks.analyses.na_mechanism`); None where not computed
     span: tuple[float, float] | None = None
+    #: are those states the least confined of the states that carry their multiplier
+    #: (the iteration's fixed points), or only states that carry the largest multiplier
+    #: under the caps of their own normal forces?
+    least_confined: bool = True
 
     @property
     def converged(self) -> bool:
@@ -265,8 +269,9 @@ class CappedLimit:
         change below ``tol``, :attr:`tol` by default). ``settle(N)``, called after each
         step's limit solve at the caps of N, ends the run where it gives a collapse
         state: (its solution, its multiplier's span, how it was reached, the limit
-        solves it took beyond the run's own), or (None, None, why, solves) where it
-        found none and the run goes on (:mod:`rigidblocks.analyses.na_mechanism`)."""
+        solves it took beyond the run's own, whether it is least confined), or (None,
+        None, why, solves, True) where it found none and the run goes on
+        (:mod:`rigidblocks.analyses.na_mechanism`)."""
 
         def step(N: np.ndarray) -> tuple:
             b = self.rhs(N)
@@ -308,14 +313,15 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
         value, b, z, target = got
         done = settle(N) if settle is not None else None
         if done is not None:
-            zs, span, how, more = done
+            zs, span, how, more, least = done
             extra += more
             if zs is not None:
                 return LimitRun(start, "converged",
                                 float(zs[capped.prob.cols["lambda"].start]),
                                 zs[:capped.cv.system.layout.size], k + extra,
                                 f"the mechanism reached after {k + extra} {what}{how} has "
-                                "collapse states", hist, time.perf_counter() - t0, span=span)
+                                "collapse states", hist, time.perf_counter() - t0, span=span,
+                                least_confined=least)
         x, own, Nn, change = _select_step(capped, b, target, N, z)
         hist.append((value, change))
         if change <= tol:

@@ -54,6 +54,14 @@ DUAL_ZERO = 1e-9
 #: an interior-point dual below this fraction of the largest is zero (the solver's
 #: duals of rows that do not hold are about its gap over their slack, 1e-10 and less)
 CONE_DUAL_ZERO = 1e-6
+#: least-squares steps after a walk without collapse states from which a mechanism
+#: whose polytope is empty is sought with phase 1's rows alone (:meth:`Mechanisms.states`):
+#: the 1,041-block wall at f = 0.8 reached no polytope of both phases' rows with states in
+#: 200 limit solves from either start (54 attempts, all empty), and ends at states of
+#: phase 1's rows after 91 and 88; the 10 x 10 wall at f = 0.956 from X0 reaches one of
+#: both phases' rows 13 least-squares steps after its walk (one state, 0.5428571), where
+#: phase 1's rows alone would give at once states from 0.5286624 to 0.6068579
+LOOSE_AFTER = 20
 #: the mechanism's polytope is sought once its active rows change by at most this
 #: fraction of their number between two steps
 SETTLED = 0.02
@@ -64,13 +72,19 @@ SETTLED = 0.02
 #: LPs. With 20 the 1,041-block wall at f = 0.6 took 91 s (38 QPs), with 5 45 s (8),
 #: the 311-block one 7.4 s and 3.6 s; the answers move within their mechanisms' ranges
 PATH_STEPS = 5
-#: vertex steps of one walk
-WALK_STEPS = 100
+#: vertex steps of one walk: those that reach a mechanism with states take 2 to 36 (the
+#: walls from 6 x 4 to 32 x 32 at f = 0.6 and 0.8, from both starts); one that reaches
+#: none costs two warm LPs a step (2 s at 1,041 blocks: the 32 x 32 wall at f = 0.8
+#: took 442 s with 100, 344 s with 50)
+WALK_STEPS = 50
 #: the nearest state within this (relative) of the mechanism's lowest or highest
 #: multiplier is that state: the iterate is itself that far from a fixed point when the
 #: mechanism settles (the reference model: 1.199994 and 2.399991, the vertices 1.2 and
 #: 2.4 that the iteration approaches)
 SNAP = 1e-5
+#: how a run's reason names collapse states sought with phase 1's rows alone
+LOOSE = (" (with the maximum-load problem's rows alone: states that carry the largest "
+         "multiplier under the caps of their own normal forces, not the least confined)")
 #: the answer passes its check where, at its own caps, phase 1's multiplier and
 #: phase 2's total normal force are its own to this (relative)
 FIXED_TOL = 1e-7
@@ -95,6 +109,8 @@ class Mechanisms:
         self.rows = np.arange(ne, ne + ni)
         #: the mechanisms (their packed rows) whose polytopes were found empty
         self.empty: set[bytes] = set()
+        #: phase 1's rows at the last :meth:`active` (2D)
+        self.face: np.ndarray | None = None
         self._make_phase2()
         nsl = capped.nsl
         m = nsl.stop - nsl.start
@@ -138,6 +154,7 @@ class Mechanisms:
         sides; phase 1 just solved there) holds active: non-zero duals of phase 1 and
         of phase 2 at the same caps. None where phase 2 has no answer."""
         face = nonzero(self.phase1.duals[self.ne:], DUAL_ZERO)
+        self.face = face
         st = self.phase2.solve(self.rows, np.where(face, bj, -math.inf), bj)
         if st != OPTIMAL:
             return None
@@ -146,33 +163,47 @@ class Mechanisms:
     def settler(self) -> Any:
         """A ``settle`` for one run of :meth:`CappedLimit.run`: at each step the rows of
         the mechanism; once they settle, the state of its polytope nearest the
-        iterate, checked, with the span of its multipliers, how it was reached and the
-        limit solves it took beyond the run's own (None: go on). After ``PATH_STEPS``
-        steps without one, the run goes on by :meth:`walk` from where it is; where the
-        walk finds no state, by least-squares steps again (the 10 x 10 wall at f = 0.8
-        and 0.956: no mechanism with collapse states in 100 vertex steps, one after 40
-        least-squares steps more)."""
+        iterate, checked, with the span of its multipliers, how it was reached, the limit
+        solves it took beyond the run's own and whether it is least confined (None: go
+        on). After ``PATH_STEPS`` steps without one, the run goes on by :meth:`walk`
+        from where it is; where the walk finds no state, by least-squares steps again
+        (the 10 x 10 wall at f = 0.956: no mechanism with collapse states in 50 vertex
+        steps, one after 13 least-squares steps more). ``LOOSE_AFTER``
+        least-squares steps after a walk that found none, a settled mechanism whose
+        polytope is empty is sought again with phase 1's rows alone (:meth:`states`,
+        ``least_confined`` False)."""
         prev: list[np.ndarray] = []
         steps = [0]
+        loose_from = [math.inf]
 
-        def settle(N: np.ndarray) -> tuple[Any, Any, str, int] | None:
+        def settle(N: np.ndarray) -> tuple[Any, Any, str, int, bool] | None:
             steps[0] += 1
             if steps[0] == PATH_STEPS:
-                return self.walk(N)
+                got = self.walk(N)
+                if got[0] is None:
+                    loose_from[0] = steps[0] + LOOSE_AFTER
+                return got
             act = self.active(self.capped.rhs(N))
             if act is None:
                 return None
+            face = self.face
             last = prev[-1] if prev else None
             prev[:] = [self.key(act)]
             if not _settled(prev[0], last):
                 return None
             got = self.states(act, N)
-            return None if got is None else (*got, "", 0)
+            if got is not None:
+                return (*got, "", 0, True)
+            if steps[0] > loose_from[0] and face is not None:
+                got = self.states(face, N, least_confined=False)
+                if got is not None:
+                    return (*got, LOOSE, 0, False)
+            return None
 
         return settle
 
     def walk(self, N: np.ndarray, max_steps: int | None = None
-             ) -> tuple[Any, Any, str, int]:
+             ) -> tuple[Any, Any, str, int, bool]:
         """From the normal forces ``N`` by steps to phase 2's vertex (no least-squares
         term) until the mechanism's rows settle and its polytope has a state, as
         :meth:`settler`, the first step at ``N`` itself (the limit solve the run made
@@ -188,27 +219,28 @@ class Mechanisms:
             if act is None:
                 why = f"the limit problem gave no answer ({st})" if st != OPTIMAL else \
                     "the least confined state gave no answer"
-                return None, None, f"{why} at vertex step {k} {after}", k - 1
+                return None, None, f"{why} at vertex step {k} {after}", k - 1, True
             if _settled(self.key(act), last):
                 if not self.walk_past_failures and self.tried(act):
                     return None, None, (f"the mechanism settled at vertex step {k} {after} "
-                                        "gave no collapse state before"), k - 1
+                                        "gave no collapse state before"), k - 1, True
                 got = self.states(act, N)
                 if got is not None:
                     return (*got, f" ({k} of them by steps to the least confined state "
-                                  f"{after})", k - 1)
+                                  f"{after})", k - 1, True)
             last = self.key(act)
             N = np.maximum(self.phase2_x[self.capped.nsl], 0.0)
         return None, None, (f"no mechanism with collapse states within {max_steps} vertex "
-                            f"steps {after}"), max_steps - 1
+                            f"steps {after}"), max_steps - 1, True
 
-    def states(self, active: np.ndarray, N: np.ndarray
+    def states(self, active: np.ndarray, N: np.ndarray, least_confined: bool = True
                ) -> tuple[np.ndarray, tuple[float, float]] | None:
         """The collapse state of the mechanism (joint rows ``active``) nearest the
-        normal forces ``N``, checked, and the multipliers of the mechanism's lowest and
-        highest states; None where its polytope is empty or the check fails. An empty
-        polytope is not sought again (the 311-block wall at f = 0.8 from the associative
-        state: 5 of its 14 attempts on the rows of one before)."""
+        normal forces ``N``, checked (:meth:`check`; ``least_confined`` False where
+        ``active`` are phase 1's rows alone), and the multipliers of the mechanism's
+        lowest and highest states; None where its polytope is empty or the check fails.
+        An empty polytope is not sought again (the 311-block wall at f = 0.8 from the
+        associative state: 5 of its 14 attempts on the rows of one before)."""
         if self.tried(active):
             return None
         lo = self.extreme(active, 1.0)
@@ -216,14 +248,14 @@ class Mechanisms:
             self.failed(active, True)
             return None
         z = self.nearest(active, N)
-        if z is None or self.check(z):
+        if z is None or self.check(z, least_confined):
             self.failed(active, False)
             return None
         hi = self.extreme(active, -1.0)
         lam = float(z[self.li])
         ends = [(float(lo[self.li]), lo)] + ([] if hi is None else [(float(hi[self.li]), hi)])
         for v, ze in ends:
-            if abs(v - lam) <= SNAP * max(1.0, abs(v)) and not self.check(ze):
+            if abs(v - lam) <= SNAP * max(1.0, abs(v)) and not self.check(ze, least_confined):
                 z, lam = ze, v
         span = (min(ends[0][0], lam), max(ends[-1][0], lam))
         return z, tuple(0.0 if abs(v) <= DUAL_ZERO else v for v in span)
@@ -272,9 +304,13 @@ class Mechanisms:
         return ConicProblem(c=c, A=A, b=b, n_eq=ne + int(active.sum()),
                             n_nonneg=int((~active).sum()), P=P, cols=p.cols, rows={})
 
-    def check(self, z: np.ndarray) -> str:
+    def check(self, z: np.ndarray, least_confined: bool = True) -> str:
         """Why the state ``z`` is not a fixed point ("" where it is): at its own caps,
-        phase 1's multiplier and phase 2's total normal force must be its own."""
+        phase 1's multiplier and (``least_confined``) phase 2's total normal force must
+        be its own. Without phase 2, ``z`` is a collapse state all the same: it carries
+        the largest multiplier under the caps of its own normal forces, and phase 1's
+        duals there are a mechanism compatible with it; it is not the state the
+        iteration selects among those that carry that multiplier."""
         nsl = self.capped.nsl
         N = np.maximum(z[nsl], 0.0)
         bj = self.capped.rhs(N)
@@ -284,6 +320,8 @@ class Mechanisms:
             return f"at its own caps the limit problem gave no answer ({st})"
         if abs(lam - own) > FIXED_TOL * max(1.0, abs(own)):
             return f"at its own caps the multiplier is {lam:.9g}, not {own:.9g}"
+        if not least_confined:
+            return ""
         if self.active(bj) is None:
             return "at its own caps the least confined state gave no answer"
         s2, s = float(self.phase2_x[nsl].sum()), float(N.sum())

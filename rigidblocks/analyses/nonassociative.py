@@ -720,7 +720,8 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
     na.fp_iterations += sum(r.iterations for r in runs)
     trials = tuple({"start": r.start, "load_factor": r.lam, "status": r.status,
                     "iterations": r.iterations, "converged": r.converged,
-                    "span": None if r.span is None else list(r.span), "reason": r.reason}
+                    "span": None if r.span is None else list(r.span),
+                    "least_confined": r.least_confined, "reason": r.reason}
                    for r in runs)
     if verdict == INADMISSIBLE:
         na.notes.append(f"{DEAD_LOAD_BREACH}: it does not stand" +
@@ -775,6 +776,10 @@ class StartAnswer:
     one_state: bool
     #: its mechanism is the first start's (the same range)
     same_mechanism: bool
+    #: its states are the least confined that carry their multiplier (the iteration's
+    #: fixed points); False: states that carry the largest multiplier under the caps of
+    #: their own normal forces (:data:`~rigidblocks.analyses.na_mechanism.LOOSE`)
+    least_confined: bool = True
 
 
 #: two multipliers within this (relative) are one answer, and a mechanism's range that
@@ -803,7 +808,7 @@ def compare_starts(history: Any) -> tuple[list[StartAnswer], tuple[float, float]
             (float(span[0]), float(span[1])) if wide else None,
             span is not None and not wide,
             k > 0 and lam is not None and out[0].lam is not None and span is not None
-            and span == entries[0].get("span")))
+            and span == entries[0].get("span"), h.get("least_confined", True)))
     lams = [a.lam for a in out if a.lam is not None]
     spread = ((min(lams), max(lams)) if len(lams) > 1
               and max(lams) > min(lams) * (1 + SAME_ANSWER) else None)
@@ -822,6 +827,13 @@ def collapse_state_at(res: Any) -> float | None:
     return float(starts[0]["load_factor"])
 
 
+def _loose(a: StartAnswer) -> str:
+    """What a start's answer adds where its states are not the least confined."""
+    return "" if a.least_confined else (
+        "; states that carry the largest multiplier under the caps of their own normal "
+        "forces, not the least confined")
+
+
 def _spread_note(history: Any) -> str:
     """The answer from every start, the multipliers the collapse states of the mechanism
     each reached carry (where they were computed), and whether the answers differ
@@ -834,7 +846,7 @@ def _spread_note(history: Any) -> str:
             return text + " (the same mechanism)"
         if a.span is not None:
             return text + (f" (the collapse states of the mechanism reached carry lambda "
-                           f"from {a.span[0]:.7g} to {a.span[1]:.7g})")
+                           f"from {a.span[0]:.7g} to {a.span[1]:.7g}{_loose(a)})")
         return text + (" (the one collapse state of the mechanism reached)"
                        if a.one_state else "")
 

@@ -289,7 +289,9 @@ def _flow_lines(res) -> list[str]:
             if a.same_mechanism:
                 return f"{a.lam:.7g} (the same mechanism)"
             if a.span is not None:
-                return f"{a.lam:.7g} (its mechanism's states [{a.span[0]:.7g}, {a.span[1]:.7g}])"
+                kind = "states" if a.least_confined else \
+                    "states optimal under their own caps, not least confined,"
+                return f"{a.lam:.7g} (its mechanism's {kind} [{a.span[0]:.7g}, {a.span[1]:.7g}])"
             return f"{a.lam:.7g}"
 
         out.append("starts     " + "; ".join(f"from {a.start}: lambda = {value(a)}"
