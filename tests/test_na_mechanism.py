@@ -3,6 +3,8 @@ warm-started LPs they are found with (rigidblocks.solvers.highs_warm)."""
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 import scipy.sparse as sp
@@ -219,6 +221,31 @@ def test_states_of_the_first_phase_rows_alone_end_a_run_that_finds_none_else():
     fresh = CappedLimit(cv, na.marked, f)
     st, lam, _ = fresh.solver.maximise(fresh.rhs(np.maximum(assoc.x[fresh.nsl], 0.0)))
     assert st == "optimal" and lam == pytest.approx(assoc.lam, rel=1e-7)
+
+
+def test_states_of_the_first_phase_rows_alone_are_named(tmp_path, capsys):
+    """`load --flow non-associative` on the 10 x 10 wall at f = 0.956: the starts line
+    and the report's note say that the answer from the associative state rests on
+    states of the maximum-load problem's rows alone (not the least confined), and
+    the answer from X0 (the least confined state of its mechanism) is not so named."""
+    from rigidblocks.cli.main import main
+    from rigidblocks.io.scene_file import dumps_scene
+
+    p = tmp_path / "wall.json"
+    p.write_text(dumps_scene(build("wall", courses=10, blocks_per_course=10,
+                                   friction=0.956)))
+    assert main(["load", str(p), "--flow", NA, "--json"]) == 0
+    res = json.loads(capsys.readouterr().out)
+    assert [h["least_confined"] for h in res["history"]] == [True, False]
+    note = next(n for n in res["notes"] if "from the associative collapse state" in n)
+    x0, assoc = note.split("; from the associative collapse state")
+    assert "not the least confined" in assoc and "not the least confined" not in x0
+    assert main(["load", str(p), "--flow", NA]) == 0
+    line = next(s for s in capsys.readouterr().out.splitlines() if s.startswith("starts"))
+    x0, assoc = line.split("; from the associative collapse state")
+    assert "not least confined" not in x0
+    assert "(its mechanism's states optimal under their own caps, not least confined, [" \
+        in assoc
 
 
 def test_the_safe_multiplier_is_the_lowest_state_of_the_mechanism_reached():

@@ -830,8 +830,8 @@ def collapse_state_at(res: Any) -> float | None:
 def _loose(a: StartAnswer) -> str:
     """What a start's answer adds where its states are not the least confined."""
     return "" if a.least_confined else (
-        "; states that carry the largest multiplier under the caps of their own normal "
-        "forces, not the least confined")
+        "; of the maximum-load problem's rows alone: they carry the largest multiplier "
+        "under the caps of their own normal forces but are not the least confined")
 
 
 def _spread_note(history: Any) -> str:
@@ -847,7 +847,7 @@ def _spread_note(history: Any) -> str:
         if a.span is not None:
             return text + (f" (the collapse states of the mechanism reached carry lambda "
                            f"from {a.span[0]:.7g} to {a.span[1]:.7g}{_loose(a)})")
-        return text + (" (the one collapse state of the mechanism reached)"
+        return text + (f" (the one collapse state of the mechanism reached{_loose(a)})"
                        if a.one_state else "")
 
     answers, spread = compare_starts(history)
