@@ -85,6 +85,13 @@ SNAP = 1e-5
 #: how a run's reason names collapse states sought with phase 1's rows alone
 LOOSE = (" (with the maximum-load problem's rows alone: states that carry the largest "
          "multiplier under the caps of their own normal forces, not the least confined)")
+#: simplex iterations of a warm phase-2 solve before it is solved from scratch
+#: (:class:`~rigidblocks.solvers.highs_warm.WarmLp`; 3,000 for phase 1): its face's rows
+#: change from step to step, and a warm start far from its answer runs long before the
+#: IPM solve (the 1,041-block wall at f = 0.6, whole processes in turn, three pairs:
+#: 0.928 of the CPU time with 3,000, the same answers; 1,000 for phase 1 too was no
+#: faster, 44.2 s against 42.5 s)
+PHASE2_WARM_LIMIT = 1000
 #: the answer passes its check where, at its own caps, phase 1's multiplier and
 #: phase 2's total normal force are its own to this (relative)
 FIXED_TOL = 1e-7
@@ -109,8 +116,8 @@ class Mechanisms:
         self.rows = np.arange(ne, ne + ni)
         #: the mechanisms (their packed rows) whose polytopes were found empty
         self.empty: set[bytes] = set()
-        #: phase 1's rows at the last :meth:`active` (2D)
-        self.face: np.ndarray | None = None
+        #: phase 1's rows (and cones, :class:`ConeMechanisms`) at the last :meth:`active`
+        self.face: Any = None
         self._make_phase2()
         nsl = capped.nsl
         m = nsl.stop - nsl.start
@@ -128,6 +135,7 @@ class Mechanisms:
         c2[self.capped.nsl] = 1.0
         self.phase2 = warm_lp(c2, p.A, np.concatenate([p.b[:ne], np.full(ni, -math.inf)]),
                               p.b[:ne + ni])
+        self.phase2.limit = PHASE2_WARM_LIMIT
 
     @property
     def phase2_x(self) -> np.ndarray:
@@ -437,6 +445,7 @@ class ConeMechanisms(Mechanisms):
         p = self.capped.prob
         b = np.concatenate([p.b[:self.ne], bj])
         lin, cones = self._held(last.y, self.ne, self.ni)
+        self.face = (lin, cones)
         c2 = np.zeros(p.n)
         c2[self.capped.nsl] = 1.0
         prob = self._problem(self.A, b, (lin, cones), c2, None)

@@ -80,6 +80,8 @@ class WarmLp:
         self.warm = False
         self.solves = 0
         self.cold = 0
+        #: simplex iterations of a warm solve before it is solved from scratch by IPM
+        self.limit = WARM_LIMIT
 
     def solve(self, rows: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> str:
         """Set the bounds of ``rows`` and solve: OPTIMAL, INFEASIBLE, UNBOUNDED or
@@ -90,7 +92,7 @@ class WarmLp:
         self.solves += 1
         if self.warm:
             h.setOptionValue("solver", "simplex")
-            h.setOptionValue("simplex_iteration_limit", WARM_LIMIT)
+            h.setOptionValue("simplex_iteration_limit", self.limit)
             h.run()
             st = self._status()
             if st != FAILURE:
@@ -132,6 +134,8 @@ class ColdLp:
         self.upper = np.array(row_upper, dtype=float)
         self._x = self._y = np.zeros(0)
         self.solves = self.cold = 0
+        #: :class:`WarmLp`'s; unused (every solve is from scratch)
+        self.limit = WARM_LIMIT
 
     def solve(self, rows: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> str:
         from scipy.optimize import linprog
