@@ -338,15 +338,18 @@ def test_corbel_dome_decided_by_its_cone_steps():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("courses, per_course", [(20, 15), (32, 32)])
-def test_large_walls_decided_from_both_starts(courses, per_course):
+@pytest.mark.parametrize("courses, per_course, f", [(20, 15, 0.6), (32, 32, 0.6),
+                                                     (32, 32, 0.8)])
+def test_large_walls_decided_from_both_starts(courses, per_course, f):
     """The 20 x 15 (311 blocks) and 32 x 32 (1,041 blocks) running-bond walls at
     f = 0.6: the plain fixed-point iteration ended undecided from both starts (the
     311-block wall 2e-7 from a fixed point after 500 steps; the 1,041-block one after
     500 steps); ended at their mechanisms' states both starts are decided, within the
     frictionless and associative bounds (Drucker 1954; Radenkovic), each start's
-    answer inside its span, and the spread between them is named."""
-    scene = build("wall", courses=courses, blocks_per_course=per_course, friction=0.6)
+    answer inside its span, and the spread between them is named. The 1,041-block
+    wall at f = 0.8, undecided from both starts with the polytopes of both phases'
+    rows alone, is decided at states of phase 1's rows."""
+    scene = build("wall", courses=courses, blocks_per_course=per_course, friction=f)
     res = rb.max_load_multiplier(scene, flow=NA, state=False)
     assert res.status == "collapse" and res.converged
     assert [h["status"] for h in res.history] == ["converged", "converged"]
