@@ -272,6 +272,23 @@ def test_a_ladder_asks_its_rungs_in_order(monkeypatch, name, solver, settings, l
         tuple(sorted(x) for x in learnt)
 
 
+def test_a_runner_afresh_neither_uses_nor_keeps_what_it_learns(monkeypatch):
+    """Inside ``Runner.afresh()`` the solves run as a fresh runner's would (Clarabel's
+    VALUE_SETTINGS tried again although known out of reach before) and learn as they do
+    outside (the value case above: out of reach); after the block the runner knows
+    what it knew before it (the non-associative friction's trials each run so)."""
+    script = Script(["bad", "few", "ok"])
+    monkeypatch.setattr(policy, "solve", script)
+    monkeypatch.setattr(policy, "verified", checked)
+    runner = Runner("osqp", {})
+    runner.out_of_reach.add(C)
+    with runner.afresh():
+        runner.run(LP, "relaxation", FINER_VALUE)
+        assert (runner.out_of_reach, runner.value_out_of_reach) == (set(), {C})
+    assert script.asked == [("osqp", D, None), (C, on(T, V), None), (C, T, None)]
+    assert (runner.out_of_reach, runner.value_out_of_reach) == ({C}, set())
+
+
 def test_a_rejected_answer_is_noted_with_its_reason(monkeypatch):
     """An answer that fails its check, or a back end that fails, is solved again by
     Clarabel; the runner notes it and the answer carries the reason."""

@@ -1091,6 +1091,12 @@ def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
     from ..methods.engine import Trial
 
     def oracle(fv: float) -> Trial:
+        # each trial as `load` at fv would run it: not under what the solves before it
+        # learnt about the solver's reach on their own problems
+        with cv.runner.afresh():
+            return trial(fv)
+
+    def trial(fv: float) -> Trial:
         verdict, start = reached_normals(na, fv)
         if start is None:
             decided = verdict == INADMISSIBLE  # else X0 itself has no solution
