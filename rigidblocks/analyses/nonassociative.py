@@ -714,8 +714,11 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
     associative collapse state beside it."""
     na.limit_path = "walk" if walks(cv) else True
     capped = CappedLimit(cv, na.marked, f)
-    verdict, starts = _starts(na, cv, up, f)
-    runs = limit_runs(capped, starts)
+    # afresh, as the friction's trials run (:func:`_limit_oracle`): the run from X0 at f
+    # is the same computation in both, whatever the solves before learnt
+    with cv.runner.afresh():
+        verdict, starts = _starts(na, cv, up, f)
+        runs = limit_runs(capped, starts)
     # the iterations are the limit steps of the runs, as each start's history gives them
     na.fp_iterations += sum(r.iterations for r in runs)
     trials = tuple({"start": r.start, "load_factor": r.lam, "status": r.status,
