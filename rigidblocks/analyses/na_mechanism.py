@@ -58,7 +58,7 @@ CONE_DUAL_ZERO = 1e-6
 #: whose polytope is empty is sought with phase 1's rows alone (:meth:`Mechanisms.states`):
 #: the 1,041-block wall at f = 0.8 reached no polytope of both phases' rows with states in
 #: 200 limit solves from either start (54 attempts, all empty), and ends at states of
-#: phase 1's rows after 91 and 88; the 10 x 10 wall at f = 0.956 from X0 reaches one of
+#: phase 1's rows after 118 and 88; the 10 x 10 wall at f = 0.956 from X0 reaches one of
 #: both phases' rows 13 least-squares steps after its walk (one state, 0.5428571), where
 #: phase 1's rows alone would give at once states from 0.5286624 to 0.6068579
 LOOSE_AFTER = 20
