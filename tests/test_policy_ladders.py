@@ -274,7 +274,7 @@ def test_a_ladder_asks_its_rungs_in_order(monkeypatch, name, solver, settings, l
 
 def test_a_runner_afresh_neither_uses_nor_keeps_what_it_learns(monkeypatch):
     """Inside ``Runner.afresh()`` the solves run as a fresh runner's would (Clarabel's
-    VALUE_SETTINGS tried again although known out of reach before) and learn as they do
+    tight settings tried again although known out of reach before) and learn as they do
     outside (the value case above: out of reach); after the block the runner knows
     what it knew before it (the non-associative friction's trials each run so)."""
     script = Script(["bad", "few", "ok"])

@@ -82,9 +82,11 @@ WALK_STEPS = 50
 #: mechanism settles (the reference model: 1.199994 and 2.399991, the vertices 1.2 and
 #: 2.4 that the iteration approaches)
 SNAP = 1e-5
-#: how a run's reason names collapse states sought with phase 1's rows alone
-LOOSE = (" (with the maximum-load problem's rows alone: states that carry the largest "
-         "multiplier under the caps of their own normal forces, not the least confined)")
+#: what collapse states sought with phase 1's rows alone are, and how a run's reason
+#: names them
+LOOSE_STATES = ("states that carry the largest multiplier under the caps of their own "
+                "normal forces, not the least confined")
+LOOSE = f" (with the maximum-load problem's rows alone: {LOOSE_STATES})"
 #: simplex iterations of a warm phase-2 solve before it is solved from scratch
 #: (:class:`~rigidblocks.solvers.highs_warm.WarmLp`; 3,000 for phase 1): its face's rows
 #: change from step to step, and a warm start far from its answer runs long before the
@@ -190,11 +192,11 @@ class Mechanisms:
                 got = self.walk(N)
                 if got[0] is None:
                     loose_from[0] = steps[0] + LOOSE_AFTER
-                return got
+                return (*got, True)
             act = self.active(self.capped.rhs(N))
             if act is None:
                 return None
-            face = self.face
+            face = self.face  # this step's phase 1 rows (a check solves again)
             last = prev[-1] if prev else None
             prev[:] = [self.key(act)]
             if not _settled(prev[0], last):
@@ -202,7 +204,7 @@ class Mechanisms:
             got = self.states(act, N)
             if got is not None:
                 return (*got, "", 0, True)
-            if steps[0] > loose_from[0] and face is not None:
+            if steps[0] > loose_from[0]:
                 got = self.states(face, N, least_confined=False)
                 if got is not None:
                     return (*got, LOOSE, 0, False)
@@ -211,7 +213,7 @@ class Mechanisms:
         return settle
 
     def walk(self, N: np.ndarray, max_steps: int | None = None
-             ) -> tuple[Any, Any, str, int, bool]:
+             ) -> tuple[Any, Any, str, int]:
         """From the normal forces ``N`` by steps to phase 2's vertex (no least-squares
         term) until the mechanism's rows settle and its polytope has a state, as
         :meth:`settler`, the first step at ``N`` itself (the limit solve the run made
@@ -227,19 +229,19 @@ class Mechanisms:
             if act is None:
                 why = f"the limit problem gave no answer ({st})" if st != OPTIMAL else \
                     "the least confined state gave no answer"
-                return None, None, f"{why} at vertex step {k} {after}", k - 1, True
+                return None, None, f"{why} at vertex step {k} {after}", k - 1
             if _settled(self.key(act), last):
                 if not self.walk_past_failures and self.tried(act):
                     return None, None, (f"the mechanism settled at vertex step {k} {after} "
-                                        "gave no collapse state before"), k - 1, True
+                                        "gave no collapse state before"), k - 1
                 got = self.states(act, N)
                 if got is not None:
                     return (*got, f" ({k} of them by steps to the least confined state "
-                                  f"{after})", k - 1, True)
+                                  f"{after})", k - 1)
             last = self.key(act)
             N = np.maximum(self.phase2_x[self.capped.nsl], 0.0)
         return None, None, (f"no mechanism with collapse states within {max_steps} vertex "
-                            f"steps {after}"), max_steps - 1, True
+                            f"steps {after}"), max_steps - 1
 
     def states(self, active: np.ndarray, N: np.ndarray, least_confined: bool = True
                ) -> tuple[np.ndarray, tuple[float, float]] | None:

@@ -80,7 +80,7 @@ from .na_limit import (
     certificate,
     reached_normals,
 )
-from .na_mechanism import limit_runs, walks
+from .na_mechanism import LOOSE_STATES, limit_runs, walks
 from .search import BRACKET_ATOL, UNBOUNDED_AT, bisect
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
@@ -781,7 +781,7 @@ class StartAnswer:
     same_mechanism: bool
     #: its states are the least confined that carry their multiplier (the iteration's
     #: fixed points); False: states that carry the largest multiplier under the caps of
-    #: their own normal forces (:data:`~rigidblocks.analyses.na_mechanism.LOOSE`)
+    #: their own normal forces (:data:`~rigidblocks.analyses.na_mechanism.LOOSE_STATES`)
     least_confined: bool = True
 
 
@@ -832,9 +832,7 @@ def collapse_state_at(res: Any) -> float | None:
 
 def _loose(a: StartAnswer) -> str:
     """What a start's answer adds where its states are not the least confined."""
-    return "" if a.least_confined else (
-        "; of the maximum-load problem's rows alone: they carry the largest multiplier "
-        "under the caps of their own normal forces but are not the least confined")
+    return "" if a.least_confined else f"; {LOOSE_STATES}"
 
 
 def _spread_note(history: Any) -> str:
