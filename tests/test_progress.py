@@ -50,6 +50,28 @@ def test_analyses_keep_the_progress_up_to_date():
     assert p.solves == r.n_solves and p.iterations == r.iterations > 0
 
 
+def test_a_limit_run_names_its_start_and_step():
+    """The non-associative limit iteration runs for minutes on walls of thousands of
+    blocks: the progress line names the run (its start), its step and the last
+    multiplier before the stage of the solve under way, and forgets them after."""
+    seen: list[str] = []
+
+    class Recording(Progress):
+        def __setattr__(self, name, value):
+            if name == "context" and value:
+                seen.append(f"{value}: {self.stage}")
+            super().__setattr__(name, value)
+
+    p = Recording()
+    scene = build("wall", courses=4, blocks_per_course=4, friction=0.8)
+    r = rb.max_load_multiplier(scene, flow="non-associative", progress=p, state=False)
+    assert r.status == "collapse"
+    assert seen[0].startswith("limit run from the elastic state X0: step 1 of at most 200:")
+    assert any(t.startswith("limit run from the associative collapse state: step 2 of at "
+                            "most 200, lambda 0.") for t in seen)
+    assert p.context == "" and "limit run" not in p.text()
+
+
 def test_ctrl_c_ends_a_long_solve_at_once(tmp_path):
     """A 4,000-block wall's maximum-load solve takes several seconds; SIGINT two seconds
     in ends the process within 2 s with status 130 and a one-line message."""

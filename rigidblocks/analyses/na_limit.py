@@ -283,8 +283,12 @@ class CappedLimit:
                 return (st if st in why else "undecided"), why.get(st, failed)
             return lam, b, z, lam
 
-        return _iterate(self, N_start, start, step, "limit solves", tol or self.tol, max_iter,
-                        settle)
+        progress = self.cv.progress
+        try:
+            return _iterate(self, N_start, start, step, "limit solves", tol or self.tol,
+                            max_iter, settle)
+        finally:
+            progress.context = ""
 
 
 def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, what: str,
@@ -304,8 +308,12 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
     acc = _Anderson(MEMORY)
     extra = 0  # limit solves made by ``settle`` (vertex steps)
     k = 0
+    progress = capped.cv.progress
     while k + extra < max_iter:
         k += 1
+        last = f", lambda {value:.7g}" if math.isfinite(value) else ""
+        progress.context = f"limit run from {start}: step {k + extra} of at most " \
+                           f"{max_iter}{last}"
         got = step(N)
         if len(got) == 2:
             return LimitRun(start, got[0], None, None, k + extra, got[1], hist,

@@ -116,12 +116,16 @@ class Progress:
     def __init__(self) -> None:
         self.started = time.perf_counter()
         self.stage = "contacts"
+        #: what the stages serve where it outlasts them (one run of an iteration of
+        #: solves, its step and value), shown before them; "" where none
+        self.context = ""
         self.solves = 0
         self.iterations = 0
 
     def text(self) -> str:
-        return (f"{self.stage}, solve {self.solves + 1}, {self.iterations} iterations so "
-                f"far, {time.perf_counter() - self.started:.0f} s")
+        head = f"{self.context}: " if self.context else ""
+        return (f"{head}{self.stage}, solve {self.solves + 1}, {self.iterations} iterations "
+                f"so far, {time.perf_counter() - self.started:.0f} s")
 
 
 class Method:
