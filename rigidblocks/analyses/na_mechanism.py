@@ -25,13 +25,14 @@ nearest the iterate that reached the mechanism, the answer "reached" from the st
 
 The limit iteration (:meth:`~rigidblocks.analyses.na_limit.CappedLimit.run`) follows its
 path from the start as before; after each of its limit solves (phase 1, HiGHS's dual
-simplex warm-started, :mod:`rigidblocks.solvers.highs_warm`) phase 2 is solved at the
-same caps and the rows the two phases hold active are read. Once they settle (they
-change by at most ``SETTLED`` of their number between steps) the polytope of the
-mechanism is sought; where it is not empty its state nearest the iterate ends the run,
-checked by solving both phases again at its own caps. The iteration by itself
-approaches such a state at the rate of its contraction (hundreds of steps on walls of
-hundreds of blocks, not settling in 500 on 1,000); the mechanism settles within tens.
+simplex warm-started, :mod:`rigidblocks.solvers.highs_warm`) the rows phase 1 holds
+active are read, and where they have settled (they change by at most ``SETTLED`` of
+their number between steps) phase 2 is solved at the same caps and the polytope of the
+mechanism of the two phases' rows is sought; where it is not empty its state nearest the
+iterate ends the run, checked by solving both phases again at its own caps. The
+iteration by itself approaches such a state at the rate of its contraction (hundreds of
+steps on walls of hundreds of blocks, not settling in 500 on 1,000); the mechanism
+settles within tens.
 """
 
 from __future__ import annotations
@@ -159,11 +160,15 @@ class Mechanisms:
         if empty:
             self.empty.add(np.packbits(mech).tobytes())
 
+    def phase1_rows(self) -> Any:
+        """The joint rows with a non-zero dual in phase 1's last answer."""
+        return nonzero(self.phase1.duals[self.ne:], DUAL_ZERO)
+
     def active(self, bj: np.ndarray) -> np.ndarray | None:
         """The joint rows the mechanism at the caps ``bj`` (joint rows' right-hand
         sides; phase 1 just solved there) holds active: non-zero duals of phase 1 and
         of phase 2 at the same caps. None where phase 2 has no answer."""
-        face = nonzero(self.phase1.duals[self.ne:], DUAL_ZERO)
+        face = self.phase1_rows()
         self.face = face
         st = self.phase2.solve(self.rows, np.where(face, bj, -math.inf), bj)
         if st != OPTIMAL:
@@ -171,17 +176,17 @@ class Mechanisms:
         return face | nonzero(self.phase2.duals[self.ne:], DUAL_ZERO)
 
     def settler(self) -> Any:
-        """A ``settle`` for one run of :meth:`CappedLimit.run`: at each step the rows of
-        the mechanism; once they settle, the state of its polytope nearest the
-        iterate, checked, with the span of its multipliers, how it was reached, the limit
-        solves it took beyond the run's own and whether it is least confined (None: go
-        on). After ``PATH_STEPS`` steps without one, the run goes on by :meth:`walk`
-        from where it is; where the walk finds no state, by least-squares steps again
-        (the 10 x 10 wall at f = 0.956: no mechanism with collapse states in 50 vertex
-        steps, one after 13 least-squares steps more). ``LOOSE_AFTER``
-        least-squares steps after a walk that found none, a settled mechanism whose
-        polytope is empty is sought again with phase 1's rows alone (:meth:`states`,
-        ``least_confined`` False)."""
+        """A ``settle`` for one run of :meth:`CappedLimit.run`: at each step phase 1's
+        rows; once they settle, phase 2 at the same caps and the state of the polytope
+        of the two phases' rows nearest the iterate, checked, with the span of its
+        multipliers, how it was reached, the limit solves it took beyond the run's own
+        and whether it is least confined (None: go on). After ``PATH_STEPS`` steps
+        without one, the run goes on by :meth:`walk` from where it is; where the walk
+        finds no state, by least-squares steps again (the 10 x 10 wall at f = 0.956: no
+        mechanism with collapse states in 50 vertex steps, one after 13 least-squares
+        steps more). ``LOOSE_AFTER`` least-squares steps after a walk that found none, a
+        settled mechanism whose polytope is empty is sought again with phase 1's rows
+        alone (:meth:`states`, ``least_confined`` False)."""
         prev: list[np.ndarray] = []
         steps = [0]
         loose_from = [math.inf]
@@ -189,18 +194,25 @@ class Mechanisms:
         def settle(N: np.ndarray) -> tuple[Any, Any, str, int, bool] | None:
             steps[0] += 1
             if steps[0] == PATH_STEPS:
+                prev.clear()
                 got = self.walk(N)
                 if got[0] is None:
                     loose_from[0] = steps[0] + LOOSE_AFTER
                 return (*got, True)
+            # phase 2 only where phase 1's rows have settled (most least-squares steps
+            # move them far: phase 2 there cost 7.7 of the 40 s of the 1,041-block wall
+            # at f = 0.6)
+            rows = self.phase1_rows()
+            if rows is None:
+                return None
+            last = prev[-1] if prev else None
+            prev[:] = [self.key(rows)]
+            if not _settled(prev[0], last):
+                return None
             act = self.active(self.capped.rhs(N))
             if act is None:
                 return None
             face = self.face  # this step's phase 1 rows (a check solves again)
-            last = prev[-1] if prev else None
-            prev[:] = [self.key(act)]
-            if not _settled(prev[0], last):
-                return None
             got = self.states(act, N)
             if got is not None:
                 return (*got, "", 0, True)
@@ -440,13 +452,17 @@ class ConeMechanisms(Mechanisms):
         return ConicProblem(c=c, A=AA, b=bb, n_eq=ne + G.shape[0], n_nonneg=len(free),
                             soc=p.soc, P=P, cols=p.cols, rows={})
 
-    def active(self, bj: np.ndarray) -> Any:
+    def phase1_rows(self) -> Any:
         last = self.capped.solver.last
-        if last is None:
+        return None if last is None else self._held(last.y, self.ne, self.ni)
+
+    def active(self, bj: np.ndarray) -> Any:
+        face = self.phase1_rows()
+        if face is None:
             return None
         p = self.capped.prob
         b = np.concatenate([p.b[:self.ne], bj])
-        lin, cones = self._held(last.y, self.ne, self.ni)
+        lin, cones = face
         self.face = (lin, cones)
         c2 = np.zeros(p.n)
         c2[self.capped.nsl] = 1.0
