@@ -78,6 +78,12 @@ PATH_STEPS = 5
 #: none costs two warm LPs a step (2 s at 1,041 blocks: the 32 x 32 wall at f = 0.8
 #: took 442 s with 100, 344 s with 50)
 WALK_STEPS = 50
+#: vertex steps after which a walk whose mechanism has not once settled ends: the walks
+#: that reached a mechanism with states first settled within 11 (the walls from 6 x 4 to
+#: 32 x 32 at f = 0.6, 0.8 and 0.956, both starts), while those that never settle
+#: wander (the 32 x 32 wall at f = 0.8: 140 to 400 of its 2,900 rows change at every one
+#: of 50 steps, where 57 settle; each step two warm LPs, 2.5 s)
+UNSETTLED_WALK = 20
 #: the nearest state within this (relative) of the mechanism's lowest or highest
 #: multiplier is that state: the iterate is itself that far from a fixed point when the
 #: mechanism settles (the reference model: 1.199994 and 2.399991, the vertices 1.2 and
@@ -182,11 +188,11 @@ class Mechanisms:
         multipliers, how it was reached, the limit solves it took beyond the run's own
         and whether it is least confined (None: go on). After ``PATH_STEPS`` steps
         without one, the run goes on by :meth:`walk` from where it is; where the walk
-        finds no state, by least-squares steps again (the 10 x 10 wall at f = 0.956: no
-        mechanism with collapse states in 50 vertex steps, one after 13 least-squares
-        steps more). ``LOOSE_AFTER`` least-squares steps after a walk that found none, a
-        settled mechanism whose polytope is empty is sought again with phase 1's rows
-        alone (:meth:`states`, ``least_confined`` False)."""
+        finds no state, by least-squares steps again (the 10 x 10 wall at f = 0.956: its
+        walk's mechanism does not settle within 20 vertex steps, one with collapse
+        states 12 least-squares steps later). ``LOOSE_AFTER`` least-squares steps after
+        a walk that found none, a settled mechanism whose polytope is empty is sought
+        again with phase 1's rows alone (:meth:`states`, ``least_confined`` False)."""
         prev: list[np.ndarray] = []
         steps = [0]
         loose_from = [math.inf]
@@ -199,9 +205,10 @@ class Mechanisms:
                 if got[0] is None:
                     loose_from[0] = steps[0] + LOOSE_AFTER
                 return (*got, True)
-            # phase 2 only where phase 1's rows have settled (most least-squares steps
-            # move them far: phase 2 there cost 7.7 of the 40 s of the 1,041-block wall
-            # at f = 0.6)
+            # phase 2 only where phase 1's rows have settled: most least-squares steps
+            # move them far (phase 2 there was 7.7 of the 40.7 CPU s of the 1,041-block
+            # wall at f = 0.6; `load` without it, whole processes in turn: 0.736 of
+            # the CPU time)
             rows = self.phase1_rows()
             if rows is None:
                 return None
@@ -230,9 +237,11 @@ class Mechanisms:
         term) until the mechanism's rows settle and its polytope has a state, as
         :meth:`settler`, the first step at ``N`` itself (the limit solve the run made
         there); no state, and why, where none is found within ``max_steps``
-        (``WALK_STEPS``)."""
+        (``WALK_STEPS``), or where the mechanism has not once settled within
+        ``UNSETTLED_WALK``."""
         max_steps = max_steps or WALK_STEPS
         last = None
+        settled = False
         after = f"after {PATH_STEPS - 1} least-squares steps"
         for k in range(1, max_steps + 1):
             bj = self.capped.rhs(N)
@@ -243,6 +252,7 @@ class Mechanisms:
                     "the least confined state gave no answer"
                 return None, None, f"{why} at vertex step {k} {after}", k - 1
             if _settled(self.key(act), last):
+                settled = True
                 if not self.walk_past_failures and self.tried(act):
                     return None, None, (f"the mechanism settled at vertex step {k} {after} "
                                         "gave no collapse state before"), k - 1
@@ -250,6 +260,9 @@ class Mechanisms:
                 if got is not None:
                     return (*got, f" ({k} of them by steps to the least confined state "
                                   f"{after})", k - 1)
+            if k == UNSETTLED_WALK and not settled and k < max_steps:
+                return None, None, (f"the mechanism did not settle within {k} vertex "
+                                    f"steps {after}"), k - 1
             last = self.key(act)
             N = np.maximum(self.phase2_x[self.capped.nsl], 0.0)
         return None, None, (f"no mechanism with collapse states within {max_steps} vertex "
