@@ -79,10 +79,10 @@ PATH_STEPS = 5
 #: took 442 s with 100, 344 s with 50)
 WALK_STEPS = 50
 #: vertex steps after which a walk whose mechanism has not once settled ends: the walks
-#: that reached a mechanism with states first settled within 11 (the walls from 6 x 4 to
+#: that reached a mechanism with states first settled within 11 (the walls from 8 x 5 to
 #: 32 x 32 at f = 0.6, 0.8 and 0.956, both starts), while those that never settle
-#: wander (the 32 x 32 wall at f = 0.8: 140 to 400 of its 2,900 rows change at every one
-#: of 50 steps, where 57 settle; each step two warm LPs, 2.5 s)
+#: wander (the 32 x 32 wall at f = 0.8 from X0: 137 to 405 of its 2,900 rows change at
+#: every step of a 50-step walk, where 57 settle; each step two warm LPs, 2.5 s)
 UNSETTLED_WALK = 20
 #: the nearest state within this (relative) of the mechanism's lowest or highest
 #: multiplier is that state: the iterate is itself that far from a fixed point when the
