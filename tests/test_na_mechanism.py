@@ -196,9 +196,9 @@ def test_a_walk_that_finds_no_state_goes_on_by_least_squares(monkeypatch):
 def test_states_of_the_first_phase_rows_alone_end_a_run_that_finds_none_else():
     """The 10 x 10 wall at f = 0.956: from X0 the run reaches a mechanism with one
     collapse state (0.5428571) in least-squares steps after a walk that found none (its
-    mechanism did not settle within UNSETTLED_WALK vertex steps); from
-    the associative state no polytope of both phases' rows has states within its budget
-    (undecided before), and LOOSE_AFTER steps after its walk it ends at states of the
+    mechanism did not settle within UNSETTLED_WALK vertex steps); from the associative
+    state no polytope of both phases' rows has states within its budget (undecided
+    before), and LOOSE_AFTER steps after its walk it ends at states of the
     maximum-load problem's rows alone, which its reason says. That state is checked
     independently of the polytope: equilibrium and Coulomb's law with its own normal
     forces to 1e-7 of its largest force, and at the caps of its own normal forces a
