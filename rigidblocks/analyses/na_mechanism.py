@@ -125,8 +125,6 @@ class Mechanisms:
         self.rows = np.arange(ne, ne + ni)
         #: the mechanisms (their packed rows) whose polytopes were found empty
         self.empty: set[bytes] = set()
-        #: phase 1's rows (and cones, :class:`ConeMechanisms`) at the last :meth:`active`
-        self.face: Any = None
         self._make_phase2()
         nsl = capped.nsl
         m = nsl.stop - nsl.start
@@ -175,7 +173,6 @@ class Mechanisms:
         sides; phase 1 just solved there) holds active: non-zero duals of phase 1 and
         of phase 2 at the same caps. None where phase 2 has no answer."""
         face = self.phase1_rows()
-        self.face = face
         st = self.phase2.solve(self.rows, np.where(face, bj, -math.inf), bj)
         if st != OPTIMAL:
             return None
@@ -209,17 +206,16 @@ class Mechanisms:
             # move them far (phase 2 there was 7.7 of the 40.7 CPU s of the 1,041-block
             # wall at f = 0.6; `load` without it, whole processes in turn: 0.736 of
             # the CPU time)
-            rows = self.phase1_rows()
-            if rows is None:
+            face = self.phase1_rows()  # kept: a check below solves phase 1 again
+            if face is None:
                 return None
             last = prev[-1] if prev else None
-            prev[:] = [self.key(rows)]
+            prev[:] = [self.key(face)]
             if not _settled(prev[0], last):
                 return None
             act = self.active(self.capped.rhs(N))
             if act is None:
                 return None
-            face = self.face  # this step's phase 1 rows (a check solves again)
             got = self.states(act, N)
             if got is not None:
                 return (*got, "", 0, True)
@@ -476,7 +472,6 @@ class ConeMechanisms(Mechanisms):
         p = self.capped.prob
         b = np.concatenate([p.b[:self.ne], bj])
         lin, cones = face
-        self.face = (lin, cones)
         c2 = np.zeros(p.n)
         c2[self.capped.nsl] = 1.0
         prob = self._problem(self.A, b, (lin, cones), c2, None)
