@@ -710,6 +710,9 @@ def large_walls(sizes: Sequence[tuple], frictions: Sequence[float],
             starts = {h.get("start"): h.get("load_factor") if h.get("converged")
                       else "undecided" for h in v.history}
             spans = {h.get("start"): h.get("span") for h in v.history}
+            # False where a start ended at states of the maximum-load problem's rows
+            # alone, not at the least confined one of its mechanism
+            loose = {h.get("start"): not h.get("least_confined", True) for h in v.history}
             lf = v.load_multiplier if v.status == "collapse" else 0.9 * a.load_multiplier
             fr, tf = _cpu(rb.min_friction, scene, load_factor=lf, flow=NA, state=False) \
                 if friction_too else (None, None)
@@ -721,6 +724,8 @@ def large_walls(sizes: Sequence[tuple], frictions: Sequence[float],
                    "na_from_assoc": starts.get("the associative collapse state"),
                    "na_span": spans.get("the elastic state X0"),
                    "na_from_assoc_span": spans.get("the associative collapse state"),
+                   "na_loose": loose.get("the elastic state X0", False),
+                   "na_from_assoc_loose": loose.get("the associative collapse state", False),
                    "load_average": os.getloadavg()[0],
                    "na_steps": v.iterations, "na_ratio": tv / ta if ta else None,
                    "friction_load_factor": lf,
@@ -743,23 +748,27 @@ def large_walls_md(rows: list[dict[str, Any]]) -> list[str]:
               "x assoc", "load"]
     body = [[r.get("wall", f"{r['courses']} x {r['per_course']}"), r["blocks"], r["friction"],
              r["assoc_lambda"], r["assoc_cpu"], _cell(r["na_lambda"]) if r["na_status"]
-             == "collapse" else r["na_status"], _span(r.get("na_span")),
-             _cell(r["na_from_assoc"]), _span(r.get("na_from_assoc_span")), r["na_cpu"],
+             == "collapse" else r["na_status"], _span(r.get("na_span"), r.get("na_loose")),
+             _cell(r["na_from_assoc"]),
+             _span(r.get("na_from_assoc_span"), r.get("na_from_assoc_loose")), r["na_cpu"],
              _cell(r["na_ratio"]), r["na_steps"], _cell(r["na_friction"]) if
              r["friction_status"] == "stable" else r["friction_status"], _cell(r["friction_cpu"]),
              _cell(r["friction_ratio"]), _cell(r.get("load_average"))] for r in rows]
     return ["### Running-bond walls: the limit fixed point against the associative load", "",
             "Non-associative `load` (the limit iteration from the elastic state X0, and "
             "from the associative collapse state, each ended at the collapse states of the "
-            "mechanism it reaches: the answer, the nearest of them, and their range) and "
+            "mechanism it reaches: the answer, the nearest of them, and their range; "
+            "a range marked * holds states of the maximum-load problem's rows alone, "
+            "where no least confined state was reached) and "
             "`friction` at the multiplier found (which should give f back), CPU seconds in "
             "one process on one thread, with the associative `load` of the same run.", "",
             markdown_table(header, body)]
 
 
-def _span(v: Any) -> str:
-    """A mechanism's span of multipliers, or "-"."""
-    return "-" if not v else f"[{v[0]:.7g}, {v[1]:.7g}]"
+def _span(v: Any, loose: bool | None = False) -> str:
+    """A mechanism's span of multipliers, or "-"; marked * where ``loose`` (states of
+    the maximum-load problem's rows alone)."""
+    return "-" if not v else f"[{v[0]:.7g}, {v[1]:.7g}]" + ("*" if loose else "")
 
 
 def _cell(v: Any) -> Any:
