@@ -386,6 +386,26 @@ def test_large_walls_decided_from_both_starts(courses, per_course, f):
     assert any(named in n for n in res.notes)
 
 
+@pytest.mark.slow
+def test_wall3d_in_plane_ends_at_its_mechanisms_states():
+    """The 491-block wall3d (20 courses x 24) in plane at f = 0.6: from X0 the cone
+    iteration ends at the states of the mechanism it reaches, checked to the
+    interior-point solver's accuracy (CONE_FIXED_TOL; to 1e-7 their checks failed by
+    8.4e-7 to 1.5e-6 and both runs ended as plain fixed points, without a span), and
+    the answer is the 2D wall's to 1e-3 (issue #30: a wall and its extrusion agree to
+    1e-3; measured 2e-6: 0.4374261 and 0.4374252)."""
+    f = 0.6
+    r2 = rb.max_load_multiplier(build("wall", courses=20, blocks_per_course=24, friction=f),
+                                flow=NA, state=False)
+    r3 = rb.max_load_multiplier(build("wall3d", courses=20, blocks_per_course=24,
+                                      friction=f, load_direction="in_plane"),
+                                flow=NA, state=False)
+    assert r3.status == "collapse" and r3.converged
+    x0 = r3.history[0]
+    assert x0["start"] == "the elastic state X0" and x0["least_confined"]
+    assert x0["span"] is not None and x0["span"][0] <= x0["load_factor"] <= x0["span"][1]
+    assert r3.load_multiplier == pytest.approx(r2.load_multiplier, rel=1e-3)
+
 
 def test_nonassociative_friction_claims_no_bound_above(tmp_path, capsys):
     """Without dilatancy lambda(f) need not grow with f (the 10 x 10 wall at f = 0.8:

@@ -47,7 +47,7 @@ from ..methods.convex import ConvexMethod
 from ..solvers import OPTIMAL
 from ..solvers.base import ConicProblem
 from ..solvers.highs_warm import nonzero, warm_lp
-from .na_limit import CappedLimit, LimitRun
+from .na_limit import CONE_LIMIT_TOL, CappedLimit, LimitRun
 
 #: a dual below this fraction of the largest (of its phase) is zero: its row is not
 #: part of the mechanism
@@ -104,6 +104,16 @@ PHASE2_WARM_LIMIT = 1000
 #: the answer passes its check where, at its own caps, phase 1's multiplier and
 #: phase 2's total normal force are its own to this (relative)
 FIXED_TOL = 1e-7
+#: the same for Coulomb's cones, solved by the interior-point method: its accuracy,
+#: the change of the normal forces that ends a cone run as a plain fixed point
+#: (:data:`~rigidblocks.analyses.na_limit.CONE_LIMIT_TOL`). With FIXED_TOL the states of
+#: the 491-block wall3d in plane at f = 0.6 failed their checks by 8.4e-7 to 1.5e-6
+#: (0.437426419 at their own caps, not 0.437426051), and its runs ended as plain
+#: fixed points after 30 and 36 limit solves; with this one, at the states of a
+#: mechanism after 16 and 31, X0's answer 0.4374261 in [0.4373490, 0.4374477] (the 2D
+#: wall's 0.4374252 in [0.4373650, 0.4374597]), in 0.739 of the CPU time (whole
+#: processes in turn, two pairs: 121-131 s against 167-176 s)
+CONE_FIXED_TOL = CONE_LIMIT_TOL
 
 
 class Mechanisms:
@@ -113,6 +123,8 @@ class Mechanisms:
 
     #: does a walk go on past a settled mechanism that gave no collapse state before?
     walk_past_failures = True
+    #: the relative tolerance of :meth:`check`
+    fixed_tol = FIXED_TOL
 
     def __init__(self, capped: CappedLimit):
         import scipy.sparse as sp
@@ -349,14 +361,14 @@ class Mechanisms:
         own = float(z[self.li])
         if st != OPTIMAL:
             return f"at its own caps the limit problem gave no answer ({st})"
-        if abs(lam - own) > FIXED_TOL * max(1.0, abs(own)):
+        if abs(lam - own) > self.fixed_tol * max(1.0, abs(own)):
             return f"at its own caps the multiplier is {lam:.9g}, not {own:.9g}"
         if not least_confined:
             return ""
         if self.active(bj) is None:
             return "at its own caps the least confined state gave no answer"
         s2, s = float(self.phase2_x[nsl].sum()), float(N.sum())
-        if abs(s2 - s) > FIXED_TOL * max(1.0, s):
+        if abs(s2 - s) > self.fixed_tol * max(1.0, s):
             return f"at its own caps a less confined state carries it ({s2:.9g} < {s:.9g})"
         return ""
 
@@ -376,6 +388,7 @@ class ConeMechanisms(Mechanisms):
     #: plane at f = 0.6: 100 vertex steps per run after one failed attempt, 465 s; ended
     #: there, 204 s, the same answer)
     walk_past_failures = False
+    fixed_tol = CONE_FIXED_TOL
 
     def __init__(self, capped: CappedLimit):
         Mechanisms.__init__(self, capped)
