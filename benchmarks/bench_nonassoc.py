@@ -710,7 +710,7 @@ def large_walls(sizes: Sequence[tuple], frictions: Sequence[float],
             starts = {h.get("start"): h.get("load_factor") if h.get("converged")
                       else "undecided" for h in v.history}
             spans = {h.get("start"): h.get("span") for h in v.history}
-            # False where a start ended at states of the maximum-load problem's rows
+            # True where a start ended at states of the maximum-load problem's rows
             # alone, not at the least confined one of its mechanism
             loose = {h.get("start"): not h.get("least_confined", True) for h in v.history}
             lf = v.load_multiplier if v.status == "collapse" else 0.9 * a.load_multiplier
