@@ -322,16 +322,22 @@ def test_a_solver_failure_on_a_mechanism_is_not_the_mechanisms():
     failure was recorded as the mechanism's and the mechanisms near it were not tried
     again); the answer is the 2D wall's to 1e-3 (issue #30: measured 6e-5, 0.4678560
     and 0.4678844)."""
-    f = 0.6
-    r2 = rb.max_load_multiplier(build("wall", courses=14, blocks_per_course=14, friction=f),
-                                flow=NA, state=False)
-    r3 = rb.max_load_multiplier(build("wall3d", courses=14, blocks_per_course=14,
+    _wall3d_in_plane_at_its_mechanisms_states(14, 14, 0.6)
+
+
+def _wall3d_in_plane_at_its_mechanisms_states(courses: int, per_course: int,
+                                              f: float) -> None:
+    """A wall3d in plane: from X0 the run ends at a checked state of its mechanism,
+    least confined, inside its span, and the answer is the 2D wall's to 1e-3."""
+    r2 = rb.max_load_multiplier(build("wall", courses=courses, blocks_per_course=per_course,
+                                      friction=f), flow=NA, state=False)
+    r3 = rb.max_load_multiplier(build("wall3d", courses=courses, blocks_per_course=per_course,
                                       friction=f, load_direction="in_plane"),
                                 flow=NA, state=False)
     x0 = r3.history[0]
-    assert r3.status == "collapse" and x0["start"] == "the elastic state X0"
-    assert x0["least_confined"] and x0["span"] is not None
-    assert x0["span"][0] <= x0["load_factor"] <= x0["span"][1]
+    assert r3.status == "collapse" and r3.converged
+    assert x0["start"] == "the elastic state X0" and x0["least_confined"]
+    assert x0["span"] is not None and x0["span"][0] <= x0["load_factor"] <= x0["span"][1]
     assert r3.load_multiplier == pytest.approx(r2.load_multiplier, rel=1e-3)
 
 
@@ -415,17 +421,7 @@ def test_wall3d_in_plane_ends_at_its_mechanisms_states():
     8.4e-7 to 1.5e-6 and both runs ended as plain fixed points, without a span), and
     the answer is the 2D wall's to 1e-3 (issue #30: a wall and its extrusion agree to
     1e-3; measured 2e-6: 0.4374261 and 0.4374252)."""
-    f = 0.6
-    r2 = rb.max_load_multiplier(build("wall", courses=20, blocks_per_course=24, friction=f),
-                                flow=NA, state=False)
-    r3 = rb.max_load_multiplier(build("wall3d", courses=20, blocks_per_course=24,
-                                      friction=f, load_direction="in_plane"),
-                                flow=NA, state=False)
-    assert r3.status == "collapse" and r3.converged
-    x0 = r3.history[0]
-    assert x0["start"] == "the elastic state X0" and x0["least_confined"]
-    assert x0["span"] is not None and x0["span"][0] <= x0["load_factor"] <= x0["span"][1]
-    assert r3.load_multiplier == pytest.approx(r2.load_multiplier, rel=1e-3)
+    _wall3d_in_plane_at_its_mechanisms_states(20, 24, 0.6)
 
 
 def test_nonassociative_friction_claims_no_bound_above(tmp_path, capsys):
