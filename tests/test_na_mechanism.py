@@ -128,6 +128,39 @@ def test_the_check_rejects_a_state_off_its_own_caps():
     assert mech.check(scaled) != ""
 
 
+def test_a_solver_failure_on_a_polytope_is_not_an_empty_polytope(monkeypatch):
+    """A mechanism is recorded as one without collapse states (not sought again) where
+    its polytope is empty, not where the solver fails on it: the 1,041-block wall3d in
+    plane at f = 0.6 stalled 0.411038 from its answer for 60 limit solves after
+    Clarabel ended its lowest state AlmostSolved once (issue #30). On the 5 x 3 wall at
+    f = 0.8, the reached mechanism with that solve failing gives no state and is not
+    recorded; sought again, it gives the run's span; with every joint row held its
+    polytope is empty and is recorded."""
+    from rigidblocks.errors import SolverFailure
+
+    scene = build("wall", courses=5, blocks_per_course=3, friction=0.8)
+    cv, capped, _, run, _ = _walls_mechanism(scene, 0.8)
+    N = np.maximum(run.x[capped.nsl], 0.0)
+    bj = capped.rhs(N)
+    mech = Mechanisms(capped)
+    assert capped.solver.maximise(bj)[0] == "optimal"
+    act = mech.active(bj)
+    solve = cv.solve
+
+    def failing(prob, what, *a, **k):
+        if what == "collapse states of one mechanism":
+            raise SolverFailure("no answer")
+        return solve(prob, what, *a, **k)
+
+    monkeypatch.setattr(cv, "solve", failing)
+    assert mech.states(act, N) is None and not mech.tried(act)
+    monkeypatch.setattr(cv, "solve", solve)
+    got = mech.states(act, N)
+    assert got is not None and got[1] == pytest.approx(run.span, rel=1e-7)
+    every = np.ones_like(act)
+    assert mech.states(every, N) is None and mech.tried(every)
+
+
 def test_the_iterations_own_fixed_point_is_a_state_of_the_mechanism():
     """Cross-check of the two ends of one run: the limit iteration run to its own fixed
     point (no polytope, change of the normal forces below 1e-7, the algorithm before

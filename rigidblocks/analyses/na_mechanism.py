@@ -44,7 +44,7 @@ import numpy as np
 
 from ..errors import SolverFailure
 from ..methods.convex import ConvexMethod
-from ..solvers import OPTIMAL
+from ..solvers import FAILURE, INFEASIBLE, OPTIMAL
 from ..solvers.base import ConicProblem
 from ..solvers.highs_warm import nonzero, warm_lp
 from .na_limit import CONE_LIMIT_TOL, CappedLimit, LimitRun
@@ -281,22 +281,25 @@ class Mechanisms:
         """The collapse state of the mechanism (joint rows ``active``) nearest the
         normal forces ``N``, checked (:meth:`check`; ``least_confined`` False where
         ``active`` are phase 1's rows alone), and the multipliers of the mechanism's
-        lowest and highest states; None where its polytope is empty or the check fails.
-        An empty polytope is not sought again (the 311-block wall at f = 0.8 from the
-        associative state: 5 of its 14 attempts on the rows of one before)."""
+        lowest and highest states; None where its polytope is empty, the check fails or
+        the solver fails on it (not recorded: tried again). An empty polytope is not
+        sought again (the 311-block wall at f = 0.8 from the associative state: 5 of
+        its 14 attempts on the rows of one before)."""
         if self.tried(active):
             return None
-        lo = self.extreme(active, 1.0)
+        # where the solver fails (not the mechanism) it is sought again at the next
+        # settled step: the 204-block wall3d in plane at f = 0.6 from X0, where Clarabel
+        # failed on a nearest state at two steps, ends at a checked state after 19 limit
+        # solves (a plain fixed point after 26 when such failures were recorded as the
+        # mechanism's); the 1,041-block one stalled for 100 limit solves after one
+        # lowest state ended AlmostSolved
+        st, lo = self._over_polytope(active, self._lam_cost(1.0), None)
         if lo is None:
-            self.failed(active, True)
+            if st == INFEASIBLE:
+                self.failed(active, True)
             return None
         z = self.nearest(active, N)
         if z is None:
-            # the solver failed, not the mechanism: sought again at the next settled
-            # step, nearest other normal forces (the 204-block wall3d in plane at
-            # f = 0.6 from X0: Clarabel failed at two steps, and the run ended at a
-            # checked state after 19 limit solves; a plain fixed point after 26 when
-            # such failures were recorded as the mechanism's)
             return None
         if self.check(z, least_confined):
             self.failed(active, False)
@@ -314,9 +317,13 @@ class Mechanisms:
         """The state of the mechanism (joint rows ``active``) of least (``sense`` 1) or
         largest (-1) multiplier; None where the polytope is empty or the solver gives no
         answer."""
+        return self._over_polytope(active, self._lam_cost(sense), None)[1]
+
+    def _lam_cost(self, sense: float) -> np.ndarray:
+        """The cost ``sense`` lambda."""
         c = np.zeros(self.capped.prob.n)
         c[self.li] = sense
-        return self._over_polytope(active, c, None)
+        return c
 
     def nearest(self, active: np.ndarray, N: np.ndarray) -> np.ndarray | None:
         """The state of the mechanism whose normal forces are nearest ``N`` (least
@@ -328,19 +335,20 @@ class Mechanisms:
         d[nsl] = 1.0
         c = np.zeros(n)
         c[nsl] = -N
-        return self._over_polytope(active, c, sp.diags(d, format="csc"))
+        return self._over_polytope(active, c, sp.diags(d, format="csc"))[1]
 
     def _over_polytope(self, active: np.ndarray, c: np.ndarray, P: Any
-                       ) -> np.ndarray | None:
+                       ) -> tuple[str, np.ndarray | None]:
         """min c'z (+ z'Pz/2) over the collapse states of the mechanism (joint rows
-        ``active``): one problem by the convex method's back end."""
+        ``active``): one problem by the convex method's back end; its status
+        (INFEASIBLE: the polytope is empty) and its solution (None unless OPTIMAL)."""
         prob = self._polytope(active, c, P)
         try:
             res = self.cv.solve(prob, "collapse states of one mechanism", tight=True,
                                 stall=False)
         except SolverFailure:
-            return None
-        return res.z if res.status == OPTIMAL else None
+            return FAILURE, None
+        return res.status, (res.z if res.status == OPTIMAL else None)
 
     def _polytope(self, active: np.ndarray, c: np.ndarray, P: Any) -> ConicProblem:
         """The problem min c'z (+ z'Pz/2) over the states in equilibrium under their own
@@ -420,7 +428,7 @@ class ConeMechanisms(Mechanisms):
         settled, changes by a few rows a step: the 491-block wall3d in plane at
         f = 0.6 spent 1,631 of its 2,152 s in 470 attempts that gave none (164 of
         them failed in Clarabel), its runs ending as plain fixed points. A failure of
-        the solver on the nearest state is not recorded (:meth:`states`)."""
+        the solver on the polytope is not recorded (:meth:`states`)."""
         key = self.key(mech)
         return any(_settled(key, k) for k in self.failures)
 
