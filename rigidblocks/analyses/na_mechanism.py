@@ -47,7 +47,7 @@ from ..methods.convex import ConvexMethod
 from ..solvers import FAILURE, INFEASIBLE, OPTIMAL
 from ..solvers.base import ConicProblem
 from ..solvers.highs_warm import nonzero, warm_lp
-from .na_limit import CONE_LIMIT_TOL, CappedLimit, LimitRun
+from .na_limit import CappedLimit, LimitRun
 
 #: a dual below this fraction of the largest (of its phase) is zero: its row is not
 #: part of the mechanism
@@ -104,16 +104,19 @@ PHASE2_WARM_LIMIT = 1000
 #: the answer passes its check where, at its own caps, phase 1's multiplier and
 #: phase 2's total normal force are its own to this (relative)
 FIXED_TOL = 1e-7
-#: the same for Coulomb's cones, solved by the interior-point method: its accuracy,
-#: the change of the normal forces that ends a cone run as a plain fixed point
-#: (:data:`~rigidblocks.analyses.na_limit.CONE_LIMIT_TOL`). With FIXED_TOL the states of
-#: the 491-block wall3d in plane at f = 0.6 failed their checks by 8.4e-7 to 1.5e-6
-#: (0.437426419 at their own caps, not 0.437426051), and its runs ended as plain
-#: fixed points after 30 and 36 limit solves; with this one, at the states of a
-#: mechanism after 16 and 31, X0's answer 0.4374261 in [0.4373490, 0.4374477] (the 2D
-#: wall's 0.4374252 in [0.4373650, 0.4374597]), in 0.739 of the CPU time (whole
-#: processes in turn, two pairs: 121-131 s against 167-176 s)
-CONE_FIXED_TOL = CONE_LIMIT_TOL
+#: the same for Coulomb's cones, solved by the interior-point method, whose duals give a
+#: mechanism's rows only to CONE_DUAL_ZERO: a state of its polytope is a fixed point to
+#: a few 1e-6. With FIXED_TOL the states of the 491-block wall3d in plane at f = 0.6
+#: failed their checks by 8.4e-7 to 1.5e-6 (0.437426419 at their own caps, not
+#: 0.437426051), and its runs ended as plain fixed points after 30 and 36 limit solves;
+#: with 1e-6, at the states of a mechanism after 16 and 31, X0's answer 0.4374261 in
+#: [0.4373490, 0.4374477] (the 2D wall's 0.4374252 in [0.4373650, 0.4374597]), in 0.739
+#: of the CPU time (whole processes in turn, two pairs: 121-131 s against 167-176 s).
+#: The 1,041-block one's states failed 1e-6 by 2.6e-6 (0.411038056 at their own caps,
+#: not 0.411036983) and its run from X0 gave no answer in 200 limit solves; with 1e-5,
+#: 0.4110370 at states of its mechanism, [0.4108544, 0.4110587], after 42 (the 2D
+#: wall's 0.4110464 in [0.4110464, 0.4110589])
+CONE_FIXED_TOL = 1e-5
 
 
 class Mechanisms:

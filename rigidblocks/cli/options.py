@@ -48,7 +48,8 @@ RTOL_DEFAULTS = {
     "load": "2e-3 (the convex path's one solve is at its tight tolerances whatever it "
             "is, and its duals tell how far lambda* may lie above its answer); with "
             "--flow non-associative 1e-5 for the distortion method's bisection, while "
-            "the convex path's answer is a collapse state checked to 1e-7, no bracket",
+            "the convex path's answer is a collapse state checked to 1e-7 (1e-5 with "
+            "Coulomb's cones in 3D), no bracket",
     "thickness": "1e-4",
 }
 
