@@ -457,6 +457,30 @@ def test_wall3d_in_plane_ends_at_its_mechanisms_states():
     _wall3d_in_plane_at_its_mechanisms_states(20, 24, 0.6)
 
 
+@pytest.mark.slow
+def test_wall3d_of_1041_blocks_in_plane_decided_from_x0():
+    """The 1,041-block wall3d (32 x 32) in plane at f = 0.6 (issue #30: wall3d at about
+    1,000 blocks decided): from X0 the cone iteration ends at checked states of the
+    mechanism it reaches (phase 1's rows alone; measured 0.4110370 in [0.4108544,
+    0.4110587] after 42 limit solves, about 9 minutes), and the answer is the 2D
+    wall's to 1e-3 (measured 2.3e-5: 0.4110464). It gave no answer with the check at
+    1e-6 (its state failed it by 2.6e-6) or with a solver failure on one lowest state
+    recorded as an empty polytope."""
+    f = 0.6
+    r2 = rb.max_load_multiplier(build("wall", courses=32, blocks_per_course=32,
+                                      friction=f), flow=NA, state=False)
+    scene = build("wall3d", courses=32, blocks_per_course=32, friction=f,
+                  load_direction="in_plane")
+    na, cv = nonassociative._open(scene, "clarabel", NA)
+    up = cv.load_limit(f, 1e-9)
+    _, starts = nonassociative._starts(na, cv, up, f)
+    assert starts[0][0] == "the elastic state X0"
+    (run,) = limit_runs(CappedLimit(cv, na.marked, f), starts[:1])
+    assert run.converged and run.span is not None
+    assert run.span[0] <= run.lam <= run.span[1]
+    assert run.lam == pytest.approx(r2.history[0]["load_factor"], rel=1e-3)
+
+
 def test_nonassociative_friction_claims_no_bound_above(tmp_path, capsys):
     """Without dilatancy lambda(f) need not grow with f (the 10 x 10 wall at f = 0.8:
     0.5288166 at f = 0.79915, 0.5287345 at 0.7993): `friction --flow non-associative`
