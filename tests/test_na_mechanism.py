@@ -463,9 +463,9 @@ def test_wall3d_of_1041_blocks_in_plane_decided_from_x0():
     1,000 blocks decided): from X0 the cone iteration ends at checked states of the
     mechanism it reaches (phase 1's rows alone; measured 0.4110370 in [0.4108544,
     0.4110587] after 42 limit solves, about 9 minutes), and the answer is the 2D
-    wall's to 1e-3 (measured 2.3e-5: 0.4110464). It gave no answer with the check at
-    1e-6 (its state failed it by 2.6e-6) or with a solver failure on one lowest state
-    recorded as an empty polytope."""
+    wall's to 1e-3 (measured 2.3e-5: 0.4110464). Its run stalled with the check at
+    1e-6 (its state failed it by 2.6e-6), and before that with a solver failure on
+    one lowest state recorded as an empty polytope."""
     f = 0.6
     r2 = rb.max_load_multiplier(build("wall", courses=32, blocks_per_course=32,
                                       friction=f), flow=NA, state=False)
