@@ -131,8 +131,8 @@ def test_the_check_rejects_a_state_off_its_own_caps():
 def test_a_solver_failure_on_a_polytope_is_not_an_empty_polytope(monkeypatch):
     """A mechanism is recorded as one without collapse states (not sought again) where
     its polytope is empty, not where the solver fails on it: the 1,041-block wall3d in
-    plane at f = 0.6 stalled 0.411038 from its answer for 60 limit solves after
-    Clarabel ended its lowest state AlmostSolved once (issue #30). On the 5 x 3 wall at
+    plane at f = 0.6 stalled at lambda 0.411038 for about 100 least-squares steps after
+    Clarabel ended one lowest state AlmostSolved (issue #30). On the 5 x 3 wall at
     f = 0.8, the reached mechanism with that solve failing gives no state and is not
     recorded; sought again, it gives the run's span; with every joint row held its
     polytope is empty and is recorded."""

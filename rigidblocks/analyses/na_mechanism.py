@@ -113,9 +113,9 @@ FIXED_TOL = 1e-7
 #: [0.4373490, 0.4374477] (the 2D wall's 0.4374252 in [0.4373650, 0.4374597]), in 0.739
 #: of the CPU time (whole processes in turn, two pairs: 121-131 s against 167-176 s).
 #: The 1,041-block one's state failed 1e-6 by 2.6e-6 (0.411038056 at its own caps, not
-#: 0.411036983) and its run from X0 stalled (stopped after 55 least-squares steps); with 1e-5,
-#: 0.4110370 at states of its mechanism, [0.4108544, 0.4110587], after 42 (the 2D
-#: wall's 0.4110464 in [0.4110464, 0.4110589])
+#: 0.411036983) and its run from X0 stalled (stopped after 55 least-squares steps);
+#: with 1e-5, 0.4110370 at states of its mechanism, [0.4108544, 0.4110587], after 42
+#: (the 2D wall's 0.4110464 in [0.4110464, 0.4110589])
 CONE_FIXED_TOL = 1e-5
 
 
