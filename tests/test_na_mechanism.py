@@ -72,6 +72,51 @@ def test_warm_lp_follows_changed_bounds(kind, monkeypatch):
         assert lp.cold == 1
 
 
+# -- the selection step on the optimal face ---------------------------------------------
+def test_the_selection_holds_the_simplex_answers_optimal_face(monkeypatch):
+    """The 10 x 10 wall at f = 0.8, at the caps of X0's normal forces: held on the rows
+    of phase 1's answer with non-zero duals (its optimal face, by complementary
+    slackness), the selected state carries the maximum itself (to 1e-12) and holds
+    those rows (to 1e-9), with a smaller objective (sum N + |N - N0|^2 / 2) than the
+    simplex vertex's on the same face (measured 1422.49 against 1801.17); under the
+    bound lambda >= max (1 - 1e-9) instead, the state leaves the face (those rows
+    off by 2.4e-4). Every least-squares step of a 2D run selects on its face."""
+    from rigidblocks.analyses import na_limit
+
+    scene = build("wall", courses=10, blocks_per_course=10, friction=0.8)
+    na, cv = nonassociative._open(scene, "clarabel", NA)
+    _, starts = nonassociative._starts(na, cv, cv.load_limit(0.8, 1e-9), 0.8)
+    capped = CappedLimit(cv, na.marked, 0.8)
+    N0 = starts[0][1]
+    b = capped.rhs(N0)
+    st, lam, z = capped.solver.maximise(b)
+    assert st == "optimal"
+    face = capped.solver.held()
+    zf = capped.nearest(b, lam, N0, face)
+    li, nsl = capped.prob.cols["lambda"].start, capped.nsl
+    Aj = capped.prob.A.tocsr()[capped.prob.n_eq:]
+    assert zf[li] == pytest.approx(lam, rel=1e-12)
+    assert np.abs(Aj[face] @ zf - b[face]).max() <= 1e-9
+    assert np.abs(Aj[face] @ z - b[face]).max() <= 1e-9  # the vertex is on the face
+
+    def objective(x):
+        return x[nsl].sum() + 0.5 * ((x[nsl] - N0) ** 2).sum()
+
+    assert objective(zf) < objective(z) - 1.0
+    zs = capped.nearest(b, lam * (1 - 1e-9), N0)
+    assert np.abs(Aj[face] @ zs - b[face]).max() > 1e-6
+    faces = []
+    select = na_limit._select_problem
+
+    def recording(*args, **kw):
+        faces.append(args[5] if len(args) > 5 else kw.get("face"))
+        return select(*args, **kw)
+
+    monkeypatch.setattr(na_limit, "_select_problem", recording)
+    _walls_mechanism(scene, 0.8)
+    assert faces and all(f is not None and f.any() for f in faces)
+
+
 # -- the collapse states of a mechanism ------------------------------------------------
 def _walls_mechanism(scene, f: float):
     """The limit iteration from X0 ended at its mechanism's states, with what it ran on."""

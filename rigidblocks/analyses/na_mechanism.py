@@ -47,11 +47,8 @@ from ..methods.convex import ConvexMethod
 from ..solvers import FAILURE, INFEASIBLE, OPTIMAL
 from ..solvers.base import ConicProblem
 from ..solvers.highs_warm import nonzero, warm_lp
-from .na_limit import CappedLimit, LimitRun
+from .na_limit import DUAL_ZERO, CappedLimit, LimitRun
 
-#: a dual below this fraction of the largest (of its phase) is zero: its row is not
-#: part of the mechanism
-DUAL_ZERO = 1e-9
 #: an interior-point dual below this fraction of the largest is zero (the solver's
 #: duals of rows that do not hold are about its gap over their slack, 1e-10 and less)
 CONE_DUAL_ZERO = 1e-6
@@ -150,9 +147,8 @@ class Mechanisms:
         self.K = (p.A.tocsr() - MF @ E).tocsr()
 
     def _make_phase2(self) -> None:
-        """Phase 1's LP (the capped problem's own model) and phase 2's (min sum N)."""
+        """Phase 2's LP (min sum N; phase 1's is the capped problem's own model)."""
         p, ne, ni = self.capped.prob, self.ne, self.ni
-        self.phase1 = self.capped.solver.lp
         c2 = np.zeros(p.n)
         c2[self.capped.nsl] = 1.0
         self.phase2 = warm_lp(c2, p.A, np.concatenate([p.b[:ne], np.full(ni, -math.inf)]),
@@ -181,7 +177,7 @@ class Mechanisms:
 
     def phase1_rows(self) -> Any:
         """The joint rows with a non-zero dual in phase 1's last answer."""
-        return nonzero(self.phase1.duals[self.ne:], DUAL_ZERO)
+        return self.capped.solver.held()
 
     def active(self, bj: np.ndarray) -> np.ndarray | None:
         """The joint rows the mechanism at the caps ``bj`` (joint rows' right-hand
