@@ -760,7 +760,8 @@ def large_walls_md(rows: list[dict[str, Any]]) -> list[str]:
             "mechanism it reaches: the answer, the nearest of them, and their range; "
             "a range marked * holds states of the maximum-load problem's rows alone, "
             "where no least confined state was reached) and "
-            "`friction` at the multiplier found (which should give f back), CPU seconds in "
+            "`friction` at the multiplier found (f back, or a lower f where the answer "
+            "from X0, not unique, carries that multiplier too), CPU seconds in "
             "one process on one thread, with the associative `load` of the same run.", "",
             markdown_table(header, body)]
 
