@@ -72,6 +72,35 @@ def test_warm_lp_follows_changed_bounds(kind, monkeypatch):
         assert lp.cold == 1
 
 
+def test_the_solve_after_a_warm_one_given_up_goes_to_ipm_at_once():
+    """With every warm solve given up (a limit of 0 iterations), four solves of the
+    random LP: without the rule the last three are each tried warm and given up;
+    with ``cold_after_give_up`` the third goes to IPM at once (two given up). The
+    optima are the same."""
+    c, A, lo, up = _lp()
+    rows = np.arange(A.shape[0])
+    rng = np.random.default_rng(7)
+    bounds = []
+    for k in range(4):  # as in test_warm_lp_follows_changed_bounds: one row fixed
+        up2 = up.copy()
+        up2[:30] = up[:30] * rng.uniform(0.5, 1.5, 30)
+        lo2 = lo.copy()
+        lo2[30 + k] = up2[30 + k] = 0.3
+        bounds.append((lo2, up2))
+    got = {}
+    for rule in (False, True):
+        lp = WarmLp(c, A, lo, up)
+        lp.limit = 0
+        lp.cold_after_give_up = rule
+        got[rule] = []
+        for lo2, up2 in bounds:
+            assert lp.solve(rows, lo2, up2) == "optimal"
+            got[rule].append(c @ lp.x)
+        assert lp.cold == lp.solves == 4
+        assert lp.given_up == (2 if rule else 3)
+    assert got[True] == pytest.approx(got[False], abs=1e-9)
+
+
 # -- the selection step on the optimal face ---------------------------------------------
 def test_the_selection_holds_the_simplex_answers_optimal_face(monkeypatch):
     """The 10 x 10 wall at f = 0.8, at the caps of X0's normal forces: held on the rows

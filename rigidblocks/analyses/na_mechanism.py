@@ -98,6 +98,12 @@ LOOSE = f" (with the maximum-load problem's rows alone: {LOOSE_STATES})"
 #: 0.928 of the CPU time with 3,000, the same answers; 1,000 for phase 1 too was no
 #: faster, 44.2 s against 42.5 s)
 PHASE2_WARM_LIMIT = 1000
+#: ... and the solve after one given up goes to IPM at once: phase 2's warm solves are
+#: given up in runs (36 of the 1,041-block wall's 60 at f = 0.8). Whole processes in
+#: turn: 0.908-0.974 of the CPU time on the walls 10 x 10 at f = 0.8, 20 x 15 and
+#: 32 x 32 at f = 0.6 and 0.8 (174.7 s against 189.4 s on the last), the same answers
+#: from X0
+PHASE2_COLD_AFTER_GIVE_UP = True
 #: the answer passes its check where, at its own caps, phase 1's multiplier and
 #: phase 2's total normal force are its own to this (relative)
 FIXED_TOL = 1e-7
@@ -154,6 +160,7 @@ class Mechanisms:
         self.phase2 = warm_lp(c2, p.A, np.concatenate([p.b[:ne], np.full(ni, -math.inf)]),
                               p.b[:ne + ni])
         self.phase2.limit = PHASE2_WARM_LIMIT
+        self.phase2.cold_after_give_up = PHASE2_COLD_AFTER_GIVE_UP
 
     @property
     def phase2_x(self) -> np.ndarray:

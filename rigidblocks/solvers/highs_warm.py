@@ -9,7 +9,9 @@ dual simplex restarts from it; where the bounds moved far (the first steps of a 
 the warm solve can take longer than a solve from scratch by the interior-point method
 (on the 1,041-block wall: 5 s warm against 1.3 s IPM with crossover): a warm solve that
 runs past ``WARM_LIMIT`` simplex iterations is given up and the LP solved by IPM with
-crossover, which ends on a basis again. Every answer is a basic solution, so its row
+crossover, which ends on a basis again; where ``cold_after_give_up`` is set, the solve
+after one given up goes to IPM at once (phase 2 of the mechanisms' walk, whose warm
+solves are given up in runs). Every answer is a basic solution, so its row
 duals are those of a vertex: a row whose dual is not zero is active in every optimal
 solution (complementary slackness), which the mechanism walk relies on.
 """
@@ -46,7 +48,8 @@ class WarmLp:
 
     :meth:`solve` changes the bounds of some rows and solves from the last basis;
     :attr:`x` and :attr:`duals` read the answer (HiGHS's row duals: d objective / d
-    bound). ``solves``, ``cold`` count the solves and those done by IPM."""
+    bound). ``solves``, ``cold`` and ``given_up`` count the solves, those done by IPM
+    and the warm solves given up for IPM."""
 
     def __init__(self, c: np.ndarray, A: Any, row_lower: np.ndarray,
                  row_upper: np.ndarray):
@@ -82,6 +85,11 @@ class WarmLp:
         self.cold = 0
         #: simplex iterations of a warm solve before it is solved from scratch by IPM
         self.limit = WARM_LIMIT
+        #: does the solve after a warm one given up go to IPM at once?
+        self.cold_after_give_up = False
+        #: warm solves given up
+        self.given_up = 0
+        self._gave_up = False
 
     def solve(self, rows: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> str:
         """Set the bounds of ``rows`` and solve: OPTIMAL, INFEASIBLE, UNBOUNDED or
@@ -90,13 +98,17 @@ class WarmLp:
         h.changeRowsBounds(len(rows), np.asarray(rows, dtype=np.int32),
                            np.maximum(lower, -inf), np.minimum(upper, inf))
         self.solves += 1
-        if self.warm:
+        skip = self.cold_after_give_up and self._gave_up
+        self._gave_up = False
+        if self.warm and not skip:
             h.setOptionValue("solver", "simplex")
             h.setOptionValue("simplex_iteration_limit", self.limit)
             h.run()
             st = self._status()
             if st != FAILURE:
                 return st
+            self._gave_up = True
+            self.given_up += 1
         self.cold += 1
         h.clearSolver()
         h.setOptionValue("solver", "ipm")
@@ -136,6 +148,7 @@ class ColdLp:
         self.solves = self.cold = 0
         #: :class:`WarmLp`'s; unused (every solve is from scratch)
         self.limit = WARM_LIMIT
+        self.cold_after_give_up = False
 
     def solve(self, rows: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> str:
         from scipy.optimize import linprog
