@@ -101,7 +101,7 @@ PHASE2_WARM_LIMIT = 1000
 #: ... and the solve after one given up goes to IPM at once: phase 2's warm solves are
 #: given up in runs (36 of the 1,041-block wall's 60 at f = 0.8). Whole processes in
 #: turn: 0.908-0.974 of the CPU time on the walls 10 x 10 at f = 0.8, 20 x 15 and
-#: 32 x 32 at f = 0.6 and 0.8 (174.7 s against 189.4 s on the last), the same answers
+#: 32 x 32 at f = 0.6 and 0.8 (175.0 s against 189.7 s on the last), the same answers
 #: from X0
 PHASE2_COLD_AFTER_GIVE_UP = True
 #: the answer passes its check where, at its own caps, phase 1's multiplier and
