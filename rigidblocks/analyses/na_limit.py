@@ -188,6 +188,20 @@ class _ConicLimit:
         return None
 
 
+def hold_rows(A: Any, b: np.ndarray, ne: int, held: np.ndarray
+              ) -> tuple[Any, np.ndarray, int, int]:
+    """The rows (A, b) of a problem (its ``ne`` equalities first, then its joint rows,
+    inequalities) with the joint rows ``held`` made equalities: the rows, their
+    right-hand sides, and the numbers of equalities and of inequalities."""
+    import scipy.sparse as sp
+
+    A = A.tocsr()
+    Aj, bj = A[ne:], b[ne:]
+    return (sp.vstack([A[:ne], Aj[held], Aj[~held]], format="csc"),
+            np.concatenate([b[:ne], bj[held], bj[~held]]),
+            ne + int(held.sum()), int((~held).sum()))
+
+
 def _select_problem(prob: ConicProblem, nsl: slice, b_joints: np.ndarray, lam: float,
                      N_prev: np.ndarray, face: np.ndarray | None = None) -> ConicProblem:
     """min sum N + w/2 |N - N_prev|^2 (w = PROX_WEIGHT, N scaled) over the states of
@@ -207,18 +221,16 @@ def _select_problem(prob: ConicProblem, nsl: slice, b_joints: np.ndarray, lam: f
     import scipy.sparse as sp
 
     n, ne, ni = prob.n, prob.n_eq, prob.n_nonneg
-    A = prob.A.tocsr()
-    Aj, bj = A[ne:], b_joints
     if face is None:
+        A = prob.A.tocsr()
         li = prob.cols["lambda"].start
         lam_row = sp.csr_matrix(([-1.0], ([0], [li])), shape=(1, n))
-        A2 = sp.vstack([A[:ne], lam_row, Aj], format="csc")
-        b2 = np.concatenate([prob.b[:ne], [-lam], bj])
+        A2 = sp.vstack([A[:ne], lam_row, A[ne:]], format="csc")
+        b2 = np.concatenate([prob.b[:ne], [-lam], b_joints])
         n_eq, n_nonneg = ne, ni + 1
     else:
-        A2 = sp.vstack([A[:ne], Aj[face], Aj[~face]], format="csc")
-        b2 = np.concatenate([prob.b[:ne], bj[face], bj[~face]])
-        n_eq, n_nonneg = ne + int(face.sum()), int((~face).sum())
+        A2, b2, n_eq, n_nonneg = hold_rows(prob.A, np.concatenate([prob.b[:ne], b_joints]),
+                                           ne, face)
     d = np.zeros(n)
     d[nsl] = 1.0
     c = np.zeros(n)

@@ -47,7 +47,7 @@ from ..methods.convex import ConvexMethod
 from ..solvers import FAILURE, INFEASIBLE, OPTIMAL
 from ..solvers.base import ConicProblem
 from ..solvers.highs_warm import nonzero, warm_lp
-from .na_limit import DUAL_ZERO, CappedLimit, LimitRun
+from .na_limit import DUAL_ZERO, CappedLimit, LimitRun, hold_rows
 
 #: an interior-point dual below this fraction of the largest is zero (the solver's
 #: duals of rows that do not hold are about its gap over their slack, 1e-10 and less)
@@ -359,14 +359,12 @@ class Mechanisms:
     def _polytope(self, active: np.ndarray, c: np.ndarray, P: Any) -> ConicProblem:
         """The problem min c'z (+ z'Pz/2) over the states in equilibrium under their own
         caps (K z <= b0) with the rows ``active`` held."""
-        import scipy.sparse as sp
-
-        p, K, ne = self.capped.prob, self.K, self.ne
-        Kj, b0 = K[ne:], self.capped.b0
-        A = sp.vstack([K[:ne], Kj[active], Kj[~active]], format="csc")
-        b = np.concatenate([p.b[:ne], b0[active], b0[~active]])
-        return ConicProblem(c=c, A=A, b=b, n_eq=ne + int(active.sum()),
-                            n_nonneg=int((~active).sum()), P=P, cols=p.cols, rows={})
+        p = self.capped.prob
+        A, b, n_eq, n_nonneg = hold_rows(self.K, np.concatenate([p.b[:self.ne],
+                                                                 self.capped.b0]),
+                                         self.ne, active)
+        return ConicProblem(c=c, A=A, b=b, n_eq=n_eq, n_nonneg=n_nonneg, P=P, cols=p.cols,
+                            rows={})
 
     def check(self, z: np.ndarray, least_confined: bool = True) -> str:
         """Why the state ``z`` is not a fixed point ("" where it is): at its own caps,
