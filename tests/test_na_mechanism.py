@@ -35,6 +35,20 @@ def _lp(seed: int = 4):
     return rng.normal(size=n), A, lo, up
 
 
+def _changed_bounds(lo, up, n: int):
+    """n changes of the random LP's row bounds: its first 30 upper bounds scaled by 0.5
+    to 1.5, and one box row k fixed at 0.3 (an equality) in the k-th."""
+    rng = np.random.default_rng(7)
+    out = []
+    for k in range(n):
+        up2 = up.copy()
+        up2[:30] = up[:30] * rng.uniform(0.5, 1.5, 30)
+        lo2 = lo.copy()
+        lo2[30 + k] = up2[30 + k] = 0.3
+        out.append((lo2, up2))
+    return out
+
+
 @pytest.mark.parametrize("kind", ["warm", "warm-ipm", "cold"])
 def test_warm_lp_follows_changed_bounds(kind, monkeypatch):
     """The same LP with its row bounds changed three times: each optimum equals
@@ -49,12 +63,7 @@ def test_warm_lp_follows_changed_bounds(kind, monkeypatch):
     c, A, lo, up = _lp()
     lp = (ColdLp if kind == "cold" else WarmLp)(c, A, lo, up)
     rows = np.arange(A.shape[0])
-    rng = np.random.default_rng(7)
-    for k in range(3):
-        up2 = up.copy()
-        up2[:30] = up[:30] * rng.uniform(0.5, 1.5, 30)
-        lo2 = lo.copy()
-        lo2[30 + k] = up2[30 + k] = 0.3  # one row an equality
+    for lo2, up2 in _changed_bounds(lo, up, 3):
         assert lp.solve(rows, lo2, up2) == "optimal"
         ref = linprog(c, A_ub=sp.vstack([A, -A[lo2 > -np.inf]]),
                       b_ub=np.concatenate([up2, -lo2[lo2 > -np.inf]]), bounds=(None, None),
@@ -79,14 +88,7 @@ def test_the_solve_after_a_warm_one_given_up_goes_to_ipm_at_once():
     optima are the same."""
     c, A, lo, up = _lp()
     rows = np.arange(A.shape[0])
-    rng = np.random.default_rng(7)
-    bounds = []
-    for k in range(4):  # as in test_warm_lp_follows_changed_bounds: one row fixed
-        up2 = up.copy()
-        up2[:30] = up[:30] * rng.uniform(0.5, 1.5, 30)
-        lo2 = lo.copy()
-        lo2[30 + k] = up2[30 + k] = 0.3
-        bounds.append((lo2, up2))
+    bounds = _changed_bounds(lo, up, 4)
     got = {}
     for rule in (False, True):
         lp = WarmLp(c, A, lo, up)
