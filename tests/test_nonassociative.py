@@ -149,6 +149,21 @@ def test_lower_bound_holds_for_every_state(method):
 
 
 @pytest.mark.parametrize("method", BOTH)
+def test_infinite_friction_leaves_the_flow_no_part(method):
+    """The reference model with self-weight at infinite friction: no joint slides, so
+    the flow rule plays no part and the non-associative answer is the associative one,
+    unbounded (its live loads are balanced and no hinge mechanism moves them; the
+    associative analysis says so). The limit iteration's capped problem is unbounded at
+    X0's caps; that is the answer here, not an undecided run."""
+    scene = read_scene(EXAMPLES / "reference_self_weight.json")
+    assoc = rb.max_load_multiplier(scene, friction="infinite", state=False)
+    assert assoc.status == "unbounded"
+    na = rb.max_load_multiplier(scene, friction="infinite", method=method, flow=NA,
+                                state=False)
+    assert na.status == "unbounded" and na.load_multiplier is None
+
+
+@pytest.mark.parametrize("method", BOTH)
 @pytest.mark.parametrize("f", [0.3, 0.8])
 def test_single_block_both_laws(method, f):
     """A b x h block (1 x 2) on a base under lambda W horizontally: it slides at

@@ -736,6 +736,15 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
         na.notes.append("the state reached from X0 under the dead load did not settle: the "
                         "limit iteration starts from X0's normal forces")
     main = runs[0] if runs else None
+    if main is not None and main.status == "unbounded" and up.status == "unbounded" \
+            and not (na.marked & np.isfinite(cv.f_joint(f))).any():
+        # no joint of non-associative flow can slide: the capped problem is the
+        # associative one, whose multiplier is unbounded
+        na.notes.append("no joint of non-associative flow can slide (infinite friction): "
+                        "the flow plays no part, and the multiplier is the associative "
+                        "one, unbounded")
+        return LoadResult(**_fields(na, "max_load_multiplier", "unbounded", f, None, trials,
+                                    True), load_multiplier_bounds=bounds)
     if main is None or not main.converged:
         na.notes.append("the elastic state X0 has no solution" if main is None else
                         f"from {main.start}: {main.reason}")
