@@ -24,7 +24,7 @@ from ..errors import InputError
 from ..problems.formulation import Scaling
 from ..scene.model import Scene
 from ..solvers import INFEASIBLE, UNBOUNDED, Runner, SolverResult
-from ..solvers.policy import Ladder, describe, ladder_of
+from ..solvers.policy import FALLBACK, Ladder, describe, ladder_of
 from .base import ADMISSIBLE, Limit, Method, Progress, Timings, Verdict
 from .force_state import STATE_SLACK, ForceStates
 from .friction_search import FrictionSearch
@@ -151,8 +151,10 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
                                   "largest force")
             if len(self.runner.rejected) > n and not self._rejected_noted:
                 self._rejected_noted = True
+                by = ("at the next settings of its ladder" if self.solver == FALLBACK
+                      else f"by {FALLBACK}")
                 self.notes.append(f"answers of {self.solver} that failed their check against "
-                                  f"the problem were solved again by clarabel (first: "
+                                  f"the problem were solved again {by} (first: "
                                   f"{self.runner.rejected[n]})")
             return res
 
