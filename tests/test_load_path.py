@@ -34,6 +34,26 @@ def joints(e):
     return {frozenset(j) for j in e.joints}
 
 
+def test_a_hinge_collapse_names_its_hinges():
+    """The semicircular arch (examples/arch.json) under a horizontal body force fails
+    by four hinges, no joint sliding: the path's collapse names the joints where the
+    thrust reaches an edge in its last admissible state, the hinges of the convex
+    method's mechanism (computed here), at the convex method's multiplier (to 1e-6).
+    Before, it named no joint ("collapse -")."""
+    from rigidblocks.contacts import detect_contacts
+
+    scene = rb.read_scene(EXAMPLES / "arch.json")
+    ref = rb.max_load_multiplier(scene)
+    c = detect_contacts(scene)
+    hinges = {frozenset((c.block_ids[c.pairs[k][0]], c.block_ids[c.pairs[k][1]]))
+              for k in ref.mechanism.joints_with("hinge")}
+    assert len(hinges) == 4
+    p = load_path(scene)
+    assert p.status == "collapse"
+    assert p.collapse_load == pytest.approx(ref.load_multiplier, rel=EV)
+    assert kinds(p) == ["collapse"] and joints(p.first("collapse")) == hinges
+
+
 @pytest.mark.parametrize("sliding, flow", LAWS)
 def test_single_block_slides_at_f(block_on_base, sliding, flow):
     """validation.md: lambda* = min(f, b/h); b/h = 0.5 and f = 0.3: it slides at
@@ -53,6 +73,7 @@ def test_heyman_block_tips_at_b_over_h_with_no_plastic_joint(block_on_base, flow
     p = load_path(block_on_base(1.0, 2.0, "infinite"), steps=7, max_load=1.0, flow=flow)
     assert "plastic" not in kinds(p)
     assert p.status == "collapse" and p.collapse_load == pytest.approx(0.5, rel=EV)
+    assert joints(p.first("collapse")) == {frozenset(("base", "B"))}  # its toe hinge
     ref = load_path(rb.read_scene(EXAMPLES / "reference_self_weight.json"),
                     friction="infinite", flow=flow)
     assert ref.status == "standing" and ref.events == ()

@@ -34,7 +34,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..methods import open_method
-from ..methods.distortion import AT_THRESHOLD
+from ..methods.distortion import AT_THRESHOLD, LOADED
 from ..scene.model import Scene, friction_label, friction_value
 from ..solvers.distortion import TOL, Run
 from .nonassociative import _UNSETTLED, flow_mask
@@ -59,8 +59,9 @@ class PathEvent:
     ``kind``: "crack" (a normal link reached its tensile strength and broke),
     "plastic" (a shear link reached its friction threshold), "slide" (Coulomb option:
     the shear dropped to zero), "collapse" (no admissible state beyond this load; the
-    joints listed are those of the event that caused it and those at their threshold
-    in the last admissible state).
+    joints listed are those of the event that caused it, those at their threshold in
+    the last admissible state, and its hinges there: loaded joints with one point's
+    normal force at zero, the thrust at the joint's edge).
     """
 
     kind: str
@@ -186,6 +187,18 @@ class _Path:
     def at_threshold(self, r: Run) -> list[int]:
         return list(self.w.at_threshold(r, 0.0, AT_THRESHOLD, laws=self.laws()))
 
+    def hinging(self, r: Run) -> list[int]:
+        """Loaded joints with one point's normal force at zero (within ``AT_THRESHOLD``
+        of the largest force): the thrust at the joint's edge, a hinge of the mechanism
+        near collapse (the semicircular arch of examples/arch.json: the four joints the
+        convex method's mechanism hinges at, at 2.4e-8 and less, the next at 1.1e-2)."""
+        v = self.ds.gather(r.x)
+        big = float(np.abs(v).max(initial=0.0))
+        top = np.maximum(v[:, 0], v[:, 1])
+        low = np.minimum(v[:, 0], v[:, 1])
+        return [int(j) for j in np.flatnonzero((top > LOADED * big)
+                                                & (low <= AT_THRESHOLD * big))]
+
     def new(self, r: Run) -> tuple[list[int], list[int]]:
         """(joints that crack, joints newly at their threshold) in the state of ``r``."""
         cracks = self.cracks(r)
@@ -273,6 +286,7 @@ class _Path:
         new = [j for j in gov if j not in self.seen]
         if new:
             self.events.append(PathEvent("plastic", lam, tuple(self.names[j] for j in new)))
+        gov += [j for j in (self.hinging(last) if last else []) if j not in gov]
         self.events.append(PathEvent("collapse", lam, tuple(self.names[j] for j in gov)))
         return _End("collapse", lam)
 
