@@ -37,6 +37,17 @@ _SOLVER_NOTE = re.compile(
 #: the verdict of a non-associative check that fails
 NA_INADMISSIBLE = ("NOT ADMISSIBLE: the state reached from the elastic state X0 breaches the "
                    "joint laws (sliding without dilatancy; another state may stand)")
+#: ... and where it is admissible: without dilatancy no static theorem makes an
+#: admissible state a proof (the Arpino gate at f = 0.6: the state reached from X0 at
+#: lambda = 0.12 is admissible, while the limit iteration from X0 collapses at
+#: 0.1187021, the smallest multiplier of any state, `load --safe`)
+NA_ADMISSIBLE = ("ADMISSIBLE: it stands in the state reached from the elastic state X0 "
+                 "(every joint in compression and within friction; sliding without "
+                 "dilatancy: another state may collapse at a lower load)")
+NA_ADMISSIBLE_WHY = ("without dilatancy an admissible state is no proof of safety: the "
+                     "collapse multiplier reached from X0 (`rigidblocks load --flow "
+                     "non-associative`) and the smallest over all states (`--safe`) may lie "
+                     "below this load factor")
 
 
 def without_dilatancy(result: Any) -> bool:
@@ -322,6 +333,8 @@ class _Words:
                            "friction any state needs is f* (`rigidblocks friction`)")
             elif fd is not None:
                 why.append(f"{state} uses no friction")
+            if na:
+                return NA_ADMISSIBLE, "", "", [*why, NA_ADMISSIBLE_WHY]
             return ("ADMISSIBLE: it stands (an equilibrium state with every joint in "
                     "compression and within friction exists)", "", "", why)
         number = ""

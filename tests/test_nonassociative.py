@@ -549,6 +549,27 @@ def test_cli_names_the_starts_and_bounds(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("method", ["clarabel", "distortion"])
+def test_an_admissible_state_without_dilatancy_is_no_proof(method, capsys):
+    """The Arpino gate at f = 0.6 and lambda = 0.12: the state reached from X0 is
+    admissible (both methods), yet the limit iteration from X0 collapses at 0.1187021,
+    which the mixed-integer LP proves the smallest multiplier of any state
+    (tests/test_na_bounds.py, docs/safe-multiplier.md). Without dilatancy no static
+    theorem turns an admissible state into a proof, so the verdict says what stands (the
+    state reached from X0) and that another state may collapse lower, not "an
+    equilibrium state exists" alone (the associative wording, before)."""
+    from rigidblocks.answer import NA_ADMISSIBLE, NA_ADMISSIBLE_WHY
+
+    path = str(EXAMPLES / "arpino_gate.json")
+    lam = rb.max_load_multiplier(read_scene(path), flow=NA, state=False).load_multiplier
+    assert lam == pytest.approx(0.1187021, abs=1e-7) and lam < 0.12
+    assert main(["check", path, "--flow", NA, "--method", method,
+                 "--load-factor", "0.12"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert f"verdict    {NA_ADMISSIBLE}" in lines
+    assert f"why        {NA_ADMISSIBLE_WHY}" in lines
+
+
+@pytest.mark.parametrize("method", ["clarabel", "distortion"])
 def test_verbose_notes_name_the_associative_bound(method, capsys):
     """The associative step's note on its own lambda* (its bracket, asked at 1e-9) is
     about the upper bound, not the non-associative answer: `load --flow
