@@ -185,6 +185,24 @@ def test_negative_load_factor_is_refused_everywhere(capsys):
         assert "--load-factor" in err and ">= 0" in err, err
 
 
+def test_bad_friction_and_path_options_name_the_option(capsys):
+    """A negative or non-numeric --friction, --steps 0 and --max-load 0 are usage errors
+    (exit 2) naming the option, as every other option's (before: "friction must be
+    >= 0" named no option, "load_path needs steps >= 1" a Python function)."""
+    f = str(EXAMPLES / "arch.json")
+    for argv, opt in ((["check", f, "--friction", "-1"], "--friction"),
+                      (["load", f, "--friction", "abc"], "--friction"),
+                      (["path", f, "--friction", "-0.5"], "--friction"),
+                      (["plot", f, "--analysis", "load", "--friction", "-1"], "--friction"),
+                      (["path", f, "--steps", "0"], "--steps"),
+                      (["path", f, "--max-load", "0"], "--max-load")):
+        assert main(argv) == 2, argv
+        err = capsys.readouterr().err
+        assert f"argument {opt}:" in err and len(err.strip().splitlines()) == 1, err
+    assert main(["check", f, "--friction", "infinite"]) == 0
+    capsys.readouterr()
+
+
 def test_mechanism_counts_are_one_counting(capsys):
     """The joints `load` says hinge, slide, slide and hinge, or open are those the
     report's joint table marks so (each joint in one group), on the 3D examples."""

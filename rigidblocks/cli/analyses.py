@@ -20,7 +20,7 @@ from ..answer import answer_block
 from ..errors import InputError
 from ..io import read_scene
 from ..methods import METHODS, Progress
-from .options import add_rtol, finite_float
+from .options import add_rtol, finite_float, friction_option
 from .options import load_factor as load_factor_type
 from .progress import run_interruptible
 
@@ -31,7 +31,8 @@ QUESTION_OPTIONS = ("friction", "load_factor", "method", "solver", "contact_tol"
 def add_question_args(p: argparse.ArgumentParser, takes: tuple[str, ...]) -> None:
     """The options of the question asked (``takes``: friction and/or load_factor)."""
     if "friction" in takes:
-        p.add_argument("--friction", help='friction coefficient f, or "infinite" '
+        p.add_argument("--friction", type=friction_option,
+                       help='friction coefficient f, or "infinite" '
                        "(default: the scene's)")
     if "load_factor" in takes:
         p.add_argument("--load-factor", type=load_factor_type, default=None,

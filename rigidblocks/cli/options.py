@@ -34,6 +34,38 @@ def load_factor(text: str) -> float:
     return v
 
 
+def friction_option(text: str) -> str:
+    """argparse type of ``--friction``: a number >= 0 or "infinite" (checked as a scene's
+    friction is), kept as given."""
+    from ..errors import InputError
+    from ..scene.model import friction_value
+
+    try:
+        friction_value(text)
+    except InputError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    return text
+
+
+def positive_int(text: str) -> int:
+    """argparse type: a whole number >= 1."""
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    if v < 1:
+        raise argparse.ArgumentTypeError(f"must be >= 1, got {text!r}")
+    return v
+
+
+def positive_float(text: str) -> float:
+    """argparse type: a finite number > 0."""
+    v = finite_float(text)
+    if not v > 0:
+        raise argparse.ArgumentTypeError(f"must be > 0, got {text!r}")
+    return v
+
+
 def relative_tolerance(text: str) -> float:
     """argparse type: a relative accuracy, a number in (0, 1)."""
     value = finite_float(text)
@@ -71,5 +103,5 @@ def use_finite_floats(parser: argparse.ArgumentParser) -> None:
             action.type = finite_float
 
 
-__all__ = ["RTOL_DEFAULTS", "add_rtol", "finite_float", "output_path", "relative_tolerance",
-           "use_finite_floats"]
+__all__ = ["RTOL_DEFAULTS", "add_rtol", "finite_float", "friction_option", "output_path",
+           "positive_float", "positive_int", "relative_tolerance", "use_finite_floats"]

@@ -8,15 +8,17 @@ import json
 from ..analyses import load_path
 from ..io import read_scene
 from .analyses import EXIT, _jsonable
-from .options import finite_float
+from .options import friction_option, positive_float, positive_int
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("scene", help="scene file (JSON, see docs/scene-format.md)")
-    p.add_argument("--steps", type=int, default=40, help="number of load steps (default 40)")
-    p.add_argument("--max-load", type=finite_float, default=2.0,
+    p.add_argument("--steps", type=positive_int, default=40,
+                   help="number of load steps (default 40)")
+    p.add_argument("--max-load", type=positive_float, default=2.0,
                    help="largest live-load multiplier of the path (default 2)")
-    p.add_argument("--friction", help='friction coefficient f, or "infinite" '
+    p.add_argument("--friction", type=friction_option,
+                   help='friction coefficient f, or "infinite" '
                    "(Heyman: no sliding; default: the scene's)")
     p.add_argument("--sliding", choices=("plastic", "coulomb"), default="plastic",
                    help="shear links at their threshold: plastic (Drucker: the shear "
