@@ -158,7 +158,8 @@ class Result:
         return [self.joint_name(k) for k in self.governing]
 
     def joint_table(self) -> list[dict[str, Any]]:
-        """One row per joint: its blocks, N, T, eccentricity e (2D), |T|/N, its
+        """One row per joint: its blocks, N, T, eccentricity e (2D), |T|/N (None where
+        the joint is open), its
         ``state`` in the force state ("open": no compression; "edge": the resultant at
         an edge of the joint, where a hinge forms; "friction limit": |T| = f N;
         "closed") and its ``mode`` in the mechanism, if any; empty without a state."""
@@ -188,9 +189,12 @@ class Result:
                 state = "edge"
             else:
                 state = "closed"
-            rows.append({"joint": [a, b], "N": N, "T": T,
-                         "eccentricity": e if math.isfinite(e) else None,
-                         "demand": float(st.demand[k]), "state": state,
+            # an open joint's normal force is round-off about 0 (-6e-17 N on the
+            # reference model's vertical joint), its |T|/N no demand
+            open_ = state == "open"
+            rows.append({"joint": [a, b], "N": 0.0 if open_ and abs(N) <= 1e-9 * big else N,
+                         "T": T, "eccentricity": e if math.isfinite(e) else None,
+                         "demand": None if open_ else float(st.demand[k]), "state": state,
                          "mode": mech.modes[k] if mech is not None else None})
         return rows
 

@@ -146,6 +146,19 @@ def test_joint_table_on_request(tmp_path, capsys):
     assert main(["friction", path, "--joints", str(tmp_path / "no" / "x.csv")]) == 2
 
 
+def test_an_open_joint_shows_no_force_and_no_demand(capsys):
+    """The reference model with self-weight, `load --flow non-associative`: its vertical
+    joint left-right is open in the collapse state. Its normal force is round-off about
+    0 and its |T|/N no demand: the table shows N = 0 and "-" (it showed N = -6.17e-17
+    and |T|/N = inf)."""
+    path = str(EXAMPLES / "reference_self_weight.json")
+    assert main(["load", path, "--flow", "non-associative", "--joints"]) == 0
+    row = next(s for s in capsys.readouterr().out.splitlines()
+               if s.startswith("left-right "))
+    cells = row.split()
+    assert cells[1] == "0" and cells[4] == "-" and cells[5] == "open", row
+
+
 def test_tilt_angle_beside_lambda(capsys):
     """The wall example's live load is a horizontal body force of 1 g: lambda* = f = 0.6
     (base sliding) is a tilt of atan(0.6) = 30.96 deg."""

@@ -259,8 +259,9 @@ def _table(res, scene) -> list[str]:
            f"{'state':<15} mode"]
     for r in rows:
         e = "-" if r["eccentricity"] is None else f"{r['eccentricity']:.4g}"
+        d = "-" if r["demand"] is None else f"{r['demand']:.4g}"
         name = "-".join(r["joint"])
-        out.append(f"{name:<24} {r['N']:12.5g} {r['T']:12.5g} {e:>10} {r['demand']:8.4g}  "
+        out.append(f"{name:<24} {r['N']:12.5g} {r['T']:12.5g} {e:>10} {d:>8}  "
                    f"{r['state']:<15} {r['mode'] or '-'}")
     return out
 
