@@ -1198,8 +1198,12 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
         return out(UNDECIDED, lower=s.lower, upper=s.upper, converged=False)
     at = s.end(True)
     _also_at(own, trials, oracle)
-    na.notes.append(f"at f = {s.good:.9g} the limit fixed point from X0 carries lambda = "
-                    f"{at.value + lf:.9g} >= {lf:g}; at f = {s.bad:.9g} "
+    # f to the last digit (repr): the answer from X0 is not unique and moves with f at
+    # round-off (the 10 x 10 wall at load factor 0.5: 0.500014578 at f* =
+    # 0.5346341035199138, 0.500001342 at 0.534634104), so that `load --friction` at the
+    # printed f gives the printed lambda
+    na.notes.append(f"at f = {s.good!r} the limit fixed point from X0 carries lambda = "
+                    f"{at.value + lf:.9g} >= {lf:g}; at f = {s.bad!r} "
                     f"{s.end(False).value + lf:.9g}")
     return out("stable", s.good, at.data, s.lower, s.upper, True)
 
