@@ -159,10 +159,10 @@ class Result:
 
     def joint_table(self) -> list[dict[str, Any]]:
         """One row per joint: its blocks, N, T, eccentricity e (2D), |T|/N (None where
-        the joint is open), its
-        ``state`` in the force state ("open": no compression; "edge": the resultant at
-        an edge of the joint, where a hinge forms; "friction limit": |T| = f N;
-        "closed") and its ``mode`` in the mechanism, if any; empty without a state."""
+        the joint is open), its ``state`` in the force state ("open": no compression;
+        "edge": the resultant at an edge of the joint, where a hinge forms; "friction
+        limit": |T| = f N; "closed") and its ``mode`` in the mechanism, if any; empty
+        without a state."""
         st = self.state
         if st is None:
             return []
