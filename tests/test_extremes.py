@@ -151,6 +151,41 @@ def test_an_answer_failing_its_check_is_solved_again(monkeypatch, block_on_base)
     assert r.status == "undecided" and r.load_multiplier is None
 
 
+@pytest.mark.parametrize("solver", ["clarabel", "highs"])
+def test_clarabel_solved_again_by_itself_is_no_fallback(monkeypatch, block_on_base, solver):
+    """An answer that fails its check is solved again by Clarabel: by the fallback where
+    another back end gave it (the result is then no cross-check of that back end, and
+    the answer says so), at the next settings of its own ladder where Clarabel, the
+    default, gave it (the flat arch on fixed abutments, `friction --flow
+    non-associative`, said "not a cross-check of clarabel by clarabel"). The rejection
+    is simulated on the runner (one recorded), the answer itself is the block's
+    lambda* = f = 0.4."""
+    from rigidblocks.answer import split_notes
+    from rigidblocks.methods import open_method
+
+    cv = open_method(block_on_base(1.0, 2.0, 0.4), "clarabel", solver=solver)
+    run = cv.runner.run
+
+    def rejecting(problem, what, ladder):
+        res = run(problem, what, ladder)
+        cv.runner.rejected.append(f"the {what} problem ({solver} infeasible: certificate "
+                                  "residual 3.3e-06)")
+        return res
+
+    monkeypatch.setattr(cv.runner, "run", rejecting)
+    assert cv.load_limit(0.4, 1e-9).value == pytest.approx(0.4, rel=1e-6)
+    (note,) = [n for n in cv.notes if "solved again" in n]
+    by = "at the next settings of its ladder" if solver == "clarabel" else "by clarabel"
+    assert note.startswith(f"answers of {solver} that failed their check against the "
+                           f"problem were solved again {by} (first: "), note
+    reasons, _ = split_notes(cv.notes)
+    denied = [n for n in reasons if "not a cross-check" in n]
+    assert denied == ([] if solver == "clarabel" else
+                      [f"some answers of {solver} failed their check and were solved again "
+                       f"by clarabel: the result is not a cross-check of clarabel by "
+                       f"{solver}"])
+
+
 def test_tight_tolerances_out_of_reach_go_on_at_1e_9(monkeypatch, block_on_base):
     """Where Clarabel cannot reach the tight tolerances (1e-10; the relaxations of a
     20,093-block wall), the retries go on at 1e-9 before its defaults, and the
