@@ -103,6 +103,10 @@ def test_cli_help_gives_the_bounds_defaults(capsys):
     (["arch", "--voussoirs", "many"],
      "thickness arch: at the upper bound thickness = 1 (--hi): --voussoirs must be an "
      "integer, got 'many'"),
+    # an unknown method is the option's error (it was blamed on the generator at --hi)
+    (["arch", "--method", "bogus"],
+     "thickness arch: --method: unknown method 'bogus' (choose from clarabel, "
+     "distortion, or a solver name for the convex path)"),
 ])
 def test_cli_errors_name_the_parameters_as_typed(argv, line, capsys):
     """The generator's parameters in thickness's errors read as the user gave them
@@ -117,6 +121,11 @@ def test_cli_prints_the_parameters_as_typed(capsys):
                  "1e-2"]) == 0
     out = capsys.readouterr().out
     assert "generator  arch (--voussoirs 12 --pier-width 0.8)" in out, out
+    assert "method     clarabel\n" in out, out
+    # a back end's name as the method: the convex path with that back end, said so
+    assert main(["thickness", "arch", "--voussoirs", "12", "--rtol", "1e-2", "--method",
+                 "highs"]) == 0
+    assert "method     clarabel (back end highs)\n" in capsys.readouterr().out
 
 
 def test_cli_help_after_the_generator(capsys):

@@ -20,7 +20,9 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     add_rtol(p, "thickness", 1e-4)
     p.add_argument("--friction", default="infinite",
                    help='friction coefficient f, or "infinite" (default)')
-    p.add_argument("--method", default="clarabel", help='"clarabel" (default) or "distortion"')
+    p.add_argument("--method", default="clarabel",
+                   help='"clarabel" (default), "distortion", or a back end of the convex '
+                   'path (highs, scs, ecos, cvxpy-NAME)')
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("params", nargs=argparse.REMAINDER,
                    help="--PARAM VALUE pairs of the generator")
@@ -28,6 +30,7 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..generators import get
+    from ..methods import method_name
     from ..studies import min_thickness
     from .example import as_options, describe, options, parameter_name, parse_params
 
@@ -46,6 +49,10 @@ def run(args: argparse.Namespace) -> int:
     if isinstance(default[param], int | bool):  # bisection takes every real in between
         raise InputError(f"--param {shown}: a count or a switch, not a size to bisect",
                          where)
+    try:
+        method_name(args.method)  # before the generator is tried at --hi
+    except InputError as err:
+        raise InputError(f"--method: {err.detail}", where) from None
     typed: dict[str, str] = {}
     params = parse_params(gen, tokens, typed, "thickness")
     if param in params:
@@ -70,6 +77,8 @@ def run(args: argparse.Namespace) -> int:
         what = next((p.help for p in gen.params if p.name == param), "") or shown
         print(f"generator  {res.generator} ({extra})")
         print(f"friction   {res.friction}   load factor 0 (dead load only)")
+        m, backend = method_name(args.method)
+        print(f"method     {m}" + (f" (back end {backend})" if backend else ""))
         print(f"minimised  {shown}: {what}")
         if res.status == "undecided":
             print("status     UNDECIDED: a check could not decide; the minimum is only "
