@@ -158,7 +158,7 @@ class Result:
         return [self.joint_name(k) for k in self.governing]
 
     def joint_table(self) -> list[dict[str, Any]]:
-        """One row per joint: its blocks, N, T, eccentricity e (2D), |T|/N (None where
+        """One row per joint: its blocks, N, T, eccentricity e (2D) and |T|/N (None where
         the joint is open), its ``state`` in the force state ("open": no compression;
         "edge": the resultant at an edge of the joint, where a hinge forms; "friction
         limit": |T| = f N; "closed") and its ``mode`` in the mechanism, if any; empty
@@ -189,11 +189,13 @@ class Result:
                 state = "edge"
             else:
                 state = "closed"
-            # an open joint's normal force is round-off about 0 (-6e-17 N on the
-            # reference model's vertical joint), its |T|/N no demand
+            # an open joint's forces are round-off about 0 (N = -6e-17 N, T = 1.9e-9 N
+            # on the reference model's vertical joint): no eccentricity, no demand
             open_ = state == "open"
-            rows.append({"joint": [a, b], "N": 0.0 if open_ and abs(N) <= 1e-9 * big else N,
-                         "T": T, "eccentricity": e if math.isfinite(e) else None,
+            tiny = 1e-9 * big
+            rows.append({"joint": [a, b], "N": 0.0 if open_ and abs(N) <= tiny else N,
+                         "T": 0.0 if open_ and abs(T) <= tiny else T,
+                         "eccentricity": e if math.isfinite(e) and not open_ else None,
                          "demand": None if open_ else float(st.demand[k]), "state": state,
                          "mode": mech.modes[k] if mech is not None else None})
         return rows
