@@ -35,19 +35,18 @@ _SOLVER_NOTE = re.compile(
 
 
 #: the verdict of a non-associative check that fails
-NA_INADMISSIBLE = ("NOT ADMISSIBLE: the state reached from the elastic state X0 breaches the "
-                   "joint laws (sliding without dilatancy; another state may stand)")
-#: ... and where it is admissible: without dilatancy no static theorem makes an
-#: admissible state a proof (the Arpino gate at f = 0.6: the state reached from X0 at
-#: lambda = 0.12 is admissible, while the limit iteration from X0 collapses at
-#: 0.1187021, the smallest multiplier of any state, `load --safe`)
+NA_INADMISSIBLE = ("NOT ADMISSIBLE: the state reached from the elastic state X0 does not "
+                   "stand (sliding without dilatancy; another state may stand)")
+#: ... and where it stands: without dilatancy no static theorem makes an admissible
+#: state a proof (the Arpino gate at f = 0.6: the distortion method's state reached from
+#: X0 at lambda = 0.12 is admissible, while 0.1187021 is the smallest multiplier of any
+#: state, `load --safe`)
 NA_ADMISSIBLE = ("ADMISSIBLE: it stands in the state reached from the elastic state X0 "
                  "(every joint in compression and within friction; sliding without "
                  "dilatancy: another state may collapse at a lower load)")
 NA_ADMISSIBLE_WHY = ("without dilatancy an admissible state is no proof of safety: the "
-                     "collapse multiplier reached from X0 (`rigidblocks load --flow "
-                     "non-associative`) and the smallest over all states (`--safe`) may lie "
-                     "below this load factor")
+                     "smallest collapse multiplier over all states (`rigidblocks load "
+                     "--flow non-associative --safe`) may lie below this load factor")
 
 
 def without_dilatancy(result: Any) -> bool:

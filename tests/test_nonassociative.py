@@ -549,24 +549,36 @@ def test_cli_names_the_starts_and_bounds(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("method", ["clarabel", "distortion"])
-def test_an_admissible_state_without_dilatancy_is_no_proof(method, capsys):
-    """The Arpino gate at f = 0.6 and lambda = 0.12: the state reached from X0 is
-    admissible (both methods), yet the limit iteration from X0 collapses at 0.1187021,
-    which the mixed-integer LP proves the smallest multiplier of any state
-    (tests/test_na_bounds.py, docs/safe-multiplier.md). Without dilatancy no static
-    theorem turns an admissible state into a proof, so the verdict says what stands (the
-    state reached from X0) and that another state may collapse lower, not "an
-    equilibrium state exists" alone (the associative wording, before)."""
-    from rigidblocks.answer import NA_ADMISSIBLE, NA_ADMISSIBLE_WHY
+def test_check_load_and_friction_agree_without_dilatancy(method, capsys):
+    """The Arpino gate at f = 0.6 and lambda = 0.12: the state reached from X0 at 0.12
+    directly is admissible by both methods, but the convex path's `load` (the limit
+    fixed point from X0) collapses at 0.1187021, which the mixed-integer LP proves the
+    smallest multiplier of any state (tests/test_na_bounds.py, docs/safe-multiplier.md),
+    and its `friction` says that f = 0.6 is not enough at 0.12. Its `check` says so too:
+    it does not stand, loaded from X0 (before: "ADMISSIBLE: it stands (an equilibrium
+    state ... exists)"). The distortion method's `load` is a bisection on its own
+    checks (0.1227975, the associative multiplier): its check stands at 0.12, and its
+    verdict says that another state may collapse lower."""
+    from rigidblocks.answer import NA_ADMISSIBLE, NA_ADMISSIBLE_WHY, NA_INADMISSIBLE
 
     path = str(EXAMPLES / "arpino_gate.json")
-    lam = rb.max_load_multiplier(read_scene(path), flow=NA, state=False).load_multiplier
-    assert lam == pytest.approx(0.1187021, abs=1e-7) and lam < 0.12
+    scene = read_scene(path)
+    lam = rb.max_load_multiplier(scene, method=method, flow=NA, state=False).load_multiplier
     assert main(["check", path, "--flow", NA, "--method", method,
                  "--load-factor", "0.12"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert f"verdict    {NA_ADMISSIBLE}" in lines
-    assert f"why        {NA_ADMISSIBLE_WHY}" in lines
+    if method == "clarabel":
+        assert lam == pytest.approx(0.1187021, abs=1e-7)
+        fr = rb.min_friction(scene, load_factor=0.12, flow=NA, state=False)
+        assert fr.friction_factor > 0.6
+        assert f"verdict    {NA_INADMISSIBLE}" in lines
+        assert (f"why        loaded from X0 it collapses at lambda = {lam:.7g} < 0.12 (the "
+                "limit fixed point from X0, `load`'s answer), though the state reached "
+                "from X0 at lambda = 0.12 directly is admissible (the state shown)") in lines
+    else:
+        assert lam >= 0.12
+        assert f"verdict    {NA_ADMISSIBLE}" in lines
+        assert f"why        {NA_ADMISSIBLE_WHY}" in lines
 
 
 @pytest.mark.parametrize("method", ["clarabel", "distortion"])

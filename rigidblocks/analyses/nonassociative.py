@@ -508,7 +508,9 @@ def check_nonassociative(scene: Scene, friction: Any = None, load_factor: float 
                          state: bool = True, **kw: Any) -> CheckResult:
     """Is the state reached from the elastic state admissible under non-associative
     sliding? See the module docstring; the arguments are those of
-    :func:`rigidblocks.analyses.check`."""
+    :func:`rigidblocks.analyses.check`. On the convex path an admissible state stands
+    only where the limit fixed point from X0 (`load`'s answer) carries the load factor
+    too (:func:`_loaded_from_x0`)."""
     f = friction_value(scene.effective_friction if friction is None else friction)
     lf = float(load_factor)
     na, cv = _open(scene, method, flow, **kw)
@@ -526,10 +528,58 @@ def check_nonassociative(scene: Scene, friction: Any = None, load_factor: float 
     na.explain(v)
     st = na.state(f, lf, v)
     status = v.status if v.status in (ADMISSIBLE, INADMISSIBLE, UNDECIDED) else FAILURE
+    admissible, violation = v.admissible, 0.0 if v.status == ADMISSIBLE else v.violation
+    if status == ADMISSIBLE and isinstance(na, ConvexNonAssociative):
+        status = _loaded_from_x0(na, cv, f, lf)
+        if status != ADMISSIBLE:  # the state shown breaches nothing
+            admissible, violation = (False if status == INADMISSIBLE else None), math.nan
     return CheckResult(**_fields(na, "check", status, f, lf, (trial,),
                                  bool(d.converged) if d else None),
-                       state=st if state else None, admissible=v.admissible,
-                       violation=0.0 if v.status == ADMISSIBLE else v.violation)
+                       state=st if state else None, admissible=admissible,
+                       violation=violation)
+
+
+def _x0_limit_run(na: ConvexNonAssociative, cv: ConvexMethod, f: float
+                  ) -> tuple[str, LimitRun | None]:
+    """The limit iteration from the state reached from X0 under the dead load at ``f``
+    (`load`'s answer, and each trial of `friction`): the verdict of that state, and the
+    run (None where X0 has no such state)."""
+    verdict, start = reached_normals(na, f)
+    if start is None:
+        return verdict, None
+    capped = CappedLimit(cv, na.marked, f)
+    (r,) = limit_runs(capped, [(FROM_X0, start)])
+    na.fp_iterations += r.iterations
+    return verdict, r
+
+
+def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
+                    lf: float) -> str:
+    """The check's verdict where the state reached from X0 at the load factor ``lf`` is
+    admissible: it stands where the limit iteration from X0 (`load`'s answer) carries
+    ``lf`` too. The two ask different things of the same start (the state at ``lf``
+    reached directly; the collapse state reached by the limit iteration), and without
+    dilatancy they may disagree: the Arpino gate at f = 0.6 stands in the first at
+    lambda = 0.12 while the second collapses at 0.1187021, the smallest multiplier of
+    any state (`load --safe`). The check then says that it does not stand, as `load`
+    and `friction` say."""
+    with cv.runner.afresh():
+        _, r = _x0_limit_run(na, cv, f)
+    if r is None or r.status == "unbounded":
+        return ADMISSIBLE
+    if not r.converged or _limit_checks(cv, f, r, (None, None)):
+        na.notes.append("the limit fixed point from X0 (`load`'s answer) was not reached "
+                        f"({r.reason}): whether loading from X0 reaches lambda = {lf:g} is "
+                        "undecided")
+        return UNDECIDED
+    if r.lam >= lf * (1.0 - 1e-9):
+        na.notes.append(f"loaded from X0 it carries lambda = {r.lam:.7g} >= {lf:g} (the "
+                        "limit fixed point from X0, `load`'s answer)")
+        return ADMISSIBLE
+    na.notes.append(f"loaded from X0 it collapses at lambda = {r.lam:.7g} < {lf:g} (the "
+                    "limit fixed point from X0, `load`'s answer), though the state reached "
+                    f"from X0 at lambda = {lf:g} directly is admissible (the state shown)")
+    return INADMISSIBLE
 
 
 def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "clarabel",
@@ -1107,8 +1157,8 @@ def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
             return trial(fv)
 
     def trial(fv: float) -> Trial:
-        verdict, start = reached_normals(na, fv)
-        if start is None:
+        verdict, r = _x0_limit_run(na, cv, fv)
+        if r is None:
             decided = verdict == INADMISSIBLE  # else X0 itself has no solution
             why = (DEAD_LOAD_BREACH if decided else "the elastic state X0 has no solution")
             trials.append({"friction": fv, "load_factor": None,
@@ -1117,9 +1167,6 @@ def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
             return Trial(fv, False if decided else None,
                          data=Verdict(INADMISSIBLE if decided else UNDECIDED,
                                       notes=(why,)), why=why)
-        capped = CappedLimit(cv, na.marked, fv)
-        (r,) = limit_runs(capped, [(FROM_X0, start)])
-        na.fp_iterations += r.iterations
         trials.append({"friction": fv, "load_factor": r.lam, "status": r.status,
                        "iterations": r.iterations, "converged": r.converged})
         v = _verdict(r, cv.scaling.force)
