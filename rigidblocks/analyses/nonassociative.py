@@ -529,7 +529,7 @@ def check_nonassociative(scene: Scene, friction: Any = None, load_factor: float 
     st = na.state(f, lf, v)
     status = v.status if v.status in (ADMISSIBLE, INADMISSIBLE, UNDECIDED) else FAILURE
     admissible, violation = v.admissible, 0.0 if v.status == ADMISSIBLE else v.violation
-    if status == ADMISSIBLE and isinstance(na, ConvexNonAssociative):
+    if status == ADMISSIBLE and isinstance(na, ConvexNonAssociative) and scene.has_live_load:
         status = _loaded_from_x0(na, cv, f, lf)
         if status != ADMISSIBLE:  # the state shown breaches nothing
             admissible, violation = (False if status == INADMISSIBLE else None), math.nan
