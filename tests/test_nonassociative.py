@@ -581,6 +581,22 @@ def test_check_load_and_friction_agree_without_dilatancy(method, capsys):
         assert f"why        {NA_ADMISSIBLE_WHY}" in lines
 
 
+@pytest.mark.parametrize("name", ["arch.json", "arpino_gate.json",
+                                  "reference_self_weight.json", "stocky_arch.json"])
+def test_check_turns_at_loads_multiplier(name):
+    """Cross-check of two analyses on one flow rule: the convex path's non-associative
+    `check` stands 0.5 % below `load`'s multiplier and not 0.5 % above it (every 2D
+    example with a live load does, measured at 0.5, 0.9, 0.97, 0.995, 1.005 and 1.05
+    times it); on the Arpino gate the state reached at the load directly stands above
+    0.1187021 too, and the check turns there only through load's limit fixed point."""
+    scene = read_scene(EXAMPLES / name)
+    lam = rb.max_load_multiplier(scene, flow=NA, state=False).load_multiplier
+    assert lam is not None and lam > 0
+    below = rb.check(scene, load_factor=0.995 * lam, flow=NA, state=False)
+    above = rb.check(scene, load_factor=1.005 * lam, flow=NA, state=False)
+    assert (below.status, above.status) == ("admissible", "inadmissible"), name
+
+
 @pytest.mark.parametrize("method", ["clarabel", "distortion"])
 def test_verbose_notes_name_the_associative_bound(method, capsys):
     """The associative step's note on its own lambda* (its bracket, asked at 1e-9) is
