@@ -272,8 +272,9 @@ def _flow_lines(res) -> list[str]:
     done = "converged" if res.converged else "not converged"
     if starts:  # the limit iteration: its steps, summed over the starts
         steps = " + ".join(str(h.get("iterations", "?")) for h in starts)
+        each = f" ({steps})" if len(starts) > 1 else ""
         out = [f"flow       {res.flow}: {res.iterations} limit step(s) over "
-               f"{len(starts)} start(s) ({steps}), {done}"]
+               f"{len(starts)} start(s){each}, {done}"]
     else:
         out = [f"flow       {res.flow}: {res.iterations} iteration(s), {done}"]
     b = getattr(res, "load_multiplier_bounds", None)
