@@ -107,6 +107,9 @@ def test_cli_help_gives_the_bounds_defaults(capsys):
     (["arch", "--method", "bogus"],
      "thickness arch: --method: unknown method 'bogus' (choose from clarabel, "
      "distortion, or a solver name for the convex path)"),
+    # so is a bad friction, as in every other command (it was blamed on --hi too)
+    (["arch", "--friction", "-1"],
+     "thickness: --friction: friction must be >= 0, got -1.0"),
 ])
 def test_cli_errors_name_the_parameters_as_typed(argv, line, capsys):
     """The generator's parameters in thickness's errors read as the user gave them

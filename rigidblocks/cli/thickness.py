@@ -6,7 +6,7 @@ import argparse
 import json
 
 from ..errors import InputError
-from .options import add_rtol, finite_float, relative_tolerance
+from .options import add_rtol, finite_float, friction_option, relative_tolerance
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
@@ -18,7 +18,7 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("--hi", type=finite_float, default=1.0,
                    help="a value at which it stands (default %(default)g)")
     add_rtol(p, "thickness", 1e-4)
-    p.add_argument("--friction", default="infinite",
+    p.add_argument("--friction", type=friction_option, default="infinite",
                    help='friction coefficient f, or "infinite" (default)')
     p.add_argument("--method", default="clarabel",
                    help='"clarabel" (default), "distortion", or a back end of the convex '
@@ -50,7 +50,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--param {shown}: a count or a switch, not a size to bisect",
                          where)
     try:
-        method_name(args.method)  # before the generator is tried at --hi
+        method, backend = method_name(args.method)  # before the generator is tried at --hi
     except InputError as err:
         raise InputError(f"--method: {err.detail}", where) from None
     typed: dict[str, str] = {}
@@ -77,8 +77,7 @@ def run(args: argparse.Namespace) -> int:
         what = next((p.help for p in gen.params if p.name == param), "") or shown
         print(f"generator  {res.generator} ({extra})")
         print(f"friction   {res.friction}   load factor 0 (dead load only)")
-        m, backend = method_name(args.method)
-        print(f"method     {m}" + (f" (back end {backend})" if backend else ""))
+        print(f"method     {method}" + (f" (back end {backend})" if backend else ""))
         print(f"minimised  {shown}: {what}")
         if res.status == "undecided":
             print("status     UNDECIDED: a check could not decide; the minimum is only "
@@ -92,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
 
 _OWN = {"--param": str, "--lo": finite_float, "--hi": finite_float,
         "--rtol": relative_tolerance,
-        "--friction": str, "--method": str}
+        "--friction": friction_option, "--method": str}
 
 
 def _own_options(args: argparse.Namespace, tokens: list[str]) -> list[str]:
