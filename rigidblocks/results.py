@@ -172,6 +172,7 @@ class Result:
             (math.inf if isinstance(self.friction, str) else float(self.friction))
         fj = np.where(np.isnan(c.override_friction), f_uniform, c.override_friction)
         big = float(np.abs(st.joint_normal).max(initial=0.0))
+        tiny = 1e-9 * big  # an open joint's normal force, and its round-off
         half = None
         if c.dimension == 2:
             half = 0.5 * np.linalg.norm(c.points[c.joint_start[1:] - 1]
@@ -181,7 +182,7 @@ class Result:
             a, b = self.joint_name(k)
             N, T = float(st.joint_normal[k]), float(st.joint_shear[k])
             e = float(st.eccentricity[k])
-            if N <= 1e-9 * big:
+            if N <= tiny:
                 state = "open"
             elif math.isfinite(fj[k]) and abs(T) >= fj[k] * N * (1 - 1e-6):
                 state = "friction limit"
@@ -192,7 +193,6 @@ class Result:
             # an open joint's forces are round-off about 0 (N = -6e-17 N, T = 1.9e-9 N
             # on the reference model's vertical joint): no eccentricity, no demand
             open_ = state == "open"
-            tiny = 1e-9 * big
             rows.append({"joint": [a, b], "N": 0.0 if open_ and abs(N) <= tiny else N,
                          "T": 0.0 if open_ and abs(T) <= tiny else T,
                          "eccentricity": e if math.isfinite(e) and not open_ else None,

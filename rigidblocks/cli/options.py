@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..errors import finite_number
+from ..errors import InputError, finite_number
 from ..io.paths import output_path
 
 
@@ -37,7 +37,6 @@ def load_factor(text: str) -> float:
 def friction_option(text: str) -> str:
     """argparse type of ``--friction``: a number >= 0 or "infinite" (checked as a scene's
     friction is), kept as given."""
-    from ..errors import InputError
     from ..scene.model import friction_value
 
     try:
