@@ -22,11 +22,14 @@ Joint behaviours for :func:`load_path` (the seed's Fig. 2 and 5):
 
 Events are located at the load that causes them: the loads between two steps are
 bisected, and a crack or a threshold is placed where its margin, affine in lambda
-while no other link changes state, reaches zero.
+while no other link changes state, reaches zero. Joints with no normal force under the
+dead load that are at their threshold under the first load are plastic from the start:
+one event at lambda = 0.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -42,9 +45,21 @@ from .search import bisect
 
 #: relative step below an event's bracket over which its margin is extrapolated
 EXTRAPOLATE = 1e-4
+#: an event is first bracketed to this (relative) by bisection, then its load is
+#: extrapolated from the states below it (over EXTRAPOLATE, as from a finer bracket)
+#: and kept where it falls within the bracket (to its width); else the bisection goes on
+#: to ``refine`` steps
+COARSE = 1e-4
 #: an undecided run within this (relative) of an admissible load puts the collapse at
 #: that load, with a note; farther above it, the path is undecided
 LIMIT_RTOL = 1e-6
+#: a joint that carries no normal force under the dead load and is at its friction
+#: threshold at this fraction of the first step's load is plastic from the first load
+#: on (no normal force, no shear): its event is put at lambda = 0 (the head joints of a
+#: running-bond wall, each of which was otherwise reported where its normal force
+#: passed LOADED of the largest force: lambda = 4e-6 to 2e-5 on the 4 x 4 wall, 2.6e-4
+#: on the 2 x 3 one)
+FIRST_LOAD = 1e-2
 #: the reason of an admissible iterate that is not the settled state (associative flow)
 UNSETTLED = ("an admissible iterate (the structure stands), not the settled state, whose "
              "events are not read: ")
@@ -176,13 +191,30 @@ class _Path:
         hit = self.crack_margins(r) <= AT_THRESHOLD * cap
         return sorted({int(j) for j in self.c.point_joint[hit]})
 
+    def thresholds(self, r: Run) -> np.ndarray:
+        """Per joint: the friction threshold f (N1 + N2) + c a (f infinite: c a)."""
+        v = self.ds.gather(r.x)
+        return np.where(np.isfinite(self.fj), self.fj, 0.0) * (v[:, 0] + v[:, 1]) + \
+            self.laws().h[:, 2]
+
     def threshold_margins(self, r: Run) -> np.ndarray:
         """Per joint: |T| - (f (N1 + N2) + c a) (0 at the threshold), -inf where f is
         infinite."""
-        v = self.ds.gather(r.x)
-        fin = np.isfinite(self.fj)
-        thr = np.where(fin, self.fj, 0.0) * (v[:, 0] + v[:, 1]) + self.laws().h[:, 2]
-        return np.where(fin, np.abs(v[:, 2]) - thr, -np.inf)
+        m = np.abs(self.ds.gather(r.x)[:, 2]) - self.thresholds(r)
+        return np.where(np.isfinite(self.fj), m, -np.inf)
+
+    def from_the_start(self, r0: Run, lam: float) -> None:
+        """The joints plastic from the first load on (see ``FIRST_LOAD``): unloaded in
+        the state ``r0`` under the dead load, at their threshold at ``lam``; one event
+        at lambda = 0."""
+        r = self.solve(lam)
+        if r.status != "admissible" or r.reason.startswith(UNSETTLED):
+            return
+        big = float(np.abs(r0.x).max(initial=0.0))
+        unloaded = np.abs(self.thresholds(r0)) <= LOADED * big
+        joints = [j for j in self.at_threshold(r) if j not in self.seen and unloaded[j]]
+        if joints and self.apply(0.0, [], joints):
+            self.cascade(0.0, self.solve(0.0), r0, joints)
 
     def at_threshold(self, r: Run) -> list[int]:
         return list(self.w.at_threshold(r, 0.0, AT_THRESHOLD, laws=self.laws()))
@@ -212,16 +244,18 @@ class _Path:
         return r.status != "admissible" or any(self.new(r))
 
     # -- locating an event --------------------------------------------------------------
-    def locate(self, a: float, b: float) -> tuple[float, float, Run | None]:
+    def locate(self, a: float, b: float, rtol: float = 0.0, steps: int | None = None
+               ) -> tuple[float, float, Run | None]:
         """(lo, hi, run at hi): the first load in (a, b] where something happens is in
-        [lo, hi]; nothing happens at lo. An undecided trial ends the path."""
+        [lo, hi], bisected to ``rtol`` (relative) or ``steps`` (``refine``); nothing happens
+        at lo. An undecided trial ends the path."""
         def decide(lam: float) -> tuple[bool | None, Run]:
             q = self.solve(lam)
             if q.status == "failure":
                 raise self.failed(q, lam)
             return (None if q.status == "undecided" else self.happens(q)), q
 
-        br = bisect(decide, a, b, 0.0, steps=self.refine)
+        br = bisect(decide, a, b, rtol, steps=steps or self.refine)
         u = br.undecided_at
         if u is not None:
             why = f"at lambda = {u:.9g}: {self.solve(u).reason}"
@@ -233,19 +267,44 @@ class _Path:
             raise self.collapse(br.bad, [], self.solve(br.bad))
         return br.bad, br.good, br.good_data
 
+    def event(self, a: float, b: float, r: Run
+              ) -> tuple[float, float, Run, list[int], list[int]]:
+        """The first event in (a, b] (``r`` the state at b, where something happens): its
+        load, the upper end of its bracket and the state there, and its cracks and
+        joints. Bracketed to ``COARSE`` and extrapolated (:meth:`extrapolate`), else
+        bisected on to ``refine`` steps in all; a state that is not admissible at the
+        bracket's upper end is a collapse at its lower end."""
+        lo, hi, rh = self.locate(a, b, COARSE if self.refine else 0.0)
+        rh = rh if rh is not None else r
+        if rh.status == "admissible":
+            cracks, joints = self.new(rh)
+            lam = self.extrapolate(lo, hi, b, cracks, joints, coarse=True)
+            if lam is not None:
+                return lam, hi, rh, cracks, joints
+        used = math.ceil(math.log2((b - a) / (hi - lo))) if hi > lo else self.refine
+        lo, hi, rf = self.locate(lo, hi, steps=max(self.refine - used, 1))
+        rh = rf if rf is not None else rh
+        if rh.status != "admissible":
+            raise self.collapse(lo, [], self.solve(lo))
+        cracks, joints = self.new(rh)
+        lam = self.extrapolate(lo, hi, b, cracks, joints)
+        return (hi if lam is None else lam), hi, rh, cracks, joints
+
     def extrapolate(self, lo: float, hi: float, top: float, cracks: list[int],
-                    joints: list[int]) -> float:
+                    joints: list[int], coarse: bool = False) -> float | None:
         """The load where the margins of the event's links reach zero, extrapolated from
         two states below the event (affine in lambda while no link changes state). The
         bisection's ``hi`` counts a link within ``AT_THRESHOLD`` of its limit as there,
-        so the event may lie above it, up to ``top`` (the step's end)."""
+        so the event may lie above it, up to ``top`` (the step's end); from a
+        ``coarse`` bracket, only within [lo, 2 hi - lo] (else the event is bisected
+        further). None where it cannot be extrapolated."""
         if not self.refine or lo <= 0:
-            return hi
+            return None
         h = max(hi - lo, EXTRAPOLATE * hi)
         a = max(lo - h, 0.0)
         ra, rb = self.solve(a), self.solve(lo)
         if ra.status != "admissible" or rb.status != "admissible" or a >= lo:
-            return hi
+            return None
 
         def margins(r: Run) -> np.ndarray:
             pts = np.isin(self.c.point_joint, cracks)
@@ -255,8 +314,11 @@ class _Path:
         ma, mb = margins(ra), margins(rb)
         with np.errstate(divide="ignore", invalid="ignore"):
             roots = lo - mb * (lo - a) / (mb - ma)
-        roots = roots[np.isfinite(roots) & (mb > ma)]
-        return float(np.clip(roots.min(), a, top)) if roots.size else hi
+        ok = np.isfinite(roots) & (mb > ma)
+        if not ok.any():
+            return None
+        lam = float(np.clip(roots[ok].min(), a, top))
+        return lam if not coarse or lo <= lam <= 2 * hi - lo else None
 
     def failed(self, r: Run, lam: float) -> _End:
         self.w.notes.append(f"at lambda = {lam:.9g}: {r.reason}")
@@ -323,12 +385,7 @@ class _Path:
                 if r.reason.startswith(UNSETTLED):
                     self.w.notes.append(f"at lambda = {b:.9g}: {r.reason}")
                 return r
-            lo, hi, rh = self.locate(a, b)
-            rh = rh if rh is not None else r
-            if rh.status != "admissible":
-                raise self.collapse(lo, [], self.solve(lo))
-            cracks, joints = self.new(rh)
-            lam = self.extrapolate(lo, hi, b, cracks, joints)
+            lam, hi, rh, cracks, joints = self.event(a, b, r)
             if self.apply(lam, cracks, joints):
                 self.cascade(lam, self.solve(lam), rh, cracks or joints)
                 a = lam
@@ -363,7 +420,7 @@ def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: An
     p = _Path(scene, f, flow, sliding, refine, tol)
     status, collapse, bracket = "standing", None, None
     try:
-        p.cascade(0.0, _at_zero(p), None)
+        p.from_the_start(p.cascade(0.0, _at_zero(p), None), FIRST_LOAD * max_load / steps)
         prev = 0.0
         for k in range(1, steps + 1):
             lam, its = max_load * k / steps, p.w.iterations
