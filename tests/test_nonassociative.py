@@ -575,6 +575,14 @@ def test_check_load_and_friction_agree_without_dilatancy(method, capsys):
         assert (f"why        loaded from X0 it collapses at lambda = {lam:.7g} < 0.12 (the "
                 "limit fixed point from X0, `load`'s answer), though the state reached "
                 "from X0 at lambda = 0.12 directly is admissible (the state shown)") in lines
+        # the flow line counts the check's iterations at 0.12 and the limit run's steps
+        # apart (before: "12 iteration(s)", the two summed)
+        res = rb.check(scene, load_factor=0.12, flow=NA, state=False)
+        (trial,) = res.history
+        assert trial["iterations"] + trial["limit_steps"] == res.iterations
+        assert (f"flow       {NA}: {trial['iterations']} iteration(s) at lambda = 0.12, "
+                f"converged; then {trial['limit_steps']} limit step(s) loading from X0"
+                ) in lines
     else:
         assert lam >= 0.12
         assert f"verdict    {NA_ADMISSIBLE}" in lines

@@ -530,7 +530,9 @@ def check_nonassociative(scene: Scene, friction: Any = None, load_factor: float 
     status = v.status if v.status in (ADMISSIBLE, INADMISSIBLE, UNDECIDED) else FAILURE
     admissible, violation = v.admissible, 0.0 if v.status == ADMISSIBLE else v.violation
     if status == ADMISSIBLE and isinstance(na, ConvexNonAssociative) and scene.has_live_load:
+        before = na.fp_iterations
         status = _loaded_from_x0(na, cv, f, lf)
+        trial["limit_steps"] = na.fp_iterations - before
         if status != ADMISSIBLE:  # the state shown breaches nothing
             admissible, violation = (False if status == INADMISSIBLE else None), math.nan
     return CheckResult(**_fields(na, "check", status, f, lf, (trial,),
