@@ -134,10 +134,11 @@ class DistortionMethod(Method):
         return verdict
 
     def at_threshold(self, r: Run, f: float, rel: float = AT_THRESHOLD,
-                     laws: Any = None) -> tuple[int, ...]:
-        """Loaded joints whose shear is at the friction threshold (within ``rel``), under
-        uniform friction ``f`` or, given, the joint ``laws`` of the run (``f`` unused);
-        joints with infinite friction (Heyman) have no threshold."""
+                     laws: Any = None, floor: float = 0.0) -> tuple[int, ...]:
+        """Loaded joints whose shear is at the friction threshold (within ``rel`` of it,
+        plus ``floor`` in the solver's scaled forces), under uniform friction ``f`` or,
+        given, the joint ``laws`` of the run (``f`` unused); joints with infinite
+        friction (Heyman) have no threshold."""
         ds = self.solver_
         laws = ds.laws(self.f_joint(f)) if laws is None else laws
         fj = laws.f
@@ -147,7 +148,7 @@ class DistortionMethod(Method):
                                    + laws.h[:, 2]), 0.0)
         gap = laws.rows(v)[:, 2:].max(axis=1)
         big = float(np.abs(v).max(initial=0.0))
-        hit = fin & (thr > LOADED * big) & (gap >= -rel * thr)
+        hit = fin & (thr > LOADED * big) & (gap >= -rel * thr - floor)
         return tuple(int(j) for j in np.flatnonzero(hit))
 
     def governing_friction(self, f: float, verdict: Verdict) -> tuple[int, ...]:
