@@ -156,9 +156,12 @@ def _own_friction(res: Any, f: Any) -> str:
         elif st != "converged" or lam is None:
             return "not decided (the limit iteration did not settle there)"
         else:
-            ok = lam >= float(res.load_factor) * (1.0 - 1e-9)
+            ok = bool(t.get("carries"))
+            lf = float(res.load_factor)
+            rel = ">=" if lam >= lf else "=" if ok else "<"
             there = (f"there the state reached from X0 carries lambda = {lam:.7g} "
-                     f"({'>=' if ok else '<'} {res.load_factor:g})")
+                     f"({rel} {res.load_factor:g}" +
+                     (" to the accuracy of its multiplier)" if rel == "=" else ")"))
     elif t["status"] in ("admissible", "inadmissible"):
         ok = t["status"] == "admissible"
         there = ("there the state reached from X0 " +

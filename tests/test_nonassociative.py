@@ -653,3 +653,58 @@ def test_anderson_solves_an_affine_map_in_a_few_steps():
     for _ in range(100):
         plain = M @ plain + c
     assert np.abs(plain - fixed).max() > 1e-6 * np.abs(fixed).max()
+
+
+def test_friction_at_the_hinging_multiplier_of_a_wall3d():
+    """The 3 x 3 wall3d loaded out of plane tips at lambda = 0.5 (the associative `load`,
+    asserted here) and slides at lambda = f, so at load factor 0.5 the static f* is 0.5
+    (asserted). The limit iteration from X0 carries 0.4999997 at f = 0.6 and 0.49999908
+    at f* = 0.5: a collapse state's multiplier with Coulomb's cones is checked to 1e-5
+    (na_mechanism.CONE_FIXED_TOL), so both carry 0.5 and the non-associative friction is
+    the static 0.5 (before: the search compared to 1e-9 and, where lambda(f) is 0.5 to
+    round-off from f = 2.4 on, crept for 200 trials, 14 s, ending undecided in
+    [1.2, 1.64]); f = 0.6 is enough."""
+    scene = build("wall3d", courses=3, blocks_per_course=3, friction=0.6)
+    assert rb.max_load_multiplier(scene, state=False).load_multiplier == \
+        pytest.approx(0.5, rel=1e-6)
+    assert rb.min_friction(scene, load_factor=0.5, state=False).friction_factor == \
+        pytest.approx(0.5, rel=2e-3)
+    fr = rb.min_friction(scene, load_factor=0.5, flow=NA, state=False)
+    assert fr.status == "stable" and fr.friction_factor == pytest.approx(0.5, rel=1e-5)
+    own = next(t for t in fr.history if t.get("friction") == 0.6)
+    assert own["carries"] and own["load_factor"] == pytest.approx(0.5, rel=1e-5)
+
+
+def test_the_friction_search_halves_where_lambda_is_flat_at_the_load_factor():
+    """lambda(f) that reaches the load factor 0.5 at f = 1.3 and stays there (to
+    round-off, as at a hinging multiplier): the secant through a good end on the plateau
+    lands beside it, and the step across lands on the plateau again. The search then
+    halves, and brackets to 1e-5 the f where lambda passes 0.5 (1 - 1e-9), 1.2995
+    (before: each secant and step across moved the good end by 1 % of the bracket, and
+    the budget ran out with [1.2, 1.64])."""
+    from rigidblocks.analyses.nonassociative import _across, _secant
+    from rigidblocks.methods.engine import (
+        Search,
+        Trial,
+        beside_the_undecided,
+        midpoint,
+        narrow_enough,
+        run,
+        undecided_band,
+    )
+
+    lf = 0.5
+
+    def lam(f):
+        return lf - 1e-7 * (1.3 - f) / 0.1 if f < 1.3 else lf + 1e-15 * math.sin(1e6 * f)
+
+    def oracle(f):
+        return Trial(f, lam(f) >= lf * (1 - 1e-9), value=lam(f) - lf)
+
+    s = Search(1.2, 2.4, 1e-5)
+    for f in (1.2, 2.4):
+        s.record(oracle(f))
+    run(s, oracle, (undecided_band, narrow_enough),
+        (beside_the_undecided, _across, _secant, midpoint))
+    assert s.narrow() and s.lower <= 1.2995 <= s.upper
+    assert len(s.trials) < 100

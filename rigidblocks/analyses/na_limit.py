@@ -86,6 +86,15 @@ PROX_WEIGHT = 1.0
 #: simplex answer the selection holds its face instead (:func:`_select_problem`)
 PROX_SLACK = 1e-9
 CONE_PROX_SLACK = 1e-6
+#: a multiplier this far (relative) below a load factor carries it: a simplex maximum
+#: (2D) is exact to rounding; with Coulomb's cones (3D) a collapse state's multiplier is
+#: checked to CONE_FIXED_TOL (:mod:`rigidblocks.analyses.na_mechanism`), and finer
+#: comparisons read the interior-point solver's accuracy (the 3 x 3 wall3d out of plane
+#: at load factor 0.5, its hinging multiplier: 0.4999997 from X0 at f = 0.6, 0.5 at
+#: 2.4; with 1e-9 its friction search gave f* = 1.30313 where the associative one
+#: gives 0.5)
+CARRY_TOL = 1e-9
+CONE_CARRY_TOL = 1e-5
 #: a simplex dual below this fraction of the largest is zero: its row is not held on
 #: the optimal face (:meth:`_HighsLimit.held`)
 DUAL_ZERO = 1e-9
@@ -114,6 +123,13 @@ class LimitRun:
     #: (the iteration's fixed points), or only states that carry the largest multiplier
     #: under the caps of their own normal forces?
     least_confined: bool = True
+    #: how far (relative) ``lam`` may lie below a load factor that it carries: the
+    #: accuracy of the run's multipliers (:attr:`CappedLimit.carry_tol`)
+    carry_tol: float = CARRY_TOL
+
+    def carries(self, load_factor: float) -> bool:
+        """Does the run's multiplier reach ``load_factor`` (to :attr:`carry_tol`)?"""
+        return self.lam is not None and self.lam >= load_factor * (1.0 - self.carry_tol)
 
     @property
     def converged(self) -> bool:
@@ -267,6 +283,9 @@ class CappedLimit:
         #: the change of the normal forces that ends a run
         self.slack, self.tol = (PROX_SLACK, LIMIT_TOL) if self.backend == "highs" else \
             (CONE_PROX_SLACK, CONE_LIMIT_TOL)
+        #: the accuracy of its multipliers (:attr:`LimitRun.carry_tol`)
+        self.carry_tol = CARRY_TOL if self.backend == "highs" or not prob.soc else \
+            CONE_CARRY_TOL
 
     @property
     def solver(self) -> Any:
@@ -334,10 +353,12 @@ class CappedLimit:
 
         progress = self.cv.progress
         try:
-            return _iterate(self, N_start, start, step, "limit solves", tol or self.tol,
-                            max_iter, settle)
+            run = _iterate(self, N_start, start, step, "limit solves", tol or self.tol,
+                           max_iter, settle)
         finally:
             progress.context = ""
+        run.carry_tol = self.carry_tol
+        return run
 
 
 def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, what: str,

@@ -574,14 +574,23 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
                         f"({r.reason}): whether loading from X0 reaches lambda = {lf:g} is "
                         "undecided")
         return UNDECIDED
-    if r.lam >= lf * (1.0 - 1e-9):
-        na.notes.append(f"loaded from X0 it carries lambda = {r.lam:.7g} >= {lf:g} (the "
-                        "limit fixed point from X0, `load`'s answer)")
+    if r.carries(lf):
+        na.notes.append(f"loaded from X0 it carries lambda = {r.lam:.7g} "
+                        f"{_reaches(r.lam, lf, r.carry_tol)} (`load`'s answer, the limit "
+                        "fixed point from X0)")
         return ADMISSIBLE
     na.notes.append(f"loaded from X0 it collapses at lambda = {r.lam:.7g} < {lf:g} (the "
                     "limit fixed point from X0, `load`'s answer), though the state reached "
                     f"from X0 at lambda = {lf:g} directly is admissible (the state shown)")
     return INADMISSIBLE
+
+
+def _reaches(lam: float, lf: float, tol: float) -> str:
+    """How a multiplier ``lam`` that carries the load factor ``lf`` (to ``tol``) compares
+    with it: ">= lf", or where it lies below, "= lf to the accuracy ..." (a cone
+    multiplier's)."""
+    return f">= {lf:g}" if lam >= lf else \
+        f"= {lf:g} to the accuracy of its multiplier, {tol:g} relative"
 
 
 def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "clarabel",
@@ -1169,14 +1178,17 @@ def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
             return Trial(fv, False if decided else None,
                          data=Verdict(INADMISSIBLE if decided else UNDECIDED,
                                       notes=(why,)), why=why)
-        trials.append({"friction": fv, "load_factor": r.lam, "status": r.status,
-                       "iterations": r.iterations, "converged": r.converged})
+        rec = {"friction": fv, "load_factor": r.lam, "status": r.status,
+               "iterations": r.iterations, "converged": r.converged}
+        trials.append(rec)
         v = _verdict(r, cv.scaling.force)
         if r.status in ("unbounded", "infeasible"):
             return Trial(fv, r.status == "unbounded", data=v)
         if not r.converged or _limit_checks(cv, fv, r, (None, None)):
             return Trial(fv, None, data=v, why=r.reason)
-        return Trial(fv, r.lam >= lf * (1.0 - 1e-9), value=r.lam - lf, data=v)
+        # whether it carries lf, to the accuracy of its multiplier
+        rec["carries"] = r.carries(lf)
+        return Trial(fv, rec["carries"], value=r.lam - lf, data=v)
 
     return oracle
 
@@ -1242,8 +1254,9 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
         (beside_the_undecided, _across, _secant, midpoint))
     if not s.narrow():
         at = ", ".join(f"{t.x:.9g}" for t in s.trials if t.side is None)
-        na.notes.append(f"the limit iteration did not settle at f = {at}: bracket "
-                        f"[{s.lower:.9g}, {s.upper:.9g}] wider than {rtol:g}")
+        why = f"the limit iteration did not settle at f = {at}" if at else \
+            f"the search ended after {len(s.trials)} trials"
+        na.notes.append(f"{why}: bracket [{s.lower:.9g}, {s.upper:.9g}] wider than {rtol:g}")
         return out(UNDECIDED, lower=s.lower, upper=s.upper, converged=False)
     at = s.end(True)
     _also_at(own, trials, oracle)
@@ -1259,13 +1272,18 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
 
 def _secant(s: Any) -> float | None:
     """The root of the secant of lambda(f) - load_factor through the bracket's ends,
-    kept inside its middle 98 %; None (halve) where an end has no value or the last
-    two trials landed on one side (the secant then creeps)."""
+    kept inside its middle 98 %; None (halve) where an end has no value, the last two
+    trials landed on one side (the secant then creeps), or the last was a step across
+    (:func:`_across`) that did not cross: lambda(f) is not the line the secant assumed
+    (the wall3d 3 x 3 out of plane at load factor 0.5, its hinging multiplier: lambda(f)
+    = 0.5 to round-off from f = 2.4 on, where each secant landed beside the good end and
+    each step across on the same side, 200 trials creeping from 2.4 to 1.64)."""
     g, b = s.end(True), s.end(False)
     if g is None or b is None or not (math.isfinite(g.value) and math.isfinite(b.value)):
         return None
-    if len(s.trials) >= 2 and s.trials[-1].side is s.trials[-2].side \
-            and s.trials[-1].rule == s.trials[-2].rule == "_secant":
+    last = s.trials[-2:]
+    if len(last) == 2 and last[1].side is last[0].side and \
+            (last[0].rule, last[1].rule) in (("_secant", "_secant"), ("_secant", "_across")):
         return None
     if g.value == b.value:
         return None
