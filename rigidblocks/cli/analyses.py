@@ -275,14 +275,14 @@ def _flow_lines(res) -> list[str]:
         each = f" ({steps})" if len(starts) > 1 else ""
         out = [f"flow       {res.flow}: {res.iterations} limit step(s) over "
                f"{len(starts)} start(s){each}, {done}"]
+    elif len(res.history) == 1 and res.history[0].get("limit_steps") is not None:
+        # a check at its load factor, then `load`'s limit run from X0
+        t = res.history[0]
+        out = [f"flow       {res.flow}: {t.get('iterations', '?')} iteration(s) at lambda "
+               f"= {t['load_factor']:g}, {done}; then {t['limit_steps']} limit step(s) "
+               "loading from X0"]
     else:
         out = [f"flow       {res.flow}: {res.iterations} iteration(s), {done}"]
-        trial = res.history[0] if len(res.history) == 1 else {}
-        if trial.get("limit_steps") is not None:  # a check, then the limit run from X0
-            its = trial.get("iterations", "?")
-            out = [f"flow       {res.flow}: {its} iteration(s) at lambda = "
-                   f"{trial['load_factor']:g}, {done}; then {trial['limit_steps']} limit "
-                   "step(s) loading from X0"]
     b = getattr(res, "load_multiplier_bounds", None)
     if b is not None:
         lo = "-" if b[0] is None else f"{b[0]:.6g}"
