@@ -110,7 +110,10 @@ def keyed_wall(courses: int = 6, blocks_per_course: int = 3, block_length: float
         "name": f"3D keyed wall, {C} courses x {N} units, t = {t:g} m, {keys}, loaded "
                 f"{direction.replace('_', ' ')}",
         "dimension": 3, "units": {"length": "m", "force": "kN"}, "unit_weight": uw,
-        "friction": fr, "blocks": blocks, "live_body_force": lbf}
+        "friction": fr, "blocks": blocks, "live_body_force": lbf,
+        # a seismic body force, for `load`: check and friction answer for the dead load
+        # (as every generator with one)
+        "load_factor": 0}
     if fb is not None:
         doc["joints"] = [{"blocks": [FOUNDATION_ID, b.id], "friction": fb}
                          for b in plane.blocks
