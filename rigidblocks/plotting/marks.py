@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from ..results import ZERO_FORCE
 from ..scene.geometry import scene_size, scene_weights
 from ..scene.model import Scene
 
@@ -29,10 +30,6 @@ MARK_FRACTION = 0.05
 #: a 3D mechanism picture marks at most this many joints, the fastest (hinge lines and
 #: joint outlines of a distributed mechanism, a dome's, tangle past a dozen)
 MOST_MARKED_3D = 12
-#: a contact force below this fraction of the state's largest counts as none (an open
-#: joint, or a joint's end that carries nothing): interior-point force states leave
-#: round-off of about 1e-5 of the largest force where the exact state has zero
-ZERO_FORCE = 1e-4
 #: a 3D mechanism of at most this many rigid bodies colours each body (BODY_COLOURS);
 #: one of more bodies is coloured by the blocks' speed (a distributed mechanism, a
 #: corbel dome's, moves its 61 blocks each on its own: 61 colours cannot be told apart)

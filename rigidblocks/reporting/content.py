@@ -16,7 +16,8 @@ from typing import Any
 import numpy as np
 
 from ..answer import answer_block, live_load_text
-from ..plotting.marks import ZERO_FORCE, scene_weights
+from ..plotting.marks import scene_weights
+from ..results import ZERO_FORCE, eccentricities, no_force
 from ..scene.model import Scene
 
 #: statuses that answer the question, and how the answer reads (tone of the badge)
@@ -221,18 +222,10 @@ def joint_table(result: Any) -> dict[str, Any]:
     T = np.asarray(st.joint_shear, dtype=float).copy()
     # round-off of the interior-point state (below ZERO_FORCE of the largest joint
     # force) is shown as no force, with no friction demand
-    top = max(float(np.abs(N).max(initial=0.0)), float(np.abs(T).max(initial=0.0)))
-    tiny = (np.abs(N) <= ZERO_FORCE * top) & (np.abs(T) <= ZERO_FORCE * top)
+    tiny = no_force(N, T)
     N[tiny] = 0.0
     T[tiny] = 0.0
-    if c.dimension == 2:
-        e = np.asarray(st.eccentricity, dtype=float)
-    else:
-        counts = np.diff(c.joint_start)
-        cen = np.stack([np.bincount(c.point_joint, c.points[:, k], minlength=c.n_joints)
-                        for k in range(3)], axis=1) / counts[:, None]
-        tp = np.asarray(st.thrust_points, dtype=float)
-        e = np.where(N > 0, np.linalg.norm(tp - cen, axis=1), np.nan)
+    e = eccentricities(c, st)
     dem = np.where(tiny, np.nan, np.asarray(st.demand, dtype=float))
     e = np.where(tiny, np.nan, e)
 
