@@ -168,8 +168,11 @@ def _own_friction(res: Any, f: Any) -> str:
                  ("stands" if ok else "breaches the joint laws"))
     else:
         return "not decided (the iteration did not settle there)"
+    # below f*'s bracket, not within it (f* = 0.6 at the scene's f = 0.6 of a wall3d
+    # was "enough ... although below f*")
+    low = res.lower if res.lower is not None else res.friction_factor
     below = (" although below f*: without dilatancy the frictions that carry the load "
-             "need not be one interval") if ok and f < res.friction_factor else ""
+             "need not be one interval") if ok and f < low else ""
     return f"{'enough' if ok else 'NOT enough'}: {there}{below}"
 
 
@@ -182,6 +185,24 @@ def joint_list(names: list[str], first: int = FIRST) -> str:
 
 def fmt(x: float, digits: int = 4) -> str:
     return f"{x:.{digits}g}"
+
+
+def fmt_safe(x: float, digits: int, up: bool, accuracy: float | None = None) -> str:
+    """``x`` to ``digits`` significant figures, rounded to the nearest unless that lands
+    on the unsafe side of ``x`` by more than its ``accuracy`` (relative; at least 1e-9):
+    then down (a collapse multiplier, ``up`` False) or up (a least friction, ``up``
+    True), so that the printed number is one the answer holds at (a check at the printed
+    lambda* = 0.176974 of a barrel vault whose lambda* is 0.1769735169 did not stand)."""
+    if not math.isfinite(x) or x == 0:
+        return f"{x:.{digits}g}"
+    near = float(f"{x:.{digits}g}")
+    tol = max(accuracy or 0.0, 1e-9) * abs(x)
+    if (near - x > tol) if not up else (x - near > tol):
+        from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal
+
+        step = Decimal(1).scaleb(math.floor(math.log10(abs(x))) - digits + 1)
+        near = float(Decimal(repr(x)).quantize(step, ROUND_CEILING if up else ROUND_FLOOR))
+    return f"{near:.{digits}g}"
 
 
 class _Words:
@@ -263,7 +284,7 @@ class _Words:
             return f"its dead load ({self.dead()}; there is no live load)"
         if not lf:
             return f"its self-weight only ({self.dead()}; load factor 0: no live load)"
-        text = (f"its dead load ({self.dead()}) plus {self.lam} = {lf:g} {self.x} the live "
+        text = (f"its dead load ({self.dead()}) plus {self.lam} = {lf:.10g} {self.x} the live "
                 f"load ({self.live_text()})")
         if lf == 1:
             return text
@@ -347,9 +368,11 @@ class _Words:
                  ((*res.joint_name(k), v) for k, v in res.breaches)]
         why += self.live_hint(res)
         # without dilatancy only the state reached from X0 is judged: other states may
-        # stand (the associative check, over every state, says whether one does)
-        verdict = (NA_INADMISSIBLE if na else "NOT ADMISSIBLE: no equilibrium state keeps "
-                   "every joint in compression and within friction")
+        # stand (the associative check, over every state, says whether one does), unless
+        # the static problem has none at all (no trial was made: no state stands under
+        # either flow rule)
+        verdict = (NA_INADMISSIBLE if na and res.history else "NOT ADMISSIBLE: no "
+                   "equilibrium state keeps every joint in compression and within friction")
         return (verdict, number, ("breached at " + joint_list(names)) if names else "", why)
 
     def friction(self, res: Any) -> tuple[str, str, str, list[str]]:
@@ -357,8 +380,9 @@ class _Words:
             return ("UNSTABLE: no friction suffices (even infinite friction admits no "
                     "equilibrium state)", "", "", self.live_hint(res))
         fs = float(res.friction_factor)
-        number = (f"f* = {fs:.6g} (friction angle {math.degrees(math.atan(fs)):.4f}"
-                  f"{self.deg})")
+        shown = fmt_safe(fs, 6, True, res.accuracy)
+        number = (f"f* = {shown} (friction angle "
+                  f"{math.degrees(math.atan(float(shown))):.4f}{self.deg})")
         why = []
         f = self.scene.effective_friction
         na = without_dilatancy(res)
@@ -393,8 +417,11 @@ class _Words:
             return ("UNSTABLE: the dead load alone has no admissible state", "", "", [])
         lm = float(res.load_multiplier)
         size = self.live_size
-        number = (f"{self.lam}* = {lm:.6g}, that is {lm:.4g} {self.x} {self.force(size)} = "
-                  f"{self.force(lm * size)} {self.direction()}").rstrip()
+        short = float(fmt_safe(lm, 4, False, res.accuracy))
+        number = (f"{self.lam}* = {fmt_safe(lm, 6, False, res.accuracy)}, that is "
+                  f"{short:g} {self.x} {self.force(size)} = "
+                  f"{fmt_safe(short * size, 4, False)} {self.fu} "
+                  f"{self.direction()}").rstrip()
         why = []
         if res.tilt_angle_deg is not None:
             a = float(np.linalg.norm(np.asarray(self.scene.live_body_force)[:-1]))
@@ -426,9 +453,10 @@ class _Words:
         if not (self.scene.has_live_load and res.load_factor):
             return []
         src = self.scene.source or "SCENE"
+        flow = " --flow non-associative" if without_dilatancy(res) else ""
         return [f"the live load is included at load factor {res.load_factor:g}; "
-                f"--load-factor 0 asks for the self-weight alone, `rigidblocks load {src}` "
-                "for the collapse multiplier"]
+                f"--load-factor 0 asks for the self-weight alone, `rigidblocks load {src}"
+                f"{flow}` for the collapse multiplier"]
 
 
 #: a mechanism's joint modes, in the words of the answer (exclusive groups)

@@ -241,6 +241,51 @@ def test_thickness_says_what_it_minimised_and_what_to_change(capsys):
     assert code == 2 and "--hi" in err and "Traceback" not in err
 
 
+def test_printed_multiplier_and_friction_are_on_the_safe_side(tmp_path, capsys):
+    """A number printed to 6 figures is rounded to the nearest unless that lands beyond
+    the answer by more than its accuracy: lambda* then rounds down, f* up, so that the
+    printed number is one the answer holds at. The 1-ring barrel vault of 5 voussoirs:
+    lambda* = 0.1769735169 (the JSON) was printed 0.176974, and `check` at that load
+    factor did not stand; now 0.176973, where it stands."""
+    from rigidblocks.answer import fmt_safe
+    from rigidblocks.io import write_scene
+
+    assert fmt_safe(0.17697351692998153, 6, False) == "0.176973"
+    assert fmt_safe(0.17697351692998153, 6, True) == "0.176974"
+    assert fmt_safe(0.2500012, 6, True) == "0.250002"
+    assert fmt_safe(0.2500012, 6, False) == "0.250001"
+    # round-off within the accuracy is not pushed to the next digit
+    assert fmt_safe(0.4999999997, 6, False, 1e-9) == "0.5"
+    assert fmt_safe(0.5000000003, 6, True, 1e-9) == "0.5"
+    scene = build("barrel_vault", rings=1, voussoirs=5, friction=0.6)
+    f = tmp_path / "vault.json"
+    write_scene(scene, f)
+    assert main(["load", str(f), "--json"]) == 0
+    lam = json.loads(capsys.readouterr().out)["load_multiplier"]
+    assert main(["load", str(f)]) == 0
+    printed = next(ln for ln in capsys.readouterr().out.splitlines()
+                   if ln.startswith("answer")).split("= ")[1].split(",")[0]
+    assert printed == "0.176973" and float(printed) <= lam
+    assert main(["check", str(f), "--load-factor", printed]) == 0
+    assert "ADMISSIBLE: it stands" in capsys.readouterr().out
+
+
+def test_a_check_beyond_every_state_says_so_under_either_flow(capsys):
+    """The arch (examples/arch.json, lambda* = 0.1497649 by the convex path) at load
+    factor 0.2: no state stands at all, so the non-associative check's verdict is the
+    static one, not "the state reached from X0 does not stand (...; another state may
+    stand)" beside "no admissible state exists at all"; its hint for the collapse
+    multiplier keeps the flow."""
+    from rigidblocks.answer import NA_INADMISSIBLE
+
+    path = str(EXAMPLES / "arch.json")
+    assert main(["check", path, "--flow", "non-associative", "--load-factor", "0.2"]) == 0
+    out = capsys.readouterr().out
+    assert ("verdict    NOT ADMISSIBLE: no equilibrium state keeps every joint in "
+            "compression and within friction") in out and NA_INADMISSIBLE not in out
+    assert f"`rigidblocks load {path} --flow non-associative` for the collapse" in out
+
+
 def test_joint_table_round_off_of_an_interior_point_state_is_no_force():
     """A 2 x 2 wall3d in plane, non-associative check at load factor 0.5 (admissible):
     Clarabel leaves its open head joints at N = 1.1e-8 kN and -1.4e-9 kN, T = 2.9e-8 kN,

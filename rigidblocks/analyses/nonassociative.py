@@ -1056,7 +1056,11 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
                               lower=lower, upper=upper)
 
     if lim.status != "stable":
-        na.notes.append("no friction admits an equilibrium state (static problem)")
+        # the static f* bounds the non-associative one from below: without it, nothing
+        na.notes.append("no friction admits an equilibrium state (static problem)"
+                        if lim.status == "unstable" else "the static f*, below which no "
+                        f"state stands, was not found ({lim.status}): the search starts "
+                        "there")
         return out("unstable" if lim.status == "unstable" else lim.status, converged=True)
     # without dilatancy f* does not say whether the scene's own friction suffices
     # (lambda(f) need not grow with f): that friction is tried as well

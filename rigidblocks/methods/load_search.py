@@ -165,8 +165,8 @@ class LoadSearch:
                 f"f* from lambda*(f) = {lf:g} (the maximum-load LP): f* is bracketed in "
                 f"[{lo:.10g}, {hi:.10g}] (relative width {(hi - lo) / hi:.1e}), where "
                 f"lambda* is within {SPREAD_MARGIN:g} times what its duals' residual "
-                f"could account for of {lf:g}; the bracket is wider than {WIDE:g} "
-                "(relative): no number is given")
+                f"could account for of {lf:g}; the bracket is wider than "
+                f"{max(search.rtol, WIDE):g} (relative): no number is given")
             return Limit("undecided", None, lo, hi)
         prob, jr, res = upper.data.at
         theta = lf / (upper.value + lf)
