@@ -420,7 +420,7 @@ class _Words:
         short = float(fmt_safe(lm, 4, False, res.accuracy))
         number = (f"{self.lam}* = {fmt_safe(lm, 6, False, res.accuracy)}, that is "
                   f"{short:g} {self.x} {self.force(size)} = "
-                  f"{fmt_safe(short * size, 4, False)} {self.fu} "
+                  f"{fmt_safe(lm * size, 4, False, res.accuracy)} {self.fu} "
                   f"{self.direction()}").rstrip()
         why = []
         if res.tilt_angle_deg is not None:
