@@ -1271,17 +1271,22 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     na.notes.append(f"at f = {s.good!r} the limit fixed point from X0 carries lambda = "
                     f"{at.value + lf:.9g} >= {lf:g}; at f = {s.bad!r} "
                     f"{s.end(False).value + lf:.9g}")
+    na.notes.extend(_flat_below(trials))
+    return out("stable", s.good, at.data, s.lower, s.upper, True)
+
+
+def _flat_below(trials: list[dict[str, Any]]) -> list[str]:
+    """A note where the trials that do not carry the load all carry one multiplier:
+    lambda(f) is flat below f*, which is where another mechanism takes over (the 6 x 5
+    wall at load factor 0.590526: 0.578947 from f = 0.6 to 266.2, then 0.77)."""
     short = [t for t in trials if t.get("carries") is False]
     lams = [t["load_factor"] for t in short]
-    if len(short) >= 3 and max(lams) - min(lams) <= 1e-6 * abs(max(lams)):
-        # lambda(f) flat below f*: f* is where another mechanism takes over (the 6 x 5
-        # wall at load factor 0.590526: 0.578947 from f = 0.6 to 266.2, then 0.77)
-        fs_ = [t["friction"] for t in short]
-        na.notes.append(f"below f* the limit fixed point from X0 carries lambda = "
-                        f"{lams[0]:.7g} at every f tried from {min(fs_):.6g} to "
-                        f"{max(fs_):.6g} ({len(short)} trials): there it does not grow with "
-                        "f, and f* is where another mechanism takes over")
-    return out("stable", s.good, at.data, s.lower, s.upper, True)
+    if len(short) < 3 or max(lams) - min(lams) > 1e-6 * abs(max(lams)):
+        return []
+    fs = [t["friction"] for t in short]
+    return [f"below f* the limit fixed point from X0 carries lambda = {lams[0]:.7g} at "
+            f"every f tried from {min(fs):.6g} to {max(fs):.6g} ({len(short)} trials): "
+            "there it does not grow with f, and f* is where another mechanism takes over"]
 
 
 def _secant(s: Any) -> float | None:
