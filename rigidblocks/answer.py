@@ -155,13 +155,14 @@ def _own_friction(res: Any, f: Any) -> str:
                                  "alone breaches the joint laws"}[st]
         elif st != "converged" or lam is None:
             return "not decided (the limit iteration did not settle there)"
+        elif "carries" not in t:  # the search read no side from it either
+            return "not decided (the state the limit iteration reached there failed its check)"
         else:
-            ok = bool(t.get("carries"))
-            lf = float(res.load_factor)
-            rel = ">=" if lam >= lf else "=" if ok else "<"
+            from .analyses.na_limit import carried_text
+
+            ok, lf = bool(t.get("carries")), float(res.load_factor)
             there = (f"there the state reached from X0 carries lambda = {lam:.7g} "
-                     f"({rel} {res.load_factor:g}" +
-                     (" to the accuracy of its multiplier)" if rel == "=" else ")"))
+                     f"({carried_text(lam, lf, t['carry_tol']) if ok else f'< {lf:g}'})")
     elif t["status"] in ("admissible", "inadmissible"):
         ok = t["status"] == "admissible"
         there = ("there the state reached from X0 " +

@@ -147,6 +147,14 @@ class LimitRun:
         return self.history[-1][1] * max(1.0, big) / max(big, 1e-300)
 
 
+def carried_text(lam: float, lf: float, tol: float) -> str:
+    """How a multiplier ``lam`` that carries the load factor ``lf`` (to ``tol``,
+    :meth:`LimitRun.carries`) compares with it: ">= lf", or where it lies below, "= lf to
+    the accuracy of its multiplier" (a cone multiplier's)."""
+    return f">= {lf:g}" if lam >= lf else \
+        f"= {lf:g} to the accuracy of its multiplier, {tol:g} relative"
+
+
 class _HighsLimit:
     """The capped maximum-load LP (2D) in one HiGHS model, warm-started between solves
     (only the joint rows' right-hand sides change)."""

@@ -77,6 +77,7 @@ from ..solvers import OPTIMAL
 from .na_limit import (
     CappedLimit,
     LimitRun,
+    carried_text,
     certificate,
     reached_normals,
 )
@@ -576,21 +577,13 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
         return UNDECIDED
     if r.carries(lf):
         na.notes.append(f"loaded from X0 it carries lambda = {r.lam:.7g} "
-                        f"{_reaches(r.lam, lf, r.carry_tol)} (`load`'s answer, the limit "
+                        f"{carried_text(r.lam, lf, r.carry_tol)} (`load`'s answer, the limit "
                         "fixed point from X0)")
         return ADMISSIBLE
     na.notes.append(f"loaded from X0 it collapses at lambda = {r.lam:.7g} < {lf:g} (the "
                     "limit fixed point from X0, `load`'s answer), though the state reached "
                     f"from X0 at lambda = {lf:g} directly is admissible (the state shown)")
     return INADMISSIBLE
-
-
-def _reaches(lam: float, lf: float, tol: float) -> str:
-    """How a multiplier ``lam`` that carries the load factor ``lf`` (to ``tol``) compares
-    with it: ">= lf", or where it lies below, "= lf to the accuracy ..." (a cone
-    multiplier's)."""
-    return f">= {lf:g}" if lam >= lf else \
-        f"= {lf:g} to the accuracy of its multiplier, {tol:g} relative"
 
 
 def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "clarabel",
@@ -1183,7 +1176,8 @@ def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
                          data=Verdict(INADMISSIBLE if decided else UNDECIDED,
                                       notes=(why,)), why=why)
         rec = {"friction": fv, "load_factor": r.lam, "status": r.status,
-               "iterations": r.iterations, "converged": r.converged}
+               "iterations": r.iterations, "converged": r.converged,
+               "carry_tol": r.carry_tol}
         trials.append(rec)
         v = _verdict(r, cv.scaling.force)
         if r.status in ("unbounded", "infeasible"):
@@ -1268,9 +1262,10 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     # round-off (the 10 x 10 wall at load factor 0.5: 0.500014578 at f* =
     # 0.5346341035199138, 0.500001342 at 0.534634104), so that `load --friction` at the
     # printed f gives the printed lambda
+    tol = next(t["carry_tol"] for t in reversed(trials) if t.get("friction") == s.good)
     na.notes.append(f"at f = {s.good!r} the limit fixed point from X0 carries lambda = "
-                    f"{at.value + lf:.9g} >= {lf:g}; at f = {s.bad!r} "
-                    f"{s.end(False).value + lf:.9g}")
+                    f"{at.value + lf:.9g} {carried_text(at.value + lf, lf, tol)}; at f = "
+                    f"{s.bad!r} {s.end(False).value + lf:.9g}")
     na.notes.extend(_flat_below(trials))
     return out("stable", s.good, at.data, s.lower, s.upper, True)
 
