@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from .results import Result
+from .results import Result, fmt_safe
 from .scene.geometry import scene_weights
 from .scene.model import Scene, friction_value
 
@@ -161,8 +161,9 @@ def _own_friction(res: Any, f: Any) -> str:
             from .analyses.na_limit import carried_text
 
             ok, lf = bool(t.get("carries")), float(res.load_factor)
-            there = (f"there the state reached from X0 carries lambda = {lam:.7g} "
-                     f"({carried_text(lam, lf, t['carry_tol']) if ok else f'< {lf:g}'})")
+            there = (f"there the state reached from X0 carries lambda = "
+                     f"{fmt_safe(lam, 7, False)} "
+                     f"({carried_text(lam, lf, t['carry_tol']) if ok else f'< {lf:.10g}'})")
     elif t["status"] in ("admissible", "inadmissible"):
         ok = t["status"] == "admissible"
         there = ("there the state reached from X0 " +
@@ -186,24 +187,6 @@ def joint_list(names: list[str], first: int = FIRST) -> str:
 
 def fmt(x: float, digits: int = 4) -> str:
     return f"{x:.{digits}g}"
-
-
-def fmt_safe(x: float, digits: int, up: bool, accuracy: float | None = None) -> str:
-    """``x`` to ``digits`` significant figures, rounded to the nearest unless that lands
-    on the unsafe side of ``x`` by more than its ``accuracy`` (relative; at least 1e-9):
-    then down (a collapse multiplier, ``up`` False) or up (a least friction, ``up``
-    True), so that the printed number is one the answer holds at (a check at the printed
-    lambda* = 0.176974 of a barrel vault whose lambda* is 0.1769735169 did not stand)."""
-    if not math.isfinite(x) or x == 0:
-        return f"{x:.{digits}g}"
-    near = float(f"{x:.{digits}g}")
-    tol = max(accuracy or 0.0, 1e-9) * abs(x)
-    if (near - x > tol) if not up else (x - near > tol):
-        from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal
-
-        step = Decimal(1).scaleb(math.floor(math.log10(abs(x))) - digits + 1)
-        near = float(Decimal(repr(x)).quantize(step, ROUND_CEILING if up else ROUND_FLOOR))
-    return f"{near:.{digits}g}"
 
 
 class _Words:
@@ -301,7 +284,7 @@ class _Words:
         lf = getattr(result, "load_factor", None)
         if not lf:
             return "under its self-weight only (load factor 0)"
-        return f"under the dead load + {lf:g} {self.x} the live load"
+        return f"under the dead load + {lf:.10g} {self.x} the live load"
 
     def friction_text(self, f: Any) -> str:
         if f is None or isinstance(f, str) or math.isinf(float(f)):
@@ -433,12 +416,13 @@ class _Words:
                      if isinstance(h, dict) and h.get("span")), None)
         if span and span[0] < lm * (1 - 1e-6):
             why.append(f"not a lower bound: collapse states of the same mechanism carry "
-                       f"{self.lam} from {span[0]:.6g} (the answer is the state reached from "
-                       "X0; `--safe` gives the smallest over all states)")
+                       f"{self.lam} from {fmt_safe(span[0], 6, False)} (the answer is the "
+                       "state reached from X0; `--safe` gives the smallest over all "
+                       "states)")
         lf = self.scene.load_factor
         if lf:
             ok = "carries" if lm >= lf else "does NOT carry"
-            why.append(f"it {ok} the scene's load factor {self.lam} = {lf:g}")
+            why.append(f"it {ok} the scene's load factor {self.lam} = {lf:.10g}")
         mech = res.mechanism
         if mech is None:
             names = [f"{a}-{b}" for a, b in res.governing_joints]
@@ -455,7 +439,7 @@ class _Words:
             return []
         src = self.scene.source or "SCENE"
         flow = " --flow non-associative" if without_dilatancy(res) else ""
-        return [f"the live load is included at load factor {res.load_factor:g}; "
+        return [f"the live load is included at load factor {res.load_factor:.10g}; "
                 f"--load-factor 0 asks for the self-weight alone, `rigidblocks load {src}"
                 f"{flow}` for the collapse multiplier"]
 

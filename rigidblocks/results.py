@@ -41,6 +41,24 @@ def eccentricities(c: Contacts, st: Any) -> np.ndarray:
                         np.nan)
 
 
+def fmt_safe(x: float, digits: int, up: bool, accuracy: float | None = None) -> str:
+    """``x`` to ``digits`` significant figures, rounded to the nearest unless that lands
+    on the unsafe side of ``x`` by more than its ``accuracy`` (relative; at least 1e-9):
+    then down (a collapse multiplier, ``up`` False) or up (a least friction, ``up``
+    True), so that the printed number is one the answer holds at (a check at the printed
+    lambda* = 0.176974 of a barrel vault whose lambda* is 0.1769735169 did not stand)."""
+    if not math.isfinite(x) or x == 0:
+        return f"{x:.{digits}g}"
+    near = float(f"{x:.{digits}g}")
+    tol = max(accuracy or 0.0, 1e-9) * abs(x)
+    if (near - x > tol) if not up else (x - near > tol):
+        from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal
+
+        step = Decimal(1).scaleb(math.floor(math.log10(abs(x))) - digits + 1)
+        near = float(Decimal(repr(x)).quantize(step, ROUND_CEILING if up else ROUND_FLOOR))
+    return f"{near:.{digits}g}"
+
+
 def no_force(N: np.ndarray, T: np.ndarray) -> np.ndarray:
     """Joints whose normal and shear forces are both below ``ZERO_FORCE`` of the largest
     of them: round-off of a joint that carries nothing."""

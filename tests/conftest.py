@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 
@@ -83,3 +84,12 @@ def block_on_base():
         return build_block(b, h, friction, **extra)
 
     return build
+
+
+def down(x: float, digits: int = 7) -> str:
+    """``x`` cut (not rounded) to ``digits`` significant figures: what the CLI prints of
+    a multiplier known to round-off, on the safe side (a check stands at it)."""
+    from decimal import ROUND_FLOOR, Decimal
+
+    step = Decimal(1).scaleb(math.floor(math.log10(abs(x))) - digits + 1)
+    return f"{float(Decimal(repr(x)).quantize(step, ROUND_FLOOR)):.{digits}g}"

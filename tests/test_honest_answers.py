@@ -270,6 +270,31 @@ def test_printed_multiplier_and_friction_are_on_the_safe_side(tmp_path, capsys):
     assert "ADMISSIBLE: it stands" in capsys.readouterr().out
 
 
+def test_the_starts_line_prints_multipliers_a_check_stands_at(tmp_path, capsys):
+    """The 6 x 5 running-bond wall at f = 0.6 without dilatancy: both starts reach
+    lambda = 11/19 = 0.57894737 (sliding of its upper courses), printed 0.5789474 to the
+    nearest, at which `check` does not stand; the starts line now rounds it down as the
+    answer line does (0.5789473), and `check` at that load factor stands."""
+    from rigidblocks.io import write_scene
+
+    f = tmp_path / "wall.json"
+    write_scene(build("wall", courses=6, blocks_per_course=5, friction=0.6), f)
+    assert main(["load", str(f), "--flow", "non-associative", "--json"]) == 0
+    lam = json.loads(capsys.readouterr().out)["load_multiplier"]
+    assert lam == pytest.approx(11 / 19, rel=1e-9)
+    assert main(["load", str(f), "--flow", "non-associative"]) == 0
+    starts = next(ln for ln in capsys.readouterr().out.splitlines()
+                  if ln.startswith("starts"))
+    assert "from the elastic state X0: lambda = 0.5789473;" in starts, starts
+    for lf, verdict in (("0.5789473", "ADMISSIBLE"), ("0.5789474", "NOT ADMISSIBLE")):
+        assert main(["check", str(f), "--flow", "non-associative", "--load-factor",
+                     lf]) == 0
+        out = capsys.readouterr().out
+        assert f"verdict    {verdict}" in out
+    # the asked load factor as given, beside the multiplier that falls short of it
+    assert "collapses at lambda = 0.5789473 < 0.5789474 (the limit" in out
+
+
 def test_a_check_beyond_every_state_says_so_under_either_flow(capsys):
     """The arch (examples/arch.json, lambda* = 0.1497649 by the convex path) at load
     factor 0.2: no state stands at all, so the non-associative check's verdict is the

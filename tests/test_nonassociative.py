@@ -14,7 +14,7 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import EXAMPLES, make_scene, pinched, rect
+from conftest import EXAMPLES, down, make_scene, pinched, rect
 
 import rigidblocks as rb
 from rigidblocks.analyses.nonassociative import flow_mask, is_nonassociative
@@ -572,7 +572,7 @@ def test_check_load_and_friction_agree_without_dilatancy(method, capsys):
         fr = rb.min_friction(scene, load_factor=0.12, flow=NA, state=False)
         assert fr.friction_factor > 0.6
         assert f"verdict    {NA_INADMISSIBLE}" in lines
-        assert (f"why        loaded from X0 it collapses at lambda = {lam:.7g} < 0.12 (the "
+        assert (f"why        loaded from X0 it collapses at lambda = {down(lam)} < 0.12 (the "
                 "limit fixed point from X0, `load`'s answer), though the state reached "
                 "from X0 at lambda = 0.12 directly is admissible (the state shown)") in lines
         # the flow line counts the check's iterations at 0.12 and the limit run's steps
@@ -722,4 +722,4 @@ def test_friction_says_where_lambda_does_not_grow_with_f():
     fr = rb.min_friction(scene, load_factor=1.02 * lam, flow=NA, state=False)
     assert fr.status == "stable" and fr.friction_factor > 100
     note = next(n for n in fr.notes if n.startswith("below f* the limit fixed point"))
-    assert f"carries lambda = {lam:.7g} at every f tried" in note
+    assert f"carries lambda = {down(lam)} at every f tried" in note

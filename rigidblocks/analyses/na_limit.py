@@ -151,8 +151,8 @@ def carried_text(lam: float, lf: float, tol: float) -> str:
     """How a multiplier ``lam`` that carries the load factor ``lf`` (to ``tol``,
     :meth:`LimitRun.carries`) compares with it: ">= lf", or where it lies below, "= lf to
     the accuracy of its multiplier" (a cone multiplier's)."""
-    return f">= {lf:g}" if lam >= lf else \
-        f"= {lf:g} to the accuracy of its multiplier, {tol:g} relative"
+    return f">= {lf:.10g}" if lam >= lf else \
+        f"= {lf:.10g} to the accuracy of its multiplier, {tol:g} relative"
 
 
 class _HighsLimit:

@@ -71,7 +71,14 @@ from ..methods import ADMISSIBLE, FAILURE, INADMISSIBLE, UNDECIDED, Method, Verd
 from ..methods.convex import ADMISSIBLE_TOL, STATE_SLACK, VERDICT_RTOL, ConvexMethod
 from ..methods.distortion import DistortionMethod
 from ..problems.formulation import build_energy_qp, build_max_load, build_relaxation, flexibility
-from ..results import CheckResult, ForceState, FrictionResult, LoadResult, relative_width
+from ..results import (
+    CheckResult,
+    ForceState,
+    FrictionResult,
+    LoadResult,
+    fmt_safe,
+    relative_width,
+)
 from ..scene.model import NON_ASSOCIATIVE, Scene, flow_value, friction_label, friction_value
 from ..solvers import OPTIMAL
 from .na_limit import (
@@ -572,17 +579,18 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
         return ADMISSIBLE
     if not r.converged or _limit_checks(cv, f, r, (None, None)):
         na.notes.append("the limit fixed point from X0 (`load`'s answer) was not reached "
-                        f"({r.reason}): whether loading from X0 reaches lambda = {lf:g} is "
+                        f"({r.reason}): whether loading from X0 reaches lambda = {lf:.10g} is "
                         "undecided")
         return UNDECIDED
     if r.carries(lf):
-        na.notes.append(f"loaded from X0 it carries lambda = {r.lam:.7g} "
+        na.notes.append(f"loaded from X0 it carries lambda = {fmt_safe(r.lam, 7, False)} "
                         f"{carried_text(r.lam, lf, r.carry_tol)} (`load`'s answer, the limit "
                         "fixed point from X0)")
         return ADMISSIBLE
-    na.notes.append(f"loaded from X0 it collapses at lambda = {r.lam:.7g} < {lf:g} (the "
-                    "limit fixed point from X0, `load`'s answer), though the state reached "
-                    f"from X0 at lambda = {lf:g} directly is admissible (the state shown)")
+    na.notes.append(f"loaded from X0 it collapses at lambda = {fmt_safe(r.lam, 7, False)} "
+                    f"< {lf:.10g} (the limit fixed point from X0, `load`'s answer), though the "
+                    "state reached "
+                    f"from X0 at lambda = {lf:.10g} directly is admissible (the state shown)")
     return INADMISSIBLE
 
 
@@ -782,7 +790,8 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
                    for r in runs)
     if verdict == INADMISSIBLE:
         na.notes.append(f"{DEAD_LOAD_BREACH}: it does not stand" +
-                        (f"; from the associative collapse state: lambda = {runs[0].lam:.7g}"
+                        (f"; from the associative collapse state: lambda = "
+                         f"{fmt_safe(runs[0].lam, 7, False)}"
                          if runs and runs[0].converged else ""))
         return LoadResult(**_fields(na, "max_load_multiplier", "unstable", f, None, trials,
                                     True), load_multiplier_bounds=bounds)
@@ -901,16 +910,21 @@ def _loose(a: StartAnswer) -> str:
 def _spread_note(history: Any) -> str:
     """The answer from every start, the multipliers the collapse states of the mechanism
     each reached carry (where they were computed), and whether the answers differ
-    (:func:`compare_starts`)."""
+    (:func:`compare_starts`). Each multiplier is printed to 7 figures on the safe side
+    (:func:`~rigidblocks.results.fmt_safe`): the 6 x 5 wall's 0.5789473684 as 0.5789473,
+    at which a check stands, not 0.5789474."""
+    def lam(x: float) -> str:
+        return fmt_safe(x, 7, False)
+
     def one(a: StartAnswer) -> str:
         if a.lam is None:
             return f"undecided ({a.reason})"
-        text = f"lambda = {a.lam:.7g}"
+        text = f"lambda = {lam(a.lam)}"
         if a.same_mechanism:
             return text + " (the same mechanism)"
         if a.span is not None:
             return text + (f" (the collapse states of the mechanism reached carry lambda "
-                           f"from {a.span[0]:.7g} to {a.span[1]:.7g}{_loose(a)})")
+                           f"from {lam(a.span[0])} to {lam(a.span[1])}{_loose(a)})")
         return text + (f" (the one collapse state of the mechanism reached{_loose(a)})"
                        if a.one_state else "")
 
@@ -918,8 +932,8 @@ def _spread_note(history: Any) -> str:
     text = f"{SPREAD_NOTE}{answers[0].start}: {one(answers[0])}"
     text += "".join(f"; from {a.start}: {one(a)}" for a in answers[1:])
     if spread is not None:
-        text += (f". The answers from the starts differ: [{spread[0]:.7g}, "
-                 f"{spread[1]:.7g}] (the answer is X0's)")
+        text += (f". The answers from the starts differ: [{lam(spread[0])}, "
+                 f"{lam(spread[1])}] (the answer is X0's)")
     elif sum(a.lam is not None for a in answers) > 1:
         text += ": the same answer"
     return text
@@ -1279,7 +1293,8 @@ def _flat_below(trials: list[dict[str, Any]]) -> list[str]:
     if len(short) < 3 or max(lams) - min(lams) > 1e-6 * abs(max(lams)):
         return []
     fs = [t["friction"] for t in short]
-    return [f"below f* the limit fixed point from X0 carries lambda = {lams[0]:.7g} at "
+    return [f"below f* the limit fixed point from X0 carries lambda = "
+            f"{fmt_safe(lams[0], 7, False)} at "
             f"every f tried from {min(fs):.6g} to {max(fs):.6g} ({len(short)} trials): "
             "there it does not grow with f, and f* is where another mechanism takes over"]
 

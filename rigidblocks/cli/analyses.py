@@ -20,6 +20,7 @@ from ..answer import answer_block
 from ..errors import InputError
 from ..io import read_scene
 from ..methods import METHODS, Progress
+from ..results import fmt_safe
 from .options import add_rtol, finite_float, friction_option
 from .options import load_factor as load_factor_type
 from .progress import run_interruptible
@@ -292,20 +293,24 @@ def _flow_lines(res) -> list[str]:
     if starts:
         answers, spread = compare_starts(starts)
 
+        def lam(x: float) -> str:  # the safe side, as the answer line
+            return fmt_safe(x, 7, False)
+
         def value(a: StartAnswer) -> str:
             if a.lam is None:
                 return a.status
             if a.same_mechanism:
-                return f"{a.lam:.7g} (the same mechanism)"
+                return f"{lam(a.lam)} (the same mechanism)"
             if a.span is not None:
                 kind = "states" if a.least_confined else \
                     "states optimal under their own caps, not least confined,"
-                return f"{a.lam:.7g} (its mechanism's {kind} [{a.span[0]:.7g}, {a.span[1]:.7g}])"
-            return f"{a.lam:.7g}"
+                return f"{lam(a.lam)} (its mechanism's {kind} [{lam(a.span[0])}, " \
+                       f"{lam(a.span[1])}])"
+            return lam(a.lam)
 
         out.append("starts     " + "; ".join(f"from {a.start}: lambda = {value(a)}"
                                              for a in answers) +
-                   (f"; the answers differ: [{spread[0]:.7g}, {spread[1]:.7g}]"
+                   (f"; the answers differ: [{lam(spread[0])}, {lam(spread[1])}]"
                     if spread is not None else ""))
     return out
 
