@@ -280,14 +280,15 @@ def _flow_lines(res) -> list[str]:
         # a check at its load factor, then `load`'s limit run from X0
         t = res.history[0]
         out = [f"flow       {res.flow}: {t.get('iterations', '?')} iteration(s) at lambda "
-               f"= {t['load_factor']:g}, {done}; then {t['limit_steps']} limit step(s) "
+               f"= {t['load_factor']:.10g}, {done}; then {t['limit_steps']} limit step(s) "
                "loading from X0"]
     else:
         out = [f"flow       {res.flow}: {res.iterations} iteration(s), {done}"]
     b = getattr(res, "load_multiplier_bounds", None)
     if b is not None:
-        lo = "-" if b[0] is None else f"{b[0]:.6g}"
-        hi = "-" if b[1] is None else f"{b[1]:.6g}"
+        # each bound on its own safe side: the lower one down, the upper one up
+        lo = "-" if b[0] is None else fmt_safe(b[0], 6, False)
+        hi = "-" if b[1] is None else fmt_safe(b[1], 6, True)
         out.append(f"bounds     [{lo}, {hi}]   (frictionless lower bound, associative "
                    "upper bound)")
     if starts:
