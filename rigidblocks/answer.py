@@ -364,7 +364,7 @@ class _Words:
             return ("UNSTABLE: no friction suffices (even infinite friction admits no "
                     "equilibrium state)", "", "", self.live_hint(res))
         fs = float(res.friction_factor)
-        shown = fmt_safe(fs, 6, True, res.accuracy)
+        shown = fmt_safe(fs, 6, True)
         number = (f"f* = {shown} (friction angle "
                   f"{math.degrees(math.atan(float(shown))):.4f}{self.deg})")
         why = []
@@ -401,10 +401,10 @@ class _Words:
             return ("UNSTABLE: the dead load alone has no admissible state", "", "", [])
         lm = float(res.load_multiplier)
         size = self.live_size
-        short = float(fmt_safe(lm, 4, False, res.accuracy))
-        number = (f"{self.lam}* = {fmt_safe(lm, 6, False, res.accuracy)}, that is "
+        short = float(fmt_safe(lm, 4, False))
+        number = (f"{self.lam}* = {fmt_safe(lm, 6, False)}, that is "
                   f"{short:g} {self.x} {self.force(size)} = "
-                  f"{fmt_safe(lm * size, 4, False, res.accuracy)} {self.fu} "
+                  f"{fmt_safe(lm * size, 4, False)} {self.fu} "
                   f"{self.direction()}").rstrip()
         why = []
         if res.tilt_angle_deg is not None:
