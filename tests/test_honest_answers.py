@@ -298,6 +298,26 @@ def test_the_starts_line_prints_multipliers_a_check_stands_at(tmp_path, capsys):
     assert "collapses at lambda = 0.5789473 < 0.5789474 (the limit" in out
 
 
+def test_a_check_at_the_printed_non_associative_friction_stands(tmp_path, capsys):
+    """The default barrel vault (3D, 1 ring of 9 voussoirs) for its dead load alone:
+    `friction --flow non-associative` gives f* = 0.3382856382 (printed 0.338286). `check`
+    at 0.338286 said NOT ADMISSIBLE, its limit run from X0 having reached lambda =
+    -5.2e-14, round-off of 0, which did not carry the load factor 0; a multiplier now
+    carries a load factor below 1 to its accuracy in units of the live load."""
+    from rigidblocks.io import write_scene
+
+    f = tmp_path / "vault.json"
+    write_scene(build("barrel_vault"), f)
+    assert main(["friction", str(f), "--flow", "non-associative"]) == 0
+    printed = next(ln for ln in capsys.readouterr().out.splitlines()
+                   if ln.startswith("answer")).split()[3]
+    assert printed == "0.338286"
+    assert main(["check", str(f), "--flow", "non-associative", "--friction", printed]) == 0
+    out = capsys.readouterr().out
+    assert "verdict    ADMISSIBLE" in out
+    assert "carries lambda = " in out and "= 0 to the accuracy of its multiplier" in out
+
+
 def test_a_check_beyond_every_state_says_so_under_either_flow(capsys):
     """The arch (examples/arch.json, lambda* = 0.1497649 by the convex path) at load
     factor 0.2: no state stands at all, so the non-associative check's verdict is the

@@ -128,8 +128,12 @@ class LimitRun:
     carry_tol: float = CARRY_TOL
 
     def carries(self, load_factor: float) -> bool:
-        """Does the run's multiplier reach ``load_factor`` (to :attr:`carry_tol`)?"""
-        return self.lam is not None and self.lam >= load_factor * (1.0 - self.carry_tol)
+        """Does the run's multiplier reach ``load_factor`` (to :attr:`carry_tol` of it, and
+        of the live load itself where the load factor is below 1: the 1-ring barrel vault
+        at its f* for the dead load alone reached lambda = -5.2e-14, which did not carry
+        0)?"""
+        return self.lam is not None and \
+            self.lam >= load_factor - self.carry_tol * max(abs(load_factor), 1.0)
 
     @property
     def converged(self) -> bool:
@@ -151,8 +155,9 @@ def carried_text(lam: float, lf: float, tol: float) -> str:
     """How a multiplier ``lam`` that carries the load factor ``lf`` (to ``tol``,
     :meth:`LimitRun.carries`) compares with it: ">= lf", or where it lies below, "= lf to
     the accuracy of its multiplier" (a cone multiplier's)."""
+    scale = "relative" if abs(lf) >= 1 else "of the live load"
     return f">= {lf:.10g}" if lam >= lf else \
-        f"= {lf:.10g} to the accuracy of its multiplier, {tol:g} relative"
+        f"= {lf:.10g} to the accuracy of its multiplier, {tol:g} {scale}"
 
 
 class _HighsLimit:
