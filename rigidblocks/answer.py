@@ -360,6 +360,15 @@ class _Words:
         return (verdict, number, ("breached at " + joint_list(names)) if names else "", why)
 
     def friction(self, res: Any) -> tuple[str, str, str, list[str]]:
+        if res.status != "stable" and without_dilatancy(res):
+            # the search stops at a finite ceiling: infinite friction (no sliding at
+            # all) is another joint law, which may stand (a running-bond wall with
+            # openings, whose state from X0 has joints with no normal force)
+            from .analyses.nonassociative import NA_FRICTION_CEILING
+
+            return (f"UNSTABLE: no friction up to {NA_FRICTION_CEILING:g} suffices without "
+                    "dilatancy (in the state reached from the elastic state X0)", "", "",
+                    self.live_hint(res))
         if res.status != "stable":
             return ("UNSTABLE: no friction suffices (even infinite friction admits no "
                     "equilibrium state)", "", "", self.live_hint(res))

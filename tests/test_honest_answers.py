@@ -318,6 +318,28 @@ def test_a_check_at_the_printed_non_associative_friction_stands(tmp_path, capsys
     assert "carries lambda = " in out and "= 0 to the accuracy of its multiplier" in out
 
 
+def test_no_finite_friction_is_not_said_of_infinite_friction(tmp_path, capsys):
+    """An 8 x 6 running-bond wall with an opening (courses 2-4, blocks 2-3) under its
+    dead load: the state reached from X0 has joints that must carry shear with no
+    normal force, so no friction up to the search's ceiling (1e4) makes it stand
+    without dilatancy (the breach, 0.2667, does not depend on f), while with infinite
+    friction (no sliding at all) it stands. The verdict said "even infinite friction
+    admits no equilibrium state"; it now names the ceiling."""
+    from rigidblocks.io import write_scene
+
+    f = tmp_path / "wall.json"
+    write_scene(build("wall", courses=8, blocks_per_course=6, openings=[(2, 3, 2, 2)]), f)
+    assert main(["friction", str(f), "--flow", "non-associative", "--load-factor", "0",
+                 "-v"]) == 0
+    out = capsys.readouterr().out
+    assert ("verdict    UNSTABLE: no friction up to 10000 suffices without dilatancy (in "
+            "the state reached from the elastic state X0)") in out
+    assert "infinite" not in out and "at any finite friction" in out
+    assert main(["check", str(f), "--flow", "non-associative", "--friction", "infinite",
+                 "--load-factor", "0"]) == 0
+    assert "verdict    ADMISSIBLE" in capsys.readouterr().out
+
+
 def test_a_check_beyond_every_state_says_so_under_either_flow(capsys):
     """The arch (examples/arch.json, lambda* = 0.1497649 by the convex path) at load
     factor 0.2: no state stands at all, so the non-associative check's verdict is the

@@ -1018,7 +1018,7 @@ def _no_friction_note(breach: list[tuple[float, float]], fs: float) -> str:
     return text + (f". The static f* = {fs:.6g} admits a state only with a normal force "
                    "the loads do not cause (a pinch, a prestress) or with a slip that "
                    "opens the joint (dilatancy): without either the structure does not "
-                   "stand, at any friction")
+                   "stand, at any finite friction")
 
 
 def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
