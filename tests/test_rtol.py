@@ -53,6 +53,19 @@ def test_a_number_only_where_the_certified_bracket_meets_the_requested_accuracy(
     assert abs(r.friction_factor - ARPINO) <= 2e-3 * ARPINO
 
 
+def test_the_simplex_gives_f_star_to_the_requested_accuracy_itself():
+    """The arch (examples/arch.json) by HiGHS' simplex at rtol 1e-9: f* was given with a
+    bracket 2.3e-9 wide (relative), the absolute 1e-9 that lets a structure needing no
+    friction stop its search having counted everywhere; the accuracy reached is now the
+    one requested (the absolute part only where f* is within 1e-9 of zero)."""
+    scene = rb.read_scene(EXAMPLES / "arch.json")
+    r = rb.min_friction(scene, state=False, rtol=1e-9, solver="highs")
+    assert r.status == "stable" and r.accuracy <= 1e-9
+    # inside the bracket the interior-point back end certifies at its finest (1e-7)
+    c = rb.min_friction(scene, state=False, rtol=1e-7)
+    assert c.status == "stable" and c.bracket[0] <= r.friction_factor <= c.bracket[1]
+
+
 def test_lambda_star_open_by_more_than_the_requested_accuracy_is_no_number():
     """lambda* = 1.2 of the seed's reference model (numerical example 1) from one LP:
     its duals leave it open by about 4e-10 above the solver's answer; asked for 1e-11
