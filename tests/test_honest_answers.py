@@ -62,6 +62,20 @@ def test_undecided_load_is_not_a_verdict_and_exits_3(capsys, short_budget):
     assert d["notes"] and "bracket" in d
 
 
+def test_a_picture_or_drawing_of_an_undecided_analysis_exits_3(tmp_path, capsys,
+                                                              short_budget):
+    """`plot` and `export-dxf` exit as the analysis they draw does (docs/scene-format.md:
+    3 when it ran and is undecided), as `report` does; they exited 0."""
+    path = str(EXAMPLES / "reference.json")
+    for cmd, out in (("plot", "r.png"), ("export-dxf", "r.dxf")):
+        code, text, _ = run(capsys, [cmd, path, "--analysis", "load", "--method",
+                                     "distortion", "-o", str(tmp_path / out)])
+        assert code == 3 and "(load: undecided)" in text, (cmd, text)
+        code, text, _ = run(capsys, [cmd, path, "--analysis", "load",
+                                     "-o", str(tmp_path / out)])
+        assert code == 0 and "(load: collapse)" in text, (cmd, text)
+
+
 def test_undecided_check_has_no_admissible_verdict(capsys, short_budget):
     scene = rb.read_scene(EXAMPLES / "reference.json")
     r = rb.check(scene, friction=0.6, method="distortion")

@@ -96,7 +96,7 @@ def run(args: argparse.Namespace) -> int:
             print(f"rigidblocks: warning: {NO_UNIT_WEIGHT_NOTE}", file=sys.stderr)
         print(f"wrote {args.output}")
         return 0
-    from .analyses import question
+    from .analyses import EXIT, question
     from .plot import analyse
 
     scene = read_scene(args.scene)
@@ -105,5 +105,6 @@ def run(args: argparse.Namespace) -> int:
     if result is not None and getattr(result, "state", None) is None and args.analysis:
         print(f"{args.analysis}: {result.status}, no force state to draw")
     write_dxf(scene, args.output, result)
-    print(f"wrote {args.output}")
-    return 0
+    status = getattr(result, "status", None)
+    print(f"wrote {args.output}" + (f" ({args.analysis}: {status})" if status else ""))
+    return EXIT.get(status, 0)

@@ -8,7 +8,7 @@ from pathlib import Path
 from ..analyses import ANALYSES
 from ..errors import InputError
 from ..io import read_scene
-from .analyses import add_question_args, question
+from .analyses import EXIT, add_question_args, question
 
 FORMATS = (".png", ".svg", ".pdf")
 
@@ -47,8 +47,9 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"cannot write: {err}", str(out)) from None
     finally:
         plt.close(ax.figure)
-    print(f"wrote {out}")
-    return 0
+    status = getattr(result, "status", None)
+    print(f"wrote {out}" + (f" ({args.analysis}: {status})" if status else ""))
+    return EXIT.get(status, 0)
 
 
 def analyse(scene, name: str | None, options: dict):
