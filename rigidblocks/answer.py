@@ -290,7 +290,7 @@ class _Words:
         if f is None or isinstance(f, str) or math.isinf(float(f)):
             return "infinite friction (no sliding)"
         f = float(f)
-        return f"friction f = {f:.4g} ({math.degrees(math.atan(f)):.2f}{self.deg})"
+        return f"friction f = {f:.10g} ({math.degrees(math.atan(f)):.2f}{self.deg})"
 
     def asked(self, result: Any) -> str:
         a = getattr(result, "analysis", "")

@@ -7,6 +7,7 @@ import json
 
 from ..analyses import load_path
 from ..io import read_scene
+from ..results import fmt_safe
 from .analyses import EXIT, _jsonable
 from .options import friction_option, positive_float, positive_int
 
@@ -79,7 +80,9 @@ def _status_tail(res, live: float, fu: str) -> str:
     undecided run, or the end of the path a structure still standing has reached."""
     if res.collapse_load is not None:
         lam = res.collapse_load
-        return f" at lambda = {lam:.9g}: {lam:.6g} x {live:.6g} {fu} = {lam * live:.6g} {fu}"
+        # the collapse load is the last admissible one: rounded on its safe side
+        return (f" at lambda = {fmt_safe(lam, 9, False)}: {fmt_safe(lam, 6, False)} x "
+                f"{live:.6g} {fu} = {fmt_safe(lam * live, 6, False)} {fu}")
     if res.status == "undecided" and res.bracket:
         lo, hi = res.bracket
         if hi > lo:

@@ -213,10 +213,10 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
         if reach > rtol * scale:
             upper = lam + reach
             self.notes.append(
-                f"lambda* = {lam:.7g} is the solver's answer (its state carries it); "
+                f"lambda* = {lam:.10g} is the solver's answer (its state carries it); "
                 f"what the residual of its duals could account for ({SPREAD_MARGIN:g} "
-                f"times its work on that state) allows lambda* up to {upper:.7g}: "
-                f"lambda* is in [{lam:.7g}, {upper:.7g}], the upper end by value, not "
+                f"times its work on that state) allows lambda* up to {upper:.10g}: "
+                f"lambda* is in [{lam:.10g}, {upper:.10g}], the upper end by value, not "
                 "certified")
         return Limit("collapse", lam, lam, upper, governing=sliding, mechanism=mech,
                      at=Verdict(ADMISSIBLE, 0.0, (), (res, prob)), resolution=reach / scale)
