@@ -91,6 +91,22 @@ def test_friction_option_names_what_it_takes(value, capsys):
     one_line_error(capsys, "friction must be")
 
 
+def test_a_friction_too_large_to_solve_says_infinite(tmp_path, capsys):
+    """--friction 1e10 ended in "solver failure: clarabel could not solve the maximum
+    load problem (InsufficientProgress)", exit 1, and a scene's 1e200 in NumericalError:
+    a finite friction above 1e6 (the arch solves at 1e8) is a usage error that says how
+    to ask for no sliding; 1e6 itself is solved."""
+    arch = str(EXAMPLES / "arch.json")
+    assert main(["load", arch, "--friction", "1e10"]) == 2
+    one_line_error(capsys, "friction 1e+10 is above 1e+06", 'give "infinite"')
+    doc = json.loads((EXAMPLES / "arch.json").read_text())
+    doc["friction"] = 1e200
+    path = write(tmp_path, "a.json", doc)
+    assert main(["load", path]) == 2
+    one_line_error(capsys, path, '"friction"', "is above 1e+06")
+    assert main(["load", arch, "--friction", "1e6"]) == 0
+
+
 def test_usage_error_names_the_program_once(capsys):
     """A usage error reads "rigidblocks: error: load: argument ..." (it read
     "rigidblocks: error: rigidblocks load: argument ...")."""

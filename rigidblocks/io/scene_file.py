@@ -17,7 +17,16 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
-from ..scene.model import FLOWS, INFINITE, Block, JointOverride, Load, Scene, Units
+from ..scene.model import (
+    FLOWS,
+    INFINITE,
+    Block,
+    JointOverride,
+    Load,
+    Scene,
+    Units,
+    friction_value,
+)
 
 FORMAT = "rigidblocks-scene"
 VERSION = 1
@@ -75,7 +84,12 @@ def _friction(v: Any, where: str):
         return INFINITE
     if isinstance(v, str):
         raise InputError(f'expected a number >= 0 or "infinite", got "{v}"', where)
-    return _number(v, where, minimum=0)
+    f = _number(v, where, minimum=0)
+    try:
+        friction_value(f)
+    except InputError as err:
+        raise InputError(str(err), where) from None
+    return f
 
 
 def _flow(v: Any, where: str) -> str:

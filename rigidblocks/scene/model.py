@@ -39,9 +39,16 @@ def flow_value(flow: object) -> str:
     raise InputError(f'flow must be "associative" or "non-associative", got {flow!r}')
 
 
-def friction_value(f: object) -> float:
+#: the largest finite friction coefficient accepted: the convex back ends solve the
+#: arch (examples/arch.json) at f = 1e8 and fail at 1e10 (InsufficientProgress), and a
+#: scene's 1e200 ends in NumericalError; no joint law tells 1e6 from infinite friction
+MAX_FRICTION = 1e6
+
+
+def friction_value(f: object, bounded: bool = True) -> float:
     """The friction coefficient as a float: ``math.inf`` for ``"infinite"`` (or
-    ``"inf"``, any case), a number or a numeric string otherwise; >= 0 and not NaN.
+    ``"inf"``, any case), a number or a numeric string otherwise; >= 0 and not NaN, and
+    (``bounded``) not above ``MAX_FRICTION`` unless infinite.
 
     The one converter from user input (API arguments, CLI options, scene values) to the
     number the analyses use; :func:`friction_label` goes back.
@@ -63,6 +70,9 @@ def friction_value(f: object) -> float:
         raise InputError('friction must be a number >= 0 or "infinite", got nan')
     if not (v >= 0):
         raise InputError(f"friction must be >= 0, got {v}")
+    if bounded and MAX_FRICTION < v < math.inf:
+        raise InputError(f"friction {v:g} is above {MAX_FRICTION:g}, beyond what the solvers "
+                         'resolve: give "infinite" for joints that do not slide')
     return v
 
 
@@ -70,7 +80,7 @@ def friction_label(f: object) -> Friction | None:
     """The friction as results and files show it: ``"infinite"``, a float, or None."""
     if f is None:
         return None
-    v = friction_value(f)
+    v = friction_value(f, bounded=False)
     return INFINITE if math.isinf(v) else v
 
 
