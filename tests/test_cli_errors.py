@@ -45,7 +45,8 @@ def test_block_smaller_than_the_contact_tolerance_is_named(tmp_path, capsys):
     ], unit_weight=20.0, friction=0.5, live_body_force=[1, 0]))
     for cmd in ("check", "friction", "load"):
         assert main([cmd, path]) == 2
-        one_line_error(capsys, "block 'tiny'", "contact tolerance")
+        one_line_error(capsys, f"{path}: block 'tiny'", "contact tolerance",
+                       "lower --contact-tol")
 
 
 def test_block_smaller_than_the_contact_tolerance_is_named_in_3d(tmp_path, capsys):
@@ -58,7 +59,23 @@ def test_block_smaller_than_the_contact_tolerance_is_named_in_3d(tmp_path, capsy
         {"id": "tiny", "vertices": tv, "faces": tf},
     ], unit_weight=20.0, live_body_force=[1, 0, 0]), "dimension": 3})
     assert main(["load", path]) == 2
-    one_line_error(capsys, "block 'tiny'", "contact tolerance")
+    one_line_error(capsys, f"{path}: block 'tiny'", "contact tolerance")
+
+
+def test_errors_found_deep_name_the_file(tmp_path, capsys):
+    """A 3D scene with --solver highs, and a file that exists but is no DXF: the error
+    named no file, and the second said "no such file or cannot read it"."""
+    from rigidblocks.generators import build
+    from rigidblocks.io import write_scene
+
+    box = tmp_path / "box.json"
+    write_scene(build("box_stack"), box)
+    assert main(["load", str(box), "--solver", "highs"]) == 2
+    one_line_error(capsys, f"{box}: the HiGHS back end solves linear programs only")
+    junk = tmp_path / "junk.dxf"
+    junk.write_text("garbage\n")
+    assert main(["import-dxf", str(junk), "-o", str(tmp_path / "j.json")]) == 2
+    one_line_error(capsys, f"{junk}: not a DXF file")
 
 
 def test_joint_overridden_twice_is_named(tmp_path, capsys):

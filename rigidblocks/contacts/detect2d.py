@@ -59,9 +59,9 @@ def oriented_polygons(scene: Scene, tol: float) -> tuple[np.ndarray, np.ndarray]
         if len(simple) < 3:
             size = float(np.ptp(verts[starts[b]:starts[b + 1]], axis=0).max())
             raise InputError(f"the block ({size:.3g} across) is smaller than the contact "
-                             f"tolerance {tol:.3g} (relative tolerance x scene size): "
-                             "enlarge or remove it, or analyse it in a scene of its own "
-                             "size", f"block {scene.blocks[b].id!r}")
+                             f"tolerance {tol:.3g} (--contact-tol, relative, x the scene's "
+                             "size): lower --contact-tol, or enlarge or remove the block",
+                             block_where(scene, scene.blocks[b].id))
         pieces.append(simple)
         counts[b] = len(simple)
         done = starts[b + 1]
@@ -174,3 +174,8 @@ def joint_laws(scene: Scene, pairs: np.ndarray) -> tuple[np.ndarray, np.ndarray,
                              "contact, so their joint cannot be overridden",
                              f"joint {j.blocks[0]!r}-{j.blocks[1]!r}")
     return fr, coh, ts
+
+
+def block_where(scene: Scene, block: str) -> str:
+    """A block named in an error, after its scene's file where it has one."""
+    return f"{scene.source}: block {block!r}" if scene.source else f"block {block!r}"

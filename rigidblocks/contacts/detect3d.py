@@ -28,7 +28,7 @@ from ..errors import InputError
 from ..scene.geometry import scene_size
 from ..scene.model import Scene, block_boxes
 from ..scene.polyhedra import block_planes, blocks_in, candidate_pairs, shape
-from .detect2d import joint_laws
+from .detect2d import block_where, joint_laws
 from .model import Contacts
 
 
@@ -265,9 +265,9 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
     across = (hi - lo).max(axis=1)
     for k in np.flatnonzero(across <= eps)[:1]:
         raise InputError(f"the block ({across[k]:.3g} across) is smaller than the contact "
-                         f"tolerance {eps:.3g} (relative tolerance x scene size): "
-                         "enlarge or remove it, or analyse it in a scene of its own "
-                         f"size", f"block {scene.blocks[k].id!r}")
+                         f"tolerance {eps:.3g} (--contact-tol, relative, x the scene's size): "
+                         "lower --contact-tol, or enlarge or remove the block",
+                         block_where(scene, scene.blocks[k].id))
     planes = [block_planes(b) for b in scene.blocks]
     shapes = [shape(b) for b in scene.blocks]
     pairs, normals, tangents, polys, areas, order = [], [], [], [], [], []

@@ -190,6 +190,8 @@ def read_dxf(path: str | os.PathLike, *, supports: str | None = None,
     try:
         doc = ezdxf.readfile(src)
     except OSError:
+        if os.path.isfile(src) and os.access(src, os.R_OK):  # there, but no DXF
+            raise InputError("not a DXF file", src) from None
         raise InputError("no such file or cannot read it", src) from None
     except ezdxf.DXFError as err:
         raise InputError(f"not a valid DXF file: {err}", src) from None

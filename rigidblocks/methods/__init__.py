@@ -97,6 +97,10 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
                              f"{', '.join(DistortionMethod.setting_keys)})")
         if scene.dimension != 2:
             raise InputError(NOT_3D, scene.source)
+    elif solver == "highs" and scene.dimension == 3 and pyramid is None:
+        # said here, where the scene is known, not by the back end at the first solve
+        raise InputError("the HiGHS back end solves linear programs only (3D friction "
+                         "cones are second-order cones: use clarabel)", scene.source)
     timings = Timings()
     kw = {}
     if contact_tol is not None:
