@@ -446,6 +446,10 @@ class _Words:
         the two questions an engineer usually means."""
         if not (self.scene.has_live_load and res.load_factor):
             return []
+        from .methods import NOTHING_HOLDS
+
+        if any(NOTHING_HOLDS in n for n in (res.notes or ())):
+            return []  # the verdict is the geometry's: a block that nothing holds
         src = self.scene.source or "SCENE"
         flow = " --flow non-associative" if without_dilatancy(res) else ""
         return [f"the live load is included at load factor {res.load_factor:.10g}; "

@@ -120,6 +120,33 @@ def test_a_block_without_joints_is_named(tmp_path, capsys):
     assert "hinging" not in out
 
 
+def test_blocks_that_rest_on_a_floating_block_are_named_and_no_live_load_is_blamed(
+        tmp_path, capsys):
+    """A stack drawn 1 mm above the ground, with a horizontal live load: no block was
+    named (each touches another), and the first why line blamed the live load
+    ("--load-factor 0 asks for the self-weight alone"), which changes nothing here; a
+    block drawn apart from the rest is named as touching nothing."""
+    path = write(tmp_path, make_scene([
+        {"id": "ground", "vertices": rect(-1, -0.5, 4, 0.5), "support": True},
+        {"id": "b1", "vertices": rect(0, 0.001, 1, 1)},
+        {"id": "b2", "vertices": rect(0, 1.001, 1, 1)},
+        {"id": "b3", "vertices": rect(0, 2.001, 1, 1)},
+    ], unit_weight=20.0, friction=0.6, live_body_force=[0.1, 0]))
+    code, out, _ = run(capsys, ["check", path])
+    assert code == 0 and "NOT ADMISSIBLE" in out
+    whys = [ln for ln in out.splitlines() if ln.startswith("why")]
+    assert "blocks 'b1', 'b2', 'b3' are joined to no support" in whys[0], whys
+    assert "--load-factor 0" not in out
+    path = write(tmp_path, make_scene([
+        {"id": "ground", "vertices": rect(-1, -0.5, 4, 0.5), "support": True},
+        {"id": "b1", "vertices": rect(0, 0, 1, 1)},
+        {"id": "b2", "vertices": rect(2, 0.001, 1, 1)},
+    ], unit_weight=20.0, friction=0.6, live_body_force=[0.1, 0]))
+    code, out, _ = run(capsys, ["check", path])
+    whys = [ln for ln in out.splitlines() if ln.startswith("why")]
+    assert "block 'b2' touches no other block" in whys[0] and "--load-factor 0" not in out
+
+
 def test_failing_check_names_the_breached_joints(capsys):
     """examples/arch.json at load factor 1 (a 1 g horizontal body force on a ring of
     t/R = 0.15): no thrust line fits, and the report names the joints breached in the

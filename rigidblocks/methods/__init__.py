@@ -58,12 +58,32 @@ def method_name(method: str, solver: str | None = None) -> tuple[str, str | None
                      "solver name for the convex path)")
 
 
-def unsupported_blocks(scene: Scene, contacts: object) -> list[str]:
-    """Ids of the free blocks without a single joint."""
-    pairs = contacts.pairs  # type: ignore[attr-defined]
-    touched = np.bincount(np.asarray(pairs, dtype=int).ravel(), minlength=len(scene.blocks))
-    return [b.id for b, t, sup in zip(scene.blocks, touched, scene.support_mask, strict=True)
-            if not sup and t == 0]
+#: the words of the notes on blocks that nothing holds (:func:`open_method`), which the
+#: answer reads (:meth:`rigidblocks.answer._Words.live_hint`)
+NOTHING_HOLDS = "nothing holds"
+
+
+def unsupported_blocks(scene: Scene, contacts: object) -> tuple[list[str], list[str]]:
+    """Ids of the free blocks without a single joint, and of those with joints that
+    reach no support (a group of blocks resting on one that touches nothing)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    n = len(scene.blocks)
+    pairs = np.asarray(contacts.pairs, dtype=int).reshape(-1, 2)  # type: ignore[attr-defined]
+    touched = np.bincount(pairs.ravel(), minlength=n)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    _, comp = connected_components(graph, directed=False)
+    held = set(comp[np.asarray(scene.support_mask, dtype=bool)].tolist())
+    alone, adrift = [], []
+    for k, (b, sup) in enumerate(zip(scene.blocks, scene.support_mask, strict=True)):
+        if sup:
+            continue
+        if touched[k] == 0:
+            alone.append(b.id)
+        elif comp[k] not in held:
+            adrift.append(b.id)
+    return alone, adrift
 
 
 def _names(ids: list[str], most: int = 5) -> str:
@@ -122,16 +142,20 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
             not scene.effective_unit_weight:
         m.notes.append("the blocks weigh nothing (no unit_weight): self-weight is not part "
                        "of this analysis, only the loads act")
-    loose = unsupported_blocks(scene, contacts)
+    loose, adrift = unsupported_blocks(scene, contacts)
     if loose:
         one = len(loose) == 1
         m.notes.append(f"{_names(loose)} touch{'es' if one else ''} no other block (no "
-                       f"joint within the contact tolerance): nothing holds "
+                       f"joint within the contact tolerance): {NOTHING_HOLDS} "
                        f"{'it' if one else 'them'}; check the geometry, or raise the "
                        "contact tolerance for gaps from rounding")
+    if adrift:
+        m.notes.append(f"{_names(adrift)} {'is' if len(adrift) == 1 else 'are'} joined to "
+                       f"no support (their joints reach only free blocks): {NOTHING_HOLDS} "
+                       "them; check the geometry where they should meet a support")
     return m
 
 
-__all__ = ["ADMISSIBLE", "FAILURE", "INADMISSIBLE", "METHODS", "UNDECIDED", "ConvexMethod",
-           "DistortionMethod", "Limit", "Method", "Progress", "Timings", "Verdict", "method_name",
-           "open_method"]
+__all__ = ["ADMISSIBLE", "FAILURE", "INADMISSIBLE", "METHODS", "NOTHING_HOLDS", "UNDECIDED",
+           "ConvexMethod", "DistortionMethod", "Limit", "Method", "Progress", "Timings",
+           "Verdict", "method_name", "open_method"]
