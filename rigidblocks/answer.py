@@ -292,20 +292,34 @@ class _Words:
         f = float(f)
         return f"friction f = {f:.10g} ({math.degrees(math.atan(f)):.2f}{self.deg})"
 
+    def joint_friction_text(self, result: Any) -> str:
+        """The friction the joints of ``result`` have: the uniform one, or where every
+        joint has its own (a scene's joint overrides), that, with the uniform f that
+        applies to none (`load --friction 5` on such a scene echoed "at friction f = 5"
+        beside a multiplier that f had no part in)."""
+        f = getattr(result, "friction", None)
+        c = getattr(result, "contacts", None)
+        if c is None or not c.n_joints or np.isnan(c.override_friction).any():
+            return self.friction_text(f)
+        v = friction_value(f) if f is not None else math.inf
+        uniform = "infinite friction" if math.isinf(v) else f"f = {v:.10g}"
+        return f"each joint's own friction (every joint has an override; {uniform} applies " \
+               "to none)"
+
     def asked(self, result: Any) -> str:
         a = getattr(result, "analysis", "")
         lf = getattr(result, "load_factor", None)
-        f = getattr(result, "friction", None)
         rule = ", sliding without dilatancy" if without_dilatancy(result) else ""
+        friction = self.joint_friction_text(result)
         if a == "check":
-            return f"does it stand under {self.load_case(lf)}, at {self.friction_text(f)}{rule}?"
+            return f"does it stand under {self.load_case(lf)}, at {friction}{rule}?"
         if a == "min_friction":
             return (f"the smallest friction f* at which it stands under "
                     f"{self.load_case(lf)}{rule}")
         if a == "max_load_multiplier":
             return (f"the largest multiple {self.lam}* of the live load "
                     f"({self.live_text()}) it carries on top of its dead load "
-                    f"({self.dead()}), at {self.friction_text(f)}{rule}")
+                    f"({self.dead()}), at {friction}{rule}")
         return a.replace("_", " ")
 
     # -- the answers ------------------------------------------------------------------

@@ -147,6 +147,22 @@ def test_blocks_that_rest_on_a_floating_block_are_named_and_no_live_load_is_blam
     assert "block 'b2' touches no other block" in whys[0] and "--load-factor 0" not in out
 
 
+def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, capsys):
+    """A block on a base whose one joint has its own friction 0.3: `load --friction 5`
+    echoed "at friction f = 5 (78.69 deg)" beside lambda* = 0.3, the override's; the
+    question now says the joints' own friction decides."""
+    path = write(tmp_path, make_scene([
+        {"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+        {"id": "B", "vertices": rect(0, 0, 1, 2)},
+    ], unit_weight=20.0, friction=0.4, live_body_force=[1, 0],
+        joints=[{"blocks": ["B", "base"], "friction": 0.3}]))
+    code, out, _ = run(capsys, ["load", path, "--friction", "5"])
+    asked = next(ln for ln in out.splitlines() if ln.startswith("asked"))
+    assert asked.endswith("at each joint's own friction (every joint has an override; "
+                          "f = 5 applies to none)"), asked
+    assert "lambda* = 0.3," in out  # sliding at the override's f (a 1 x 2 block: tips at 0.5)
+
+
 def test_failing_check_names_the_breached_joints(capsys):
     """examples/arch.json at load factor 1 (a 1 g horizontal body force on a ring of
     t/R = 0.15): no thrust line fits, and the report names the joints breached in the
