@@ -78,6 +78,21 @@ def test_errors_found_deep_name_the_file(tmp_path, capsys):
     one_line_error(capsys, f"{junk}: not a DXF file")
 
 
+def test_an_option_the_method_does_not_take_is_refused(capsys):
+    """`load --mechanism blend --method distortion` was silently ignored (and no
+    governing line was printed): the blend is the convex path's."""
+    assert main(["load", str(EXAMPLES / "reference.json"), "--mechanism", "blend",
+                 "--method", "distortion"]) == 2
+    one_line_error(capsys, "--mechanism blend", "not of the distortion method")
+
+
+def test_thickness_json_gives_the_friction_as_a_number(capsys):
+    """`thickness --json` wrote "friction": "0.6" (the option's text), where the other
+    commands write a number."""
+    assert main(["thickness", "arch", "--friction", "0.6", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["friction"] == 0.6
+
+
 def test_joint_overridden_twice_is_named(tmp_path, capsys):
     path = write(tmp_path, "twice.json", scene_doc([
         {"id": "base", "vertices": rect(-1, -1, 3, 1), "support": True},

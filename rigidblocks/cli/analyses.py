@@ -45,7 +45,7 @@ def add_question_args(p: argparse.ArgumentParser, takes: tuple[str, ...]) -> Non
                    "impressed-distortion iteration, its procedure with --flow "
                    "non-associative, a cross-check of the convex path otherwise)")
     p.add_argument("--solver", default=None,
-                   help="back end of the convex path: clarabel, highs, scs, ecos, "
+                   help="back end of the convex path: clarabel, highs, osqp, scs, ecos, "
                    "cvxpy-NAME")
     p.add_argument("--contact-tol", type=float, default=None,
                    help="contact tolerance relative to the scene's size (default 1e-7): "
@@ -98,6 +98,9 @@ def run(args: argparse.Namespace) -> int:
         _writable(csv_path)
     scene = read_scene(args.scene)
     options = {"mechanism": args.mechanism} if args.command == "load" else {}
+    if options.get("mechanism") == "blend" and getattr(args, "method", None) == "distortion":
+        raise InputError("--mechanism blend: an option of the convex path (the interior-point "
+                         "mix of its optimal mechanisms), not of the distortion method")
     if getattr(args, "rtol", None) is not None:
         options["rtol"] = args.rtol
     # check reports the friction demand of its force state; the others compute a state

@@ -167,7 +167,8 @@ def _check_polygons(scene: Scene) -> None:
     flat = np.abs(area) <= 1e-10 * diag2
     if flat.any():
         b = scene.blocks[int(np.flatnonzero(flat)[0])]
-        raise InputError("polygon has zero area (its vertices are collinear or repeated)",
+        raise InputError("polygon has zero area (its vertices are collinear or repeated, "
+                         "or its outline crosses itself into equal and opposite halves)",
                          f"block {b.id!r}")
     rings = shapely.linearrings(verts, indices=owner)
     simple = shapely.is_simple(rings)

@@ -20,7 +20,7 @@ from typing import Any
 
 from ..analyses import bisect, check
 from ..errors import InputError
-from ..scene.model import Scene
+from ..scene.model import Scene, friction_label
 
 
 @dataclass(frozen=True)
@@ -53,7 +53,7 @@ class ThicknessResult:
         return {"status": self.status, "notes": list(self.notes),
                 "generator": self.generator, "param": self.param,
                 "min_thickness": self.thickness, "lower": self.lower,
-                "n_checks": self.n_checks, "friction": self.friction,
+                "n_checks": self.n_checks, "friction": friction_label(self.friction),
                 "params": dict(self.params)}
 
 
