@@ -163,6 +163,21 @@ def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, caps
     assert "lambda* = 0.3," in out  # sliding at the override's f (a 1 x 2 block: tips at 0.5)
 
 
+def test_the_distortion_methods_breach_is_not_called_the_smallest(capsys):
+    """The arch at load factor 0.1498 (above lambda* = 0.1497649): the convex path's
+    breach, 0.0004825 kN, is the least over all states; the distortion iteration's,
+    0.0006584 kN, that of the state it stopped at, was also called the smallest."""
+    path = str(EXAMPLES / "arch.json")
+    _, out, _ = run(capsys, ["check", path, "--load-factor", "0.1498"])
+    convex = next(ln for ln in out.splitlines() if ln.startswith("answer"))
+    _, out, _ = run(capsys, ["check", path, "--load-factor", "0.1498", "--method",
+                             "distortion"])
+    iteration = next(ln for ln in out.splitlines() if ln.startswith("answer"))
+    assert convex.startswith("answer     smallest breach of the joint laws 0.000482")
+    assert iteration.startswith("answer     the distortion iteration's breach of the "
+                                "joint laws"), iteration
+
+
 def test_failing_check_names_the_breached_joints(capsys):
     """examples/arch.json at load factor 1 (a 1 g horizontal body force on a ring of
     t/R = 0.15): no thrust line fits, and the report names the joints breached in the
