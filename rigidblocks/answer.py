@@ -363,8 +363,9 @@ class _Words:
             # the convex path's is the least over all states; the distortion
             # iteration's is that of the state it stopped at (0.0006584 kN on the arch at
             # load factor 0.1498, where the least is 0.0004825 kN)
-            whose = "its" if na else "the distortion iteration's" \
-                if getattr(res, "solver", "") == "distortion" else "smallest"
+            whose = "its" if na else ("the distortion iteration's"
+                                      if getattr(res, "solver", "") == "distortion"
+                                      else "smallest")
             number = (f"{whose} breach of the joint laws {self.force(res.violation)} (0 "
                       "would stand)")
         names = [f"{a}-{b} ({fmt(v, 3)} {self.fu})" for a, b, v in

@@ -589,8 +589,8 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
         return ADMISSIBLE
     na.notes.append(f"loaded from X0 it collapses at lambda = {fmt_safe(r.lam, 7, False)} "
                     f"< {lf:.10g} (the limit fixed point from X0, `load`'s answer), though the "
-                    "state reached "
-                    f"from X0 at lambda = {lf:.10g} directly is admissible (the state shown)")
+                    f"state reached from X0 at lambda = {lf:.10g} directly is admissible (the "
+                    "state shown)")
     return INADMISSIBLE
 
 
