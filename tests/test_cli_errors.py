@@ -80,7 +80,8 @@ def test_errors_found_deep_name_the_file(tmp_path, capsys):
 
 def test_an_option_the_method_does_not_take_is_refused(capsys):
     """`load --mechanism blend --method distortion` was silently ignored (and no
-    governing line was printed): the blend is the convex path's."""
+    governing line was printed): the blend is the convex path's (without dilatancy the
+    mechanism is the capped laws' LP's, and blends: test_nonassociative.py)."""
     assert main(["load", str(EXAMPLES / "reference.json"), "--mechanism", "blend",
                  "--method", "distortion"]) == 2
     one_line_error(capsys, "--mechanism blend", "not of the distortion method")

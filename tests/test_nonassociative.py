@@ -621,7 +621,7 @@ def test_verbose_notes_name_the_associative_bound(method, capsys):
     assert len(on_bound) == 1, notes
     assert on_bound[0].startswith(
         "on the associative multiplier lambda_a (the upper bound), not on the "
-        f"non-associative answer: lambda_a = {assoc:.7g} is the solver's answer")
+        f"non-associative answer: lambda_a = {assoc:.10g} is the solver's answer")
     assert not any("lambda*" in n for n in notes), notes
     answer = next(s for s in lines if s.startswith("answer"))
     if method == "clarabel":  # an answer below the bound: the note is not about it

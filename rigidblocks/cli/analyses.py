@@ -14,6 +14,7 @@ from ..analyses.nonassociative import (
     SPREAD_NOTE,
     StartAnswer,
     compare_starts,
+    is_nonassociative,
     start_entries,
 )
 from ..answer import answer_block
@@ -98,7 +99,9 @@ def run(args: argparse.Namespace) -> int:
         _writable(csv_path)
     scene = read_scene(args.scene)
     options = {"mechanism": args.mechanism} if args.command == "load" else {}
-    if options.get("mechanism") == "blend" and getattr(args, "method", None) == "distortion":
+    if options.get("mechanism") == "blend" and getattr(args, "method", None) == "distortion" \
+            and not is_nonassociative(scene, getattr(args, "flow", None)):
+        # without dilatancy the mechanism is the capped laws' LP's, which blends
         raise InputError("--mechanism blend: an option of the convex path (the interior-point "
                          "mix of its optimal mechanisms), not of the distortion method")
     if getattr(args, "rtol", None) is not None:

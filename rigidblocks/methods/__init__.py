@@ -66,14 +66,21 @@ NOTHING_HOLDS = "nothing holds"
 def unsupported_blocks(scene: Scene, contacts: object) -> tuple[list[str], list[str]]:
     """Ids of the free blocks without a single joint, and of those with joints that
     reach no support (a group of blocks resting on one that touches nothing)."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
     n = len(scene.blocks)
     pairs = np.asarray(contacts.pairs, dtype=int).reshape(-1, 2)  # type: ignore[attr-defined]
     touched = np.bincount(pairs.ravel(), minlength=n)
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-    _, comp = connected_components(graph, directed=False)
+    # each block's group: the smallest index joined to it, spread along the joints and
+    # by pointer jumping (numpy alone: `check` imports no more than it uses)
+    comp = np.arange(n)
+    while len(pairs):
+        low = np.minimum(comp[pairs[:, 0]], comp[pairs[:, 1]])
+        new = comp.copy()
+        np.minimum.at(new, pairs[:, 0], low)
+        np.minimum.at(new, pairs[:, 1], low)
+        new = new[new]
+        if np.array_equal(new, comp):
+            break
+        comp = new
     held = set(comp[np.asarray(scene.support_mask, dtype=bool)].tolist())
     alone, adrift = [], []
     for k, (b, sup) in enumerate(zip(scene.blocks, scene.support_mask, strict=True)):
@@ -117,10 +124,6 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
                              f"{', '.join(DistortionMethod.setting_keys)})")
         if scene.dimension != 2:
             raise InputError(NOT_3D, scene.source)
-    elif solver == "highs" and scene.dimension == 3 and pyramid is None:
-        # said here, where the scene is known, not by the back end at the first solve
-        raise InputError("the HiGHS back end solves linear programs only (3D friction "
-                         "cones are second-order cones: use clarabel)", scene.source)
     timings = Timings()
     kw = {}
     if contact_tol is not None:

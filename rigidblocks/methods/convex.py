@@ -138,7 +138,12 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
         ladder = ladder or ladder_of(tight, stall, refine, confirm)
         with self._solve_stage():
             n = len(self.runner.rejected)
-            res = self.runner.run(problem, what, ladder)
+            try:
+                res = self.runner.run(problem, what, ladder)
+            except InputError as err:  # a back end that does not take the problem
+                if err.where is None and self.scene.source:
+                    raise err.located(self.scene.source) from None
+                raise
             if self.runner.out_of_reach and not self._near_noted:
                 self._near_noted = True
                 # the back end that went on at 1e-9 (the fallback's, where another
