@@ -192,10 +192,9 @@ class _Path:
         return sorted({int(j) for j in self.c.point_joint[hit]})
 
     def thresholds(self, r: Run) -> np.ndarray:
-        """Per joint: the friction threshold f (N1 + N2) + c a (f infinite: c a)."""
-        v = self.ds.gather(r.x)
-        return np.where(np.isfinite(self.fj), self.fj, 0.0) * (v[:, 0] + v[:, 1]) + \
-            self.laws().h[:, 2]
+        """Per joint: the friction threshold f (N1 + N2) + c a of the state ``r`` under
+        the laws as they are (0 where f is infinite)."""
+        return self.laws().thresholds(self.ds.gather(r.x))
 
     def threshold_margins(self, r: Run) -> np.ndarray:
         """Per joint: |T| - (f (N1 + N2) + c a) (0 at the threshold), -inf where f is

@@ -141,11 +141,9 @@ class DistortionMethod(Method):
         friction (Heyman) have no threshold."""
         ds = self.solver_
         laws = ds.laws(self.f_joint(f)) if laws is None else laws
-        fj = laws.f
         v = ds.gather(r.x)
-        fin = np.isfinite(fj)
-        thr = np.where(fin, np.abs(np.where(fin, fj, 0.0) * (v[:, 0] + v[:, 1])
-                                   + laws.h[:, 2]), 0.0)
+        fin = laws.fin
+        thr = np.where(fin, np.abs(laws.thresholds(v)), 0.0)
         gap = laws.rows(v)[:, 2:].max(axis=1)
         big = float(np.abs(v).max(initial=0.0))
         hit = fin & (thr > LOADED * big) & (gap >= -rel * thr - floor)

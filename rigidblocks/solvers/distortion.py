@@ -655,6 +655,11 @@ class _Laws:
         out[:, :2] = np.minimum(wv[:, :2], -(self.ff * np.abs(out[:, 2]))[:, None])
         return out
 
+    def thresholds(self, v: np.ndarray) -> np.ndarray:
+        """Per joint of the forces ``v`` (N1, N2, T): the friction threshold
+        f (N1 + N2) + c (0 where f is infinite: no friction rows)."""
+        return self.ff * (v[:, 0] + v[:, 1]) + self.h[:, 2]
+
     def rows(self, v: np.ndarray) -> np.ndarray:
         G = self.G
         r = G[..., 0] * v[:, None, 0] + G[..., 1] * v[:, None, 1] + G[..., 2] * v[:, None, 2]
