@@ -19,6 +19,7 @@ from conftest import EXAMPLES, make_scene, rect
 import rigidblocks as rb
 from rigidblocks.cli.main import main
 from rigidblocks.generators import build
+from rigidblocks.methods import open_method
 from rigidblocks.scene.extrude import extrude
 
 
@@ -145,6 +146,31 @@ def test_blocks_that_rest_on_a_floating_block_are_named_and_no_live_load_is_blam
     code, out, _ = run(capsys, ["check", path])
     whys = [ln for ln in out.splitlines() if ln.startswith("why")]
     assert "block 'b2' touches no other block" in whys[0] and "--load-factor 0" not in out
+
+
+def test_a_load_applied_off_its_block_is_named(tmp_path, capsys):
+    """A horizontal load given at y = 12 on a 2 m block (a slip of the keyboard for
+    y = 1.2) is applied there, and its lever of 12 m sets lambda* = (W + P) (b / 2) /
+    (H y) = 3 x 0.5 / 12 (about the toe); the answer says that the point lies 10 m off
+    the block. A point on the block's face is not named; in 3D, a point off its block."""
+    blocks = [{"id": "G", "vertices": rect(-1, -1, 4, 1), "support": True},
+              {"id": "B", "vertices": rect(0, 0, 1, 2)}]
+    loads = [{"block": "B", "force": [1, 0], "point": [0.5, 12], "live": True},
+             {"block": "B", "force": [0, -1], "point": [0.5, 2]}]
+    path = write(tmp_path, make_scene(blocks, loads=loads, unit_weight=1.0,
+                                      units={"length": "m", "force": "kN"}))
+    code, out, _ = run(capsys, ["load", path])
+    assert code == 0 and "lambda* = 0.125," in out, out
+    assert "load 1 on 'B' lies 10 m from it" in out and "load 2" not in out
+    loads[0]["point"] = [0.5, 1.2]
+    path = write(tmp_path, make_scene(blocks, loads=loads, unit_weight=1.0))
+    code, out, _ = run(capsys, ["load", path])
+    assert code == 0 and "outside its block" not in out
+    solid = extrude(make_scene(blocks, loads=[{"block": "B", "force": [1, 0],
+                                               "point": [0.5, 3], "live": True}],
+                               unit_weight=1.0), depth=1.0)
+    notes = open_method(solid).notes
+    assert any("load 1 on 'B' lies 1 from it" in n for n in notes), notes
 
 
 def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, capsys):

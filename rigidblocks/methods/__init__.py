@@ -16,6 +16,7 @@ from ..contacts import detect_contacts
 from ..equilibrium import assemble
 from ..errors import InputError
 from ..scene.model import Scene
+from ..scene.validate import loads_off_their_blocks
 from ..solvers import SOLVERS
 from .base import (
     ADMISSIBLE,
@@ -156,6 +157,14 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
         m.notes.append(f"{_names(adrift)} {'is' if len(adrift) == 1 else 'are'} joined to "
                        f"no support (their joints reach only free blocks): {NOTHING_HOLDS} "
                        "them; check the geometry where they should meet a support")
+    off = loads_off_their_blocks(scene)
+    if off:
+        unit = f" {scene.length_unit}" if scene.length_unit else ""
+        said = "; ".join(f"load {k} on '{b}' lies {d:.3g}{unit} from it" for k, b, d in off[:3])
+        more = f" (and {len(off) - 3} more)" if len(off) > 3 else ""
+        m.notes.append(f"a load's point is outside its block: {said}{more}; the analysis "
+                       "applies the load there, as if the block reached it (its lever "
+                       "counts in full): check the point")
     return m
 
 

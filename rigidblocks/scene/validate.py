@@ -225,3 +225,34 @@ def check_overlaps_2d(scene: Scene) -> None:
 
 
 __all__ = ["validate_scene", "check_overlaps_2d", "block_polygons", "scene_size"]
+
+
+#: a load's point further than this fraction of its block's size from the block is
+#: off the block (beyond round-off of a point given on a face)
+OFF_BLOCK_TOL = 1e-6
+
+
+def loads_off_their_blocks(scene: Scene) -> list[tuple[int, str, float]]:
+    """The loads whose point lies outside their block: (the load's number from 1, the
+    block, the point's distance from it). In 3D the distance is to the block's bounding
+    box, so a point in a recess of a non-convex block is not found. A load without a
+    point acts at its block's centroid and is never off it."""
+    index = {b.id: b for b in scene.blocks}
+    found = []
+    for k, ld in enumerate(scene.loads, start=1):
+        block = index.get(ld.block)
+        if ld.point is None or block is None:
+            continue
+        pts = np.asarray(block.points, dtype=float)
+        p = np.asarray(ld.point, dtype=float)
+        size = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
+        if scene.dimension == 2:
+            import shapely
+
+            dist = float(shapely.distance(shapely.Polygon(pts), shapely.Point(p)))
+        else:
+            gap = np.maximum(pts.min(axis=0) - p, 0) + np.maximum(p - pts.max(axis=0), 0)
+            dist = float(np.linalg.norm(gap))
+        if dist > OFF_BLOCK_TOL * size:
+            found.append((k, block.id, dist))
+    return found
