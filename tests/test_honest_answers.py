@@ -386,7 +386,7 @@ def test_the_starts_line_prints_multipliers_a_check_stands_at(tmp_path, capsys):
     assert main(["load", str(f), "--flow", "non-associative"]) == 0
     starts = next(ln for ln in capsys.readouterr().out.splitlines()
                   if ln.startswith("starts"))
-    assert "from the elastic state X0: lambda = 0.5789473;" in starts, starts
+    assert "from the elastic state X0: lambda = 0.5789473 (" in starts, starts
     for lf, verdict in (("0.5789473", "ADMISSIBLE"), ("0.5789474", "NOT ADMISSIBLE")):
         assert main(["check", str(f), "--flow", "non-associative", "--load-factor",
                      lf]) == 0

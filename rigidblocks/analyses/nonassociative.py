@@ -88,7 +88,7 @@ from .na_limit import (
     certificate,
     reached_normals,
 )
-from .na_mechanism import LOOSE_STATES, limit_runs, walks
+from .na_mechanism import limit_runs, walks
 from .search import BRACKET_ATOL, UNBOUNDED_AT, bisect
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
@@ -101,9 +101,9 @@ STALL = 12
 MIN_DAMPING = 1.0 / 64
 #: relative accuracy of the non-associative multiplier and friction
 NA_RTOL = 1e-5
-#: the opening of the note that gives the answer from every start (a terminal prints
-#: the same as its ``starts`` line)
-SPREAD_NOTE = "non-associative collapse state from "
+#: the opening of the note that gives the answer from every start (:func:`starts_text`;
+#: a terminal prints the same as its ``starts`` line)
+SPREAD_NOTE = "non-associative collapse states: "
 #: the first trial of the multiplier lies this far (relative) below the associative one
 TOP_RTOL = 1e-6
 #: normal forces below this fraction of the largest force are not resolved: the state
@@ -818,7 +818,7 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
         na.notes.extend(bad)
         return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
                                     True), load_multiplier_bounds=bounds)
-    na.notes.append(_spread_note(trials))
+    na.notes.append(SPREAD_NOTE + starts_text(trials))
     lam = float(main.lam)
     hi = bounds[1]
     if hi is not None and math.isfinite(hi) and abs(lam - hi) <= 1e-6 * max(abs(hi), 1.0):
@@ -902,15 +902,11 @@ def collapse_state_at(res: Any) -> float | None:
     return float(starts[0]["load_factor"])
 
 
-def _loose(a: StartAnswer) -> str:
-    """What a start's answer adds where its states are not the least confined."""
-    return "" if a.least_confined else f"; {LOOSE_STATES}"
-
-
-def _spread_note(history: Any) -> str:
+def starts_text(history: Any) -> str:
     """The answer from every start, the multipliers the collapse states of the mechanism
     each reached carry (where they were computed), and whether the answers differ
-    (:func:`compare_starts`). Each multiplier is printed to 7 figures on the safe side
+    (:func:`compare_starts`): the report's note (after :data:`SPREAD_NOTE`) and a
+    terminal's ``starts`` line. Each multiplier is printed to 7 figures on the safe side
     (:func:`~rigidblocks.results.fmt_safe`): the 6 x 5 wall's 0.5789473684 as 0.5789473,
     at which a check stands, not 0.5789474."""
     def lam(x: float) -> str:
@@ -918,24 +914,28 @@ def _spread_note(history: Any) -> str:
 
     def one(a: StartAnswer) -> str:
         if a.lam is None:
-            return f"undecided ({a.reason})"
+            return f"{a.status} ({a.reason})" if a.reason else a.status
         text = f"lambda = {lam(a.lam)}"
+        loose = "" if a.least_confined else \
+            " optimal under their own caps, not least confined,"
         if a.same_mechanism:
             return text + " (the same mechanism)"
         if a.span is not None:
-            return text + (f" (the collapse states of the mechanism reached carry lambda "
-                           f"from {lam(a.span[0])} to {lam(a.span[1])}{_loose(a)})")
-        return text + (f" (the one collapse state of the mechanism reached{_loose(a)})"
-                       if a.one_state else "")
+            return text + f" (its mechanism's states{loose} [{lam(a.span[0])}, " \
+                f"{lam(a.span[1])}])"
+        if a.one_state:
+            return text + " (its mechanism's one state" + \
+                ("" if a.least_confined else ", optimal under its own caps, not least "
+                 "confined") + ")"
+        return text
 
     answers, spread = compare_starts(history)
-    text = f"{SPREAD_NOTE}{answers[0].start}: {one(answers[0])}"
-    text += "".join(f"; from {a.start}: {one(a)}" for a in answers[1:])
+    text = "; ".join(f"from {a.start}: {one(a)}" for a in answers)
     if spread is not None:
-        text += (f". The answers from the starts differ: [{lam(spread[0])}, "
-                 f"{lam(spread[1])}] (the answer is X0's)")
+        text += f"; the answers differ: [{lam(spread[0])}, {lam(spread[1])}] (the " \
+            "answer is X0's)"
     elif sum(a.lam is not None for a in answers) > 1:
-        text += ": the same answer"
+        text += "; the same answer"
     return text
 
 
@@ -1355,4 +1355,4 @@ __all__ = ["ConvexNonAssociative", "DistortionNonAssociative", "FixedPoint",
            "NonAssociative", "SPREAD_NOTE", "STATE_NOTE", "StartAnswer",
            "check_nonassociative", "collapse_state_at", "compare_starts", "flow_mask",
            "is_nonassociative", "max_load_nonassociative", "min_friction_nonassociative",
-           "nonassociative_method", "start_entries"]
+           "nonassociative_method", "start_entries", "starts_text"]

@@ -12,10 +12,9 @@ from typing import Any
 from ..analyses import analysis
 from ..analyses.nonassociative import (
     SPREAD_NOTE,
-    StartAnswer,
-    compare_starts,
     is_nonassociative,
     start_entries,
+    starts_text,
 )
 from ..answer import answer_block
 from ..errors import InputError
@@ -298,27 +297,7 @@ def _flow_lines(res) -> list[str]:
         out.append(f"bounds     [{lo}, {hi}]   (frictionless lower bound, associative "
                    "upper bound)")
     if starts:
-        answers, spread = compare_starts(starts)
-
-        def lam(x: float) -> str:  # the safe side, as the answer line
-            return fmt_safe(x, 7, False)
-
-        def value(a: StartAnswer) -> str:
-            if a.lam is None:
-                return a.status
-            if a.same_mechanism:
-                return f"{lam(a.lam)} (the same mechanism)"
-            if a.span is not None:
-                kind = "states" if a.least_confined else \
-                    "states optimal under their own caps, not least confined,"
-                return f"{lam(a.lam)} (its mechanism's {kind} [{lam(a.span[0])}, " \
-                       f"{lam(a.span[1])}])"
-            return lam(a.lam)
-
-        out.append("starts     " + "; ".join(f"from {a.start}: lambda = {value(a)}"
-                                             for a in answers) +
-                   (f"; the answers differ: [{lam(spread[0])}, {lam(spread[1])}]"
-                    if spread is not None else ""))
+        out.append("starts     " + starts_text(starts))
     return out
 
 
