@@ -68,8 +68,70 @@ def fmt_safe(x: float, digits: int, up: bool) -> str:
 def no_force(N: np.ndarray, T: np.ndarray) -> np.ndarray:
     """Joints whose normal and shear forces are both below ``ZERO_FORCE`` of the largest
     of them: round-off of a joint that carries nothing."""
-    top = max(float(np.abs(N).max(initial=0.0)), float(np.abs(T).max(initial=0.0)))
+    top = _largest(N, T)
     return (np.abs(N) <= ZERO_FORCE * top) & (np.abs(T) <= ZERO_FORCE * top)
+
+
+def _largest(N: np.ndarray, T: np.ndarray) -> float:
+    """The scale of "no force": the largest joint force of a state, normal or shear."""
+    return max(float(np.abs(N).max(initial=0.0)), float(np.abs(T).max(initial=0.0)))
+
+
+#: a joint whose |T|/N is within this fraction of its friction is at its friction limit
+#: (interior-point states reach the limit to about 1e-5)
+AT_LIMIT = 1e-4
+
+
+def unloaded(c: Contacts, st: Any) -> tuple[np.ndarray, np.ndarray]:
+    """(m,) the open joints of the force state ``st`` (no compression: a normal force
+    below ``ZERO_FORCE`` of its largest joint force, the scale of :func:`no_force`), and
+    (P,) the contact points of the other joints that carry nothing (the joint's
+    resultant at its edge, where a hinge forms). The tables, the report and the
+    pictures all read these."""
+    N = np.asarray(st.joint_normal, dtype=float)
+    tol = ZERO_FORCE * _largest(N, np.asarray(st.joint_shear, dtype=float))
+    open_ = N <= tol
+    return open_, ~open_[c.point_joint] & (np.asarray(st.normal, dtype=float) <= tol)
+
+
+def analysis_friction(result: Any) -> float:
+    """The friction the analysis gave the joints without an override of their own (f*
+    for a minimum-friction analysis; inf where none or infinite): what a joint's demand
+    is compared with."""
+    if getattr(result, "analysis", "") == "min_friction" and \
+            getattr(result, "friction_factor", None) is not None:
+        return float(result.friction_factor)
+    f = getattr(result, "friction", None)
+    return math.inf if f is None or isinstance(f, str) else float(f)
+
+
+def joint_frictions(result: Any) -> np.ndarray:
+    """(m,) each joint's friction: its override where it has one, otherwise
+    :func:`analysis_friction`."""
+    over = np.asarray(result.contacts.override_friction, dtype=float)
+    return np.where(np.isnan(over), analysis_friction(result), over)
+
+
+def force_state_words(result: Any) -> list[str]:
+    """Each joint's state in the result's force state: "open" (no compression, see
+    :func:`unloaded`), "hinging" (a contact point carries nothing: the resultant at the
+    joint's edge), "at friction limit" (|T|/N within ``AT_LIMIT`` of its friction), both
+    ("hinging, at friction limit"), or "closed"; "-" for every joint without a state."""
+    c, st = result.contacts, result.state
+    if st is None:
+        return ["-"] * c.n_joints
+    open_, free_points = unloaded(c, st)
+    hinging = np.bincount(c.point_joint, free_points, minlength=c.n_joints) > 0
+    fj = joint_frictions(result)
+    dem = np.asarray(st.demand, dtype=float)
+    with np.errstate(invalid="ignore"):
+        limit = np.isfinite(fj) & (dem >= fj * (1 - AT_LIMIT))
+    out = []
+    for k in range(c.n_joints):
+        tags = [w for w, on in (("hinging", hinging[k]), ("at friction limit", limit[k]))
+                if on]
+        out.append("open" if open_[k] else (", ".join(tags) or "closed"))
+    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -211,47 +273,30 @@ class Result:
         return [self.joint_name(k) for k in self.governing]
 
     def joint_table(self) -> list[dict[str, Any]]:
-        """One row per joint: its blocks, N, T, eccentricity e (2D) and |T|/N (None where
-        the joint is open), its ``state`` in the force state ("open": no compression;
-        "edge": the resultant at an edge of the joint, where a hinge forms; "friction
-        limit": |T| = f N; "closed") and its ``mode`` in the mechanism, if any; empty
-        without a state."""
+        """One row per joint: its blocks, N, T, eccentricity e and |T|/N (None where the
+        joint is open), its ``state`` in the force state (:func:`force_state_words`)
+        and its ``mode`` in the mechanism, if any; empty without a state. An open
+        joint's forces that are round-off of none (:func:`no_force`: N = -6e-17 N, T =
+        1.9e-9 N on the reference model's vertical joint) are 0."""
         st = self.state
         if st is None:
             return []
         mech = getattr(self, "mechanism", None)
         c = self.contacts
-        f_uniform = math.inf if self.friction is None else \
-            (math.inf if isinstance(self.friction, str) else float(self.friction))
-        fj = np.where(np.isnan(c.override_friction), f_uniform, c.override_friction)
-        big = float(np.abs(st.joint_normal).max(initial=0.0))
-        tiny = ZERO_FORCE * big  # an open joint's normal force, and its round-off
+        states = force_state_words(self)
         none = no_force(np.asarray(st.joint_normal), np.asarray(st.joint_shear))
         ecc = eccentricities(c, st)
-        half = None
-        if c.dimension == 2:
-            half = 0.5 * np.linalg.norm(c.points[c.joint_start[1:] - 1]
-                                        - c.points[c.joint_start[:-1]], axis=1)
         rows = []
         for k in range(c.n_joints):
             a, b = self.joint_name(k)
             N, T = float(st.joint_normal[k]), float(st.joint_shear[k])
             e = float(ecc[k])
-            if N <= tiny:
-                state = "open"
-            elif math.isfinite(fj[k]) and abs(T) >= fj[k] * N * (1 - 1e-6):
-                state = "friction limit"
-            elif half is not None and math.isfinite(e) and abs(e) >= half[k] * (1 - 1e-6):
-                state = "edge"
-            else:
-                state = "closed"
-            # an open joint's forces are round-off about 0 (N = -6e-17 N, T = 1.9e-9 N
-            # on the reference model's vertical joint): no eccentricity, no demand
-            open_ = state == "open"
-            rows.append({"joint": [a, b], "N": 0.0 if open_ and none[k] else N,
-                         "T": 0.0 if open_ and none[k] else T,
+            open_ = states[k] == "open"
+            rows.append({"joint": [a, b], "N": 0.0 if none[k] else N,
+                         "T": 0.0 if none[k] else T,
                          "eccentricity": e if math.isfinite(e) and not open_ else None,
-                         "demand": None if open_ else float(st.demand[k]), "state": state,
+                         "demand": None if open_ else float(st.demand[k]),
+                         "state": states[k],
                          "mode": mech.modes[k] if mech is not None else None})
         return rows
 

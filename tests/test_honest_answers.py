@@ -240,7 +240,7 @@ def test_joint_table_on_request(tmp_path, capsys):
         table = list(csv.DictReader(fh))
     assert len(table) == 5 and {"N", "T", "eccentricity", "demand", "state"} <= set(table[0])
     # at f* = 0.5 the four bed joints are at their friction limit
-    assert sum(r["state"] == "friction limit" for r in table) == 4
+    assert sum("at friction limit" in r["state"] for r in table) == 4
     assert main(["friction", path, "--joints", str(tmp_path / "no" / "x.csv")]) == 2
 
 

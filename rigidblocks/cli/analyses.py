@@ -262,13 +262,13 @@ def _table(res, scene) -> list[str]:
         return ["joints     no force state (the analysis found no admissible state)"]
     fu, lu = f"[{scene.force_unit or 'force'}]", f"[{scene.length_unit or 'length'}]"
     out = [f"{'joint':<24} {'N ' + fu:>12} {'T ' + fu:>12} {'e ' + lu:>10} {'|T|/N':>8}  "
-           f"{'state':<15} mode"]
+           f"{'state':<26} mode"]
     for r in rows:
         e = "-" if r["eccentricity"] is None else f"{r['eccentricity']:.4g}"
         d = "-" if r["demand"] is None else f"{r['demand']:.4g}"
         name = "-".join(r["joint"])
         out.append(f"{name:<24} {r['N']:12.5g} {r['T']:12.5g} {e:>10} {d:>8}  "
-                   f"{r['state']:<15} {r['mode'] or '-'}")
+                   f"{r['state']:<26} {r['mode'] or '-'}")
     return out
 
 

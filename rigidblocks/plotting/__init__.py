@@ -9,7 +9,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..scene.model import Scene
-from .plot2d import MAX_ARROWS, available_friction, displaced_polygons, save_figure
+from .plot2d import MAX_ARROWS, displaced_polygons, save_figure
 from .plot2d import plot as plot2d
 
 
@@ -27,4 +27,4 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, **kwargs: Any) -> Any
     return plot2d(scene, result, ax, **kwargs)
 
 
-__all__ = ["MAX_ARROWS", "available_friction", "displaced_polygons", "plot", "save_figure"]
+__all__ = ["MAX_ARROWS", "displaced_polygons", "plot", "save_figure"]

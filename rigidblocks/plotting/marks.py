@@ -10,7 +10,6 @@ from typing import Any
 
 import numpy as np
 
-from ..results import ZERO_FORCE
 from ..scene.geometry import scene_size, scene_weights
 from ..scene.model import Scene
 
@@ -246,5 +245,5 @@ def line_handle(colour: str, label: str, **kw: Any) -> Any:
     return Line2D([], [], color=colour, label=label, **kw)
 
 
-__all__ = ["ZERO_FORCE", "LoadMark", "arrow_handle", "joint_motion", "line_handle",
+__all__ = ["LoadMark", "arrow_handle", "joint_motion", "line_handle",
            "load_marks", "marked_joints", "new_axes", "place_legend", "scene_weights"]

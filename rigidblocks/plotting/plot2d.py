@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 
 from ..answer import NA_INADMISSIBLE, without_dilatancy
+from ..results import analysis_friction, unloaded
 from ..scene.geometry import block_weights, scene_size
 from ..scene.model import Scene
 from .marks import (
@@ -50,7 +51,6 @@ from .marks import (
     MOVING_COLOUR,
     OPEN_COLOUR,
     SLIDE_COLOUR,
-    ZERO_FORCE,
     arrow_handle,
     line_handle,
     load_legend,
@@ -172,16 +172,6 @@ def _title(scene: Scene, result: Any) -> str:
     return f"{name}\n{txt}" if (name and txt) else (name or txt)
 
 
-def available_friction(result: Any) -> float:
-    """The friction coefficient the demand is compared with (inf when none)."""
-    if getattr(result, "analysis", "") == "min_friction" and result.friction_factor:
-        return float(result.friction_factor)
-    f = getattr(result, "friction", None)
-    if f is None or isinstance(f, str):
-        return math.inf
-    return float(f)
-
-
 def _nice(x: float) -> float:
     """1, 2 or 5 times a power of ten, at most x."""
     if x <= 0 or not math.isfinite(x):
@@ -254,7 +244,7 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
     st = result.state
     m = c.n_joints
     seg = np.stack([c.points[c.joint_start[:-1]], c.points[c.joint_start[1:] - 1]], axis=1)
-    f = available_friction(result)
+    f = analysis_friction(result)
     if math.isfinite(f) and f > 0:
         val = st.demand / f
         label = f"friction demand |T| / (f N), f = {f:.4g}"
@@ -266,9 +256,7 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
     heat = m > max_arrows
     Nj = np.abs(st.joint_normal)
     nmax = Nj.max(initial=0.0)
-    pn = np.asarray(st.normal, dtype=float)
-    ptol = ZERO_FORCE * max(float(np.abs(pn).max(initial=0.0)), 1e-300)
-    is_open = np.asarray(st.joint_normal) <= 2 * ptol
+    is_open, carried = unloaded(c, st)
     widths = (0.5 + 3.5 * Nj / nmax) if (heat and nmax > 0) else (2.5 if m < 200 else 1.5)
     from matplotlib import colormaps
 
@@ -287,7 +275,6 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
     # a contact point that carries nothing while its joint does: the resultant is on the
     # joint's other end (a hinge forming)
     pj = c.point_joint
-    carried = ~is_open[pj] & (pn <= ptol)
     if carried.any():
         other = np.flatnonzero(carried)
         # the loaded end of the same joint
@@ -447,4 +434,4 @@ def save_figure(ax: Any, path: Any) -> None:
         ax.figure.savefig(path, dpi=150, bbox_inches="tight")
 
 
-__all__ = ["MAX_ARROWS", "available_friction", "displaced_polygons", "plot", "save_figure"]
+__all__ = ["MAX_ARROWS", "displaced_polygons", "plot", "save_figure"]

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..answer import answer_block, live_load_text
 from ..plotting.marks import scene_weights
-from ..results import ZERO_FORCE, eccentricities, no_force
+from ..results import force_state_words
 from ..scene.model import Scene
 
 #: statuses that answer the question, and how the answer reads (tone of the badge)
@@ -30,8 +30,6 @@ QUESTIONS = {
     "min_friction": "What friction does it need?",
     "max_load_multiplier": "How much live load does it take, and how does it fail?",
 }
-#: a joint whose demand is within this fraction of the friction counts as at the limit
-AT_LIMIT = 1e-4
 
 
 @dataclass(frozen=True)
@@ -157,84 +155,46 @@ def answer(scene: Scene, result: Any) -> Answer:
     return Answer(status, True, tone, block.title(), tuple(details), tuple(notes))
 
 
-def _available_friction(result: Any) -> float:
-    if getattr(result, "analysis", "") == "min_friction":
-        ff = getattr(result, "friction_factor", None)
-        return float(ff) if ff is not None else math.inf
-    f = getattr(result, "friction", None)
-    if f is None or isinstance(f, str):
-        return math.inf
-    return float(f)
-
-
 def joint_states(result: Any) -> list[str]:
     """Each joint's state: from the mechanism after a collapse (closed, hinge, open,
-    slide, slide+hinge), otherwise from the force state: open (no force), hinging (the
-    resultant on an edge: a contact point carries nothing), at the friction limit."""
-    c = result.contacts
+    slide, slide+hinge), otherwise from the force state
+    (:func:`~rigidblocks.results.force_state_words`: open, hinging, at friction limit,
+    closed)."""
     mech = getattr(result, "mechanism", None)
-    if mech is not None and len(mech.modes) == c.n_joints:
+    if mech is not None and len(mech.modes) == result.contacts.n_joints:
         return list(mech.modes)
-    st = getattr(result, "state", None)
-    if st is None:
-        return ["-"] * c.n_joints
-    pn = np.asarray(st.normal, dtype=float)
-    jn = np.asarray(st.joint_normal, dtype=float)
-    tol = ZERO_FORCE * max(float(np.abs(pn).max(initial=0.0)), 1e-300)
-    pj = c.point_joint
-    pmin = np.full(c.n_joints, np.inf)
-    np.minimum.at(pmin, pj, pn)
-    f = _available_friction(result)
-    dem = np.asarray(st.demand, dtype=float)
-    out = []
-    for k in range(c.n_joints):
-        if jn[k] <= tol * np.diff(c.joint_start)[k]:
-            out.append("open")
-            continue
-        tags = []
-        if pmin[k] <= tol:
-            tags.append("hinging")
-        if math.isfinite(f) and dem[k] >= f * (1 - AT_LIMIT):
-            tags.append("at friction limit")
-        out.append(", ".join(tags) if tags else "closed")
-    return out
+    return force_state_words(result)
 
 
 def joint_table(result: Any) -> dict[str, Any]:
     """Per-joint rows (joint, N, T, e, |T|/N, state, governing) as columns of lists,
-    ready for JSON. 3D: T is the shear's magnitude and e the distance of the centre of
-    pressure from the contact polygon's centroid. A joint whose forces are both below
-    ZERO_FORCE of the largest (solver round-off) shows N = T = 0 and no demand."""
+    ready for JSON: the rows of the result's own table
+    (:meth:`~rigidblocks.results.Result.joint_table`). 3D: T is the shear's magnitude
+    and e the distance of the centre of pressure from the contact polygon's
+    centroid."""
     c = getattr(result, "contacts", None)
-    st = getattr(result, "state", None)
     if c is None or not c.n_joints:
         return {"n": 0}
     ids = c.block_ids
     names = [f"{ids[a]}\N{EN DASH}{ids[b]}" for a, b in c.pairs]
     gov = set(int(k) for k in (getattr(result, "governing", ()) or ()))
+    rows = result.joint_table()
     out: dict[str, Any] = {"n": c.n_joints, "joint": names,
                            "state": joint_states(result),
                            "governing": [k in gov for k in range(c.n_joints)],
-                           "has_forces": st is not None}
-    if st is None:
+                           "has_forces": bool(rows)}
+    if not rows:
         return out
-    N = np.asarray(st.joint_normal, dtype=float).copy()
-    T = np.asarray(st.joint_shear, dtype=float).copy()
-    # round-off of the interior-point state (below ZERO_FORCE of the largest joint
-    # force) is shown as no force, with no friction demand
-    tiny = no_force(N, T)
-    N[tiny] = 0.0
-    T[tiny] = 0.0
-    e = eccentricities(c, st)
-    dem = np.where(tiny, np.nan, np.asarray(st.demand, dtype=float))
-    e = np.where(tiny, np.nan, e)
 
-    def col(a: np.ndarray) -> list[float | str | None]:
-        return [None if math.isnan(x) else ("inf" if math.isinf(x) else float(f"{x:.6g}"))
-                for x in a.tolist()]
+    def col(key: str) -> list[float | str | None]:
+        vals = [r[key] for r in rows]
+        return [None if x is None or math.isnan(x) else
+                ("inf" if math.isinf(x) else float(f"{x:.6g}")) for x in vals]
 
-    out.update({"N": col(N), "T": col(T), "e": col(e), "demand": col(dem),
-                "half_length": col(0.5 * np.asarray(c.lengths, dtype=float))})
+    out.update({"N": col("N"), "T": col("T"), "e": col("eccentricity"),
+                "demand": col("demand"),
+                "half_length": [float(f"{x:.6g}") for x in
+                                (0.5 * np.asarray(c.lengths, dtype=float)).tolist()]})
     return out
 
 
