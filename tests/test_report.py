@@ -88,6 +88,24 @@ def test_joint_table_and_states(block_on_base):
     assert t["state"] == ["closed"]
 
 
+def test_joint_states_read_each_joints_own_friction(capsys):
+    """A unit block on a base, its bed joint given f = 0.2 by an override (the scene's f
+    = 0.9), checked at lambda = 0.2: |T|/N = 0.2 is the joint's own friction limit. The
+    report's table said "closed" (it compared with the scene's 0.9); the terminal's
+    table and the report's now agree."""
+    sc = make_scene([
+        {"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+        {"id": "a", "vertices": rect(0, 0, 1, 1)},
+    ], unit_weight=1.0, friction=0.9, live_body_force=[1, 0],
+        joints=[{"blocks": ["base", "a"], "friction": 0.2}])
+    res = rb.check(sc, load_factor=0.2)
+    assert res.status == "admissible"
+    assert content.joint_table(res)["state"] == ["at friction limit"]
+    assert [r["state"] for r in res.joint_table()] == ["at friction limit"]
+    res = rb.check(sc, load_factor=0.1)
+    assert content.joint_table(res)["state"] == ["closed"]
+
+
 def test_open_joint_in_table_and_picture():
     """Two blocks side by side on a base under their weight: the head joint between them
     carries nothing (open), the bed joints are closed."""
