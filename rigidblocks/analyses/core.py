@@ -207,9 +207,10 @@ def min_friction(scene: Scene, load_factor: float | None = None,
         number is certified to: f* is given only where its certified bracket is no
         wider than ``rtol`` relative, else the status is "undecided" with the bracket
         and the accuracy it reached (``accuracy``); default FRICTION_RTOL = 2e-3 (three
-        significant figures, chosen from the speed-accuracy chart of docs/methods.md)
-        on the convex path and on bisection, NA_RTOL = 1e-5 for the non-associative
-        analysis.
+        significant figures, chosen from the speed-accuracy chart of docs/methods.md),
+        with either flow (each trial of the non-associative search is a limit run:
+        the 1,041-block wall's f = 0.6 at its multiplier from X0 to 2e-3 in 3 runs,
+        47.7 s, to 1e-5 in 4, 65.8 s).
         Convex path: Newton steps on the relaxation R(f), or under a live load on
         lambda*(f) = ``load_factor`` (a few solves reach ``rtol``, see
         :meth:`rigidblocks.methods.convex.ConvexMethod.friction_limit`). Other
@@ -218,7 +219,7 @@ def min_friction(scene: Scene, load_factor: float | None = None,
     """
     lf = _load_factor(scene, load_factor)
     na = is_nonassociative(scene, flow)
-    rtol = requested_rtol(rtol, NA_RTOL if na else FRICTION_RTOL)
+    rtol = requested_rtol(rtol, FRICTION_RTOL)
     # (without dilatancy too: its search starts at the static f*, found to F_RTOL_FLOOR,
     # and where that f* carries the load it is the answer; at --rtol 1e-9 a wall3d's was
     # given with an accuracy of 5.2e-8)

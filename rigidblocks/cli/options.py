@@ -75,7 +75,7 @@ def relative_tolerance(text: str) -> float:
 
 #: the default accuracy of each command's limit, as its help gives it
 RTOL_DEFAULTS = {
-    "friction": "2e-3, three significant figures (1e-5 with --flow non-associative)",
+    "friction": "2e-3, three significant figures (with either flow)",
     "load": "2e-3 (the convex path's one solve is at its tight tolerances whatever it "
             "is, and its duals tell how far lambda* may lie above its answer); with "
             "--flow non-associative 1e-5 for the distortion method's bisection, while "
