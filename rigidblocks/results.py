@@ -117,7 +117,7 @@ def force_state_words(result: Any) -> list[str]:
     :func:`unloaded`), "hinging" (a contact point carries nothing: the resultant at the
     joint's edge), "at friction limit" (|T|/N within ``AT_LIMIT`` of its friction), both
     ("hinging, at friction limit"), or "closed"; "-" for every joint without a state."""
-    c, st = result.contacts, result.state
+    c, st = result.contacts, getattr(result, "state", None)
     if st is None:
         return ["-"] * c.n_joints
     open_, free_points = unloaded(c, st)
