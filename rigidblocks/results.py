@@ -84,14 +84,49 @@ AT_LIMIT = 1e-4
 
 def unloaded(c: Contacts, st: Any) -> tuple[np.ndarray, np.ndarray]:
     """(m,) the open joints of the force state ``st`` (no compression: a normal force
-    below ``ZERO_FORCE`` of its largest joint force, the scale of :func:`no_force`), and
-    (P,) the contact points of the other joints that carry nothing (the joint's
-    resultant at its edge, where a hinge forms). The tables, the report and the
-    pictures all read these."""
+    below ``ZERO_FORCE`` of its largest joint force, the scale of :func:`no_force`; a
+    joint with a tensile strength that carries tension is not open), and (P,) the
+    contact points of the other joints that carry nothing. The tables, the report and
+    the pictures all read these."""
     N = np.asarray(st.joint_normal, dtype=float)
     tol = ZERO_FORCE * _largest(N, np.asarray(st.joint_shear, dtype=float))
-    open_ = N <= tol
-    return open_, ~open_[c.point_joint] & (np.asarray(st.normal, dtype=float) <= tol)
+    open_ = (N <= tol) & ~((N < -tol) & (np.asarray(c.tensile_strength) > 0))
+    return open_, ~open_[c.point_joint] & (np.abs(np.asarray(st.normal, dtype=float)) <= tol)
+
+
+def hinging(c: Contacts, open_: np.ndarray, free: np.ndarray) -> np.ndarray:
+    """(m,) the joints whose resultant lies on the edge of the contact (where a hinge
+    forms), from :func:`unloaded`'s open joints and free points: in 2D a joint one of
+    whose ends carries nothing; in 3D one whose loaded points all lie on one line that
+    bounds its contact polygon (an edge, or a corner alone). A 3D joint with one free
+    corner is not hinging: its resultant lies inside the polygon."""
+    pj = c.point_joint
+    some = np.bincount(pj, free, minlength=c.n_joints) > 0
+    if c.dimension == 2:
+        return some & ~open_
+    out = np.zeros(c.n_joints, dtype=bool)
+    for k in np.flatnonzero(some & ~open_):
+        pts = c.points[c.joint_start[k]:c.joint_start[k + 1]]
+        on = pts[~free[c.joint_start[k]:c.joint_start[k + 1]]]
+        size = max(float(c.lengths[k]), 1e-300)
+        if len(on) <= 1:
+            out[k] = len(on) == 1
+            continue
+        d = on - on[0]
+        u = d[np.argmax(np.linalg.norm(d, axis=1))]
+        u = u / max(float(np.linalg.norm(u)), 1e-300)
+        off_line = d - np.outer(d @ u, u)
+        if np.linalg.norm(off_line, axis=1).max() > EDGE_TOL * size:
+            continue  # the loaded points span an area: the resultant is inside
+        w = np.cross(c.normals[k], u)
+        side = (pts - on[0]) @ w
+        out[k] = bool(side.min() >= -EDGE_TOL * size or side.max() <= EDGE_TOL * size)
+    return out
+
+
+#: a 3D joint's loaded points lie on one line, and that line bounds its contact
+#: polygon, to this fraction of the joint's size (:func:`hinging`)
+EDGE_TOL = 1e-6
 
 
 def analysis_friction(result: Any) -> float:
@@ -112,25 +147,43 @@ def joint_frictions(result: Any) -> np.ndarray:
     return np.where(np.isnan(over), analysis_friction(result), over)
 
 
+def shear_use(result: Any) -> np.ndarray:
+    """(m,) the share of its shear threshold each joint uses in the result's state: |T| /
+    (f N + c a), with the joint's own friction (:func:`joint_frictions`) and cohesion; 0
+    where friction is infinite, NaN where the threshold is not positive (an open joint
+    without cohesion)."""
+    c, st = result.contacts, result.state
+    fj = joint_frictions(result)
+    N = np.asarray(st.joint_normal, dtype=float)
+    T = np.abs(np.asarray(st.joint_shear, dtype=float))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        threshold = np.where(np.isfinite(fj), fj * N, np.inf) + \
+            np.asarray(c.cohesion, dtype=float) * np.asarray(c.areas, dtype=float)
+        return np.where(threshold > 0, T / threshold, np.nan)
+
+
 def force_state_words(result: Any) -> list[str]:
     """Each joint's state in the result's force state: "open" (no compression, see
-    :func:`unloaded`), "hinging" (a contact point carries nothing: the resultant at the
-    joint's edge), "at friction limit" (|T|/N within ``AT_LIMIT`` of its friction), both
-    ("hinging, at friction limit"), or "closed"; "-" for every joint without a state."""
+    :func:`unloaded`), "in tension" (a bonded joint that carries tension), "hinging"
+    (the resultant at the contact's edge, :func:`hinging`), "at friction limit" (|T|
+    within ``AT_LIMIT`` of its threshold f N + c a, the joint's own friction and
+    cohesion), both ("hinging, at friction limit"), or "closed"; "-" for every joint
+    without a state."""
     c, st = result.contacts, getattr(result, "state", None)
     if st is None:
         return ["-"] * c.n_joints
-    open_, free_points = unloaded(c, st)
-    hinging = np.bincount(c.point_joint, free_points, minlength=c.n_joints) > 0
-    fj = joint_frictions(result)
-    dem = np.asarray(st.demand, dtype=float)
-    with np.errstate(invalid="ignore"):
-        limit = np.isfinite(fj) & (dem >= fj * (1 - AT_LIMIT))
+    open_, free = unloaded(c, st)
+    hinge = hinging(c, open_, free)
+    N = np.asarray(st.joint_normal, dtype=float)
+    limit = shear_use(result) >= 1 - AT_LIMIT
     out = []
     for k in range(c.n_joints):
-        tags = [w for w, on in (("hinging", hinging[k]), ("at friction limit", limit[k]))
-                if on]
-        out.append("open" if open_[k] else (", ".join(tags) or "closed"))
+        if open_[k]:
+            out.append("open")
+            continue
+        tags = [w for w, on in (("in tension", N[k] < 0), ("hinging", hinge[k]),
+                                ("at friction limit", limit[k])) if on]
+        out.append(", ".join(tags) or "closed")
     return out
 
 

@@ -21,6 +21,7 @@ from conftest import EXAMPLES, make_scene, rect  # noqa: E402
 import rigidblocks as rb  # noqa: E402
 from rigidblocks.cli.main import main  # noqa: E402
 from rigidblocks.generators.solids import box_stack  # noqa: E402
+from rigidblocks.io import read_scene  # noqa: E402
 from rigidblocks.reporting import Report, content  # noqa: E402
 from rigidblocks.reporting.browser import (  # noqa: E402
     page_state,
@@ -104,6 +105,47 @@ def test_joint_states_read_each_joints_own_friction(capsys):
     assert [r["state"] for r in res.joint_table()] == ["at friction limit"]
     res = rb.check(sc, load_factor=0.1)
     assert content.joint_table(res)["state"] == ["closed"]
+
+
+def test_joint_states_read_cohesion_and_the_picture_each_joints_threshold():
+    """The same block, its bed joint given f = 0.2 and cohesion 0.1 (contact area 1, so
+    its shear threshold is 0.2 N + 0.1 = 0.3): at lambda = 0.2 it uses 2/3 of it
+    ("closed": the table said "at friction limit", reading |T|/N = f alone), at 0.3 all
+    of it. The picture colours the joint by that share (it coloured by |T|/N over the
+    scene's f = 0.9)."""
+    sc = make_scene([
+        {"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+        {"id": "a", "vertices": rect(0, 0, 1, 1)},
+    ], unit_weight=1.0, friction=0.9, live_body_force=[1, 0],
+        joints=[{"blocks": ["base", "a"], "friction": 0.2, "cohesion": 0.1}])
+    for lf, state, share in ((0.2, "closed", 2 / 3), (0.3, "at friction limit", 1.0)):
+        res = rb.check(sc, load_factor=lf)
+        assert res.status == "admissible"
+        assert [r["state"] for r in res.joint_table()] == [state]
+        assert content.joint_table(res)["state"] == [state]
+        ax = rb.plot(sc, res)
+        (lc,) = [a for a in ax.get_children() if a.get_gid() == "rb-joints"]
+        assert float(lc.get_array()[0]) == pytest.approx(share, rel=1e-4)
+        matplotlib.pyplot.close("all")
+
+
+def test_a_3d_joint_with_one_unloaded_corner_is_not_hinging():
+    """examples/box_stack_3d.json at lambda = 0.25 (below its lambda* = 0.308): in the
+    least-energy state a corner of the two lowest joints carries nothing, but their
+    resultants lie inside the contact (e = 0.459 and 0.399 m from the centroid): "closed"
+    (the tables said "hinging" whenever one corner carried nothing). At lambda* the
+    joint the mechanism hinges (box0-box1, "hinge") has its loaded corners on one edge:
+    "hinging"."""
+    scene = read_scene(EXAMPLES / "box_stack_3d.json")
+    res = rb.check(scene, load_factor=0.25)
+    assert res.status == "admissible"
+    assert [r["state"] for r in res.joint_table()] == ["closed"] * 4
+    assert content.joint_table(res)["state"] == ["closed"] * 4
+    res = rb.max_load_multiplier(scene)
+    modes = content.joint_table(res)["state"]
+    words = [r["state"] for r in res.joint_table()]
+    assert modes.count("hinge") == 1
+    assert words[modes.index("hinge")] == "hinging"
 
 
 def test_open_joint_in_table_and_picture():

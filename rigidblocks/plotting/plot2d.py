@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 
 from ..answer import NA_INADMISSIBLE, without_dilatancy
-from ..results import analysis_friction, unloaded
+from ..results import analysis_friction, joint_frictions, shear_use, unloaded
 from ..scene.geometry import block_weights, scene_size
 from ..scene.model import Scene
 from .marks import (
@@ -245,9 +245,13 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
     m = c.n_joints
     seg = np.stack([c.points[c.joint_start[:-1]], c.points[c.joint_start[1:] - 1]], axis=1)
     f = analysis_friction(result)
-    if math.isfinite(f) and f > 0:
-        val = st.demand / f
-        label = f"friction demand |T| / (f N), f = {f:.4g}"
+    fj = joint_frictions(result)
+    if np.any(np.isfinite(fj) & (fj > 0)) or np.any(c.cohesion > 0):
+        # each joint against its own threshold (its friction override, its cohesion)
+        val = shear_use(result)
+        own = np.any(fj != f) or np.any(c.cohesion > 0)
+        label = ("shear threshold used |T| / (f N + c a), each joint's own f and c"
+                 if own else f"friction demand |T| / (f N), f = {f:.4g}")
     else:
         val = st.demand
         label = "friction demand |T| / N"
@@ -262,7 +266,9 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
 
     lc = LineCollection(seg, cmap=colormaps["RdYlGn_r"].with_extremes(bad=(0, 0, 0, 0)),
                         linewidths=widths, zorder=3,
-                        label="joint (colour: friction demand)")
+                        label="joint (colour: " + ("shear threshold used" if
+                                                   label.startswith("shear") else
+                                                   "friction demand") + ")")
     lc.set_array(np.where(is_open, np.nan, val))
     lc.set_clim(0.0, 1.0)
     lc.set_gid("rb-joints")
