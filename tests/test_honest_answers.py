@@ -173,6 +173,17 @@ def test_a_load_applied_off_its_block_is_named(tmp_path, capsys):
     assert any("load 1 on 'B' lies 1 from it" in n for n in notes), notes
 
 
+def test_the_friction_search_says_why_its_lower_end_does_not_carry(capsys):
+    """`friction --flow non-associative --load-factor 0.3` on the flat arch with vertical
+    joints: below f* the state reached from X0 under the dead load alone breaches the
+    joint laws (no multiplier at all); the note printed "at f = 0.8088357322615443 nan"."""
+    code, out, _ = run(capsys, ["friction", str(EXAMPLES / "flat_arch_vertical.json"),
+                                "--flow", "non-associative", "--load-factor", "0.3"])
+    assert code == 0 and "STANDS" in out
+    assert "nan" not in out
+    assert "under the dead load alone breaches the joint laws" in out, out
+
+
 def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, capsys):
     """A block on a base whose one joint has its own friction 0.3: `load --friction 5`
     echoed "at friction f = 5 (78.69 deg)" beside lambda* = 0.3, the override's; the

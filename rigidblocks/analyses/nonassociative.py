@@ -1277,9 +1277,12 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     # 0.5346341035199138, 0.500001342 at 0.534634104), so that `load --friction` at the
     # printed f gives the printed lambda
     tol = next(t["carry_tol"] for t in reversed(trials) if t.get("friction") == s.good)
+    below = s.end(False)
+    short = f"it carries {below.value + lf:.9g}" if math.isfinite(below.value) else \
+        (below.why or "it does not carry it")
     na.notes.append(f"at f = {s.good!r} the limit fixed point from X0 carries lambda = "
                     f"{at.value + lf:.9g} {carried_text(at.value + lf, lf, tol)}; at f = "
-                    f"{s.bad!r} {s.end(False).value + lf:.9g}")
+                    f"{s.bad!r} {short}")
     na.notes.extend(_flat_below(trials))
     return out("stable", s.good, at.data, s.lower, s.upper, True)
 
