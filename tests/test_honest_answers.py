@@ -152,7 +152,9 @@ def test_a_load_applied_off_its_block_is_named(tmp_path, capsys):
     """A horizontal load given at y = 12 on a 2 m block (a slip of the keyboard for
     y = 1.2) is applied there, and its lever of 12 m sets lambda* = (W + P) (b / 2) /
     (H y) = 3 x 0.5 / 12 (about the toe); the answer says that the point lies 10 m off
-    the block. A point on the block's face is not named; in 3D, a point off its block."""
+    the block. A point on the block's face is not named; in 3D, a point off its block,
+    and one in the notch of an L-shaped block, inside its bounding box (it was not
+    named: the 3D test was the bounding box's)."""
     blocks = [{"id": "G", "vertices": rect(-1, -1, 4, 1), "support": True},
               {"id": "B", "vertices": rect(0, 0, 1, 2)}]
     loads = [{"block": "B", "force": [1, 0], "point": [0.5, 12], "live": True},
@@ -161,7 +163,7 @@ def test_a_load_applied_off_its_block_is_named(tmp_path, capsys):
                                       units={"length": "m", "force": "kN"}))
     code, out, _ = run(capsys, ["load", path])
     assert code == 0 and "lambda* = 0.125," in out, out
-    assert "load 1 on 'B' lies 10 m from it" in out and "load 2" not in out
+    assert "load #0 on block 'B' lies 10 m from it" in out and "load #1" not in out
     loads[0]["point"] = [0.5, 1.2]
     path = write(tmp_path, make_scene(blocks, loads=loads, unit_weight=1.0))
     code, out, _ = run(capsys, ["load", path])
@@ -170,7 +172,17 @@ def test_a_load_applied_off_its_block_is_named(tmp_path, capsys):
                                                "point": [0.5, 3], "live": True}],
                                unit_weight=1.0), depth=1.0)
     notes = open_method(solid).notes
-    assert any("load 1 on 'B' lies 1 from it" in n for n in notes), notes
+    assert any("load #0 on block 'B' lies 1 from it" in n for n in notes), notes
+    ell = [[0, 0], [3, 0], [3, 1], [1, 1], [1, 3], [0, 3]]  # the notch is x, y in (1, 3)
+    solid = extrude(make_scene([{"id": "G", "vertices": rect(-1, -1, 5, 1), "support": True},
+                                {"id": "L", "vertices": ell}],
+                               loads=[{"block": "L", "force": [1, 0], "point": [2, 2],
+                                       "live": True},
+                                      {"block": "L", "force": [1, 0], "point": [0.5, 2],
+                                       "live": True}], unit_weight=1.0), depth=1.0)
+    notes = open_method(solid).notes
+    assert any("load #0 on block 'L' lies 1 from it" in n and "load #1" not in n
+               for n in notes), notes
 
 
 def test_the_friction_search_says_why_its_lower_end_does_not_carry(capsys):

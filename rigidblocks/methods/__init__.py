@@ -160,7 +160,8 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
     off = loads_off_their_blocks(scene)
     if off:
         unit = f" {scene.length_unit}" if scene.length_unit else ""
-        said = "; ".join(f"load {k} on '{b}' lies {d:.3g}{unit} from it" for k, b, d in off[:3])
+        said = "; ".join(f"load #{k} on block '{b}' lies {d:.3g}{unit} from it"
+                         for k, b, d in off[:3])
         more = f" (and {len(off) - 3} more)" if len(off) > 3 else ""
         m.notes.append(f"a load's point is outside its block: {said}{more}; the analysis "
                        "applies the load there, as if the block reached it (its lever "

@@ -31,6 +31,7 @@ no further library, and units repeated up to a translation share them.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
@@ -352,6 +353,36 @@ def winding_number(block: Block, q: np.ndarray) -> np.ndarray:
     den = (la * lb * lc + np.einsum("mtk,mtk->mt", a, b) * lc
            + np.einsum("mtk,mtk->mt", a, c) * lb + np.einsum("mtk,mtk->mt", b, c) * la)
     return 2.0 * np.arctan2(num, den).sum(axis=1) / (4.0 * np.pi)
+
+
+def distance_from(block: Block, q: Sequence[float]) -> float:
+    """The distance from the point ``q`` to the block: 0 inside (winding number above
+    1/2), else to the nearest point of its surface: an edge, or a face whose polygon
+    holds q's projection (the signed cover of the face's fan triangles, exact for
+    non-convex planar faces)."""
+    q = np.asarray(q, dtype=float)
+    if winding_number(block, q)[0] > 0.5:
+        return 0.0
+    s = shape(block)
+    p, V = q - s.origin, s.local
+    E = np.concatenate([np.stack([f, np.roll(f, -1)], axis=1) for f in s.faces])
+    a, ab = V[E[:, 0]], V[E[:, 1]] - V[E[:, 0]]
+    t = np.clip(((p - a) * ab).sum(axis=1) / np.maximum((ab * ab).sum(axis=1), 1e-300), 0, 1)
+    best = float(np.linalg.norm(p - (a + t[:, None] * ab), axis=1).min())
+    nhat = s.normals / np.linalg.norm(s.normals, axis=1)[:, None]
+    owner = np.repeat(np.arange(len(s.faces)), [len(f) - 2 for f in s.faces])
+    A, B, C = (V[s.fan[:, k]] for k in range(3))
+    n = nhat[owner]
+    x = p - ((p - A) * n).sum(axis=1)[:, None] * n  # q projected on each face's plane
+    tn = _cross(B - A, C - A)
+    inside = np.ones(len(A), dtype=bool)
+    for u, v in ((A, B), (B, C), (C, A)):
+        inside &= (_cross(v - u, x - u) * tn).sum(axis=1) >= 0
+    sign = np.sign((tn * n).sum(axis=1))
+    cover = np.bincount(owner, weights=sign * inside, minlength=len(s.faces))
+    first = np.array([f[0] for f in s.faces], dtype=int)
+    plane = np.abs(((p - V[first]) * nhat).sum(axis=1))
+    return min(best, float(plane[cover > 0.5].min(initial=math.inf)))
 
 
 # -- validation ------------------------------------------------------------------------

@@ -233,13 +233,13 @@ OFF_BLOCK_TOL = 1e-6
 
 
 def loads_off_their_blocks(scene: Scene) -> list[tuple[int, str, float]]:
-    """The loads whose point lies outside their block: (the load's number from 1, the
-    block, the point's distance from it). In 3D the distance is to the block's bounding
-    box, so a point in a recess of a non-convex block is not found. A load without a
-    point acts at its block's centroid and is never off it."""
+    """The loads whose point lies outside their block: (the load's index in the scene's
+    ``loads``, from 0 as the errors count them, the block, the point's distance from it;
+    in 3D :func:`~rigidblocks.scene.polyhedra.distance_from`). A load without a point
+    acts at its block's centroid and is never off it."""
     index = {b.id: b for b in scene.blocks}
     found = []
-    for k, ld in enumerate(scene.loads, start=1):
+    for k, ld in enumerate(scene.loads):
         block = index.get(ld.block)
         if ld.point is None or block is None:
             continue
@@ -251,8 +251,9 @@ def loads_off_their_blocks(scene: Scene) -> list[tuple[int, str, float]]:
 
             dist = float(shapely.distance(shapely.Polygon(pts), shapely.Point(p)))
         else:
-            gap = np.maximum(pts.min(axis=0) - p, 0) + np.maximum(p - pts.max(axis=0), 0)
-            dist = float(np.linalg.norm(gap))
+            from .polyhedra import distance_from
+
+            dist = distance_from(block, p)
         if dist > OFF_BLOCK_TOL * size:
             found.append((k, block.id, dist))
     return found
