@@ -2,11 +2,11 @@
 report and a picture's title.
 
 An :class:`AnswerBlock` says what was asked (the dead load, the live load and what the
-load factor lambda multiplies, in the scene's force unit; "self-weight only" where
-lambda is 0), the verdict, the number with its unit and the force it means, the
-governing joints (the first few, "and N more") and the reasons an engineer acts on.
-The solver's and the accuracy's notes are kept apart (``notes``): the CLI shows them
-under ``--verbose``, the JSON always.
+load factor lambda multiplies, in the scene's force unit; "self-weight only", or "dead
+load only" where there are dead point loads, where lambda is 0), the verdict, the number
+with its unit and the force it means, the governing joints (the first few, "and N
+more") and the reasons an engineer acts on. The solver's and the accuracy's notes are
+kept apart (``notes``): the CLI shows them under ``--verbose``, the JSON always.
 """
 
 from __future__ import annotations
@@ -267,13 +267,19 @@ class _Words:
         if not self.scene.has_live_load:
             return f"its dead load ({self.dead()}; there is no live load)"
         if not lf:
-            return f"its self-weight only ({self.dead()}; load factor 0: no live load)"
+            return f"its {self.dead_word()} only ({self.dead()}; load factor 0: no live load)"
         text = (f"its dead load ({self.dead()}) plus {self.lam} = {lf:.10g} {self.x} the live "
                 f"load ({self.live_text()})")
         if lf == 1:
             return text
         size = self.live_size * float(lf)
         return f"{text}, that is {self.force(size)} {self.direction()}".rstrip()
+
+    def dead_word(self) -> str:
+        """What the load factor 0 leaves: "self-weight" where the scene has no dead
+        point load, else "dead load" (the point loads stay)."""
+        return "dead load" if any(not ld.is_live for ld in self.scene.loads) else \
+            "self-weight"
 
     def short_case(self, result: Any) -> str:
         """The load case of check and friction in a few words (load: none, lambda is
@@ -283,7 +289,7 @@ class _Words:
             return ""
         lf = getattr(result, "load_factor", None)
         if not lf:
-            return "under its self-weight only (load factor 0)"
+            return f"under its {self.dead_word()} only (load factor 0)"
         return f"under the dead load + {lf:.10g} {self.x} the live load"
 
     def friction_text(self, f: Any) -> str:
@@ -473,7 +479,7 @@ class _Words:
         src = self.scene.source or "SCENE"
         flow = " --flow non-associative" if without_dilatancy(res) else ""
         return [f"the live load is included at load factor {res.load_factor:.10g}; "
-                f"--load-factor 0 asks for the self-weight alone, `rigidblocks load {src}"
+                f"--load-factor 0 asks for the {self.dead_word()} alone, `rigidblocks load {src}"
                 f"{flow}` for the collapse multiplier"]
 
 

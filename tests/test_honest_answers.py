@@ -196,6 +196,18 @@ def test_the_friction_search_says_why_its_lower_end_does_not_carry(capsys):
     assert "under the dead load alone breaches the joint laws" in out, out
 
 
+def test_load_factor_0_is_the_dead_load_where_there_are_dead_point_loads(capsys):
+    """The reference model at load factor 0 keeps its dead point load P = 100 N (and
+    has no self-weight): it read "under its self-weight only (no self-weight, 1 point
+    load of 100 N ...)". The wall example has self-weight alone."""
+    code, out, _ = run(capsys, ["check", str(EXAMPLES / "reference.json"),
+                                "--load-factor", "0"])
+    assert code == 0 and "under its dead load only (no self-weight, 1 point load" in out
+    assert "self-weight only" not in out
+    code, out, _ = run(capsys, ["check", str(EXAMPLES / "wall.json"), "--load-factor", "0"])
+    assert code == 0 and "under its self-weight only (self-weight " in out
+
+
 def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, capsys):
     """A block on a base whose one joint has its own friction 0.3: `load --friction 5`
     echoed "at friction f = 5 (78.69 deg)" beside lambda* = 0.3, the override's; the
