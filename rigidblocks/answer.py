@@ -429,7 +429,10 @@ class _Words:
         if res.status == "unbounded":
             return ("UNBOUNDED: no multiple of the live load makes it collapse", "", "", [])
         if res.status != "collapse":
-            if without_dilatancy(res):
+            bounds = getattr(res, "load_multiplier_bounds", None)
+            if without_dilatancy(res) and bounds is not None and bounds[1] is not None:
+                # (the associative analysis has a state: the upper bound; without one,
+                # no state stands under the dead load at all)
                 return ("UNSTABLE: the state reached from X0 under the dead load alone "
                         "breaches the joint laws (without dilatancy; other states may "
                         "stand: `rigidblocks check` without --flow)", "", "", [])

@@ -219,6 +219,22 @@ def test_starts_that_agree_to_the_cones_accuracy_give_the_same_answer(capsys):
     assert line.endswith("; the same answer") and "differ" not in line, line
 
 
+def test_an_unstable_answer_points_to_other_states_only_where_they_exist(capsys):
+    """`load --flow non-associative`: the flat arch with vertical joints at f = 0.7 has
+    associative states (lambda* = 0.379962) while the state reached from X0 breaches
+    the joint laws under the dead load: the verdict points to `check` without --flow.
+    The inclined corbel arch has no state at all under its dead load (static problem):
+    it pointed there too ("other states may stand"), beside the note that none does."""
+    code, out, _ = run(capsys, ["load", str(EXAMPLES / "flat_arch_vertical.json"),
+                                "--flow", "non-associative", "--friction", "0.7"])
+    assert code == 0 and "other states may stand" in out
+    code, out, _ = run(capsys, ["load", str(EXAMPLES / "corbel_arch_inclined.json"),
+                                "--flow", "non-associative"])
+    assert code == 0
+    assert "verdict    UNSTABLE: the dead load alone has no admissible state\n" in out, out
+    assert "other states may stand" not in out
+
+
 def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, capsys):
     """A block on a base whose one joint has its own friction 0.3: `load --friction 5`
     echoed "at friction f = 5 (78.69 deg)" beside lambda* = 0.3, the override's; the
