@@ -294,8 +294,8 @@ def _flow_lines(res) -> list[str]:
         # each bound on its own safe side: the lower one down, the upper one up
         lo = "-" if b[0] is None else fmt_safe(b[0], 6, False)
         hi = "-" if b[1] is None else fmt_safe(b[1], 6, True)
-        out.append(f"bounds     [{lo}, {hi}]   (frictionless lower bound, associative "
-                   "upper bound)")
+        out.append(f"bounds     [{lo}, {hi}]   (lower: the joints without dilatancy "
+                   "frictionless; upper: associative)")
     if starts:
         out.append("starts     " + starts_text(starts))
     return out
