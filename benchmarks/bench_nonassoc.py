@@ -761,7 +761,8 @@ def large_walls_md(rows: list[dict[str, Any]]) -> list[str]:
             "a range marked * holds states of the maximum-load problem's rows alone, "
             "where no least confined state was reached) and "
             "`friction` at the multiplier found (f back, or a lower f where the answer "
-            "from X0, not unique, carries that multiplier too), CPU seconds in "
+            "from X0, not unique, carries that multiplier too; to its default accuracy, "
+            "2e-3), CPU seconds in "
             "one process on one thread, with the associative `load` of the same run.", "",
             markdown_table(header, body)]
 
