@@ -322,6 +322,13 @@ class Result:
         return ids[self.contacts.pairs[k, 0]], ids[self.contacts.pairs[k, 1]]
 
     @property
+    def solvers(self) -> str:
+        """The back ends that answered the solves, in words ("clarabel and highs": the
+        non-associative limit iteration's LPs are HiGHS's simplex), else ``solver``."""
+        names = list(self.answered_by) or [self.solver]
+        return " and ".join(names)
+
+    @property
     def governing_joints(self) -> list[tuple[str, str]]:
         return [self.joint_name(k) for k in self.governing]
 

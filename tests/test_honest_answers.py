@@ -235,6 +235,33 @@ def test_an_unstable_answer_points_to_other_states_only_where_they_exist(capsys)
     assert "other states may stand" not in out
 
 
+def test_the_simplex_solves_of_the_limit_iteration_are_counted_and_named(capsys):
+    """`load --flow non-associative --verbose` on a 6 x 4 wall: the limit iteration's
+    LPs are HiGHS's warm-started simplex; the solver line said "clarabel, 14 solve(s)"
+    (the Clarabel solves alone), and a 70 x 70 wall's progress line named the last
+    Clarabel problem for the 20 minutes its simplex solves took."""
+    from rigidblocks.methods import Progress
+
+    scene = build("wall", courses=6, blocks_per_course=4, friction=0.6)
+    seen = []
+
+    class Watch(Progress):
+        def __setattr__(self, key, value):
+            if key == "stage":
+                seen.append(value)
+            super().__setattr__(key, value)
+
+    res = rb.max_load_multiplier(scene, flow="non-associative", state=False,
+                                 progress=Watch())
+    assert res.answered_by == ("clarabel", "highs"), res.answered_by
+    assert "maximum load (capped laws) problem (highs)" in seen
+    assoc = rb.max_load_multiplier(scene, state=False)
+    assert assoc.answered_by == ("clarabel",)
+    code, out, _ = run(capsys, ["load", str(EXAMPLES / "wall.json"), "--flow",
+                                "non-associative", "--verbose"])
+    assert code == 0 and "solver     clarabel and highs, " in out
+
+
 def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, capsys):
     """A block on a base whose one joint has its own friction 0.3: `load --friction 5`
     echoed "at friction f = 5 (78.69 deg)" beside lambda* = 0.3, the override's; the

@@ -162,9 +162,11 @@ def carried_text(lam: float, lf: float, tol: float) -> str:
 
 class _HighsLimit:
     """The capped maximum-load LP (2D) in one HiGHS model, warm-started between solves
-    (only the joint rows' right-hand sides change)."""
+    (only the joint rows' right-hand sides change), its solves counted as the convex
+    method's (:meth:`~rigidblocks.methods.convex.ConvexMethod.count_solve`)."""
 
-    def __init__(self, prob: ConicProblem):
+    def __init__(self, prob: ConicProblem, cv: ConvexMethod):
+        self.cv = cv
         ne, ni = prob.n_eq, prob.n_nonneg
         self.ni = ni
         self.li = prob.cols["lambda"].start
@@ -175,7 +177,9 @@ class _HighsLimit:
 
     def maximise(self, b_joints: np.ndarray) -> tuple[str, float, np.ndarray | None]:
         """max lambda with the joint rows' right-hand sides ``b_joints``."""
-        st = self.lp.solve(self.rows, self.free, b_joints)
+        lp = self.lp
+        st = self.cv.count_solve("highs", "maximum load (capped laws)", lambda: (
+            lp.solve(self.rows, self.free, b_joints), lp.iterations))
         if st != OPTIMAL:
             return ("failure" if st == "failure" else st), math.nan, None
         z = self.lp.x
@@ -304,7 +308,7 @@ class CappedLimit:
     def solver(self) -> Any:
         """The maximum-load problem's solver (built at its first use)."""
         if self._solver is None:
-            self._solver = _HighsLimit(self.prob) if self.backend == "highs" else \
+            self._solver = _HighsLimit(self.prob, self.cv) if self.backend == "highs" else \
                 _ConicLimit(self.cv, self.prob)
         return self._solver
 

@@ -191,7 +191,9 @@ class Mechanisms:
         sides; phase 1 just solved there) holds active: non-zero duals of phase 1 and
         of phase 2 at the same caps. None where phase 2 has no answer."""
         face = self.phase1_rows()
-        st = self.phase2.solve(self.rows, np.where(face, bj, -math.inf), bj)
+        lp = self.phase2
+        st = self.cv.count_solve("highs", "least confined state", lambda: (
+            lp.solve(self.rows, np.where(face, bj, -math.inf), bj), lp.iterations))
         if st != OPTIMAL:
             return None
         return face | nonzero(self.phase2.duals[self.ne:], DUAL_ZERO)

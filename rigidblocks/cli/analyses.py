@@ -236,7 +236,7 @@ def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
     if joints:
         lines += _table(res, scene)
     if verbose:
-        lines.append(f"solver     {res.solver}, {res.n_solves} solve(s), "
+        lines.append(f"solver     {res.solvers}, {res.n_solves} solve(s), "
                      f"{res.solve_time:.3g} s")
     return "\n".join(lines)
 

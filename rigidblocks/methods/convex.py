@@ -13,7 +13,7 @@ is checked by the solver policy. The problems come from
 from __future__ import annotations
 
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any
 
@@ -124,6 +124,20 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
             yield
         finally:
             self.timings.add("solve", self.runner.wall_time - w0, time.process_time() - c0)
+
+    def count_solve(self, solver: str, what: str, solve: Callable[[], tuple[Any, int]]
+                    ) -> Any:
+        """``solve()``, a solve by ``solver`` made outside the runner (the
+        non-associative limit iteration's warm-started simplex LPs), returning its
+        answer and its iterations: as the "solve" stage, shown in the progress line, and
+        counted with the runner's solves (time, iterations, the back ends that
+        answered); the answer is returned."""
+        self.progress.stage = f"{what} problem ({solver})"
+        with self._solve_stage():
+            t0 = time.perf_counter()
+            out, iterations = solve()
+            self.runner.record(solver, time.perf_counter() - t0, iterations)
+        return out
 
     def solve(self, problem: Any, what: str, ladder: Ladder | None = None, *,
               tight: bool = False, stall: bool = True, refine: bool = True,

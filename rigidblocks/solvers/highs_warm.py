@@ -49,7 +49,8 @@ class WarmLp:
     :meth:`solve` changes the bounds of some rows and solves from the last basis;
     :attr:`x` and :attr:`duals` read the answer (HiGHS's row duals: d objective / d
     bound). ``solves``, ``cold`` and ``given_up`` count the solves, those done by IPM
-    and the warm solves given up for IPM."""
+    and the warm solves given up for IPM; ``iterations`` those of the last solve
+    (simplex and interior-point, a warm attempt given up included)."""
 
     def __init__(self, c: np.ndarray, A: Any, row_lower: np.ndarray,
                  row_upper: np.ndarray):
@@ -90,6 +91,7 @@ class WarmLp:
         #: warm solves given up
         self.given_up = 0
         self._gave_up = False
+        self.iterations = 0
 
     def solve(self, rows: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> str:
         """Set the bounds of ``rows`` and solve: OPTIMAL, INFEASIBLE, UNBOUNDED or
@@ -100,10 +102,12 @@ class WarmLp:
         self.solves += 1
         skip = self.cold_after_give_up and self._gave_up
         self._gave_up = False
+        self.iterations = 0
         if self.warm and not skip:
             h.setOptionValue("solver", "simplex")
             h.setOptionValue("simplex_iteration_limit", self.limit)
             h.run()
+            self.iterations = self._iterations()
             st = self._status()
             if st != FAILURE:
                 return st
@@ -114,9 +118,14 @@ class WarmLp:
         h.setOptionValue("solver", "ipm")
         h.setOptionValue("simplex_iteration_limit", 2**31 - 1)
         h.run()
+        self.iterations += self._iterations()
         st = self._status()
         self.warm = st == OPTIMAL
         return st
+
+    def _iterations(self) -> int:
+        info = self.h.getInfo()
+        return int(max(info.simplex_iteration_count, 0) + max(info.ipm_iteration_count, 0))
 
     def _status(self) -> str:
         ms = self._hs.HighsModelStatus
@@ -145,7 +154,7 @@ class ColdLp:
         self.lower = np.array(row_lower, dtype=float)
         self.upper = np.array(row_upper, dtype=float)
         self._x = self._y = np.zeros(0)
-        self.solves = self.cold = 0
+        self.solves = self.cold = self.iterations = 0
         #: :class:`WarmLp`'s; unused (every solve is from scratch)
         self.limit = WARM_LIMIT
         self.cold_after_give_up = False
@@ -167,6 +176,7 @@ class ColdLp:
                       bounds=(None, None), method="highs",
                       options={"primal_feasibility_tolerance": FEAS_TOL,
                                "dual_feasibility_tolerance": FEAS_TOL})
+        self.iterations = int(getattr(res, "nit", 0) or 0)
         st = {0: OPTIMAL, 2: INFEASIBLE, 3: UNBOUNDED}.get(res.status, FAILURE)
         if st == OPTIMAL:
             self._x = np.asarray(res.x)

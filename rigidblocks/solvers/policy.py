@@ -432,6 +432,21 @@ class Runner:
             self.progress.iterations = self.iterations
         return res
 
+    def record(self, solver: str, seconds: float, iterations: int) -> None:
+        """Count a solve made outside :meth:`run` by ``solver`` (the non-associative
+        limit iteration's warm-started simplex LPs,
+        :mod:`rigidblocks.solvers.highs_warm`) with the others: the solves, their time
+        and iterations, and the back ends that answered."""
+        if solver not in self.answered_by:
+            self.answered_by.append(solver)
+        self.wall_time += seconds
+        self.solve_time += seconds
+        self.n_solves += 1
+        self.iterations += iterations
+        if self.progress is not None:
+            self.progress.solves = self.n_solves
+            self.progress.iterations = self.iterations
+
     @contextmanager
     def afresh(self) -> Iterator[None]:
         """The solves inside run as a fresh runner's would, without what the solves
