@@ -228,6 +228,10 @@ def test_an_unstable_answer_points_to_other_states_only_where_they_exist(capsys)
     code, out, _ = run(capsys, ["load", str(EXAMPLES / "flat_arch_vertical.json"),
                                 "--flow", "non-associative", "--friction", "0.7"])
     assert code == 0 and "other states may stand" in out
+    # the starts line names both starts (it left X0 out, naming only the other)
+    line = next(ln for ln in out.splitlines() if ln.startswith("starts"))
+    assert line.startswith("starts     from the elastic state X0: unstable (") and \
+        "; from the associative collapse state: lambda = 0.379961" in line, line
     code, out, _ = run(capsys, ["load", str(EXAMPLES / "corbel_arch_inclined.json"),
                                 "--flow", "non-associative"])
     assert code == 0

@@ -790,6 +790,10 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
                     "carry_tol": r.carry_tol}
                    for r in runs)
     if verdict == INADMISSIBLE:
+        if all(r.start != FROM_X0 for r in runs):  # the starts line names it too
+            trials = ({"start": FROM_X0, "load_factor": None, "status": "unstable",
+                       "iterations": 0, "converged": True, "reason": DEAD_LOAD_BREACH},
+                      ) + trials
         na.notes.append(f"{DEAD_LOAD_BREACH}: it does not stand" +
                         (f"; from the associative collapse state: lambda = "
                          f"{fmt_safe(runs[0].lam, 7, False)}"
