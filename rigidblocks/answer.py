@@ -315,7 +315,11 @@ class _Words:
     def asked(self, result: Any) -> str:
         a = getattr(result, "analysis", "")
         lf = getattr(result, "load_factor", None)
-        rule = ", sliding without dilatancy" if without_dilatancy(result) else ""
+        rule = ""
+        if without_dilatancy(result):
+            k = getattr(result, "sliding_joints", None)
+            rule = ", sliding without dilatancy" if k is None else \
+                f", {k} of {result.contacts.n_joints} joints sliding without dilatancy"
         friction = self.joint_friction_text(result)
         if a == "check":
             return f"does it stand under {self.load_case(lf)}, at {friction}{rule}?"

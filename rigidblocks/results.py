@@ -301,6 +301,9 @@ class Result:
     #: non-associative iteration (its trials, each a dict with its status and
     #: iterations; a check's one trial also with the changes of its iterations)
     flow: str = "associative"
+    #: the joints that slide without dilatancy, where some do (None: every joint of a
+    #: non-associative analysis, or an associative one)
+    sliding_joints: int | None = None
     converged: bool | None = None
     history: tuple = field(default=(), repr=False)
     #: the back ends that answered the solves (``solver`` alone where it answered every

@@ -266,6 +266,20 @@ def test_the_simplex_solves_of_the_limit_iteration_are_counted_and_named(capsys)
     assert code == 0 and "solver     clarabel and highs, " in out
 
 
+def test_the_question_says_how_many_joints_slide_without_dilatancy(tmp_path, capsys):
+    """The reference model with self-weight where one joint alone (left-support) has
+    flow non-associative: the question said "sliding without dilatancy" as of every
+    joint."""
+    doc = json.loads((EXAMPLES / "reference_self_weight.json").read_text())
+    doc["joints"] = [{"blocks": ["left", "support"], "flow": "non-associative"}]
+    path = tmp_path / "one.json"
+    path.write_text(json.dumps(doc))
+    code, out, _ = run(capsys, ["load", str(path)])
+    assert code == 0 and ", 1 of 5 joints sliding without dilatancy" in out, out
+    code, out, _ = run(capsys, ["load", str(path), "--flow", "non-associative"])
+    assert code == 0 and ", sliding without dilatancy" in out and " of 5 joints" not in out
+
+
 def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, capsys):
     """A block on a base whose one joint has its own friction 0.3: `load --friction 5`
     echoed "at friction f = 5 (78.69 deg)" beside lambda* = 0.3, the override's; the

@@ -501,7 +501,8 @@ def _fields(na: NonAssociative, analysis: str, status: str, friction: Any,
                 units=(na.scene.length_unit, na.scene.force_unit), notes=tuple(notes),
                 timings=dict(na.timings.wall), cpu_timings=dict(na.timings.cpu),
                 flow=NON_ASSOCIATIVE, converged=converged, history=history,
-                answered_by=na.answered_by, rejected=na.rejected)
+                answered_by=na.answered_by, rejected=na.rejected,
+                sliding_joints=(None if na.marked.all() else int(na.marked.sum())))
 
 
 def _trial(kind: str, value: float, v: Verdict) -> dict[str, Any]:
