@@ -259,7 +259,10 @@ class Mechanisms:
         last = None
         settled = False
         after = f"after {PATH_STEPS - 1} least-squares steps"
+        progress = self.cv.progress
+        run_context = progress.context
         for k in range(1, max_steps + 1):
+            progress.context = f"{run_context}, vertex step {k} of at most {max_steps}"
             bj = self.capped.rhs(N)
             st, _, _ = self.capped.solver.maximise(bj)
             act = self.active(bj) if st == OPTIMAL else None
