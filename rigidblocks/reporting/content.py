@@ -146,7 +146,7 @@ def answer(scene: Scene, result: Any) -> Answer:
     solver = getattr(result, "solver", None)
     if solver:
         t = getattr(result, "solve_time", None)
-        names = " and ".join(getattr(result, "answered_by", None) or [solver])
+        names = getattr(result, "solvers", None) or solver
         notes.append(f"solver {names}, {getattr(result, 'n_solves', '?')} solve(s)"
                      + (f", {float(t):.3g} s" if t is not None else ""))
     timings = getattr(result, "timings", None) or getattr(result, "stage_times", None)
