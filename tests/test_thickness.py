@@ -58,6 +58,24 @@ def test_cli(capsys):
     assert main(["thickness", "arch", "--param", "colour"]) == 2
 
 
+def test_the_printed_minimum_is_one_that_stands(tmp_path, capsys):
+    """11 voussoirs at rtol 1e-7: the minimum 0.1049053 was printed 0.104905 (the
+    nearest), at which a check at infinite friction breaches by 1.4e-5 kN; it is
+    printed rounded up, 0.104906, where the check stands."""
+    assert main(["thickness", "arch", "--voussoirs", "11", "--rtol", "1e-7"]) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines()
+                if ln.startswith("thickness"))
+    printed = line.split("min ")[1].split()[0]
+    assert printed == "0.104906", line
+    for t, verdict in ((printed, "verdict    ADMISSIBLE"), ("0.104905", "NOT ADMISSIBLE")):
+        path = tmp_path / f"a{t}.json"
+        assert main(["example", "arch", "--voussoirs", "11", "--thickness", t,
+                     "-o", str(path)]) == 0
+        capsys.readouterr()
+        assert main(["check", str(path), "--friction", "infinite"]) == 0
+        assert verdict in capsys.readouterr().out
+
+
 def test_cli_help_gives_the_bounds_defaults(capsys):
     """`thickness --help` says what --lo, --hi and --rtol default to (the values
     min_thickness takes), and which bound must stand."""

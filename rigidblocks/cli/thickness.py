@@ -6,6 +6,7 @@ import argparse
 import json
 
 from ..errors import InputError
+from ..results import fmt_safe
 from .options import add_rtol, finite_float, friction_option, relative_tolerance
 
 
@@ -79,11 +80,15 @@ def run(args: argparse.Namespace) -> int:
         print(f"friction   {res.friction}   load factor 0 (dead load only)")
         print(f"method     {method}" + (f" (back end {backend})" if backend else ""))
         print(f"minimised  {shown}: {what}")
+        bracket = f"[{res.lower:.10g}, {res.thickness:.10g}]"
         if res.status == "undecided":
             print("status     UNDECIDED: a check could not decide; the minimum is only "
                   "bracketed")
-        print(f"{shown:<10} min {res.thickness:.6g}   (bracket [{res.lower:.6g}, "
-              f"{res.thickness:.6g}], {res.n_checks} checks)")
+            print(f"{shown:<10} in {bracket}   ({res.n_checks} checks)")
+        else:
+            # the thinnest that stands, rounded up (a check at the printed value stands)
+            print(f"{shown:<10} min {fmt_safe(res.thickness, 6, True)}   (bracket "
+                  f"{bracket}, {res.n_checks} checks)")
         for n in res.notes:
             print(f"note       {n}")
     return 3 if res.status == "undecided" else 0
