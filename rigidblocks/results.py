@@ -405,12 +405,17 @@ def max_demand(st: ForceState | None) -> tuple[float, int] | None:
 
     Forces below ``DEMAND_TOL`` of the largest joint force are round-off of the solver
     (an iterative method stops at a violation of about 1e-9 of it): a joint whose N is
-    that small carries nothing and needs no friction unless its |T| is larger.
+    that small carries nothing and needs no friction unless its |T| is larger. A joint
+    whose forces are both round-off of none (:func:`no_force`, the tables' open joints
+    with N = T = 0) needs none: the wall example's head joint at N = 1e-6 and T = 5e-8
+    of the largest force was said to need 0.047.
     """
     if st is None or not len(st.joint_normal):
         return None
     N, T = st.joint_normal, np.abs(st.joint_shear)
     big = max(float(np.abs(N).max(initial=0.0)), float(T.max(initial=0.0)), 1e-300)
+    none = no_force(np.asarray(N), T)
+    N, T = np.where(none, 0.0, N), np.where(none, 0.0, T)
     loaded = N > DEMAND_TOL * big
     with np.errstate(divide="ignore", invalid="ignore"):
         d = np.where(loaded, T / np.where(loaded, N, 1.0),

@@ -280,6 +280,20 @@ def test_the_question_says_how_many_joints_slide_without_dilatancy(tmp_path, cap
     assert code == 0 and ", sliding without dilatancy" in out and " of 5 joints" not in out
 
 
+def test_the_friction_demand_is_not_read_off_a_joint_the_table_shows_open(capsys):
+    """The wall example at load factor 0 (self-weight alone): the check said "|T|/N
+    reaches 0.04731 (joint c0b0-c0b1)", a head joint its own table shows open with N = T
+    = 0 (forces of 1e-6 of the largest, round-off); under self-weight alone the bed
+    joints carry no shear and the demand is round-off too."""
+    code, out, _ = run(capsys, ["check", str(EXAMPLES / "wall.json"), "--load-factor",
+                                "0", "--joints", "--json"])
+    doc = json.loads(out)
+    fd = doc["friction_demand"]
+    assert fd < 1e-3, fd
+    row = next(r for r in doc["joints"] if r["joint"] == doc["friction_demand_joint"])
+    assert row["state"] != "open", row
+
+
 def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, capsys):
     """A block on a base whose one joint has its own friction 0.3: `load --friction 5`
     echoed "at friction f = 5 (78.69 deg)" beside lambda* = 0.3, the override's; the
