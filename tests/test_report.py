@@ -148,6 +148,17 @@ def test_a_3d_joint_with_one_unloaded_corner_is_not_hinging():
     assert words[modes.index("hinge")] == "hinging"
 
 
+def test_the_report_highlights_the_joints_the_mechanism_moves():
+    """examples/arch.json, `load`: the answer names four hinges (the arch's mechanism);
+    the report's table flagged none of them as governing (only joints at their
+    friction limit were), though the page says governing joints are highlighted."""
+    res = rb.max_load_multiplier(read_scene(EXAMPLES / "arch.json"))
+    t = content.joint_table(res)
+    flagged = {j for j, g in zip(t["joint"], t["governing"], strict=True) if g}
+    hinges = {j for j, s in zip(t["joint"], t["state"], strict=True) if s == "hinge"}
+    assert len(hinges) == 4 and hinges <= flagged, (hinges, flagged)
+
+
 def test_open_joint_in_table_and_picture():
     """Two blocks side by side on a base under their weight: the head joint between them
     carries nothing (open), the bed joints are closed."""

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..answer import answer_block, live_load_text
+from ..answer import MODE_WORDS, answer_block, live_load_text
 from ..plotting.marks import scene_weights
 from ..results import force_state_words
 from ..scene.model import Scene
@@ -168,8 +168,9 @@ def joint_states(result: Any) -> list[str]:
 
 
 def joint_table(result: Any) -> dict[str, Any]:
-    """Per-joint rows (joint, N, T, e, |T|/N, state, governing) as columns of lists,
-    ready for JSON: the rows of the result's own table
+    """Per-joint rows (joint, N, T, e, |T|/N, state, governing: the joints of the
+    result's ``governing``, and after a collapse those its mechanism moves) as columns
+    of lists, ready for JSON: the rows of the result's own table
     (:meth:`~rigidblocks.results.Result.joint_table`). 3D: T is the shear's magnitude
     and e the distance of the centre of pressure from the contact polygon's
     centroid."""
@@ -179,6 +180,12 @@ def joint_table(result: Any) -> dict[str, Any]:
     ids = c.block_ids
     names = [f"{ids[a]}\N{EN DASH}{ids[b]}" for a, b in c.pairs]
     gov = set(int(k) for k in (getattr(result, "governing", ()) or ()))
+    mech = getattr(result, "mechanism", None)
+    if mech is not None and len(mech.modes) == c.n_joints:
+        # a collapse is governed by the joints its mechanism moves (the answer's
+        # "governing" line): hinges too, not only the joints at their friction limit
+        moving = {mode for mode, _ in MODE_WORDS}
+        gov |= {k for k, mode in enumerate(mech.modes) if mode in moving}
     rows = result.joint_table()
     out: dict[str, Any] = {"n": c.n_joints, "joint": names,
                            "state": joint_states(result),
