@@ -451,7 +451,11 @@ class _Words:
         why = []
         if res.tilt_angle_deg is not None:
             a = float(np.linalg.norm(np.asarray(self.scene.live_body_force)[:-1]))
-            why.append(f"tilt angle atan({self.lam}* a) = {res.tilt_angle_deg:.4f}{self.deg}, "
+            # to 4 decimals, down as lambda* (a tilt at the printed angle stands)
+            t = float(res.tilt_angle_deg)
+            tilt = fmt_safe(t, max(1, math.floor(math.log10(t)) + 5), False) if t > 0 \
+                else f"{t:g}"
+            why.append(f"tilt angle atan({self.lam}* a) = {tilt}{self.deg}, "
                        f"a = {a:g} the horizontal body force per unit weight (in g): the "
                        "ground tilted by this angle loads it the same way")
         span = next((h.get("span") for h in (res.history or ())
