@@ -294,6 +294,15 @@ def test_the_friction_demand_is_not_read_off_a_joint_the_table_shows_open(capsys
     assert row["state"] != "open", row
 
 
+def test_a_multiplier_that_is_round_off_of_zero_reads_zero(capsys):
+    """The reference model without friction: its central blocks slide under any live
+    load, lambda* = 0 (the simplex gives 0); the interior-point answer 3.5e-11 was
+    printed "lambda* = 3.51852e-11"."""
+    code, out, _ = run(capsys, ["load", str(EXAMPLES / "reference.json"), "--friction",
+                                "0"])
+    assert code == 0 and "answer     lambda* = 0, " in out, out
+
+
 def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, capsys):
     """A block on a base whose one joint has its own friction 0.3: `load --friction 5`
     echoed "at friction f = 5 (78.69 deg)" beside lambda* = 0.3, the override's; the
