@@ -91,6 +91,19 @@ def test_reference_model_collapses_at_f_p_over_h(sliding, flow):
     assert len(joints(p.first("collapse"))) == 4
 
 
+def test_a_collapse_located_by_a_stall_names_the_load_found_not_admissible():
+    """The reference model at f = 0.6 collapses at f P / H = 1.2 (seed Fig. 4a): the
+    iteration stalls just above it, and the note said only that (a COLLAPSE that read
+    as resting on an undecided trial); it names the first load found not admissible,
+    which brackets the collapse within 1e-6."""
+    scene = rb.read_scene(EXAMPLES / "reference.json")
+    p = load_path(scene)
+    assert p.status == "collapse" and p.collapse_load == pytest.approx(1.2, rel=EV)
+    note = next(n for n in p.notes if n.startswith("the collapse load is located"))
+    hi = float(note.split("so the collapse lies in [")[1].split(", ")[1].split("]")[0])
+    assert 1.2 < hi <= 1.2 * (1 + 1e-6), note
+
+
 def test_coulomb_slide_with_self_weight_collapses_where_it_slides():
     """Reference model with self-weight at f = 0.5. The least-energy state's friction
     demand at lambda = 1 (convex path, `check --friction infinite`: 1/3 at left-top)

@@ -265,8 +265,12 @@ class _Path:
             if u - br.bad > LIMIT_RTOL * u:
                 self.w.notes.append(why)
                 raise _End("undecided", br.bad, (br.bad, u))
+            g = br.good_data
+            above = (f"; the first load found not admissible: {br.good:.9g}, so the "
+                     f"collapse lies in [{br.bad:.9g}, {br.good:.9g}], at its lower end by "
+                     "the stall" if g is not None and g.status == "inadmissible" else "")
             self.w.notes.append(f"the collapse load is located to {LIMIT_RTOL:g} (relative): "
-                                f"admissible at {br.bad:.9g}, undecided {why}")
+                                f"admissible at {br.bad:.9g}, undecided {why}{above}")
             raise self.collapse(br.bad, [], self.solve(br.bad))
         return br.bad, br.good, br.good_data
 
