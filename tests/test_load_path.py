@@ -104,6 +104,18 @@ def test_a_collapse_located_by_a_stall_names_the_load_found_not_admissible():
     assert 1.2 < hi <= 1.2 * (1 + 1e-6), note
 
 
+def test_the_limit_analyses_say_that_they_keep_the_bonds_and_the_path_does_not(capsys):
+    """examples/fig4a_bonded.json: `load` gives 1.2 (the bond's strength counted at
+    every load), the path 1 (the crack at 0.4 loses it); neither said why they differ:
+    `load` now says that it keeps the bond, the path does not say so."""
+    path = str(EXAMPLES / "fig4a_bonded.json")
+    assert main(["load", path]) == 0
+    out = capsys.readouterr().out
+    assert "lambda* = 1.2," in out and "1 joint is bonded" in out
+    assert main(["path", path]) == 0
+    assert "joint is bonded" not in capsys.readouterr().out
+
+
 def test_coulomb_slide_with_self_weight_collapses_where_it_slides():
     """Reference model with self-weight at f = 0.5. The least-energy state's friction
     demand at lambda = 1 (convex path, `check --friction infinite`: 1/3 at left-top)

@@ -147,7 +147,7 @@ class _Path:
 
     def __init__(self, scene: Scene, f: float, flow: str | None, sliding: str,
                  refine: int, tol: float):
-        self.w = open_method(scene, "distortion")
+        self.w = open_method(scene, "distortion", bonds_kept=False)
         self.ds = ds = self.w.solver_
         self.c = c = ds.system.contacts
         self.names = [(c.block_ids[a], c.block_ids[b]) for a, b in c.pairs]

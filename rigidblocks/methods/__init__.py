@@ -103,13 +103,16 @@ def _names(ids: list[str], most: int = 5) -> str:
 def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = None,
                 settings: dict | None = None, pyramid: int | None = None,
                 contact_tol: float | None = None, progress: Progress | None = None,
-                ) -> Method:
+                bonds_kept: bool = True) -> Method:
     """The named method on ``scene``: contacts detected, equilibrium assembled.
 
     Options that the method does not take are refused with an :class:`InputError`:
     ``solver``, ``pyramid`` and ``contact_tol`` are options of the convex path; the
     distortion method takes the settings ``tol``, ``max_iter`` and ``anderson``.
     ``progress`` (a :class:`~.base.Progress`) is kept up to date while it works.
+    ``bonds_kept``: the analysis counts a bonded joint's strength at every load (the
+    limit analyses, noted where the scene has such joints); False for the load path,
+    where a crack loses it.
     """
     name, solver = method_name(method, solver)
     if name == "distortion":
@@ -157,6 +160,14 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
         m.notes.append(f"{_names(adrift)} {'is' if len(adrift) == 1 else 'are'} joined to "
                        f"no support (their joints reach only free blocks): {NOTHING_HOLDS} "
                        "them; check the geometry where they should meet a support")
+    bonded = int(np.count_nonzero((contacts.tensile_strength > 0) | (contacts.cohesion > 0)))
+    if bonds_kept and bonded:
+        m.notes.append(f"{bonded} joint{'s are' if bonded > 1 else ' is'} bonded (tensile "
+                       "strength or cohesion): this analysis counts the bond's strength "
+                       "at every load, as plastic capacity; a bond that cracks on the way "
+                       "up is lost, which can lower the collapse load (`rigidblocks path`, "
+                       "the load path: examples/fig4a_bonded.json collapses there at "
+                       "lambda = 1, against 1.2 by `load`)")
     off = loads_off_their_blocks(scene)
     if off:
         unit = f" {scene.length_unit}" if scene.length_unit else ""
