@@ -255,3 +255,7 @@ def test_a_wall_slides_on_its_foundation_at_f_with_its_head_joints_plastic_from_
     assert first.load_factor == 0.0 and bottom <= joints(first) <= head
     loads = [e.load_factor for e in p.events]
     assert loads == sorted(loads) and all(x == 0.0 or x > 0.1 for x in loads)
+    # and it says why joints that carry nothing are plastic at lambda = 0
+    n = len(joints(first))
+    assert any(f"{n} joint{'s carry' if n > 1 else ' carries'} no force under the dead "
+               "load" in note for note in p.notes), p.notes

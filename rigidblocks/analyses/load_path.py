@@ -212,6 +212,15 @@ class _Path:
         big = float(np.abs(r0.x).max(initial=0.0))
         unloaded = np.abs(self.thresholds(r0)) <= LOADED * big
         joints = [j for j in self.at_threshold(r) if j not in self.seen and unloaded[j]]
+        if joints:
+            n = len(joints)
+            self.w.notes.append(
+                f"{n} joint{'s carry' if n > 1 else ' carries'} no force under the dead load "
+                f"and {'reach their' if n > 1 else 'reaches its'} friction threshold at the "
+                "first load (no normal force, no shear capacity): the event is put at "
+                "lambda = 0" + ("; with Coulomb sliding friction a joint that slides keeps "
+                               "no shear, even once it is compressed" if self.sliding ==
+                               "coulomb" else ""))
         if joints and self.apply(0.0, [], joints):
             self.cascade(0.0, self.solve(0.0), r0, joints)
 
