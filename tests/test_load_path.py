@@ -116,6 +116,17 @@ def test_the_limit_analyses_say_that_they_keep_the_bonds_and_the_path_does_not(c
     assert "joint is bonded" not in capsys.readouterr().out
 
 
+def test_the_table_rounds_as_the_status_line(capsys):
+    """examples/arch.json: the status line printed the collapse force 5.64535 kN (down)
+    and the table's collapse row 5.64536 (the nearest)."""
+    assert main(["path", str(EXAMPLES / "arch.json")]) == 0
+    out = capsys.readouterr().out.splitlines()
+    status = next(ln for ln in out if ln.startswith("status"))
+    row = next(ln for ln in out if " collapse " in ln)
+    force = status.split(" = ")[-1].split()[0]
+    assert row.split()[1] == force, (status, row)
+
+
 def test_coulomb_slide_with_self_weight_collapses_where_it_slides():
     """Reference model with self-weight at f = 0.5. The least-energy state's friction
     demand at lambda = 1 (convex path, `check --friction infinite`: 1/3 at left-top)

@@ -63,8 +63,9 @@ def _lines(scene, res, args: argparse.Namespace) -> list[str]:
                      "joints (blocks a-b)")
     for e in res.events:
         joints = ", ".join(f"{a}-{b}" for a, b in e.joints) or "-"
-        lines.append(f"  {e.load_factor:14.9g}  {e.load_factor * live:12.6g}  "
-                     f"{e.kind:8s}  {joints}")
+        # down, as the status line's collapse: an event happens at or above its load
+        lines.append(f"  {fmt_safe(e.load_factor, 9, False):>14}  "
+                     f"{fmt_safe(e.load_factor * live, 6, False):>12}  {e.kind:8s}  {joints}")
     if args.verbose:
         lines.append(f"work       {res.n_solves} runs, {res.iterations} iterations, "
                      f"{res.solve_time:.3g} s")
