@@ -259,7 +259,8 @@ def test_analysis_layers_are_skipped_and_other_layers_can_be_chosen(tmp_path):
 
 
 def test_import_without_unit_weight_warns_and_every_analysis_says_so(tmp_path, capsys):
-    """A drawing imported without a unit weight has weightless blocks: import-dxf warns,
+    """A drawing imported without a unit weight has weightless blocks: import-dxf warns
+    (and where no friction is given, that its joints do not slide),
     and an analysis of the scene says in its notes that the blocks weigh nothing (a
     weightless check is trivially admissible and must not read as a verdict on the
     structure's own weight)."""
@@ -268,6 +269,12 @@ def test_import_without_unit_weight_warns_and_every_analysis_says_so(tmp_path, c
     assert main(["import-dxf", str(path), "-o", str(out)]) == 0
     err = capsys.readouterr().err
     assert "warning" in err and "without a unit weight" in err
+    # nor a friction: infinite (no sliding) unless an analysis gives one; it said nothing
+    assert "imported without a friction: the joints have infinite friction" in err
+    assert main(["import-dxf", str(path), "-o", str(out), "--friction", "0.6"]) == 0
+    assert "without a friction" not in capsys.readouterr().err
+    assert main(["import-dxf", str(path), "-o", str(out)]) == 0
+    capsys.readouterr()
     sc = read_scene(out)
     assert sc.unit_weight is None
     r = rb.check(sc, load_factor=0)

@@ -90,10 +90,12 @@ def run(args: argparse.Namespace) -> int:
                               layers=_layers(args.layers))
         write_scene(scene, args.output)
         print(rep.summary())
-        if scene.unit_weight is None:
-            from ..io.dxf import NO_UNIT_WEIGHT_NOTE
+        from ..io.dxf import NO_FRICTION_NOTE, NO_UNIT_WEIGHT_NOTE
 
+        if scene.unit_weight is None:
             print(f"rigidblocks: warning: {NO_UNIT_WEIGHT_NOTE}", file=sys.stderr)
+        if scene.friction is None:
+            print(f"rigidblocks: warning: {NO_FRICTION_NOTE}", file=sys.stderr)
         print(f"wrote {args.output}")
         return 0
     from .analyses import EXIT, question
