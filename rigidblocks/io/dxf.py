@@ -70,10 +70,11 @@ ANALYSIS_LAYERS = (LAYERS["thrust"], LAYERS["forces"], LAYERS["text"])
 APPID = "RIGIDBLOCKS"
 META_KEY = "RIGIDBLOCKS_SCENE"
 _CHUNK = 240  # characters per string tag
-#: the note a scene read without a unit weight carries
+#: import-dxf's warning where no friction is given
 NO_FRICTION_NOTE = ("imported without a friction: the joints have infinite friction (no "
                     "sliding) unless an analysis gives one (give it, e.g. import-dxf "
                     "--friction 0.6)")
+#: the note a scene read without a unit weight carries
 NO_UNIT_WEIGHT_NOTE = ("imported from a drawing without a unit weight: the blocks weigh "
                        "nothing, only the loads act (give the unit weight, e.g. "
                        "import-dxf --unit-weight)")

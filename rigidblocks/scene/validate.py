@@ -224,9 +224,6 @@ def check_overlaps_2d(scene: Scene) -> None:
                          f"block {a!r}")
 
 
-__all__ = ["validate_scene", "check_overlaps_2d", "block_polygons", "scene_size"]
-
-
 #: a load's point further than this fraction of its block's size from the block is
 #: off the block (beyond round-off of a point given on a face)
 OFF_BLOCK_TOL = 1e-6
@@ -237,12 +234,11 @@ def loads_off_their_blocks(scene: Scene) -> list[tuple[int, str, float]]:
     ``loads``, from 0 as the errors count them, the block, the point's distance from it;
     in 3D :func:`~rigidblocks.scene.polyhedra.distance_from`). A load without a point
     acts at its block's centroid and is never off it."""
-    index = {b.id: b for b in scene.blocks}
     found = []
     for k, ld in enumerate(scene.loads):
-        block = index.get(ld.block)
-        if ld.point is None or block is None:
+        if ld.point is None or ld.block not in scene.index:
             continue
+        block = scene.block(ld.block)
         pts = np.asarray(block.points, dtype=float)
         p = np.asarray(ld.point, dtype=float)
         size = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
@@ -257,3 +253,8 @@ def loads_off_their_blocks(scene: Scene) -> list[tuple[int, str, float]]:
         if dist > OFF_BLOCK_TOL * size:
             found.append((k, block.id, dist))
     return found
+
+
+__all__ = ["validate_scene", "check_overlaps_2d", "block_polygons", "loads_off_their_blocks",
+           "scene_size"]
+
