@@ -442,9 +442,6 @@ class _Words:
                         "stand: `rigidblocks check` without --flow)", "", "", [])
             return ("UNSTABLE: the dead load alone has no admissible state", "", "", [])
         lm = float(res.load_multiplier)
-        acc = getattr(res, "accuracy", None)
-        if 0 < lm <= ZERO_MULTIPLIER and acc is not None and acc <= ZERO_MULTIPLIER:
-            lm = 0.0  # round-off of 0 (the reference model without friction: 3.5e-11)
         size = self.live_size
         short = float(fmt_safe(lm, 4, False))
         number = (f"{self.lam}* = {fmt_safe(lm, 6, False)}, that is "
@@ -496,11 +493,6 @@ class _Words:
                 f"--load-factor 0 asks for the {self.dead_word()} alone, `rigidblocks load {src}"
                 f"{flow}` for the collapse multiplier"]
 
-
-#: a collapse multiplier this small, known to as little, is printed 0: the solvers'
-#: round-off of a structure that collapses under any live load (the reference model
-#: without friction: 3.5e-11, accuracy 1.2e-10)
-ZERO_MULTIPLIER = 1e-9
 
 #: a mechanism's joint modes, in the words of the answer (exclusive groups)
 MODE_WORDS = (("hinge", "hinging"), ("slide", "sliding"),

@@ -301,6 +301,10 @@ def test_a_multiplier_that_is_round_off_of_zero_reads_zero(capsys):
     code, out, _ = run(capsys, ["load", str(EXAMPLES / "reference.json"), "--friction",
                                 "0"])
     assert code == 0 and "answer     lambda* = 0, " in out, out
+    # and the JSON says the same number (it kept 3.5e-11 where the text said 0)
+    code, out, _ = run(capsys, ["load", str(EXAMPLES / "reference.json"), "--friction",
+                                "0", "--json"])
+    assert code == 0 and json.loads(out)["load_multiplier"] == 0.0, out
 
 
 def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, capsys):

@@ -109,6 +109,18 @@ def _bracket(lim: Limit) -> tuple[float, float] | None:
     return (float(lim.lower), float(lim.upper))
 
 
+#: a collapse multiplier this small, known to as little, is 0: the solvers' round-off
+#: of a structure that collapses under any live load (the reference model without
+#: friction: 3.5e-11 from Clarabel, accuracy 1.2e-10; the simplex gives 0)
+ZERO_MULTIPLIER = 1e-9
+
+
+def _round_off_of_zero(lam: float, accuracy: float | None) -> float:
+    small = 0 < lam <= ZERO_MULTIPLIER and accuracy is not None \
+        and accuracy <= ZERO_MULTIPLIER
+    return 0.0 if small else lam
+
+
 def tilt_angle_deg(scene: Scene, load_multiplier: float | None) -> float | None:
     """atan(lambda* |a|) in degrees where the live load is a horizontal body force a
     (in g) and nothing else: the tilt of the ground that loads the structure the same
@@ -300,8 +312,10 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         # a collapse state reached by the iteration has no bracket: no accuracy was
         # asked of it (bisection on the distortion method's verdicts has one)
         res = _reached(res, na_rtol if res.bracket else None)
-        return replace(res, tilt_angle_deg=tilt_angle_deg(scene, res.load_multiplier)
-                       if res.status == "collapse" else None)
+        if res.status != "collapse":
+            return replace(res, tilt_angle_deg=None)
+        lam = _round_off_of_zero(float(res.load_multiplier), res.accuracy)
+        return replace(res, load_multiplier=lam, tilt_angle_deg=tilt_angle_deg(scene, lam))
     rtol = requested_rtol(rtol, LOAD_RTOL)
     f = friction_value(scene.effective_friction if friction is None else friction)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
@@ -325,6 +339,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         if lim.mechanism is None:
             gov = gov or m.governing_load(f, at)
     st = m.state(f, lam, at, limit=True) if (state and at is not None) else None
+    lam = _round_off_of_zero(lam, lim.accuracy)  # (its state is the solver's)
     return LoadResult(**_fields(m, "max_load_multiplier", "collapse", f, lam), state=st,
                       governing=gov, load_multiplier=lam, mechanism=lim.mechanism,
                       bracket=_bracket(lim) if lim.lower != lim.upper else None,
