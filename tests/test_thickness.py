@@ -48,6 +48,27 @@ def test_bad_brackets():
         min_thickness("arch", lo=0.2, hi=0.1)
 
 
+def test_an_upper_bound_that_slides_asks_for_friction_not_thickness(tmp_path, capsys):
+    """The semicircular arch at f = 0.3 does not stand at t/R = 1 either: its springings
+    slide. The search said "raise the upper bound"; it says that the arch stands there
+    without sliding and needs f >= 0.309, which a check of the arch so built confirms
+    (it stands at 0.309, not at 0.3089)."""
+    assert main(["thickness", "arch", "--friction", "0.3"]) == 2
+    err = capsys.readouterr().err
+    assert "needs f >= 0.309 " in err and "give a larger f (--friction)" in err, err
+    assert "raise the upper bound" not in err
+    path = tmp_path / "arch.json"
+    assert main(["example", "arch", "--thickness", "1", "--friction", "0.3", "-o",
+                 str(path)]) == 0
+    capsys.readouterr()
+    for f, verdict in (("0.309", "ADMISSIBLE"), ("0.3089", "NOT ADMISSIBLE")):
+        main(["check", str(path), "--friction", f])
+        assert f"verdict    {verdict}:" in capsys.readouterr().out
+    # where the bound is too thin, rotation governs: the bound is what to change
+    with pytest.raises(InputError, match="raise the upper bound"):
+        min_thickness("arch", voussoirs=20, lo=0.01, hi=0.05, friction=0.6)
+
+
 def test_cli(capsys):
     assert main(["thickness", "arch", "--voussoirs", "24", "--rtol", "1e-3", "--json"]) == 0
     out = capsys.readouterr().out

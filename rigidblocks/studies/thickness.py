@@ -14,13 +14,15 @@ Ochsendorf, PhD thesis, Cambridge 2002).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..analyses import bisect, check
+from ..analyses import bisect, check, min_friction
 from ..errors import InputError
-from ..scene.model import Scene, friction_label
+from ..results import fmt_safe
+from ..scene.model import Scene, friction_label, friction_value
 
 
 @dataclass(frozen=True)
@@ -107,8 +109,8 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
                          f"{param}={hi:g} ({err}); give a smaller upper bound (hi, --hi)"
                          ) from None
     if at_hi is not True:
-        raise InputError(f"min_thickness: {name} is not admissible at the upper bound "
-                         f"{param}={hi:g}; raise the upper bound (hi, --hi)")
+        raise InputError(_not_at_hi(gen(**params, **{param: hi}), name, f"{param}={hi:g}",
+                                    at_hi, friction, method))
     at_lo, status = admissible(lo)
     if at_lo is not False:
         what = "already admissible" if at_lo else f"{status}, not certified inadmissible,"
@@ -121,6 +123,29 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         return ThicknessResult(name, param, br.good, br.bad, n, friction, dict(params),
                                status="undecided", notes=(note,))
     return ThicknessResult(name, param, br.good, br.bad, n, friction, dict(params))
+
+
+def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction: Any,
+               method: str) -> str:
+    """Why the search cannot start at its upper bound ``where``, and what to change: the
+    bound where the structure falls by rotation, the friction where it stands there
+    without sliding (a thicker ring does not lessen the friction its springings need:
+    the semicircular arch at f = 0.3)."""
+    head = f"min_thickness: {name} is not admissible at the upper bound {where}"
+    if at_hi is None:
+        return (f"min_thickness: {name} could not be decided at the upper bound {where}; "
+                "give another upper bound (hi, --hi)")
+    if friction_value(friction) != math.inf:
+        stands = check(scene, friction="infinite", load_factor=0.0, method=method,
+                       state=False).status == "admissible"
+        if stands:
+            need = min_friction(scene, load_factor=0.0, state=False)
+            f = f"f >= {fmt_safe(need.friction_factor, 4, True)}" \
+                if need.status == "stable" else "a larger f"
+            return (f"{head} with f = {friction_label(friction)}: it stands there "
+                    f"without sliding and needs {f} (sliding governs, and a thicker one "
+                    "may need as much); give a larger f (--friction)")
+    return f"{head}; raise the upper bound (hi, --hi)"
 
 
 __all__ = ["ThicknessResult", "min_thickness"]
