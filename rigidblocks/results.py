@@ -338,7 +338,10 @@ class Result:
     def joint_table(self) -> list[dict[str, Any]]:
         """One row per joint: its blocks, N, T, eccentricity e and |T|/N (None where the
         joint is open), its ``state`` in the force state (:func:`force_state_words`)
-        and its ``mode`` in the mechanism, if any; empty without a state. An open
+        and its ``mode`` in the mechanism, if any, and its law in the analysis: its
+        ``friction`` (its override, else the analysis's: :func:`joint_frictions`; inf
+        where infinite), ``cohesion`` and ``tensile_strength`` (stresses); empty
+        without a state. An open
         joint's forces that are round-off of none (:func:`no_force`: N = -6e-17 N, T =
         1.9e-9 N on the reference model's vertical joint) are 0."""
         st = self.state
@@ -349,6 +352,7 @@ class Result:
         states = force_state_words(self)
         none = no_force(np.asarray(st.joint_normal), np.asarray(st.joint_shear))
         ecc = eccentricities(c, st)
+        fj = joint_frictions(self)
         rows = []
         for k in range(c.n_joints):
             a, b = self.joint_name(k)
@@ -360,7 +364,9 @@ class Result:
                          "eccentricity": e if math.isfinite(e) and not open_ else None,
                          "demand": None if open_ else float(st.demand[k]),
                          "state": states[k],
-                         "mode": mech.modes[k] if mech is not None else None})
+                         "mode": mech.modes[k] if mech is not None else None,
+                         "friction": float(fj[k]), "cohesion": float(c.cohesion[k]),
+                         "tensile_strength": float(c.tensile_strength[k])})
         return rows
 
     def _common(self) -> dict[str, Any]:

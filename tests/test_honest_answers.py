@@ -627,3 +627,40 @@ def test_joint_table_round_off_of_an_interior_point_state_is_no_force():
     assert all(abs(r["T"]) <= 0.6 * r["N"] + 1e-6 * big for r in rows)
     assert any(r["state"] == "open" for r in rows)
     assert all(r["eccentricity"] is not None for r in rows if r["state"] != "open")
+
+
+def test_the_joint_table_shows_each_joints_own_law(tmp_path, capsys):
+    """Two blocks stacked on a base, the lower joint with its own friction 0.3, the upper
+    bonded (cohesion 5 kN/m^2): the table showed N, T and |T|/N against thresholds it
+    did not show. Each joint's f, c and ft are now in the JSON and CSV rows, and in the
+    text table where the joints differ; at f* the override keeps its own f."""
+    path = write(tmp_path, make_scene([
+        {"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+        {"id": "A", "vertices": rect(0, 0, 1, 1)},
+        {"id": "B", "vertices": rect(0, 1, 1, 1)},
+    ], unit_weight=20.0, friction=0.6, live_body_force=[0.1, 0],
+        joints=[{"blocks": ["A", "base"], "friction": 0.3},
+                {"blocks": ["A", "B"], "cohesion": 5.0}]))
+    code, out, _ = run(capsys, ["check", path, "--joints"])
+    lines = out.splitlines()
+    head = next(ln for ln in lines if ln.startswith("joint "))
+    assert " f " in f" {head} " and "c [force/length^2]" in head and "ft" not in head, head
+    row = {ln.split()[0]: ln.split() for ln in lines if ln.startswith(("A-", "B-", "base-"))}
+    lower = next(v for k, v in row.items() if "base" in k)
+    upper = next(v for k, v in row.items() if "base" not in k)
+    assert lower[5:7] == ["0.3", "0"] and upper[5:7] == ["0.6", "5"], (lower, upper)
+    # at f* the joints without an override have f*, the override keeps its own
+    _, doc, _ = run_json(capsys, ["friction", path, "--joints", "--json"])
+    fstar = doc["friction_factor"]
+    got = {tuple(sorted(r["joint"])): (r["friction"], r["cohesion"]) for r in doc["joints"]}
+    assert got[("A", "base")] == (0.3, 0.0) and got[("A", "B")] == (fstar, 5.0), got
+    # infinite friction reads "infinite" in JSON, and every column is in the CSV
+    _, doc, _ = run_json(capsys, ["check", path, "--friction", "infinite", "--joints",
+                                  "--json"])
+    assert {r["friction"] for r in doc["joints"]} == {"infinite", 0.3}
+    csv_path = tmp_path / "j.csv"
+    assert main(["check", path, "--joints", str(csv_path)]) == 0
+    with open(csv_path) as fh:
+        rows = list(csv.DictReader(fh))
+    assert {r["cohesion"] for r in rows} == {"0.0", "5.0"} and \
+        {r["tensile_strength"] for r in rows} == {"0.0"}

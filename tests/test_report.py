@@ -248,6 +248,26 @@ def test_2d_report_in_chromium(tmp_path):
 
 
 @needs_chromium
+def test_the_report_table_shows_the_joints_own_laws(tmp_path):
+    """Fig. 4a with its bonded vertical joint: the report's table has the columns of
+    the joints' cohesion and tensile strength (they differ), not their friction (the
+    same f = 0.5 everywhere), and the bonded joint's row shows 400 in both."""
+    html = tmp_path / "fig4a.html"
+    rb.report(EXAMPLES / "fig4a_bonded.json", analysis="check", path=html)
+    st = page_state(html)
+    assert st.errors == () and int(st.data["table-rows"]) == 5
+    heads = re.findall(r"""<th data-key=["'](\w+)["']""", st.dom)
+    assert "cohesion" in heads and "tensile_strength" in heads and "friction" not in heads
+    # a title with an apostrophe is whole (it ended the attribute: "the joint")
+    assert 'title="the joint\'s cohesion (stress)"' in st.dom
+    assert 'title="shear along the joint\'s tangent"' in st.dom
+    row = next(r for r in re.findall(r"<tr[^>]*>(.*?)</tr>", st.dom, flags=re.S)
+               if "left\N{EN DASH}right" in r)
+    cells = re.findall(r"<td[^>]*>(.*?)</td>", row)
+    assert cells[heads.index("cohesion")] == cells[heads.index("tensile_strength")] == "400"
+
+
+@needs_chromium
 def test_3d_report_in_chromium(tmp_path):
     html = tmp_path / "stack.html"
     rb.report(EXAMPLES / "box_stack_3d.json", analysis="load", path=html)

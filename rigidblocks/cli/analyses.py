@@ -199,10 +199,11 @@ def _write_csv(res: Any, path: str) -> None:
         with open(path, "w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(["block_a", "block_b", "N", "T", "eccentricity", "demand", "state",
-                        "mode"])
+                        "mode", "friction", "cohesion", "tensile_strength"])
             for r in rows:
                 w.writerow([*r["joint"], r["N"], r["T"], r["eccentricity"], r["demand"],
-                            r["state"], r["mode"]])
+                            r["state"], r["mode"], r["friction"], r["cohesion"],
+                            r["tensile_strength"]])
     except OSError as err:
         raise InputError(f"cannot write: {err}", path) from None
 
@@ -261,13 +262,22 @@ def _table(res, scene) -> list[str]:
     if not rows:
         return ["joints     no force state (the analysis found no admissible state)"]
     fu, lu = f"[{scene.force_unit or 'force'}]", f"[{scene.length_unit or 'length'}]"
+    # the joints' own laws, where they are not all the same: their f, c and ft
+    su = f"[{scene.force_unit or 'force'}/{scene.length_unit or 'length'}^2]"
+    law = [(key, head, fmt) for key, head, fmt in
+           (("friction", "f", "{:.4g}"), ("cohesion", "c " + su, "{:.4g}"),
+            ("tensile_strength", "ft " + su, "{:.4g}"))
+           if len({r[key] for r in rows}) > 1]
     out = [f"{'joint':<24} {'N ' + fu:>12} {'T ' + fu:>12} {'e ' + lu:>10} {'|T|/N':>8}  "
-           f"{'state':<26} mode"]
+           + "".join(f"{head:>{max(len(head), 8)}}  " for _, head, _ in law)
+           + f"{'state':<26} mode"]
     for r in rows:
         e = "-" if r["eccentricity"] is None else f"{r['eccentricity']:.4g}"
         d = "-" if r["demand"] is None else f"{r['demand']:.4g}"
         name = "-".join(r["joint"])
-        out.append(f"{name:<24} {r['N']:12.5g} {r['T']:12.5g} {e:>10} {d:>8}  "
+        own = "".join(f"{fmt.format(r[key]):>{max(len(head), 8)}}  "
+                      for key, head, fmt in law)
+        out.append(f"{name:<24} {r['N']:12.5g} {r['T']:12.5g} {e:>10} {d:>8}  {own}"
                    f"{r['state']:<26} {r['mode'] or '-'}")
     return out
 

@@ -36,11 +36,14 @@ def find_chromium() -> str | None:
 @dataclass(frozen=True)
 class PageState:
     """What the page said about itself: ``errors`` from its error hook and the
-    ``data-*`` attributes of its <html> element (viewer-ready, timings, ...)."""
+    ``data-*`` attributes of its <html> element (viewer-ready, timings, ...), and
+    the DOM."""
 
     errors: tuple[str, ...]
     data: dict[str, str] = field(default_factory=dict)
     seconds: float = 0.0
+    #: the document as the scripts left it
+    dom: str = ""
 
 
 def _run(exe: str, args: list[str], url: str, timeout: float) -> tuple[str, str, float]:
@@ -101,7 +104,7 @@ def page_state(html: str | Path, fragment: str = "", size: tuple[int, int] = (12
     errors = tuple(x for x in (box.group(1).splitlines() if box else []) if x.strip())
     if not m:
         errors += (f"no document was dumped: {err[-2000:]}",)
-    return PageState(errors, data, secs)
+    return PageState(errors, data, secs, dom)
 
 
 def pixel_spread(png: str | Path) -> float:

@@ -169,7 +169,8 @@ def joint_states(result: Any) -> list[str]:
 
 def joint_table(result: Any) -> dict[str, Any]:
     """Per-joint rows (joint, N, T, e, |T|/N, state, governing: the joints of the
-    result's ``governing``, and after a collapse those its mechanism moves) as columns
+    result's ``governing``, and after a collapse those its mechanism moves; the joints'
+    friction, cohesion and tensile strength where they differ) as columns
     of lists, ready for JSON: the rows of the result's own table
     (:meth:`~rigidblocks.results.Result.joint_table`). 3D: T is the shear's magnitude
     and e the distance of the centre of pressure from the contact polygon's
@@ -199,6 +200,9 @@ def joint_table(result: Any) -> dict[str, Any]:
         return [None if x is None or math.isnan(x) else
                 ("inf" if math.isinf(x) else float(f"{x:.6g}")) for x in vals]
 
+    # the joints' own laws, where they are not all the same (the terminal's table too)
+    out.update({key: col(key) for key in ("friction", "cohesion", "tensile_strength")
+                if len({r[key] for r in rows}) > 1})
     out.update({"N": col("N"), "T": col("T"), "e": col("eccentricity"),
                 "demand": col("demand"),
                 "half_length": [float(f"{x:.6g}") for x in

@@ -20,6 +20,14 @@
       title: T.dimension === 3 ? "distance of the centre of pressure from the joint's centroid"
         : "eccentricity: the resultant's position from the joint's midpoint" });
     cols.push({ key: "demand", label: "|T|/N", num: true, title: "friction demand" });
+    // the joints' own laws, where they differ
+    const su = units.force && units.length ? " [" + units.force + "/" + units.length + "\u00b2]" : "";
+    if (T.friction) cols.push({ key: "friction", label: "f", num: true,
+      title: "the joint's friction coefficient in this analysis" });
+    if (T.cohesion) cols.push({ key: "cohesion", label: "c" + su, num: true,
+      title: "the joint's cohesion (stress)" });
+    if (T.tensile_strength) cols.push({ key: "tensile_strength", label: "ft" + su, num: true,
+      title: "the joint's tensile strength (stress)" });
   }
   cols.push({ key: "state", label: "state", num: false,
     title: "open, closed, hinging, sliding" });
@@ -74,7 +82,7 @@
       "</div><table class='rb-joints'><thead><tr>";
     for (const c of cols) {
       const arrow = sortKey === c.key ? (dir > 0 ? " \u25b2" : " \u25bc") : "";
-      h += "<th data-key='" + c.key + "'" + (c.title ? " title='" + c.title + "'" : "") +
+      h += "<th data-key='" + c.key + "'" + (c.title ? " title='" + esc(c.title) + "'" : "") +
         " aria-sort='" + (sortKey === c.key ? (dir > 0 ? "ascending" : "descending") : "none") +
         "'>" + c.label + arrow + "</th>";
     }
