@@ -153,6 +153,20 @@ def test_usage_error_names_the_program_once(capsys):
     assert err == "rigidblocks: error: load: unrecognized arguments: --frobnicate\n", err
 
 
+def test_a_csv_file_away_from_joints_says_where_it_goes(tmp_path, capsys):
+    """`check SCENE --joints --friction 0.5 r.csv`: --joints took no file (the next
+    word was an option), and r.csv was only "unrecognized"; the error says that the file
+    follows --joints, and nothing is written."""
+    out = tmp_path / "r.csv"
+    arch = str(EXAMPLES / "arch.json")
+    assert main(["check", arch, "--joints", "--friction", "0.5", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.endswith("(the CSV file of --joints follows it: --joints FILE.csv)\n"), err
+    assert not out.exists()
+    assert main(["check", arch, "--joints", str(out), "--friction", "0.5"]) == 0
+    assert out.exists()
+
+
 def test_every_float_option_of_every_command_is_finite():
     parser = build_parser()
     sub = next(a for a in parser._actions if a.dest == "command")

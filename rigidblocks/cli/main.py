@@ -91,8 +91,13 @@ def _main(argv: Sequence[str] | None) -> int:
         args, extra = parser.parse_known_args(words)
         if extra:  # named with the command it was given to
             command = getattr(args, "command", None)
+            hint = ""
+            if getattr(args, "joints", None) == "-" and \
+                    any(w.lower().endswith(".csv") for w in extra):
+                # `--joints --friction 0.5 r.csv`: the file given away from its option
+                hint = " (the CSV file of --joints follows it: --joints FILE.csv)"
             raise InputError(f"{command + ': ' if command else ''}unrecognized "
-                             f"arguments: {' '.join(extra)}")
+                             f"arguments: {' '.join(extra)}{hint}")
         if not getattr(args, "_run", None):
             parser.print_help()
             return 2
