@@ -302,6 +302,41 @@ def test_a_walk_that_finds_no_state_goes_on_by_least_squares(monkeypatch):
     assert run.iterations == len(run.history) + 1 + 1  # its steps, the walk's second
 
 
+def test_a_walk_that_wanders_ends_before_unsettled_walk(monkeypatch):
+    """The 10 x 10 wall at f = 0.956 from X0: each vertex step of its walk changes 19 to
+    50 of its 254 to 278 rows (6.8 % and more), and the walk never settles; it ends at
+    WANDER_STEPS (15) instead of UNSETTLED_WALK (20), and the run reaches the same
+    collapse state as with the 20-step walk (0.5428571, one state), in 5 limit solves
+    fewer."""
+    from rigidblocks.analyses import na_mechanism
+
+    f = 0.956
+    scene = build("wall", courses=10, blocks_per_course=10, friction=f)
+    na, cv = nonassociative._open(scene, "clarabel", NA)
+    got = {}
+    for steps in (na_mechanism.WANDER_STEPS, 10**9):
+        monkeypatch.setattr(na_mechanism, "WANDER_STEPS", steps)
+        capped = CappedLimit(cv, na.marked, f)
+        mech = Mechanisms(capped)
+        walked: list = []
+        monkeypatch.setattr(mech, "walk", lambda N, walk=mech.walk, walked=walked:
+                            walked.append(walk(N)) or walked[-1])
+        run = capped.run(x0_normals(na), "X0", settle=mech.settler())
+        assert run.converged and walked[0][0] is None
+        got[steps] = run, walked[0][2]
+    (short, why), (long, why_long) = got[15], got[10**9]
+    import re
+
+    share = re.fullmatch(r"the mechanism did not settle within 15 vertex steps, each step "
+                         r"changing at least ([0-9.]+)% of its rows after 4 least-squares "
+                         r"steps", why)
+    assert share and 6.0 < float(share.group(1)) < 7.0, why
+    assert why_long.startswith("the mechanism did not settle within 20 vertex steps")
+    assert short.lam == pytest.approx(long.lam, rel=1e-12)
+    assert long.lam == pytest.approx(0.5428571, abs=1e-7)
+    assert short.iterations == long.iterations - 5
+
+
 def test_states_of_the_first_phase_rows_alone_end_a_run_that_finds_none_else():
     """The 10 x 10 wall at f = 0.956: from X0 the run reaches a mechanism with one
     collapse state (0.5428571) in least-squares steps after a walk that found none (its

@@ -81,6 +81,18 @@ WALK_STEPS = 50
 #: wander (the 32 x 32 wall at f = 0.8 from X0: 137 to 405 of its 2,900 rows change at
 #: every step of a 50-step walk, where 57 settle; each step two warm LPs, 2.5 s)
 UNSETTLED_WALK = 20
+#: ... and, sooner, after WANDER_STEPS vertex steps none of which changed fewer than
+#: WANDER of the rows. The walks that settled had a step below 6 % of them by their
+#: 14th: the walls from 8 x 5 to 32 x 32 at f = 0.6, 0.8 and 0.956, both starts, and the
+#: 20 x 15 wall at f = 0.8 walking from the associative state itself (no least-squares
+#: step first: 7.6 % at its 10th step, 3.1 % at its 13th, settled at its 14th); those
+#: that never did had none below 6.8 % (the 10 x 10 wall at f = 0.956 from X0; the
+#: 32 x 32 wall at f = 0.8: 7.0 % and 8.8 % by the 15th step from its two starts, each
+#: step 1.5 to 2 s). The run goes on by least-squares steps either way, but the
+#: warm-started solvers' bases differ after fewer vertex steps, and with them the
+#: vertices chosen later
+WANDER_STEPS = 15
+WANDER = 0.06
 #: the nearest state within this (relative) of the mechanism's lowest or highest
 #: multiplier is that state: the iterate is itself that far from a fixed point when the
 #: mechanism settles (the reference model: 1.199994 and 2.399991, the vertices 1.2 and
@@ -131,6 +143,8 @@ class Mechanisms:
     walk_past_failures = True
     #: the relative tolerance of :meth:`check`
     fixed_tol = FIXED_TOL
+    #: does a walk that wanders end after WANDER_STEPS (:meth:`walk`)?
+    wander = True
 
     def __init__(self, capped: CappedLimit):
         import scipy.sparse as sp
@@ -254,10 +268,12 @@ class Mechanisms:
         :meth:`settler`, the first step at ``N`` itself (the limit solve the run made
         there); no state, and why, where none is found within ``max_steps``
         (``WALK_STEPS``), or where the mechanism has not once settled within
-        ``UNSETTLED_WALK``."""
+        ``UNSETTLED_WALK``, or within ``WANDER_STEPS`` none of whose steps changed fewer
+        than ``WANDER`` of its rows."""
         max_steps = max_steps or WALK_STEPS
         last = None
         settled = False
+        least = math.inf  # the smallest share of the rows a step changed
         after = f"after {PATH_STEPS - 1} least-squares steps"
         progress = self.cv.progress
         run_context = progress.context
@@ -270,7 +286,8 @@ class Mechanisms:
                 why = f"the limit problem gave no answer ({st})" if st != OPTIMAL else \
                     "the least confined state gave no answer"
                 return None, None, f"{why} at vertex step {k} {after}", k - 1
-            if _settled(self.key(act), last):
+            key = self.key(act)
+            if _settled(key, last):
                 settled = True
                 if not self.walk_past_failures and self.tried(act):
                     return None, None, (f"the mechanism settled at vertex step {k} {after} "
@@ -279,10 +296,15 @@ class Mechanisms:
                 if got is not None:
                     return (*got, f" ({k} of them by steps to the least confined state "
                                   f"{after})", k - 1)
-            if k == UNSETTLED_WALK and not settled and k < max_steps:
+            if last is not None:
+                least = min(least, int((key ^ last).sum()) / max(int(key.sum()), 1))
+            wanders = self.wander and k == WANDER_STEPS and least > WANDER
+            if (k == UNSETTLED_WALK or wanders) and not settled and k < max_steps:
+                how = (f", each step changing at least {least:.1%} of its rows"
+                       if wanders else "")
                 return None, None, (f"the mechanism did not settle within {k} vertex "
-                                    f"steps {after}"), k - 1
-            last = self.key(act)
+                                    f"steps{how} {after}"), k - 1
+            last = key
             N = np.maximum(self.phase2_x[self.capped.nsl], 0.0)
         return None, None, (f"no mechanism with collapse states within {max_steps} vertex "
                             f"steps {after}"), max_steps - 1
@@ -413,6 +435,8 @@ class ConeMechanisms(Mechanisms):
     #: there, 204 s, the same answer)
     walk_past_failures = False
     fixed_tol = CONE_FIXED_TOL
+    #: the walk's limit of WANDER_STEPS was measured on linear programs only
+    wander = False
 
     def __init__(self, capped: CappedLimit):
         Mechanisms.__init__(self, capped)
