@@ -129,8 +129,9 @@ def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction
                method: str) -> str:
     """Why the search cannot start at its upper bound ``where``, and what to change: the
     bound where the structure falls by rotation, the friction where it stands there
-    without sliding (a thicker ring does not lessen the friction its springings need:
-    the semicircular arch at f = 0.3)."""
+    without sliding: past some thickness the friction a ring needs stops falling (the
+    semicircular arch under its self-weight: f* = 0.347 at t/R = 0.15, 0.309 at 0.3 and
+    at 1), so that at f = 0.3 no upper bound helps."""
     head = f"min_thickness: {name} is not admissible at the upper bound {where}"
     if at_hi is None:
         return (f"min_thickness: {name} could not be decided at the upper bound {where}; "
