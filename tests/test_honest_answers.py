@@ -664,3 +664,29 @@ def test_the_joint_table_shows_each_joints_own_law(tmp_path, capsys):
         rows = list(csv.DictReader(fh))
     assert {r["cohesion"] for r in rows} == {"0.0", "5.0"} and \
         {r["tensile_strength"] for r in rows} == {"0.0"}
+
+
+def test_a_structure_that_slides_under_its_dead_load_is_told_friction_governs(capsys):
+    """The inclined corbel arch (examples/corbel_arch_inclined.json) at its own f = 0.6:
+    `load` said only "UNSTABLE: the dead load alone has no admissible state" and `check`
+    "NOT ADMISSIBLE", as of a structure that cannot stand. Without sliding it stands: the
+    note says so and names the command that gives the friction it needs, f* = 0.76536
+    (docs/seed-examples.md: 0.7654, the seed gives no value), at which `check` stands.
+    The arch at load factor 0.2, above its hinging multiplier 0.1498, breaches the laws
+    without sliding too: no such note."""
+    path = str(EXAMPLES / "corbel_arch_inclined.json")
+    note = ("without sliding (infinite friction) it stands {}: friction governs, not the "
+            f"geometry; `rigidblocks friction {path} --load-factor 0` gives the least "
+            "friction that carries it")
+    code, out, _ = run(capsys, ["load", path])
+    assert "verdict    UNSTABLE" in out and note.format("under its dead load alone") in out
+    code, out, _ = run(capsys, ["check", path, "--load-factor", "0"])
+    assert "NOT ADMISSIBLE" in out and note.format("at this load") in out
+    code, out, _ = run(capsys, ["friction", path, "--load-factor", "0"])
+    assert "answer     f* = 0.76536 " in out
+    code, out, _ = run(capsys, ["check", path, "--load-factor", "0", "--friction",
+                                "0.76536"])
+    assert "verdict    ADMISSIBLE" in out
+    code, out, _ = run(capsys, ["check", str(EXAMPLES / "arch.json"), "--load-factor",
+                                "0.2"])
+    assert "NOT ADMISSIBLE" in out and "friction governs" not in out

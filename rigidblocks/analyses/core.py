@@ -133,6 +133,20 @@ def tilt_angle_deg(scene: Scene, load_multiplier: float | None) -> float | None:
     return math.degrees(math.atan(load_multiplier * math.hypot(*a[:-1])))
 
 
+def _friction_governs(m: Method, f: float, load_factor: float, where: str,
+                      then: str) -> None:
+    """Where no state is admissible at a finite friction ``f``, a note saying whether
+    one is without sliding (the joints' friction infinite, their overrides kept): then
+    friction governs, not the geometry (the inclined corbel arch at f = 0.6 under its
+    self-weight: it stands from f* = 0.7654)."""
+    if not math.isfinite(f):
+        return
+    v = m.admissible(math.inf, load_factor)
+    if v.status == ADMISSIBLE:
+        m.notes.append(f"without sliding (infinite friction) it stands {where}: friction "
+                       f"governs, not the geometry; {then}")
+
+
 def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
           method: str = "clarabel", *, solver: str | None = None, state: bool = True,
           settings: dict | None = None, pyramid: int | None = None,
@@ -192,6 +206,10 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
                     contact_tol=contact_tol, progress=progress)
     v = m.admissible(f, lf, for_state=state)
     m.explain(v)
+    if v.status == INADMISSIBLE and state:  # (not in a study's bisection on verdicts)
+        _friction_governs(m, f, lf, "at this load", f"`rigidblocks friction "
+                          f"{scene.source or 'SCENE'} --load-factor {lf:g}` gives the "
+                          "least friction that carries it")
     ok = v.status == ADMISSIBLE
     st = m.state(f, lf, v) if (ok and state) else None
     breaches = m.breaches(f, v) if v.status == INADMISSIBLE else ()
@@ -323,6 +341,10 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     lim: Limit = m.load_limit(f, rtol, mechanism) or load_by_bisection(m, f, rtol)
     lim = certified(m, lim, rtol, "lambda*")
     reached = dict(rtol=rtol, accuracy=lim.accuracy)
+    if lim.status == "unstable":  # (rare: one more relaxation, whatever ``state``)
+        _friction_governs(m, f, 0.0, "under its dead load alone", f"`rigidblocks friction "
+                          f"{scene.source or 'SCENE'} --load-factor 0` gives the least "
+                          "friction that carries it")
     if lim.status != "collapse":
         return LoadResult(**_fields(m, "max_load_multiplier", lim.status, f, None),
                           bracket=_bracket(lim), **reached)
