@@ -72,6 +72,43 @@ def test_a_limit_run_names_its_start_and_step():
     assert p.context == "" and "limit run" not in p.text()
 
 
+def test_the_load_path_names_its_step(monkeypatch, capsys):
+    """`path` printed nothing while it ran (92 s on a 19-block wall): the progress line
+    names the load step, its range of lambda and the events so far, then the iteration
+    run under way, and forgets the step after; the command shows it on a terminal."""
+    from conftest import EXAMPLES
+
+    from rigidblocks.analyses import load_path
+    from rigidblocks.cli import path as cli_path
+    from rigidblocks.io import read_scene
+
+    seen: list[str] = []
+
+    class Recording(Progress):
+        def __setattr__(self, name, value):
+            if name == "stage" and getattr(self, "context", ""):
+                seen.append(f"{self.context}: {value}")
+            super().__setattr__(name, value)
+
+    p = Recording()
+    res = load_path(read_scene(EXAMPLES / "reference.json"), progress=p)
+    assert res.status == "collapse"
+    assert seen[0].startswith("load path: under the dead load: iteration run at lambda = 0")
+    assert "load path: step 2 of 40, lambda 0.05 to 0.1, 0 events so far: iteration run at "\
+        "lambda = 0.1" in seen
+    assert p.context == "" and "load path" not in p.text()
+    shown = []
+    monkeypatch.setattr(cli_path, "run_interruptible",
+                        lambda work, progress, show: shown.append(show) or work())
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True)
+    from rigidblocks.cli.main import main
+
+    main(["path", str(EXAMPLES / "reference.json")])
+    main(["path", str(EXAMPLES / "reference.json"), "--json"])
+    capsys.readouterr()
+    assert shown == [True, False]  # the line on a terminal, never within JSON output
+
+
 def test_ctrl_c_ends_a_long_solve_at_once(tmp_path):
     """A 4,000-block wall's maximum-load solve takes several seconds; SIGINT two seconds
     in ends the process within 2 s with status 130 and a one-line message."""

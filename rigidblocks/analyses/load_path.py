@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..methods import open_method
+from ..methods import Progress, open_method
 from ..methods.distortion import AT_THRESHOLD, LOADED
 from ..scene.model import Scene, friction_label, friction_value
 from ..solvers.distortion import TOL, Run
@@ -146,8 +146,8 @@ class _Path:
     """The joint laws as the history has left them, and the runs under them."""
 
     def __init__(self, scene: Scene, f: float, flow: str | None, sliding: str,
-                 refine: int, tol: float):
-        self.w = open_method(scene, "distortion", bonds_kept=False)
+                 refine: int, tol: float, progress: Progress | None = None):
+        self.w = open_method(scene, "distortion", bonds_kept=False, progress=progress)
         self.ds = ds = self.w.solver_
         self.c = c = ds.system.contacts
         self.names = [(c.block_ids[a], c.block_ids[b]) for a, b in c.pairs]
@@ -417,7 +417,8 @@ class _Path:
 
 def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: Any = None,
               method: str = "distortion", sliding: str = "plastic", refine: int = 30,
-              tol: float = TOL, flow: str | None = None) -> PathResult:
+              tol: float = TOL, flow: str | None = None,
+              progress: Progress | None = None) -> PathResult:
     """Increase the live load in ``steps`` equal steps up to ``max_load`` x live.
 
     At every load the state is the distortion iteration's (the admissible state closest
@@ -430,21 +431,29 @@ def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: An
     with no admissible state ("collapse") or where a run cannot decide ("undecided",
     with the bracket). These states depend on the order of events (which joints
     cracked or slid before): a single convex problem, which only asks whether some
-    admissible state exists, cannot express that.
+    admissible state exists, cannot express that. ``progress``: kept up to date with
+    the step and its runs (:class:`~rigidblocks.methods.Progress`), for a progress
+    line.
     """
     f = _check_args(scene, steps, max_load, friction, method, sliding)
-    p = _Path(scene, f, flow, sliding, refine, tol)
+    p = _Path(scene, f, flow, sliding, refine, tol, progress)
     status, collapse, bracket = "standing", None, None
+    where = p.w.progress
     try:
+        where.context = "load path: under the dead load"
         p.from_the_start(p.cascade(0.0, _at_zero(p), None), FIRST_LOAD * max_load / steps)
         prev = 0.0
         for k in range(1, steps + 1):
             lam, its = max_load * k / steps, p.w.iterations
+            where.context = (f"load path: step {k} of {steps}, lambda {prev:.6g} to "
+                             f"{lam:.6g}, {len(p.events)} events so far")
             p.step(lam, p.advance(prev, lam), p.w.iterations - its)
             prev = lam
     except _End as end:
         status, bracket = end.status, end.bracket
         collapse = end.load if end.status == "collapse" else None
+    finally:
+        where.context = ""
     flow_name = "non-associative" if p.marked.any() else "associative"
     return PathResult(status, sliding, friction_label(f), tuple(p.steps), tuple(p.events),
                       collapse, p.w.n_solves, p.w.iterations, p.w.solve_time,

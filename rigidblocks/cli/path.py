@@ -4,12 +4,15 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 
 from ..analyses import load_path
 from ..io import read_scene
+from ..methods import Progress
 from ..results import fmt_safe
 from .analyses import EXIT, _jsonable
 from .options import friction_option, positive_float, positive_int
+from .progress import run_interruptible
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
@@ -36,8 +39,11 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
 
 def run(args: argparse.Namespace) -> int:
     scene = read_scene(args.scene)
-    res = load_path(scene, steps=args.steps, max_load=args.max_load, friction=args.friction,
-                    sliding=args.sliding, flow=args.flow)
+    progress = Progress()
+    res = run_interruptible(lambda: load_path(
+        scene, steps=args.steps, max_load=args.max_load, friction=args.friction,
+        sliding=args.sliding, flow=args.flow, progress=progress), progress,
+        show=not args.json and sys.stderr.isatty())
     if args.json:
         print(json.dumps(_jsonable(res.to_dict())))
         return EXIT.get(res.status, 0)
