@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from .results import Result, fmt_safe
+from .results import Result, fmt_safe, max_demand
 from .scene.geometry import scene_weights
 from .scene.model import Scene, friction_value
 
@@ -349,9 +349,17 @@ class _Words:
         why: list[str] = []
         na = without_dilatancy(res)
         if res.status == "admissible":
-            fd = res.friction_demand
+            # the joints that follow the friction asked (no friction or cohesion of their
+            # own): the others are held to their own laws, not to f (a joint of its own
+            # f = 0.25 and cohesion at |T|/N = 0.3 read "reaches the friction limit f =
+            # 0.2")
+            c = res.contacts
+            plain = np.isnan(np.asarray(c.override_friction, dtype=float)) & \
+                (np.asarray(c.cohesion, dtype=float) == 0)
+            fd = max_demand(res.state, plain) if res.state is not None else None
             state = ("the state reached from the elastic state X0" if na
                      else "the state of least complementary energy")
+            among = "" if plain.all() else " among the joints without a law of their own"
             if fd is not None and fd[0] > 1e-9:
                 a, b = res.joint_name(fd[1])
                 f = friction_value(res.friction) if res.friction is not None else math.inf
@@ -360,8 +368,8 @@ class _Words:
                 reach = (f"the friction limit f = {f:g}" if fd[0] >= f * (1 - 1e-4)
                          else f"{fd[0]:.4g}")
                 # not "needs": another admissible state may do with less (f*)
-                why.append(f"in {state} |T|/N reaches {reach} (joint {a}-{b}); the least "
-                           "friction any state needs is f* (`rigidblocks friction`)")
+                why.append(f"in {state} |T|/N reaches {reach}{among} (joint {a}-{b}); the "
+                           "least friction any state needs is f* (`rigidblocks friction`)")
             elif fd is not None:
                 why.append(f"{state} uses no friction")
             if na:
@@ -400,6 +408,18 @@ class _Words:
                     "dilatancy (in the state reached from the elastic state X0)", "", "",
                     self.live_hint(res))
         if res.status != "stable":
+            own = np.flatnonzero(np.isfinite(np.asarray(res.contacts.override_friction,
+                                                        dtype=float)))
+            if len(own):
+                # f* scales the other joints only: those keep their own friction
+                names = ", ".join(f"{'-'.join(res.joint_name(k))} (f = "
+                                  f"{float(res.contacts.override_friction[k]):g})"
+                                  for k in own[:FIRST])
+                more = f" and {len(own) - FIRST} more" if len(own) > FIRST else ""
+                return ("UNSTABLE: no friction of the other joints suffices (even infinite "
+                        "friction there admits no equilibrium state) while the joints "
+                        f"with a friction of their own keep it: {names}{more}", "", "",
+                        self.live_hint(res))
             return ("UNSTABLE: no friction suffices (even infinite friction admits no "
                     "equilibrium state)", "", "", self.live_hint(res))
         fs = float(res.friction_factor)

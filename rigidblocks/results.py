@@ -405,9 +405,10 @@ DEMAND_TOL = 1e-7
 DEMAND_TIE = 1e-7
 
 
-def max_demand(st: ForceState | None) -> tuple[float, int] | None:
-    """The largest |T|/N over the joints of a force state and its joint (None without a
-    state or joints).
+def max_demand(st: ForceState | None, among: np.ndarray | None = None
+               ) -> tuple[float, int] | None:
+    """The largest |T|/N over the joints of a force state (those where ``among`` is
+    True, if given) and its joint (None without a state or such joints).
 
     Forces below ``DEMAND_TOL`` of the largest joint force are round-off of the solver
     (an iterative method stops at a violation of about 1e-9 of it): a joint whose N is
@@ -416,7 +417,7 @@ def max_demand(st: ForceState | None) -> tuple[float, int] | None:
     with N = T = 0) needs none: the wall example's head joint at N = 1e-6 and T = 5e-8
     of the largest force was said to need 0.047.
     """
-    if st is None or not len(st.joint_normal):
+    if st is None or not len(st.joint_normal) or (among is not None and not among.any()):
         return None
     N, T = st.joint_normal, np.abs(st.joint_shear)
     big = max(float(np.abs(N).max(initial=0.0)), float(T.max(initial=0.0)), 1e-300)
@@ -426,6 +427,8 @@ def max_demand(st: ForceState | None) -> tuple[float, int] | None:
     with np.errstate(divide="ignore", invalid="ignore"):
         d = np.where(loaded, T / np.where(loaded, N, 1.0),
                      np.where(T > DEMAND_TOL * big, np.inf, 0.0))
+    if among is not None:
+        d = np.where(among, d, -1.0)
     top = float(d.max())
     # joints that need the same friction to round-off (symmetric structures): the first
     # of them, so that the joint named does not flip with the solver's last digits

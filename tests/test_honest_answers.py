@@ -690,3 +690,65 @@ def test_a_structure_that_slides_under_its_dead_load_is_told_friction_governs(ca
     code, out, _ = run(capsys, ["check", str(EXAMPLES / "arch.json"), "--load-factor",
                                 "0.2"])
     assert "NOT ADMISSIBLE" in out and "friction governs" not in out
+
+
+def _stack_with_own_laws(tmp_path, joints, name="s.json"):
+    """Three 1 x 0.5 m blocks stacked on a base, 20 kN/m^3, a horizontal body force of
+    0.3 g: each bed joint carries |T|/N = 0.3 (statics)."""
+    return write(tmp_path, make_scene([
+        {"id": "base", "vertices": rect(-1, -0.5, 4, 0.5), "support": True},
+        {"id": "A", "vertices": rect(0, 0, 1, 0.5)},
+        {"id": "B", "vertices": rect(0, 0.5, 1, 0.5)},
+        {"id": "C", "vertices": rect(0, 1.0, 1, 0.5)},
+    ], unit_weight=20.0, friction=0.6, live_body_force=[1, 0], load_factor=0.3,
+        joints=joints), name)
+
+
+def test_the_friction_demand_line_reads_the_joints_held_to_the_friction_asked(
+        tmp_path, capsys):
+    """A stack under 0.3 g whose bed joint on the base has its own f = 0.25 and
+    cohesion 10 kN/m^2 (it carries |T| = 9 kN of its 0.25 x 30 + 10 = 17.5): `check
+    --friction 0.2` stands, and said "|T|/N reaches the friction limit f = 0.2 (joint
+    base-A)", a limit that joint does not have. The line reads the joints held to the f
+    asked, and says so where others have laws of their own: A-B at 0.3 (statics)."""
+    path = _stack_with_own_laws(tmp_path, [
+        {"blocks": ["base", "A"], "friction": 0.25, "cohesion": 10.0},
+        {"blocks": ["B", "C"], "cohesion": 2.0, "tensile_strength": 5.0}])
+    code, out, _ = run(capsys, ["check", path, "--friction", "0.35"])
+    assert "verdict    ADMISSIBLE" in out
+    assert ("|T|/N reaches 0.3 among the joints without a law of their own (joint A-B)"
+            in out), out
+    everyone = _stack_with_own_laws(tmp_path, [
+        {"blocks": ["base", "A"], "friction": 0.25, "cohesion": 10.0},
+        {"blocks": ["A", "B"], "friction": "infinite"},
+        {"blocks": ["B", "C"], "cohesion": 2.0, "tensile_strength": 5.0}], "all.json")
+    code, out, _ = run(capsys, ["check", everyone, "--friction", "0.2"])
+    assert "verdict    ADMISSIBLE" in out and "reaches" not in out, out
+
+
+def test_no_friction_suffices_names_the_joints_that_keep_their_own(tmp_path, capsys):
+    """The stack under 0.3 g with its bed joint on the base at its own f = 0.1: `friction`
+    said "no friction suffices (even infinite friction admits no equilibrium state)", as
+    of a structure that cannot stand; the other joints' friction cannot help while that
+    joint keeps 0.1 (`load` gives lambda* = 0.1 = its f, the block sliding there)."""
+    path = _stack_with_own_laws(tmp_path, [{"blocks": ["base", "A"], "friction": 0.1}])
+    code, out, _ = run(capsys, ["friction", path, "--load-factor", "0.3"])
+    assert ("verdict    UNSTABLE: no friction of the other joints suffices (even infinite "
+            "friction there admits no equilibrium state) while the joints with a friction "
+            "of their own keep it: base-A (f = 0.1)") in out, out
+    code, out, _ = run(capsys, ["load", path])
+    assert "lambda* = 0.1," in out
+
+
+def test_a_non_associative_multiplier_that_is_round_off_of_zero_reads_zero(capsys):
+    """The reference model without friction under --flow non-associative: lambda* =
+    3.51852e-11 (the associative multiplier, itself round-off of 0, upper bound [0,
+    3.5e-11]) and the starts 3.3e-15 and 3.9e-15 "differ"; now 0, bounds [0, 0], the
+    same answer."""
+    argv = ["load", str(EXAMPLES / "reference.json"), "--friction", "0", "--flow",
+            "non-associative"]
+    code, out, _ = run(capsys, argv)
+    assert "answer     lambda* = 0, " in out and "bounds     [0, 0]" in out, out
+    assert "the same answer" in out and "differ" not in out
+    _, doc, _ = run_json(capsys, argv + ["--json"])
+    assert doc["load_multiplier"] == 0.0 and doc["load_multiplier_bounds"] == [0.0, 0.0]

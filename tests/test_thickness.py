@@ -50,13 +50,14 @@ def test_bad_brackets():
 
 def test_an_upper_bound_that_slides_asks_for_friction_not_thickness(tmp_path, capsys):
     """The semicircular arch at f = 0.3 does not stand at t/R = 1 either: its springings
-    slide. The search said "raise the upper bound"; it says that the arch stands there
-    without sliding and needs f >= 0.309, which a check of the arch so built confirms
-    (it stands at 0.309, not at 0.3089)."""
+    slide. The search said only "raise the upper bound"; it says that the arch stands
+    there without sliding and needs f >= 0.309 there, which a check of the arch so built
+    confirms (it stands at 0.309, not at 0.3089), and that a thicker one may need less
+    (at f = 0.35 an upper bound of 0.12 is too thin: the minimum is 0.1466)."""
     assert main(["thickness", "arch", "--friction", "0.3"]) == 2
     err = capsys.readouterr().err
-    assert "needs f >= 0.309 " in err and "give a larger f (--friction)" in err, err
-    assert "raise the upper bound" not in err
+    assert "(it needs f >= 0.309 there): a thicker one may need a smaller f (raise the "\
+        "upper bound: hi, --hi) or as large (give a larger f: --friction)" in err, err
     path = tmp_path / "arch.json"
     assert main(["example", "arch", "--thickness", "1", "--friction", "0.3", "-o",
                  str(path)]) == 0
@@ -64,6 +65,8 @@ def test_an_upper_bound_that_slides_asks_for_friction_not_thickness(tmp_path, ca
     for f, verdict in (("0.309", "ADMISSIBLE"), ("0.3089", "NOT ADMISSIBLE")):
         main(["check", str(path), "--friction", f])
         assert f"verdict    {verdict}:" in capsys.readouterr().out
+    r = min_thickness("arch", friction=0.35, rtol=1e-3)
+    assert 0.12 < r.lower < r.thickness < 0.15
     # where the bound is too thin, rotation governs: the bound is what to change
     with pytest.raises(InputError, match="raise the upper bound"):
         min_thickness("arch", voussoirs=20, lo=0.01, hi=0.05, friction=0.6)

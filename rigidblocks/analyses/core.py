@@ -332,8 +332,17 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         res = _reached(res, na_rtol if res.bracket else None)
         if res.status != "collapse":
             return replace(res, tilt_angle_deg=None)
-        lam = _round_off_of_zero(float(res.load_multiplier), res.accuracy)
-        return replace(res, load_multiplier=lam, tilt_angle_deg=tilt_angle_deg(scene, lam))
+        lam = float(res.load_multiplier)
+        bounds = res.load_multiplier_bounds
+        if bounds is not None and bounds[1] is not None and \
+                0 <= bounds[1] <= ZERO_MULTIPLIER:
+            # the associative multiplier, an upper bound, is round-off of 0, and so is
+            # every multiplier below it (the reference model without friction: 3.5e-11)
+            lam, bounds = 0.0, (bounds[0] if bounds[0] is None else 0.0, 0.0)
+        else:
+            lam = _round_off_of_zero(lam, res.accuracy)
+        return replace(res, load_multiplier=lam, load_multiplier_bounds=bounds,
+                       tilt_angle_deg=tilt_angle_deg(scene, lam))
     rtol = requested_rtol(rtol, LOAD_RTOL)
     f = friction_value(scene.effective_friction if friction is None else friction)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,

@@ -882,11 +882,17 @@ def compare_starts(history: Any) -> tuple[list[StartAnswer], tuple[float, float]
     entries = start_entries(history)
     # one answer to the accuracy of the runs' multipliers (Coulomb's cones: 1e-5)
     same = max([SAME_ANSWER] + [float(h.get("carry_tol") or 0.0) for h in entries])
+
+    def apart(lo: float, hi: float) -> bool:
+        # relative to the multiplier and to 1, as a run's carry_tol: 3.3e-15 and 3.9e-15
+        # (the reference model without friction, both round-off of 0) are one answer
+        return hi - lo > same * max(abs(lo), abs(hi), 1.0)
+
     out: list[StartAnswer] = []
     for k, h in enumerate(entries):
         lam = h.get("load_factor") if h.get("converged") else None
         span = h.get("span")
-        wide = span is not None and span[1] > span[0] * (1 + same)
+        wide = span is not None and apart(span[0], span[1])
         out.append(StartAnswer(
             h["start"], lam, h.get("status", "-"), h.get("reason", ""),
             (float(span[0]), float(span[1])) if wide else None,
@@ -895,7 +901,7 @@ def compare_starts(history: Any) -> tuple[list[StartAnswer], tuple[float, float]
             and span == entries[0].get("span"), h.get("least_confined", True)))
     lams = [a.lam for a in out if a.lam is not None]
     spread = ((min(lams), max(lams)) if len(lams) > 1
-              and max(lams) > min(lams) * (1 + same) else None)
+              and apart(min(lams), max(lams)) else None)
     return out, spread
 
 

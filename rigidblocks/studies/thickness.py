@@ -129,9 +129,10 @@ def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction
                method: str) -> str:
     """Why the search cannot start at its upper bound ``where``, and what to change: the
     bound where the structure falls by rotation, the friction where it stands there
-    without sliding: past some thickness the friction a ring needs stops falling (the
-    semicircular arch under its self-weight: f* = 0.347 at t/R = 0.15, 0.309 at 0.3 and
-    at 1), so that at f = 0.3 no upper bound helps."""
+    without sliding, or the bound: the friction a ring needs falls with its thickness,
+    then stops falling (the semicircular arch under its self-weight: f* = 0.347 at t/R =
+    0.15, 0.309 at 0.3 and at 1), so that at f = 0.35 an upper bound of 0.12 is too
+    thin (it needs 0.378 there; the minimum is 0.1466), while at f = 0.3 none helps."""
     head = f"min_thickness: {name} is not admissible at the upper bound {where}"
     if at_hi is None:
         return (f"min_thickness: {name} could not be decided at the upper bound {where}; "
@@ -143,9 +144,10 @@ def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction
             need = min_friction(scene, load_factor=0.0, state=False)
             f = f"f >= {fmt_safe(need.friction_factor, 4, True)}" \
                 if need.status == "stable" else "a larger f"
-            return (f"{head} with f = {friction_label(friction)}: it stands there "
-                    f"without sliding and needs {f} (sliding governs, and a thicker one "
-                    "may need as much); give a larger f (--friction)")
+            return (f"{head} with f = {friction_label(friction)}, although it stands "
+                    f"there without sliding (it needs {f} there): a thicker one may need "
+                    "a smaller f (raise the upper bound: hi, --hi) or as large (give a "
+                    "larger f: --friction)")
     return f"{head}; raise the upper bound (hi, --hi)"
 
 
