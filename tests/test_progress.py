@@ -30,6 +30,24 @@ def test_progress_line_after_the_delay(monkeypatch, capsys):
     assert err.endswith("\r")  # the line is wiped before the report
 
 
+def test_a_long_line_keeps_its_step_stage_and_time_in_view():
+    """On an 80-column terminal the path's line was cut at its end: "load path: step 3
+    of 40, lambda 0.1 to 0.15, 0 events so far: iteration run at " stood still while the
+    run's lambda, solves and time changed beyond the edge. Within the width the counts
+    go first, then the context's end."""
+    p = Progress()
+    p.context = "load path: step 3 of 40 (lambda to 0.15), 0 events"
+    p.stage = "iteration run at lambda = 0.149764"
+    p.solves, p.iterations = 20, 21791
+    assert p.text() == (f"{p.context}: {p.stage}, solve 21, 21791 iterations so far, 0 s")
+    assert p.text(120) == f"{p.context}: {p.stage}, 0 s"
+    narrow = p.text(79)
+    assert len(narrow) <= 79 and narrow.startswith("load path: step 3 of 40") and \
+        narrow.endswith("\N{HORIZONTAL ELLIPSIS}: " + f"{p.stage}, 0 s"), narrow
+    p.context = "limit run from the elastic state X0: step 5 of at most 200, lambda 0.33"
+    assert p.text(79).endswith(f": {p.stage}, 0 s") and len(p.text(79)) <= 79
+
+
 def test_quiet_when_not_shown_and_errors_pass_through(capsys):
     def fail():
         raise rb.InputError("bad")
@@ -74,7 +92,7 @@ def test_a_limit_run_names_its_start_and_step():
 
 def test_the_load_path_names_its_step(monkeypatch, capsys):
     """`path` printed nothing while it ran (92 s on a 19-block wall): the progress line
-    names the load step, its range of lambda and the events so far, then the iteration
+    names the load step, the load it goes to and the events so far, then the iteration
     run under way, and forgets the step after; the command shows it on a terminal."""
     from conftest import EXAMPLES
 
@@ -94,8 +112,8 @@ def test_the_load_path_names_its_step(monkeypatch, capsys):
     res = load_path(read_scene(EXAMPLES / "reference.json"), progress=p)
     assert res.status == "collapse"
     assert seen[0].startswith("load path: under the dead load: iteration run at lambda = 0")
-    assert "load path: step 2 of 40, lambda 0.05 to 0.1, 0 events so far: iteration run at "\
-        "lambda = 0.1" in seen
+    assert "load path: step 2 of 40 (lambda to 0.1), 0 events: iteration run at lambda = "\
+        "0.1" in seen
     assert p.context == "" and "load path" not in p.text()
     shown = []
     monkeypatch.setattr(cli_path, "run_interruptible",

@@ -445,8 +445,8 @@ def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: An
         prev = 0.0
         for k in range(1, steps + 1):
             lam, its = max_load * k / steps, p.w.iterations
-            where.context = (f"load path: step {k} of {steps}, lambda {prev:.6g} to "
-                             f"{lam:.6g}, {len(p.events)} events so far")
+            where.context = (f"load path: step {k} of {steps} (lambda to {lam:.6g}), "
+                             f"{len(p.events)} events")
             p.step(lam, p.advance(prev, lam), p.w.iterations - its)
             prev = lam
     except _End as end:

@@ -48,7 +48,7 @@ def run_interruptible(work: Callable[[], T], progress: Progress | None = None,
             now = time.perf_counter()
             if show and progress is not None and now - t0 >= DELAY and now - last >= EVERY:
                 width = shutil.get_terminal_size((80, 20)).columns - 1
-                sys.stderr.write("\r" + progress.text()[:width].ljust(width))
+                sys.stderr.write("\r" + progress.text(width).ljust(width))
                 sys.stderr.flush()
                 shown, last = True, now
     except KeyboardInterrupt:

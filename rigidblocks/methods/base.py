@@ -122,10 +122,21 @@ class Progress:
         self.solves = 0
         self.iterations = 0
 
-    def text(self) -> str:
+    def text(self, width: int | None = None) -> str:
+        """The line; within ``width`` characters the counts give way to the context (the
+        step of a long run), which is shortened last, and the stage and the time, which
+        change, stay in view."""
+        secs = f"{time.perf_counter() - self.started:.0f} s"
+        tail = f"{self.stage}, solve {self.solves + 1}, {self.iterations} iterations " \
+            f"so far, {secs}"
         head = f"{self.context}: " if self.context else ""
-        return (f"{head}{self.stage}, solve {self.solves + 1}, {self.iterations} iterations "
-                f"so far, {time.perf_counter() - self.started:.0f} s")
+        if width is None or len(head) + len(tail) <= width:
+            return head + tail
+        tail = f"{self.stage}, {secs}"
+        if head and len(head) + len(tail) > width:
+            room = width - len(tail) - 3
+            head = f"{self.context[:room]}…: " if room >= 12 else ""
+        return (head + tail)[:width]
 
 
 class Method:
