@@ -681,7 +681,14 @@ def test_a_structure_that_slides_under_its_dead_load_is_told_friction_governs(ca
     code, out, _ = run(capsys, ["load", path])
     assert "verdict    UNSTABLE" in out and note.format("under its dead load alone") in out
     code, out, _ = run(capsys, ["check", path, "--load-factor", "0"])
-    assert "NOT ADMISSIBLE" in out and note.format("at this load") in out
+    assert "NOT ADMISSIBLE" in out and note.format("under its dead load alone") in out
+    # without dilatancy too (without sliding the flow rule is moot), the command with it
+    for cmd in (["load", path], ["check", path, "--load-factor", "0"]):
+        code, out, _ = run(capsys, cmd + ["--flow", "non-associative"])
+        assert note.format("under its dead load alone").replace(
+            "--load-factor 0`", "--load-factor 0 --flow non-associative`") in out, out
+    code, out, _ = run(capsys, ["check", path, "--load-factor", "0.1"])
+    assert "it stands at this load: friction governs" in out and "--load-factor 0.1`" in out
     code, out, _ = run(capsys, ["friction", path, "--load-factor", "0"])
     assert "answer     f* = 0.76536 " in out
     code, out, _ = run(capsys, ["check", path, "--load-factor", "0", "--friction",
