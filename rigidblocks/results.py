@@ -167,15 +167,18 @@ def force_state_words(result: Any) -> list[str]:
     :func:`unloaded`), "in tension" (a bonded joint that carries tension), "hinging"
     (the resultant at the contact's edge, :func:`hinging`), "at friction limit" (|T|
     within ``AT_LIMIT`` of its threshold f N + c a, the joint's own friction and
-    cohesion), both ("hinging, at friction limit"), or "closed"; "-" for every joint
-    without a state."""
+    cohesion; always where both are 0), both ("hinging, at friction limit"), or
+    "closed"; "-" for every joint without a state."""
     c, st = result.contacts, getattr(result, "state", None)
     if st is None:
         return ["-"] * c.n_joints
     open_, free = unloaded(c, st)
     hinge = hinging(c, open_, free)
     N = np.asarray(st.joint_normal, dtype=float)
-    limit = shear_use(result) >= 1 - AT_LIMIT
+    # a joint without friction or cohesion is at its limit whatever it carries (the
+    # reference model at f = 0 read "closed" at the joints its mechanism slides)
+    none = (joint_frictions(result) == 0) & (np.asarray(c.cohesion, dtype=float) == 0)
+    limit = (shear_use(result) >= 1 - AT_LIMIT) | none
     out = []
     for k in range(c.n_joints):
         if open_[k]:

@@ -658,12 +658,30 @@ def test_the_joint_table_shows_each_joints_own_law(tmp_path, capsys):
     _, doc, _ = run_json(capsys, ["check", path, "--friction", "infinite", "--joints",
                                   "--json"])
     assert {r["friction"] for r in doc["joints"]} == {"infinite", 0.3}
+    # ... and in the terminal's table and the CSV (they wrote "inf")
+    code, out, _ = run(capsys, ["check", path, "--friction", "infinite", "--joints"])
+    assert sorted(ln.split()[5] for ln in out.splitlines()
+                  if ln.startswith(("A-", "B-", "base-"))) == ["0.3", "infinite"]
     csv_path = tmp_path / "j.csv"
-    assert main(["check", path, "--joints", str(csv_path)]) == 0
+    assert main(["check", path, "--friction", "infinite", "--joints", str(csv_path)]) == 0
     with open(csv_path) as fh:
         rows = list(csv.DictReader(fh))
     assert {r["cohesion"] for r in rows} == {"0.0", "5.0"} and \
-        {r["tensile_strength"] for r in rows} == {"0.0"}
+        {r["tensile_strength"] for r in rows} == {"0.0"} and \
+        {r["friction"] for r in rows} == {"0.3", "infinite"}
+
+
+def test_a_joint_without_friction_or_cohesion_is_at_its_limit(capsys):
+    """The reference model at f = 0: the loaded joints, which its mechanism slides,
+    read "closed" (their threshold f N is 0, the share of it undefined); a joint with
+    neither friction nor cohesion is at its limit whatever it carries."""
+    code, out, _ = run(capsys, ["load", str(EXAMPLES / "reference.json"), "--friction",
+                                "0", "--joints"])
+    rows = {ln.split()[0]: ln for ln in out.splitlines()
+            if ln.startswith(("support-", "left-", "right-"))}
+    assert "open" in rows["left-right"]
+    assert all("at friction limit" in rows[j] for j in ("support-left", "support-right",
+                                                        "left-top", "right-top")), rows
 
 
 def test_a_structure_that_slides_under_its_dead_load_is_told_friction_governs(capsys):

@@ -112,6 +112,8 @@ def test_the_limit_analyses_say_that_they_keep_the_bonds_and_the_path_does_not(c
     assert main(["load", path]) == 0
     out = capsys.readouterr().out
     assert "lambda* = 1.2," in out and "1 joint is bonded" in out
+    # the command to run names the scene analysed (it named only the bundled example)
+    assert f"`rigidblocks path {path}` follows the cracks" in out
     assert main(["path", path]) == 0
     assert "joint is bonded" not in capsys.readouterr().out
 

@@ -80,8 +80,9 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     if name in ("friction", "load"):
         add_rtol(p, name)
     p.add_argument("--joints", nargs="?", const="-", default=None, metavar="CSV",
-                   help="the per-joint table (N, T, eccentricity, |T|/N, mode): in the "
-                   "JSON with --json, else printed, or written to the CSV file given")
+                   help="the per-joint table (N, T, eccentricity, |T|/N, state, mode, and "
+                   "each joint's friction, cohesion and tensile strength): in the JSON "
+                   "with --json, else printed, or written to the CSV file given")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--verbose", "-v", action="store_true",
                    help="also print the solver's and the accuracy's notes (the JSON "
@@ -202,8 +203,8 @@ def _write_csv(res: Any, path: str) -> None:
                         "mode", "friction", "cohesion", "tensile_strength"])
             for r in rows:
                 w.writerow([*r["joint"], r["N"], r["T"], r["eccentricity"], r["demand"],
-                            r["state"], r["mode"], r["friction"], r["cohesion"],
-                            r["tensile_strength"]])
+                            r["state"], r["mode"], _jsonable(r["friction"]),
+                            r["cohesion"], r["tensile_strength"]])
     except OSError as err:
         raise InputError(f"cannot write: {err}", path) from None
 
@@ -275,11 +276,16 @@ def _table(res, scene) -> list[str]:
         e = "-" if r["eccentricity"] is None else f"{r['eccentricity']:.4g}"
         d = "-" if r["demand"] is None else f"{r['demand']:.4g}"
         name = "-".join(r["joint"])
-        own = "".join(f"{fmt.format(r[key]):>{max(len(head), 8)}}  "
+        own = "".join(f"{_own(fmt, r[key]):>{max(len(head), 8)}}  "
                       for key, head, fmt in law)
         out.append(f"{name:<24} {r['N']:12.5g} {r['T']:12.5g} {e:>10} {d:>8}  {own}"
                    f"{r['state']:<26} {r['mode'] or '-'}")
     return out
+
+
+def _own(fmt: str, value: float) -> str:
+    """A joint's law in the table: "infinite" as in the scene file."""
+    return "infinite" if value == math.inf else fmt.format(value)
 
 
 def _flow_lines(res) -> list[str]:

@@ -30,7 +30,8 @@
       title: "the joint's tensile strength (stress)" });
   }
   cols.push({ key: "state", label: "state", num: false,
-    title: "open, closed, hinging, sliding" });
+    title: "open, in tension, hinging, at friction limit or closed; after a collapse, " +
+      "the mechanism's mode (hinge, slide, open)" });
   const order = [];
   for (let k = 0; k < T.n; k++) order.push(k);
   let sortKey = null, dir = 1, page = 0, filter = "";
