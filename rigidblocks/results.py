@@ -356,16 +356,23 @@ class Result:
         none = no_force(np.asarray(st.joint_normal), np.asarray(st.joint_shear))
         ecc = eccentricities(c, st)
         fj = joint_frictions(self)
+        # round-off of 0 in a loaded joint's shear and eccentricity reads 0 (the bonded
+        # joint of fig4a_bonded: T = -1.9e-15 N beside N = -10 N, e = -1.5e-16 m)
+        big = float(max(np.abs(st.joint_normal).max(initial=0.0),
+                        np.abs(st.joint_shear).max(initial=0.0)))
+        size = np.asarray(c.lengths if c.dimension == 2 else np.sqrt(c.areas), dtype=float)
         rows = []
         for k in range(c.n_joints):
             a, b = self.joint_name(k)
             N, T = float(st.joint_normal[k]), float(st.joint_shear[k])
+            T = 0.0 if abs(T) <= TABLE_ZERO * big else T
             e = float(ecc[k])
+            e = 0.0 if abs(e) <= TABLE_ZERO * size[k] else e
             open_ = states[k] == "open"
             rows.append({"joint": [a, b], "N": 0.0 if none[k] else N,
                          "T": 0.0 if none[k] else T,
                          "eccentricity": e if math.isfinite(e) and not open_ else None,
-                         "demand": None if open_ else float(st.demand[k]),
+                         "demand": None if open_ else (float(st.demand[k]) if T else 0.0),
                          "state": states[k],
                          "mode": mech.modes[k] if mech is not None else None,
                          "friction": float(fj[k]), "cohesion": float(c.cohesion[k]),
@@ -399,6 +406,11 @@ class Result:
                 "converged": self.converged,
                 "history": [dict(h) if isinstance(h, dict) else h for h in self.history]}
 
+
+#: a loaded joint's shear or eccentricity this small against the largest joint force or
+#: the joint's size is round-off of 0 in the joint table (floating point's, not a
+#: solver's: ZERO_FORCE is that)
+TABLE_ZERO = 1e-12
 
 #: forces below this fraction of the largest joint force count as zero in the demand
 DEMAND_TOL = 1e-7

@@ -777,3 +777,17 @@ def test_a_non_associative_multiplier_that_is_round_off_of_zero_reads_zero(capsy
     assert "the same answer" in out and "differ" not in out
     _, doc, _ = run_json(capsys, argv + ["--json"])
     assert doc["load_multiplier"] == 0.0 and doc["load_multiplier_bounds"] == [0.0, 0.0]
+
+
+def test_the_joint_table_prints_no_round_off_of_zero(capsys):
+    """examples/fig4a_bonded.json: the bonded joint read T = -1.8544e-15 N beside N = -10
+    N, and the bed joints e = -1.51e-16 m (floating point's round-off of 0); the box
+    stack's |T|/N 9.7e-15 where T is round-off of 0. They read 0."""
+    _, doc, _ = run_json(capsys, ["check", str(EXAMPLES / "fig4a_bonded.json"), "--joints",
+                                  "--json"])
+    rows = {tuple(r["joint"]): r for r in doc["joints"]}
+    assert rows[("left", "right")]["T"] == 0.0 and rows[("left", "right")]["N"] < -9
+    assert all(r["eccentricity"] == 0.0 for r in rows.values()), rows
+    _, doc, _ = run_json(capsys, ["check", str(EXAMPLES / "box_stack_3d.json"), "--joints",
+                                  "--json"])
+    assert all(r["T"] == 0.0 and r["demand"] == 0.0 for r in doc["joints"]), doc["joints"]
