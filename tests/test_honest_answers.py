@@ -791,3 +791,16 @@ def test_the_joint_table_prints_no_round_off_of_zero(capsys):
     _, doc, _ = run_json(capsys, ["check", str(EXAMPLES / "box_stack_3d.json"), "--joints",
                                   "--json"])
     assert all(r["T"] == 0.0 and r["demand"] == 0.0 for r in doc["joints"]), doc["joints"]
+
+
+def test_the_mode_column_comes_with_a_mechanism(capsys):
+    """`check --joints` printed a mode column of dashes (a check has no mechanism); it
+    comes with `load`'s collapse, whose hinges it names."""
+    arch = str(EXAMPLES / "arch.json")
+    _, out, _ = run(capsys, ["check", arch, "--joints"])
+    head = next(ln for ln in out.splitlines() if ln.startswith("joint "))
+    assert head.endswith("state"), head
+    _, out, _ = run(capsys, ["load", arch, "--joints"])
+    lines = out.splitlines()
+    assert next(ln for ln in lines if ln.startswith("joint ")).endswith(" mode")
+    assert sum(ln.endswith(" hinge") for ln in lines) == 4

@@ -269,17 +269,19 @@ def _table(res, scene) -> list[str]:
            (("friction", "f", "{:.4g}"), ("cohesion", "c " + su, "{:.4g}"),
             ("tensile_strength", "ft " + su, "{:.4g}"))
            if len({r[key] for r in rows}) > 1]
-    out = [f"{'joint':<24} {'N ' + fu:>12} {'T ' + fu:>12} {'e ' + lu:>10} {'|T|/N':>8}  "
-           + "".join(f"{head:>{max(len(head), 8)}}  " for _, head, _ in law)
-           + f"{'state':<26} mode"]
+    # the mechanism's mode of each joint, after a collapse only
+    modes = any(r["mode"] for r in rows)
+    out = [(f"{'joint':<24} {'N ' + fu:>12} {'T ' + fu:>12} {'e ' + lu:>10} {'|T|/N':>8}  "
+            + "".join(f"{head:>{max(len(head), 8)}}  " for _, head, _ in law)
+            + f"{'state':<26} " + ("mode" if modes else "")).rstrip()]
     for r in rows:
         e = "-" if r["eccentricity"] is None else f"{r['eccentricity']:.4g}"
         d = "-" if r["demand"] is None else f"{r['demand']:.4g}"
         name = "-".join(r["joint"])
         own = "".join(f"{_own(fmt, r[key]):>{max(len(head), 8)}}  "
                       for key, head, fmt in law)
-        out.append(f"{name:<24} {r['N']:12.5g} {r['T']:12.5g} {e:>10} {d:>8}  {own}"
-                   f"{r['state']:<26} {r['mode'] or '-'}")
+        out.append((f"{name:<24} {r['N']:12.5g} {r['T']:12.5g} {e:>10} {d:>8}  {own}"
+                    f"{r['state']:<26} " + ((r["mode"] or "-") if modes else "")).rstrip())
     return out
 
 
