@@ -556,7 +556,7 @@ def test_a_check_at_the_printed_non_associative_friction_stands(tmp_path, capsys
 def test_no_finite_friction_is_not_said_of_infinite_friction(tmp_path, capsys):
     """An 8 x 6 running-bond wall with an opening (courses 2-4, blocks 2-3) under its
     dead load: the state reached from X0 has joints that must carry shear with no
-    normal force, so no friction up to the search's ceiling (1e4) makes it stand
+    normal force, so no friction up to the search's ceiling (10) makes it stand
     without dilatancy (the breach, 0.2667, does not depend on f), while with infinite
     friction (no sliding at all) it stands. The verdict said "even infinite friction
     admits no equilibrium state"; it now names the ceiling."""
@@ -567,7 +567,7 @@ def test_no_finite_friction_is_not_said_of_infinite_friction(tmp_path, capsys):
     assert main(["friction", str(f), "--flow", "non-associative", "--load-factor", "0",
                  "-v"]) == 0
     out = capsys.readouterr().out
-    assert ("verdict    UNSTABLE: no friction up to 10000 suffices without dilatancy (in "
+    assert ("verdict    UNSTABLE: no friction up to 10 suffices without dilatancy (in "
             "the state reached from the elastic state X0)") in out
     assert "infinite" not in out and "at any finite friction" in out
     assert main(["check", str(f), "--flow", "non-associative", "--friction", "infinite",
@@ -804,3 +804,29 @@ def test_the_mode_column_comes_with_a_mechanism(capsys):
     lines = out.splitlines()
     assert next(ln for ln in lines if ln.startswith("joint ")).endswith(" mode")
     assert sum(ln.endswith(" hinge") for ln in lines) == 4
+
+
+def test_a_non_associative_friction_that_rests_on_numerically_zero_forces_is_none(
+        tmp_path, capsys):
+    """The 4 x 4 running-bond wall under 0.7 of its weight: `friction --flow
+    non-associative` gave f* = 2939.57 (89.98 deg). Its answer is 0.636 (a corner wedge
+    that rocks) at every f from 1 to 1e5 but about 3,000, where the caps f N of the head
+    joints' elastic normal forces, 1e-5 of the largest (numerically zero), reach a third
+    of the largest force: it now finds no friction up to 10 (f x 1e-4, the forces'
+    resolution, is 1e-3 there), and an answer at f = 3000 says what it rests on."""
+    from rigidblocks.io import write_scene
+
+    f = tmp_path / "wall.json"
+    write_scene(build("wall", courses=4, blocks_per_course=4), f)
+    code, out, _ = run(capsys, ["friction", str(f), "--flow", "non-associative",
+                                "--load-factor", "0.7"])
+    assert "verdict    UNSTABLE: no friction up to 10 suffices without dilatancy" in out
+    for fr in ("1", "10"):
+        code, out, _ = run(capsys, ["load", str(f), "--flow", "non-associative",
+                                    "--friction", fr])
+        assert "lambda* = 0.636363," in out and "numerically zero" not in out
+    code, out, _ = run(capsys, ["load", str(f), "--flow", "non-associative", "--friction",
+                                "3000"])
+    assert ("at f = 3000 the caps f N of normal forces that are numerically zero (up to "
+            "0.0001 of the largest force) reach 0.3 of it: without dilatancy an answer "
+            "above f = 10 rests on them") in out, out

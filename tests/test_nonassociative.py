@@ -714,13 +714,14 @@ def test_the_friction_search_halves_where_lambda_is_flat_at_the_load_factor():
 def test_friction_says_where_lambda_does_not_grow_with_f():
     """The 6 x 5 wall at f = 0.6: `load` without dilatancy gives 0.5789474 (asserted);
     asked for 1.02 times that, the friction search finds the limit fixed point from X0
-    at that same multiplier for every f it tries from the static f* up to about 266,
-    where another mechanism takes over and f* is found. The answer says so, with
-    `load`'s multiplier, so that an f* of 266 is not read as a misprint."""
+    at that same multiplier for every f it tries from the static f* up to its ceiling,
+    10 (it found f* = 266 where 1e4 was the ceiling: another mechanism there, from the
+    caps of forces at the solver's resolution). The answer says so, with `load`'s
+    multiplier."""
     scene = build("wall", courses=6, blocks_per_course=5, friction=0.6)
     lam = rb.max_load_multiplier(scene, flow=NA, state=False).load_multiplier
     assert lam == pytest.approx(0.5789474, abs=1e-7)
     fr = rb.min_friction(scene, load_factor=1.02 * lam, flow=NA, state=False)
-    assert fr.status == "stable" and fr.friction_factor > 100
-    note = next(n for n in fr.notes if n.startswith("below f* the limit fixed point"))
+    assert fr.status == "unstable"
+    note = next(n for n in fr.notes if n.startswith("the limit fixed point from X0"))
     assert f"carries lambda = {down(lam)} at every f tried" in note

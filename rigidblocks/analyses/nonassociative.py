@@ -113,10 +113,20 @@ TOP_RTOL = 1e-6
 #: peer's "H" sample, whose normal forces are zero); an admissible verdict whose shear
 #: capacity f N rests on such forces is round-off, not a verdict
 N_RESOLUTION = 1e-4
-#: the non-associative friction search goes no higher: above 1 / N_RESOLUTION the caps
-#: f N of normal forces at the solver's resolution reach the largest force, and no
-#: verdict there is resolved
-NA_FRICTION_CEILING = 1.0 / N_RESOLUTION
+#: the non-associative friction search goes no higher, and a non-associative answer at a
+#: larger friction says that it rests on round-off: above 1e-3 / N_RESOLUTION the caps
+#: f N of normal forces at the solver's resolution exceed 1e-3 of the largest force,
+#: and they move the limit iteration's path (a 4 x 4 running-bond wall under 0.7 of its
+#: weight: f* = 2939.57 from the caps of its head joints' elastic normal forces, 1e-5 of
+#: the largest, round-off of 0; its answer is 0.636 at every f from 1 to 1e5 but about
+#: 3,000; with 1 / N_RESOLUTION)
+NA_FRICTION_CEILING = 1e-3 / N_RESOLUTION
+#: the note of an answer at a friction above NA_FRICTION_CEILING
+ABOVE_CEILING = ("at f = {f:g} the caps f N of normal forces that are numerically zero "
+                 f"(up to {N_RESOLUTION:g} of the largest force) reach {{share:.2g}} of "
+                 "it: without dilatancy an answer above f = "
+                 f"{NA_FRICTION_CEILING:g} rests on them, not on the joints' laws; "
+                 "infinite friction (no sliding) is another law")
 #: the reason of an undecided verdict for that reason (its beginning)
 UNRESOLVED_N = "the shear is carried on normal forces"
 #: undecided trials in a row after which the friction search stops bracketing upwards
@@ -523,6 +533,7 @@ def check_nonassociative(scene: Scene, friction: Any = None, load_factor: float 
     f = friction_value(scene.effective_friction if friction is None else friction)
     lf = float(load_factor)
     na, cv = _open(scene, method, flow, **kw)
+    _above_ceiling(na, f)
     static = cv.admissible(f, lf)
     if static.status != ADMISSIBLE:
         na.notes.append("no admissible state exists at all (the associative, static "
@@ -621,6 +632,7 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
                          "live_body_force): there is nothing to multiply", scene.source)
     f = friction_value(scene.effective_friction if friction is None else friction)
     na, cv = _open(scene, method, flow, **kw)
+    _above_ceiling(na, f)
     seen = len(cv.notes)
     up = cv.load_limit(f, 1e-9)
     _bound_notes(na, cv, seen, "lambda*", ASSOC_NOTE)
@@ -634,6 +646,12 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
     if isinstance(na, ConvexNonAssociative) and up.status in ("collapse", "unbounded"):
         return _load_by_limit(na, cv, f, up, bounds, state, mechanism)
     return _load_by_bisection(na, cv, f, up, hi, lo, bounds, state, rtol, mechanism)
+
+
+def _above_ceiling(na: NonAssociative, f: float) -> None:
+    """The note of an analysis at a friction above NA_FRICTION_CEILING."""
+    if NA_FRICTION_CEILING < f < math.inf and na.marked.any():
+        na.notes.append(ABOVE_CEILING.format(f=f, share=f * N_RESOLUTION))
 
 
 def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
@@ -1276,6 +1294,7 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
         if good > NA_FRICTION_CEILING:
             na.notes.append(f"no friction up to {NA_FRICTION_CEILING:g} carries the load "
                             "at the limit fixed point reached from X0")
+            na.notes.extend(_flat_below(trials, found=False))
             return out("unstable", converged=True)
     run(s, oracle, (undecided_band, narrow_enough),
         (beside_the_undecided, _across, _secant, midpoint))
@@ -1302,19 +1321,22 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     return out("stable", s.good, at.data, s.lower, s.upper, True)
 
 
-def _flat_below(trials: list[dict[str, Any]]) -> list[str]:
+def _flat_below(trials: list[dict[str, Any]], found: bool = True) -> list[str]:
     """A note where the trials that do not carry the load all carry one multiplier:
-    lambda(f) is flat below f*, which is where another mechanism takes over (the 6 x 5
-    wall at load factor 0.590526: 0.578947 from f = 0.6 to 266.2, then 0.77)."""
+    lambda(f) is flat below f* (``found``; else up to the search's ceiling), which is
+    where another mechanism takes over (the 6 x 5 wall at load factor 0.590526: 0.578947
+    from f = 0.6 to 266.2, then 0.77 from forces at the solver's resolution: with the
+    ceiling of 10, none found)."""
     short = [t for t in trials if t.get("carries") is False]
     lams = [t["load_factor"] for t in short]
     if len(short) < 3 or max(lams) - min(lams) > 1e-6 * abs(max(lams)):
         return []
     fs = [t["friction"] for t in short]
-    return [f"below f* the limit fixed point from X0 carries lambda = "
+    return [f"{'below f* ' if found else ''}the limit fixed point from X0 carries lambda = "
             f"{fmt_safe(lams[0], 7, False)} at "
             f"every f tried from {min(fs):.6g} to {max(fs):.6g} ({len(short)} trials): "
-            "there it does not grow with f, and f* is where another mechanism takes over"]
+            "there it does not grow with f" + (", and f* is where another mechanism takes "
+                                               "over" if found else "")]
 
 
 def _secant(s: Any) -> float | None:
