@@ -264,3 +264,22 @@ def test_dxf_without_the_cad_extra_names_it(tmp_path, capsys, monkeypatch):
     monkeypatch.setitem(sys.modules, "ezdxf", None)
     assert main(["import-dxf", str(tmp_path / "a.dxf"), "-o", str(tmp_path / "a.json")]) == 2
     one_line_error(capsys, "ezdxf", "pip install 'rigidblocks[cad]'")
+
+
+def test_a_solver_failure_at_a_huge_friction_names_it(tmp_path, capsys):
+    """The 4 x 4 running-bond wall at f = 1e6 (accepted: at most 1e6): Clarabel ends
+    AlmostSolved and the failure named only the status; it names the friction and the
+    law meant ("infinite"), which gives lambda* = 2, as f = 1e5 does."""
+    from rigidblocks.generators import build
+    from rigidblocks.io import write_scene
+
+    path = tmp_path / "w.json"
+    write_scene(build("wall", courses=4, blocks_per_course=4), path)
+    assert main(["load", str(path), "--friction", "1e6"]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("rigidblocks: solver failure: ") and err.rstrip().endswith(
+        '(at f = 1e+06: a friction this large is beyond what the solver resolves on this '
+        'scene; "infinite" is the law without sliding)'), err
+    for f in ("infinite", "1e5"):
+        assert main(["load", str(path), "--friction", f]) == 0
+        assert "lambda* = 2," in capsys.readouterr().out

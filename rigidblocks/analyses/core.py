@@ -11,10 +11,12 @@ bisect on its verdicts (:mod:`.search`). Results are immutable
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import replace
 from typing import Any
 
-from ..errors import InputError, finite_number
+from ..errors import InputError, SolverFailure, finite_number
 from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_method
 from ..methods.convex import ADMISSIBLE_TOL, FRICTION_ATOL, FRICTION_RTOL, VERDICT_RTOL
 from ..results import CheckResult, FrictionResult, LoadResult, relative_width, within
@@ -133,6 +135,26 @@ def tilt_angle_deg(scene: Scene, load_multiplier: float | None) -> float | None:
     return math.degrees(math.atan(load_multiplier * math.hypot(*a[:-1])))
 
 
+#: a friction above this that the solver fails on is named in the failure: the joints'
+#: shear capacities f N then span many orders of magnitude beside the forces (a 4 x 4
+#: wall: AlmostSolved from f = 3e5, where 1e5 gives lambda* = 2, as infinite friction)
+LARGE_FRICTION = 1e4
+
+
+@contextmanager
+def _large_friction_named(f: float) -> Iterator[None]:
+    """A solver failure at a very large finite friction says so, and names the law
+    meant by it (no sliding: "infinite")."""
+    try:
+        yield
+    except SolverFailure as err:
+        if not LARGE_FRICTION < f < math.inf:
+            raise
+        raise SolverFailure(f"{err} (at f = {f:g}: a friction this large is beyond what "
+                            "the solver resolves on this scene; \"infinite\" is the law "
+                            "without sliding)", err.solver, err.status) from None
+
+
 def _friction_governs(m: Method, f: float, load_factor: float, na: bool = False
                       ) -> str | None:
     """Where no state is admissible at a finite friction ``f``, a note saying whether
@@ -225,7 +247,8 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
     lf = _load_factor(scene, load_factor)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol, progress=progress)
-    v = m.admissible(f, lf, for_state=state)
+    with _large_friction_named(f):
+        v = m.admissible(f, lf, for_state=state)
     m.explain(v)
     if v.status == INADMISSIBLE and state:  # (not in a study's bisection on verdicts)
         note = _friction_governs(m, f, lf)
@@ -371,7 +394,8 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     f = friction_value(scene.effective_friction if friction is None else friction)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol, progress=progress)
-    lim: Limit = m.load_limit(f, rtol, mechanism) or load_by_bisection(m, f, rtol)
+    with _large_friction_named(f):
+        lim: Limit = m.load_limit(f, rtol, mechanism) or load_by_bisection(m, f, rtol)
     lim = certified(m, lim, rtol, "lambda*")
     reached = dict(rtol=rtol, accuracy=lim.accuracy)
     if lim.status == "unstable":  # (rare: one more relaxation, whatever ``state``)
