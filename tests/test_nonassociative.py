@@ -725,3 +725,31 @@ def test_friction_says_where_lambda_does_not_grow_with_f():
     assert fr.status == "unstable"
     note = next(n for n in fr.notes if n.startswith("the limit fixed point from X0"))
     assert f"carries lambda = {down(lam)} at every f tried" in note
+
+
+def test_the_distortion_methods_answer_names_a_lower_one_of_the_convex_path(tmp_path,
+                                                                           capsys):
+    """The 4 x 4 running-bond wall at f = 1 without dilatancy: the distortion method
+    gives lambda* = 1 (the associative multiplier, the whole wall sliding on its base),
+    the convex path 0.636363 from X0 (a corner wedge of four blocks that rocks: 7/11 by
+    virtual work, resisting moment 1.12 against 1.76 overturning per unit lambda),
+    and the distortion answer said nothing of it. It now names the lower answer; the
+    convex path's own answer has no such note."""
+    from rigidblocks.cli.main import main
+    from rigidblocks.io import write_scene
+
+    path = tmp_path / "w.json"
+    write_scene(build("wall", courses=4, blocks_per_course=4), path)
+    argv = ["load", str(path), "--friction", "1", "--flow", "non-associative"]
+    assert main(argv + ["--method", "distortion"]) == 0
+    out = capsys.readouterr().out
+    assert "lambda* = 1," in out and (
+        "the default method (the convex path: the same command without --method) reaches "
+        "lambda = 0.636363 from X0, below this answer") in out, out
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "lambda* = 0.636363," in out and "the default method" not in out
+    # the wedge by virtual work (its blocks' weights about its toe): 7 / 11
+    assert main(argv + ["--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["load_multiplier"] == pytest.approx(
+        7 / 11, abs=1e-7)

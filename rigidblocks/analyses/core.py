@@ -19,7 +19,14 @@ from typing import Any
 from ..errors import InputError, SolverFailure, finite_number
 from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_method
 from ..methods.convex import ADMISSIBLE_TOL, FRICTION_ATOL, FRICTION_RTOL, VERDICT_RTOL
-from ..results import CheckResult, FrictionResult, LoadResult, relative_width, within
+from ..results import (
+    CheckResult,
+    FrictionResult,
+    LoadResult,
+    fmt_safe,
+    relative_width,
+    within,
+)
 from ..scene.model import Scene, friction_label, friction_value
 from ..scene.validate import check_load_factor
 from .nonassociative import (
@@ -153,6 +160,28 @@ def _large_friction_named(f: float) -> Iterator[None]:
         raise SolverFailure(f"{err} (at f = {f:g}: a friction this large is beyond what "
                             "the solver resolves on this scene; \"infinite\" is the law "
                             "without sliding)", err.solver, err.status) from None
+
+
+def _lower_by_the_convex_path(res: Any, scene: Scene, friction: Any, flow: str | None,
+                              rtol: float, **kw: Any) -> Any:
+    """The distortion method's non-associative multiplier, with a note where the convex
+    path's limit iteration from X0 reaches a lower one (non-associative collapse states
+    are not unique: a 4 x 4 running-bond wall at f = 1, 1 = the associative multiplier
+    by the distortion method, 0.636 by the convex path, a corner wedge that rocks)."""
+    try:
+        other = max_load_nonassociative(scene, friction, "clarabel", flow=flow,
+                                        state=False, rtol=rtol, **kw)
+    except SolverFailure:
+        return res
+    lam, low = float(res.load_multiplier), other.load_multiplier
+    if other.status != "collapse" or low is None or \
+            not low < lam - rtol * max(abs(lam), 1.0):
+        return res
+    return replace(res, notes=(*res.notes, (
+        "the default method (the convex path: the same command without --method) reaches "
+        f"lambda = {fmt_safe(float(low), 6, False)} from X0, "
+        "below this answer: non-associative collapse states are not unique, and the lower "
+        "is the safer")))
 
 
 def _friction_governs(m: Method, f: float, load_factor: float, na: bool = False
@@ -373,6 +402,9 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         # a collapse state reached by the iteration has no bracket: no accuracy was
         # asked of it (bisection on the distortion method's verdicts has one)
         res = _reached(res, na_rtol if res.bracket else None)
+        if method == "distortion" and res.status == "collapse":
+            res = _lower_by_the_convex_path(res, scene, friction, flow, na_rtol,
+                                            pyramid=pyramid, contact_tol=contact_tol)
         if res.status == "unstable":
             res = _with_friction_note(res, scene, friction, 0.0, method, solver=solver,
                                       settings=settings, pyramid=pyramid,
