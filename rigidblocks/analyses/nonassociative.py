@@ -114,12 +114,12 @@ TOP_RTOL = 1e-6
 #: capacity f N rests on such forces is round-off, not a verdict
 N_RESOLUTION = 1e-4
 #: the non-associative friction search goes no higher, and a non-associative answer at a
-#: larger friction says that it rests on round-off: above 1e-3 / N_RESOLUTION the caps
-#: f N of normal forces at the solver's resolution exceed 1e-3 of the largest force,
-#: and they move the limit iteration's path (a 4 x 4 running-bond wall under 0.7 of its
-#: weight: f* = 2939.57 from the caps of its head joints' elastic normal forces, 1e-5 of
-#: the largest, round-off of 0; its answer is 0.636 at every f from 1 to 1e5 but about
-#: 3,000; with 1 / N_RESOLUTION)
+#: larger friction says what it rests on (ABOVE_CEILING): above 1e-3 / N_RESOLUTION the
+#: caps f N of normal forces at the solver's resolution exceed 1e-3 of the largest
+#: force, and they move the limit iteration's path (a 4 x 4 running-bond wall under 0.7
+#: of its weight, with the ceiling at 1 / N_RESOLUTION: f* = 2939.57, from the caps of
+#: its head joints' elastic normal forces, 1e-5 of the largest, round-off of 0; its
+#: answer is 0.636 at every f from 1 to 1e5 but about 3,000)
 NA_FRICTION_CEILING = 1e-3 / N_RESOLUTION
 #: the note of an answer at a friction above NA_FRICTION_CEILING
 ABOVE_CEILING = ("at f = {f:g} the caps f N of normal forces that are numerically zero "
