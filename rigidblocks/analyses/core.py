@@ -360,6 +360,38 @@ def min_friction(scene: Scene, load_factor: float | None = None,
                           **reached)
 
 
+def _load_nonassociative(scene: Scene, friction: Any, method: str, flow: str | None,
+                         rtol: float, *, state: bool, progress: Progress | None,
+                         mechanism: str, **opened: Any) -> LoadResult:
+    """:func:`max_load_multiplier` without dilatancy
+    (:func:`.nonassociative.max_load_nonassociative`), with the notes and the round-off
+    of 0 of the analyses."""
+    res = max_load_nonassociative(scene, friction, method, flow=flow, state=state,
+                                  progress=progress, mechanism=mechanism, rtol=rtol,
+                                  **opened)
+    # a collapse state reached by the iteration has no bracket: no accuracy was asked of
+    # it (bisection on the distortion method's verdicts has one)
+    res = _reached(res, rtol if res.bracket else None)
+    if method == "distortion" and res.status == "collapse":
+        res = _lower_by_the_convex_path(res, scene, friction, flow, rtol,
+                                        pyramid=opened.get("pyramid"),
+                                        contact_tol=opened.get("contact_tol"))
+    if res.status == "unstable":
+        res = _with_friction_note(res, scene, friction, 0.0, method, **opened)
+    if res.status != "collapse":
+        return replace(res, tilt_angle_deg=None)
+    lam = float(res.load_multiplier)
+    bounds = res.load_multiplier_bounds
+    if bounds is not None and bounds[1] is not None and 0 <= bounds[1] <= ZERO_MULTIPLIER:
+        # the associative multiplier, an upper bound, is round-off of 0, and so is every
+        # multiplier below it (the reference model without friction: 3.5e-11)
+        lam, bounds = 0.0, (bounds[0] if bounds[0] is None else 0.0, 0.0)
+    else:
+        lam = _round_off_of_zero(lam, res.accuracy)
+    return replace(res, load_multiplier=lam, load_multiplier_bounds=bounds,
+                   tilt_angle_deg=tilt_angle_deg(scene, lam))
+
+
 def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clarabel", *,
                         solver: str | None = None, state: bool = True,
                         settings: dict | None = None, pyramid: int | None = None,
@@ -394,34 +426,9 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         raise InputError("the scene has no live load (no \"live\": true load and no "
                          "live_body_force): there is nothing to multiply", scene.source)
     if is_nonassociative(scene, flow):
-        na_rtol = requested_rtol(rtol, NA_RTOL)
-        res = max_load_nonassociative(
-            scene, friction, method, flow=flow, state=state, solver=solver,
-            settings=settings, pyramid=pyramid, contact_tol=contact_tol, progress=progress,
-            mechanism=mechanism, rtol=na_rtol)
-        # a collapse state reached by the iteration has no bracket: no accuracy was
-        # asked of it (bisection on the distortion method's verdicts has one)
-        res = _reached(res, na_rtol if res.bracket else None)
-        if method == "distortion" and res.status == "collapse":
-            res = _lower_by_the_convex_path(res, scene, friction, flow, na_rtol,
-                                            pyramid=pyramid, contact_tol=contact_tol)
-        if res.status == "unstable":
-            res = _with_friction_note(res, scene, friction, 0.0, method, solver=solver,
-                                      settings=settings, pyramid=pyramid,
-                                      contact_tol=contact_tol)
-        if res.status != "collapse":
-            return replace(res, tilt_angle_deg=None)
-        lam = float(res.load_multiplier)
-        bounds = res.load_multiplier_bounds
-        if bounds is not None and bounds[1] is not None and \
-                0 <= bounds[1] <= ZERO_MULTIPLIER:
-            # the associative multiplier, an upper bound, is round-off of 0, and so is
-            # every multiplier below it (the reference model without friction: 3.5e-11)
-            lam, bounds = 0.0, (bounds[0] if bounds[0] is None else 0.0, 0.0)
-        else:
-            lam = _round_off_of_zero(lam, res.accuracy)
-        return replace(res, load_multiplier=lam, load_multiplier_bounds=bounds,
-                       tilt_angle_deg=tilt_angle_deg(scene, lam))
+        return _load_nonassociative(scene, friction, method, flow, requested_rtol(
+            rtol, NA_RTOL), state=state, progress=progress, mechanism=mechanism,
+            solver=solver, settings=settings, pyramid=pyramid, contact_tol=contact_tol)
     rtol = requested_rtol(rtol, LOAD_RTOL)
     f = friction_value(scene.effective_friction if friction is None else friction)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,

@@ -1259,7 +1259,6 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
 
     na.limit_path = "walk" if walks(cv) else True
     fs = float(lim.value)
-
     oracle = _limit_oracle(na, cv, lf, trials)
 
     s = Search(fs, fs, rtol)
@@ -1292,9 +1291,9 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
             break
         good *= 2.0
         if good > NA_FRICTION_CEILING:
-            na.notes.append(f"no friction up to {NA_FRICTION_CEILING:g} carries the load "
-                            "at the limit fixed point reached from X0")
-            na.notes.extend(_flat_below(trials, found=False))
+            na.notes.extend([f"no friction up to {NA_FRICTION_CEILING:g} carries the load "
+                             "at the limit fixed point reached from X0",
+                             *_flat_below(trials, found=False)])
             return out("unstable", converged=True)
     run(s, oracle, (undecided_band, narrow_enough),
         (beside_the_undecided, _across, _secant, midpoint))
