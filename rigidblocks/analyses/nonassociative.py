@@ -902,9 +902,9 @@ def compare_starts(history: Any) -> tuple[list[StartAnswer], tuple[float, float]
     same = max([SAME_ANSWER] + [float(h.get("carry_tol") or 0.0) for h in entries])
 
     def apart(lo: float, hi: float) -> bool:
-        # relative to the multiplier and to 1, as a run's carry_tol: 3.3e-15 and 3.9e-15
-        # (the reference model without friction, both round-off of 0) are one answer
-        return hi - lo > same * max(abs(lo), abs(hi), 1.0)
+        # relative, and beyond round-off of 0: 3.3e-15 and 3.9e-15 (the reference model
+        # without friction) are one answer
+        return hi - lo > max(same * max(abs(lo), abs(hi)), 1e-12)
 
     out: list[StartAnswer] = []
     for k, h in enumerate(entries):
