@@ -384,7 +384,11 @@ class _Words:
             whose = "its" if na else ("the distortion iteration's"
                                       if getattr(res, "solver", "") == "distortion"
                                       else "smallest")
-            number = (f"{whose} breach of the joint laws {self.force(res.violation)} (0 "
+            # what it measures: a 20 kN block leaning beyond its base, under its weight
+            # again sideways, "breached" by 70 kN read as a misprint (about its toe the
+            # loads turn 35 kNm, held by 70 kN of tension at its heel 0.5 m away)
+            number = (f"{whose} breach of the joint laws {self.force(res.violation)} (the "
+                      "most tension, or shear beyond friction, it asks of a contact; 0 "
                       "would stand)")
         names = [f"{a}-{b} ({fmt(v, 3)} {self.fu})" for a, b, v in
                  ((*res.joint_name(k), v) for k, v in res.breaches)]

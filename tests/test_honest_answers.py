@@ -830,3 +830,18 @@ def test_a_non_associative_friction_that_rests_on_numerically_zero_forces_is_non
     assert ("at f = 3000 the caps f N of normal forces that are numerically zero (up to "
             "0.0001 of the largest force) reach 0.3 of it: without dilatancy an answer "
             "above f = 10 rests on them") in out, out
+
+
+def test_the_breach_says_what_it_measures(tmp_path, capsys):
+    """A 20 kN parallelogram block (base 0.5 m, leaning 45 degrees to 2 m) under its
+    weight and the same again sideways: "smallest breach of the joint laws 70 kN" read
+    as a misprint beside 20 kN. About its toe the loads turn 20 x 0.75 + 20 x 1 = 35 kNm,
+    held only by tension at its heel 0.5 m away: 70 kN. The line says what it measures."""
+    path = write(tmp_path, make_scene([
+        {"id": "ground", "vertices": rect(-1, -0.5, 5, 0.5), "support": True},
+        {"id": "lean", "vertices": [[0, 0], [0.5, 0], [2.5, 2], [2, 2]]},
+    ], unit_weight=20.0, friction=0.6, live_body_force=[1, 0],
+        units={"length": "m", "force": "kN"}))
+    code, out, _ = run(capsys, ["check", path, "--friction", "infinite"])
+    assert ("answer     smallest breach of the joint laws 70 kN (the most tension, or shear "
+            "beyond friction, it asks of a contact; 0 would stand)") in out, out
