@@ -830,6 +830,13 @@ def test_a_non_associative_friction_that_rests_on_numerically_zero_forces_is_non
     assert ("at f = 3000 the caps f N of normal forces that are numerically zero (up to "
             "0.0001 of the largest force) reach 0.3 of it: without dilatancy an answer "
             "above f = 10 rests on them") in out, out
+    # infinite friction is Heyman's law, not the limit of large f: 2, not 0.636
+    code, out, _ = run(capsys, ["load", str(f), "--flow", "non-associative", "--friction",
+                                "infinite"])
+    assert "lambda* = 2," in out and ("that law lets a joint without compression carry "
+                                      "shear, which no finite friction does without "
+                                      "dilatancy: a large finite f can give less (f = 10, "
+                                      "for one)") in out, out
 
 
 def test_the_breach_says_what_it_measures(tmp_path, capsys):

@@ -127,6 +127,13 @@ ABOVE_CEILING = ("at f = {f:g} the caps f N of normal forces that are numericall
                  "it: without dilatancy an answer above f = "
                  f"{NA_FRICTION_CEILING:g} rests on them, not on the joints' laws; "
                  "infinite friction (no sliding) is another law")
+#: the note of a non-associative analysis at infinite friction: not the limit of large f
+#: (the 4 x 4 running-bond wall: lambda* = 2 at infinite friction, 0.636 at f = 10, where
+#: its head joints, without compression, carry no shear)
+INFINITE_NOTE = ("with infinite friction no joint slides (Heyman's law) and the flow rule "
+                 "does not enter; that law lets a joint without compression carry shear, "
+                 "which no finite friction does without dilatancy: a large finite f can "
+                 f"give less (f = {NA_FRICTION_CEILING:g}, for one)")
 #: the reason of an undecided verdict for that reason (its beginning)
 UNRESOLVED_N = "the shear is carried on normal forces"
 #: undecided trials in a row after which the friction search stops bracketing upwards
@@ -649,9 +656,11 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
 
 
 def _above_ceiling(na: NonAssociative, f: float) -> None:
-    """The note of an analysis at a friction above NA_FRICTION_CEILING."""
-    if NA_FRICTION_CEILING < f < math.inf and na.marked.any():
-        na.notes.append(ABOVE_CEILING.format(f=f, share=f * N_RESOLUTION))
+    """The note of an analysis at a friction above NA_FRICTION_CEILING, or infinite."""
+    if not na.marked.any() or f <= NA_FRICTION_CEILING:
+        return
+    na.notes.append(ABOVE_CEILING.format(f=f, share=f * N_RESOLUTION) if f < math.inf
+                    else INFINITE_NOTE)
 
 
 def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
