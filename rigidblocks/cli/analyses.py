@@ -21,6 +21,7 @@ from ..errors import InputError
 from ..io import read_scene
 from ..methods import METHODS, Progress
 from ..results import fmt_safe
+from ..scene.model import INFINITE, friction_label
 from .options import add_rtol, finite_float, friction_option
 from .options import load_factor as load_factor_type
 from .progress import run_interruptible
@@ -203,7 +204,7 @@ def _write_csv(res: Any, path: str) -> None:
                         "mode", "friction", "cohesion", "tensile_strength"])
             for r in rows:
                 w.writerow([*r["joint"], r["N"], r["T"], r["eccentricity"], r["demand"],
-                            r["state"], r["mode"], _jsonable(r["friction"]),
+                            r["state"], r["mode"], friction_label(r["friction"]),
                             r["cohesion"], r["tensile_strength"]])
     except OSError as err:
         raise InputError(f"cannot write: {err}", path) from None
@@ -287,7 +288,7 @@ def _table(res, scene) -> list[str]:
 
 def _own(fmt: str, value: float) -> str:
     """A joint's law in the table: "infinite" as in the scene file."""
-    return "infinite" if value == math.inf else fmt.format(value)
+    return INFINITE if math.isinf(value) else fmt.format(value)
 
 
 def _flow_lines(res) -> list[str]:
