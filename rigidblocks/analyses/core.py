@@ -36,6 +36,7 @@ from .nonassociative import (
     max_load_nonassociative,
     min_friction_nonassociative,
 )
+from .notes import friction_governs
 from .search import friction_by_bisection, load_by_bisection
 
 #: the default accuracy of lambda*, as f*'s (FRICTION_RTOL, chosen from the chart)
@@ -184,37 +185,6 @@ def _lower_by_the_convex_path(res: Any, scene: Scene, friction: Any, flow: str |
         "is the safer")))
 
 
-def _friction_governs(m: Method, f: float, load_factor: float, na: bool = False
-                      ) -> str | None:
-    """Where no state is admissible at a finite friction ``f``, a note saying whether
-    one is without sliding (the joints' friction infinite, their overrides kept; the
-    flow rule is then moot): then friction governs, not the geometry (the inclined
-    corbel arch at f = 0.6 under its self-weight: it stands from f* = 0.7654), and the
-    command that gives the friction needed (``na``: without dilatancy)."""
-    if not math.isfinite(f):
-        return None
-    v = m.admissible(math.inf, load_factor)
-    if v.status != ADMISSIBLE:
-        return None
-    where = "under its dead load alone" if load_factor == 0 else "at this load"
-    flow = " --flow non-associative" if na else ""
-    return (f"without sliding (infinite friction) it stands {where}: friction governs, not "
-            f"the geometry; `rigidblocks friction {m.scene.source or 'SCENE'} --load-factor "
-            f"{load_factor:g}{flow}` gives the least friction that carries it")
-
-
-def _with_friction_note(res: Any, scene: Scene, friction: Any, load_factor: float,
-                        method: str, **kw: Any) -> Any:
-    """A non-associative result that found no admissible state, with the note of
-    :func:`_friction_governs` (a static check without sliding, which the flow rule
-    does not enter)."""
-    f = friction_value(scene.effective_friction if friction is None else friction)
-    if not math.isfinite(f):
-        return res
-    note = _friction_governs(open_method(scene, method, **kw), f, load_factor, na=True)
-    return replace(res, notes=(*res.notes, note)) if note else res
-
-
 def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
           method: str = "clarabel", *, solver: str | None = None, state: bool = True,
           settings: dict | None = None, pyramid: int | None = None,
@@ -267,11 +237,8 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
         lf = _load_factor(scene, load_factor)
         opened = dict(solver=solver, settings=settings, pyramid=pyramid,
                       contact_tol=contact_tol)
-        res = check_nonassociative(scene, friction, lf, method, flow=flow, state=state,
-                                   progress=progress, **opened)
-        if res.status == INADMISSIBLE and state:
-            res = _with_friction_note(res, scene, friction, lf, method, **opened)
-        return res
+        return check_nonassociative(scene, friction, lf, method, flow=flow, state=state,
+                                    progress=progress, **opened)
     f = friction_value(scene.effective_friction if friction is None else friction)
     lf = _load_factor(scene, load_factor)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
@@ -280,7 +247,7 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
         v = m.admissible(f, lf, for_state=state)
     m.explain(v)
     if v.status == INADMISSIBLE and state:  # (not in a study's bisection on verdicts)
-        note = _friction_governs(m, f, lf)
+        note = friction_governs(m, f, lf)
         m.notes += [note] if note else []
     ok = v.status == ADMISSIBLE
     st = m.state(f, lf, v) if (ok and state) else None
@@ -376,8 +343,6 @@ def _load_nonassociative(scene: Scene, friction: Any, method: str, flow: str | N
         res = _lower_by_the_convex_path(res, scene, friction, flow, rtol,
                                         pyramid=opened.get("pyramid"),
                                         contact_tol=opened.get("contact_tol"))
-    if res.status == "unstable":
-        res = _with_friction_note(res, scene, friction, 0.0, method, **opened)
     if res.status != "collapse":
         return replace(res, tilt_angle_deg=None)
     lam = float(res.load_multiplier)
@@ -438,7 +403,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     lim = certified(m, lim, rtol, "lambda*")
     reached = dict(rtol=rtol, accuracy=lim.accuracy)
     if lim.status == "unstable":  # (rare: one more relaxation, whatever ``state``)
-        note = _friction_governs(m, f, 0.0)
+        note = friction_governs(m, f, 0.0)
         m.notes += [note] if note else []
     if lim.status != "collapse":
         return LoadResult(**_fields(m, "max_load_multiplier", lim.status, f, None),

@@ -89,6 +89,7 @@ from .na_limit import (
     reached_normals,
 )
 from .na_mechanism import limit_runs, walks
+from .notes import with_friction_governs
 from .search import BRACKET_ATOL, UNBOUNDED_AT, bisect
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
@@ -540,6 +541,15 @@ def check_nonassociative(scene: Scene, friction: Any = None, load_factor: float 
     f = friction_value(scene.effective_friction if friction is None else friction)
     lf = float(load_factor)
     na, cv = _open(scene, method, flow, **kw)
+    res = _check(na, cv, f, lf, state)
+    # (not in a study's bisection on verdicts, which asks for no state)
+    return with_friction_governs(res, cv, f, lf) if res.status == INADMISSIBLE and state \
+        else res
+
+
+def _check(na: NonAssociative, cv: ConvexMethod, f: float, lf: float, state: bool
+           ) -> CheckResult:
+    """:func:`check_nonassociative` with its methods open."""
     _above_ceiling(na, f)
     static = cv.admissible(f, lf)
     if static.status != ADMISSIBLE:
@@ -556,7 +566,8 @@ def check_nonassociative(scene: Scene, friction: Any = None, load_factor: float 
     st = na.state(f, lf, v)
     status = v.status if v.status in (ADMISSIBLE, INADMISSIBLE, UNDECIDED) else FAILURE
     admissible, violation = v.admissible, 0.0 if v.status == ADMISSIBLE else v.violation
-    if status == ADMISSIBLE and isinstance(na, ConvexNonAssociative) and scene.has_live_load:
+    if status == ADMISSIBLE and isinstance(na, ConvexNonAssociative) and \
+            na.scene.has_live_load:
         before = na.fp_iterations
         status = _loaded_from_x0(na, cv, f, lf)
         trial["limit_steps"] = na.fp_iterations - before
@@ -651,8 +662,10 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
     lo = _frictionless_bound(cv, na.marked, f)
     bounds = (lo, math.inf if up.status == "unbounded" else hi)
     if isinstance(na, ConvexNonAssociative) and up.status in ("collapse", "unbounded"):
-        return _load_by_limit(na, cv, f, up, bounds, state, mechanism)
-    return _load_by_bisection(na, cv, f, up, hi, lo, bounds, state, rtol, mechanism)
+        res = _load_by_limit(na, cv, f, up, bounds, state, mechanism)
+    else:
+        res = _load_by_bisection(na, cv, f, up, hi, lo, bounds, state, rtol, mechanism)
+    return with_friction_governs(res, cv, f, 0.0) if res.status == "unstable" else res
 
 
 def _above_ceiling(na: NonAssociative, f: float) -> None:

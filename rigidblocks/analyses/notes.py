@@ -1,0 +1,37 @@
+"""Notes the analyses of both flow rules attach to their results."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Any
+
+from ..methods import ADMISSIBLE, Method
+
+
+def friction_governs(m: Method, f: float, load_factor: float, na: bool = False
+                     ) -> str | None:
+    """Where no state is admissible at a finite friction ``f``, a note saying whether
+    one is without sliding (the joints' friction infinite, their overrides kept; the
+    flow rule is then moot): then friction governs, not the geometry (the inclined
+    corbel arch at f = 0.6 under its self-weight: it stands from f* = 0.7654), and the
+    command that gives the friction needed (``na``: without dilatancy)."""
+    if not math.isfinite(f):
+        return None
+    v = m.admissible(math.inf, load_factor)
+    if v.status != ADMISSIBLE:
+        return None
+    where = "under its dead load alone" if load_factor == 0 else "at this load"
+    flow = " --flow non-associative" if na else ""
+    return (f"without sliding (infinite friction) it stands {where}: friction governs, not "
+            f"the geometry; `rigidblocks friction {m.scene.source or 'SCENE'} --load-factor "
+            f"{load_factor:g}{flow}` gives the least friction that carries it")
+
+
+def with_friction_governs(res: Any, m: Method, f: float, load_factor: float) -> Any:
+    """A non-associative result that found no admissible state, with the note of
+    :func:`friction_governs` (a static check without sliding by the method ``m``, which
+    the flow rule does not enter; made after the result, so that what it adds to ``m``'s
+    notes stays out of it)."""
+    note = friction_governs(m, f, load_factor, na=True)
+    return replace(res, notes=(*res.notes, note)) if note else res
