@@ -287,7 +287,9 @@ class Mechanisms:
                     "the least confined state gave no answer"
                 return None, None, f"{why} at vertex step {k} {after}", k - 1
             key = self.key(act)
-            if _settled(key, last):
+            changed = _changed(key, last)
+            least = min(least, changed)
+            if changed <= SETTLED:
                 settled = True
                 if not self.walk_past_failures and self.tried(act):
                     return None, None, (f"the mechanism settled at vertex step {k} {after} "
@@ -296,8 +298,6 @@ class Mechanisms:
                 if got is not None:
                     return (*got, f" ({k} of them by steps to the least confined state "
                                   f"{after})", k - 1)
-            if last is not None:
-                least = min(least, int((key ^ last).sum()) / max(int(key.sum()), 1))
             wanders = self.wander and k == WANDER_STEPS and least > WANDER
             if (k == UNSETTLED_WALK or wanders) and not settled and k < max_steps:
                 how = (f", each step changing at least {least:.1%} of its rows"
@@ -558,10 +558,16 @@ class ConeMechanisms(Mechanisms):
                              mech, c, P)
 
 
+def _changed(act: np.ndarray, last: np.ndarray | None) -> float:
+    """The share of the mechanism's rows ``act`` that differ from the last step's
+    (infinite where there is none)."""
+    return math.inf if last is None else int((act ^ last).sum()) / max(int(act.sum()), 1)
+
+
 def _settled(act: np.ndarray, last: np.ndarray | None) -> bool:
     """Have the mechanism's rows settled: do they differ from the last step's by at most
     ``SETTLED`` of their number?"""
-    return last is not None and int((act ^ last).sum()) <= SETTLED * act.sum()
+    return _changed(act, last) <= SETTLED
 
 
 def walks(cv: ConvexMethod) -> bool:
