@@ -178,6 +178,16 @@ def _own_friction(res: Any, f: Any) -> str:
     return f"{'enough' if ok else 'NOT enough'}: {there}{below}"
 
 
+def _to_accuracy(res: Any, symbol: str) -> str:
+    """How far a bisection's governing joints are from their friction limit: its state
+    is at an end of the answer's bracket, not at the limit itself, and the joints are
+    those within the bracket's width of it where that is wider than AT_THRESHOLD."""
+    from .methods.distortion import AT_THRESHOLD
+
+    wide = res.bracket and (res.accuracy or 0.0) > AT_THRESHOLD
+    return f", to {symbol}'s accuracy" if wide else ""
+
+
 def joint_list(names: list[str], first: int = FIRST) -> str:
     """``a-b, c-d, ... and N more`` (the first ``first``)."""
     if len(names) <= first:
@@ -450,8 +460,9 @@ class _Words:
         names = [f"{a}-{b}" for a, b in res.governing_joints]
         verdict = "STANDS at friction f = f*" if na else "STANDS with friction f >= f*"
         return (verdict, number,
-                joint_list(names) + ((" (at its friction limit)" if len(names) == 1 else
-                                      " (at their friction limit)") if names else ""), why)
+                joint_list(names) + ((" (at its friction limit" if len(names) == 1 else
+                                      " (at their friction limit") + _to_accuracy(res, "f*")
+                                     + ")" if names else ""), why)
 
     def load(self, res: Any) -> tuple[str, str, str, list[str]]:
         if res.status == "unbounded":
@@ -496,8 +507,9 @@ class _Words:
         mech = res.mechanism
         if mech is None:
             names = [f"{a}-{b}" for a, b in res.governing_joints]
+            at = _to_accuracy(res, f"{self.lam}*")
             return ("COLLAPSE", number,
-                    ("joints at their friction limit: " + joint_list(names)) if names
+                    (f"joints at their friction limit{at}: " + joint_list(names)) if names
                     else "", why)
         body = bodies_text(res, self.scene)
         return "COLLAPSE", number, mechanism_text(res), ([body] if body else []) + why

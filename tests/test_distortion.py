@@ -423,6 +423,28 @@ def test_reference_max_load_closed_form():
     assert res.load_multiplier <= 1.2 * (1 + 1e-9)
 
 
+
+def test_governing_joints_at_the_accuracy_of_the_bisection(capsys):
+    """The same model at the default accuracy: the bisection's state is at its
+    bracket's lower end, 1.19921875, where each bed joint's |T|/N is 0.6 x 1.19921875 /
+    1.2, 6.5e-4 below f (N = P / 2 = 50, |T| = lambda H / 2 per bed joint: statics of the
+    model above). `load` named no governing joint at all (their threshold held to 1e-5);
+    within the answer's accuracy the four bed joints are at their friction limit, and
+    the line says to what accuracy. So for `friction` at lambda = 1 (f* = 0.5)."""
+    from rigidblocks.cli.main import main
+
+    path = str(EXAMPLES / "reference.json")
+    bed = "support-left, support-right, left-top, right-top"
+    res = rb.max_load_multiplier(_example("reference.json"), method="distortion")
+    assert res.bracket is not None and res.bracket[0] < 1.2 * (1 - 1e-4)
+    assert {f"{a}-{b}" for a, b in res.governing_joints} == set(bed.split(", "))
+    assert main(["load", path, "--method", "distortion"]) == 0
+    assert (f"governing  joints at their friction limit, to lambda*'s accuracy: {bed}"
+            in capsys.readouterr().out)
+    assert main(["friction", path, "--method", "distortion", "--load-factor", "1"]) == 0
+    assert f"governing  {bed} (at their friction limit, to f*'s accuracy)" in \
+        capsys.readouterr().out
+
 # -- where the iteration cannot decide ---------------------------------------------------
 def test_check_just_below_fstar_is_undecided_with_reason():
     """Seed model (f* = 0.5, seed paper numerical example 1): 1e-8 below f* the gap

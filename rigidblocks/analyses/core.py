@@ -318,7 +318,7 @@ def min_friction(scene: Scene, load_factor: float | None = None,
     gov = lim.governing
     if at is not None:
         m.explain(at)
-        gov = gov or m.governing_friction(fstar, at)
+        gov = gov or m.governing_friction(fstar, at, lim.accuracy or 0.0)
     st = m.state(fstar, lf, at, limit=True) if (state and at is not None) else None
     return FrictionResult(**_fields(m, "min_friction", "stable", fstar, lf), state=st,
                           governing=gov, friction_factor=fstar,
@@ -419,7 +419,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     if at is not None:
         m.explain(at)
         if lim.mechanism is None:
-            gov = gov or m.governing_load(f, at)
+            gov = gov or m.governing_load(f, at, lim.accuracy or 0.0)
     st = m.state(f, lam, at, limit=True) if (state and at is not None) else None
     lam = _round_off_of_zero(lam, lim.accuracy)  # (its state is the solver's)
     return LoadResult(**_fields(m, "max_load_multiplier", "collapse", f, lam), state=st,

@@ -193,12 +193,17 @@ class Method:
         return ()
 
     # -- governing joints after a bisection --------------------------------------------
-    def governing_friction(self, f: float, verdict: Verdict) -> tuple[int, ...]:
-        """Joints that govern f* (at their friction limit in the state at f*)."""
+    def governing_friction(self, f: float, verdict: Verdict, rel: float = 0.0
+                           ) -> tuple[int, ...]:
+        """Joints that govern f* (at their friction limit in the state at f*, to the
+        relative accuracy ``rel`` of f*: a bisection's state is at the end of its
+        bracket, not at the limit itself)."""
         return ()
 
-    def governing_load(self, f: float, verdict: Verdict) -> tuple[int, ...]:
-        """Joints at their friction limit in the state at lambda*."""
+    def governing_load(self, f: float, verdict: Verdict, rel: float = 0.0
+                       ) -> tuple[int, ...]:
+        """Joints at their friction limit in the state at lambda* (to the relative
+        accuracy ``rel`` of lambda*)."""
         return ()
 
     # -- bookkeeping -------------------------------------------------------------------
