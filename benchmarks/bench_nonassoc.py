@@ -682,12 +682,33 @@ def _cpu(fn: Any, *args: Any, **kw: Any) -> tuple[Any, float]:
     return r, time.process_time() - t0
 
 
+def _command_cpu(scene: Scene, *options: str) -> tuple[float, int]:
+    """The CPU seconds (user + system) of ``rigidblocks load SCENE OPTIONS`` as a user
+    runs it, one whole process (imports, contacts, the analysis, its state and the
+    printed answer), and its exit code."""
+    import resource
+
+    from rigidblocks.io.scene_file import write_scene
+
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "wall.json"
+        write_scene(scene, path)
+        cmd = [sys.executable, "-c", "import sys; from rigidblocks.cli.main import main; "
+               "sys.exit(main())", "load", str(path), *options]
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        code = subprocess.run(cmd, stdout=subprocess.DEVNULL, check=False).returncode
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime), code
+
+
 def large_walls(sizes: Sequence[tuple], frictions: Sequence[float],
-                up_to: int, friction_too: bool = True) -> list[dict[str, Any]]:
+                up_to: int, friction_too: bool = True, commands: bool = True
+                ) -> list[dict[str, Any]]:
     """Non-associative load and friction on running-bond walls against the associative
     load in the same run (CPU seconds): the limit iteration from X0 and from the
-    associative collapse state (the spread), and the friction whose answer from X0
-    carries the multiplier found at f (it should give f back). ``sizes``: (courses,
+    associative collapse state (the spread), the friction whose answer from X0
+    carries the multiplier found at f (it should give f back), and (``commands``) both
+    `load` answers again as whole commands (:func:`_command_cpu`). ``sizes``: (courses,
     blocks per course) of 2D walls, or with a third item the load direction of a
     wall3d."""
     warm = build("wall", courses=2, blocks_per_course=2, friction=0.6)
@@ -716,6 +737,9 @@ def large_walls(sizes: Sequence[tuple], frictions: Sequence[float],
             lf = v.load_multiplier if v.status == "collapse" else 0.9 * a.load_multiplier
             fr, tf = _cpu(rb.min_friction, scene, load_factor=lf, flow=NA, state=False) \
                 if friction_too else (None, None)
+            # the same two answers as whole `load` commands, one process each in turn
+            cli_a, code_a = _command_cpu(scene) if commands else (None, None)
+            cli_v, code_v = _command_cpu(scene, "--flow", NA) if commands else (None, None)
             row = {"courses": c, "per_course": n, "blocks": len(scene.blocks),
                    "wall": f"{c} x {n}" + (f" wall3d {direction[0].replace('_', ' ')}"
                                            if direction else ""),
@@ -732,7 +756,10 @@ def large_walls(sizes: Sequence[tuple], frictions: Sequence[float],
                    "friction_status": fr.status if fr else "not run",
                    "na_friction": fr.friction_factor if fr else None,
                    "friction_bracket": fr.bracket if fr else None, "friction_cpu": tf,
-                   "friction_ratio": tf / ta if ta and tf is not None else None}
+                   "friction_ratio": tf / ta if ta and tf is not None else None,
+                   "command_assoc_cpu": cli_a, "command_na_cpu": cli_v,
+                   "command_exit_codes": [code_a, code_v],
+                   "command_ratio": cli_v / cli_a if cli_a and cli_v is not None else None}
             rows.append(row)
             print(f"{row['wall']} f={f}: assoc {a.load_multiplier:.6g} ({ta:.2f} s), "
                   f"non-assoc {v.status} {v.load_multiplier} ({tv:.2f} s), friction "
@@ -745,7 +772,7 @@ def large_walls_md(rows: list[dict[str, Any]]) -> list[str]:
     header = ["wall", "blocks", "f", "lambda assoc", "CPU s", "lambda non-assoc (X0)",
               "its mechanism's states", "from the assoc. state", "its mechanism's states",
               "CPU s", "x assoc", "limit steps", "f non-assoc at lambda non-assoc", "CPU s",
-              "x assoc", "load"]
+              "x assoc", "`load` commands CPU s", "x", "load"]
     body = [[r.get("wall", f"{r['courses']} x {r['per_course']}"), r["blocks"], r["friction"],
              r["assoc_lambda"], r["assoc_cpu"], _cell(r["na_lambda"]) if r["na_status"]
              == "collapse" else r["na_status"], _span(r.get("na_span"), r.get("na_loose")),
@@ -753,7 +780,8 @@ def large_walls_md(rows: list[dict[str, Any]]) -> list[str]:
              _span(r.get("na_from_assoc_span"), r.get("na_from_assoc_loose")), r["na_cpu"],
              _cell(r["na_ratio"]), r["na_steps"], _cell(r["na_friction"]) if
              r["friction_status"] == "stable" else r["friction_status"], _cell(r["friction_cpu"]),
-             _cell(r["friction_ratio"]), _cell(r.get("load_average"))] for r in rows]
+             _cell(r["friction_ratio"]), _commands(r), _cell(r.get("command_ratio")),
+             _cell(r.get("load_average"))] for r in rows]
     return ["### Running-bond walls: the limit fixed point against the associative load", "",
             "Non-associative `load` (the limit iteration from the elastic state X0, and "
             "from the associative collapse state, each ended at the collapse states of the "
@@ -763,8 +791,22 @@ def large_walls_md(rows: list[dict[str, Any]]) -> list[str]:
             "`friction` at the multiplier found (f back, or a lower f where the answer "
             "from X0, not unique, carries that multiplier too; to its default accuracy, "
             "2e-3), CPU seconds in "
-            "one process on one thread, with the associative `load` of the same run.", "",
+            "one process on one thread, with the associative `load` of the same run; "
+            "then the two answers as whole `rigidblocks load` commands (the associative "
+            "one, then `--flow non-associative`), one process each in turn, their CPU "
+            "seconds (imports, contacts, the analysis, its state and the printed answer) "
+            "and their ratio.", "",
             markdown_table(header, body)]
+
+
+def _commands(r: dict[str, Any]) -> str:
+    """The two `load` commands' CPU seconds, "assoc / non-assoc" (with their exit codes
+    where one is not 0), or "-" in a row measured without them."""
+    if r.get("command_na_cpu") is None:
+        return "-"
+    codes = r.get("command_exit_codes") or [0, 0]
+    exits = "" if not any(codes) else f" (exit {codes[0]} / {codes[1]})"
+    return f"{r['command_assoc_cpu']:.3g} / {r['command_na_cpu']:.4g}{exits}"
 
 
 def _span(v: Any, loose: bool | None = False) -> str:
@@ -835,7 +877,8 @@ def main(argv: Sequence[str] | None = None) -> dict[str, Any]:
         return {"lmgc90": lmgc90_section(args.out, args.lmgc90_python, args.tiny,
                                          command=command, **other)}
     if args.walls3d:
-        rows3 = large_walls(LARGE_WALLS3D, LARGE_FRICTIONS, args.large_walls, False)
+        rows3 = large_walls(LARGE_WALLS3D, LARGE_FRICTIONS, args.large_walls, False,
+                            False)
         doc = {"walls3d": rows3, "command": command}
         write_results(args.out, "bench_nonassoc_walls3d", doc,
                       "\n".join(["## Non-associative sliding on wall3d walls (Coulomb's "

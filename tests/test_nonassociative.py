@@ -433,6 +433,10 @@ def test_bench_nonassoc_tiny(tmp_path):
     assert row["distortion_lambda"] == pytest.approx(0.8, rel=RTOL)
     assert (tmp_path / "bench_nonassoc.png").stat().st_size > 0
     assert (tmp_path / "bench_nonassoc.md").read_text().startswith("## Non-associative")
+    # the large-walls table's `load` commands ran as a user runs them, and answered
+    for r in data["large_walls"]:
+        assert r["command_exit_codes"] == [0, 0]
+        assert r["command_assoc_cpu"] > 0 and r["command_na_cpu"] > 0
 
 
 # -- the limit fixed point (rigidblocks.analyses.na_limit) --------------------------------
