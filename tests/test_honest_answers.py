@@ -12,6 +12,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import re
 
 import pytest
 from conftest import EXAMPLES, make_scene, rect
@@ -538,7 +539,9 @@ def test_a_check_at_the_printed_non_associative_friction_stands(tmp_path, capsys
     `friction --flow non-associative` gives f* = 0.3382856382 (printed 0.338286). `check`
     at 0.338286 said NOT ADMISSIBLE, its limit run from X0 having reached lambda =
     -5.2e-14, round-off of 0, which did not carry the load factor 0; a multiplier now
-    carries a load factor below 1 to its accuracy in units of the live load."""
+    carries a load factor below 1 to its accuracy in units of the live load. f* is
+    printed to the figures its bracket resolves (0.338285638; rounded up, as every
+    least friction)."""
     from rigidblocks.io import write_scene
 
     f = tmp_path / "vault.json"
@@ -546,11 +549,66 @@ def test_a_check_at_the_printed_non_associative_friction_stands(tmp_path, capsys
     assert main(["friction", str(f), "--flow", "non-associative"]) == 0
     printed = next(ln for ln in capsys.readouterr().out.splitlines()
                    if ln.startswith("answer")).split()[3]
-    assert printed == "0.338286"
+    assert printed == "0.338285638"
     assert main(["check", str(f), "--flow", "non-associative", "--friction", printed]) == 0
+    out = capsys.readouterr().out
+    assert "verdict    ADMISSIBLE" in out and "carries lambda = " in out
+    # and at the 6 figures printed before, by the multiplier's accuracy
+    assert main(["check", str(f), "--flow", "non-associative", "--friction", "0.338286"]) == 0
     out = capsys.readouterr().out
     assert "verdict    ADMISSIBLE" in out
     assert "carries lambda = " in out and "= 0 to the accuracy of its multiplier" in out
+
+
+def test_a_non_associative_multiplier_below_0_is_unstable(capsys):
+    """The inclined corbel arch (examples/corbel_arch_inclined.json) under its dead load
+    without dilatancy: `friction --load-factor 0` gives f* = 0.7651297008 (in a bracket
+    8.6e-8 wide; the static f* is 0.76536 to 2e-3, docs/seed-examples.md). Just above
+    it the limit fixed point from X0 collapses below the dead load: at f = 0.7652,
+    lambda = -2.7e-5, which `load` printed as "COLLAPSE, lambda* = -2.70611e-05"; it is
+    UNSTABLE, as `check` at the dead load says. f* was printed 0.76513, where `check`
+    said NOT ADMISSIBLE (lambda = -1.2e-7); it is printed to the figures its bracket
+    resolves, where `check` stands."""
+    path = str(EXAMPLES / "corbel_arch_inclined.json")
+    na = ["--flow", "non-associative"]
+    assert main(["load", path, "--friction", "0.7652", *na]) == 0
+    out = capsys.readouterr().out
+    assert "verdict    UNSTABLE: loaded from X0 it collapses below the dead load alone" in out
+    assert "loaded from X0 it collapses at lambda = -2.7061" in out and "lambda*" not in \
+        out.split("verdict")[1].split("\n")[1]
+    assert main(["check", path, "--load-factor", "0", "--friction", "0.7652", *na]) == 0
+    assert "NOT ADMISSIBLE" in capsys.readouterr().out
+    assert main(["friction", path, "--load-factor", "0", *na]) == 0
+    printed = next(ln for ln in capsys.readouterr().out.splitlines()
+                   if ln.startswith("answer")).split()[3]
+    assert printed == "0.7651297008"
+    assert main(["check", path, "--load-factor", "0", "--friction", printed, *na]) == 0
+    assert "verdict    ADMISSIBLE" in capsys.readouterr().out
+
+
+def test_a_limit_step_whose_caps_carry_nothing_steps_back(capsys):
+    """The inclined corbel arch at f = 1 and 1.5 without dilatancy: the limit iteration's
+    second step, at the caps of the first step's state, had no equilibrium at all ("the
+    capped laws carry not even the dead load") from both starts, and `load` was
+    UNDECIDED. The caps that carry the dead load are a convex set that holds the first
+    step's: the step goes halfway back towards them. Now decided, at or below the
+    associative multiplier (Radenkovic's bound), and `check` at the printed lambda*
+    stands, as the associative multiplier's does not."""
+    path = str(EXAMPLES / "corbel_arch_inclined.json")
+    for f in ("1", "1.5"):
+        assert main(["load", path, "--friction", f, "--flow", "non-associative",
+                     "--json"]) == 0
+        d = json.loads(capsys.readouterr().out)
+        assert d["status"] == "collapse", d["notes"]
+        lam, hi = d["load_multiplier"], d["load_multiplier_bounds"][1]
+        assert 0 < lam < hi
+        assert main(["load", path, "--friction", f, "--flow", "non-associative"]) == 0
+        shown = re.search(r"lambda\* = ([0-9.e+-]+)", capsys.readouterr().out).group(1)
+        for lf, stands in ((shown, True), (f"{hi:.10g}", False)):
+            main(["check", path, "--friction", f, "--flow", "non-associative",
+                  "--load-factor", lf])
+            out = capsys.readouterr().out
+            assert ("verdict    ADMISSIBLE" in out) is stands, (f, lf, out)
 
 
 def test_no_finite_friction_is_not_said_of_infinite_friction(tmp_path, capsys):

@@ -394,6 +394,7 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
     beta, best, since = 1.0, math.inf, 0
     value, x = math.nan, None
     acc = _Anderson(MEMORY)
+    N_ok: np.ndarray | None = None  # the last normal forces whose caps carried the load
     extra = 0  # limit solves made by ``settle`` (vertex steps)
     k = 0
     progress = capped.cv.progress
@@ -404,8 +405,16 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
                            f"{max_iter}{last}"
         got = step(N)
         if len(got) == 2:
+            if got[0] == "infeasible" and N_ok is not None and beta > MIN_DAMPING:
+                # the caps of these normal forces carry nothing, those of the last step
+                # did: halfway back (the caps that carry the dead load are a convex set)
+                beta = 0.5 * beta
+                acc.reset()
+                N = N_ok + 0.5 * (N - N_ok)
+                continue
             return LimitRun(start, got[0], None, None, k + extra, got[1], hist,
                             time.perf_counter() - t0)
+        N_ok = N
         value, b, z, target, face = got
         done = settle(N) if settle is not None else None
         if done is not None:

@@ -157,6 +157,8 @@ STATE_NOTE = ("non-associative sliding (no dilatancy): the answer is the one rea
 
 
 #: why the limit iteration has no start at a friction
+#: the note of a limit fixed point from X0 whose multiplier is below 0
+BELOW_DEAD_LOAD = "the limit fixed point from X0 does not carry even the dead load"
 DEAD_LOAD_BREACH = ("the state reached from the elastic state X0 under the dead load "
                     "alone breaches the joint laws")
 
@@ -866,6 +868,14 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
                                     True), load_multiplier_bounds=bounds)
     na.notes.append(SPREAD_NOTE + starts_text(trials))
     lam = float(main.lam)
+    if lam < -main.carry_tol:
+        # as `check` at the dead load says (:func:`_loaded_from_x0`): not a collapse
+        # multiplier, the dead load alone collapses it (the inclined corbel arch at
+        # f = 0.7652, just above its f* = 0.7651297: -2.7e-5)
+        na.notes.append(f"loaded from X0 it collapses at lambda = {fmt_safe(lam, 7, False)} "
+                        f"< 0: {BELOW_DEAD_LOAD}")
+        return LoadResult(**_fields(na, "max_load_multiplier", "unstable", f, None, trials,
+                                    True), load_multiplier_bounds=bounds)
     hi = bounds[1]
     if hi is not None and math.isfinite(hi) and abs(lam - hi) <= 1e-6 * max(abs(hi), 1.0):
         # the associative multiplier is an upper bound on every state (Radenkovic): a
