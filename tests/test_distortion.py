@@ -444,6 +444,10 @@ def test_governing_joints_at_the_accuracy_of_the_bisection(capsys):
     assert main(["friction", path, "--method", "distortion", "--load-factor", "1"]) == 0
     assert f"governing  {bed} (at their friction limit, to f*'s accuracy)" in \
         capsys.readouterr().out
+    # and `load --json` gives them, as `friction --json` does (it gave none)
+    assert main(["load", path, "--method", "distortion", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["governing_joints"] == \
+        [j.split("-") for j in bed.split(", ")]
 
 # -- where the iteration cannot decide ---------------------------------------------------
 def test_check_just_below_fstar_is_undecided_with_reason():
