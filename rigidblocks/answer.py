@@ -426,16 +426,18 @@ class _Words:
         return (verdict, number, ("breached at " + joint_list(names)) if names else "", why)
 
     def friction(self, res: Any) -> tuple[str, str, str, list[str]]:
-        if res.status != "stable" and without_dilatancy(res):
+        from .analyses.nonassociative import NA_FRICTION_CEILING, STATIC_UNSTABLE
+
+        static = not without_dilatancy(res) or any(STATIC_UNSTABLE in n
+                                                   for n in res.notes or ())
+        if res.status != "stable" and not static:
             # the search stops at a finite ceiling: infinite friction (no sliding at
             # all) is another joint law, which may stand (a running-bond wall with
             # openings, whose state from X0 has joints with no normal force)
-            from .analyses.nonassociative import NA_FRICTION_CEILING
-
             return (f"UNSTABLE: no friction up to {NA_FRICTION_CEILING:g} suffices without "
                     "dilatancy (in the state reached from the elastic state X0)", "", "",
                     self.live_hint(res))
-        if res.status != "stable":
+        if res.status != "stable":  # no state at any friction (either flow rule)
             own = np.flatnonzero(np.isfinite(np.asarray(res.contacts.override_friction,
                                                         dtype=float)))
             if len(own):

@@ -813,12 +813,16 @@ def test_no_friction_suffices_names_the_joints_that_keep_their_own(tmp_path, cap
     """The stack under 0.3 g with its bed joint on the base at its own f = 0.1: `friction`
     said "no friction suffices (even infinite friction admits no equilibrium state)", as
     of a structure that cannot stand; the other joints' friction cannot help while that
-    joint keeps 0.1 (`load` gives lambda* = 0.1 = its f, the block sliding there)."""
+    joint keeps 0.1 (`load` gives lambda* = 0.1 = its f, the block sliding there).
+    Without dilatancy it said "no friction up to 10 suffices without dilatancy (in the
+    state reached from X0)": no state stands at any friction (the static problem), and
+    the joint that keeps its own is the cause, as with associative flow."""
     path = _stack_with_own_laws(tmp_path, [{"blocks": ["base", "A"], "friction": 0.1}])
-    code, out, _ = run(capsys, ["friction", path, "--load-factor", "0.3"])
-    assert ("verdict    UNSTABLE: no friction of the other joints suffices (even infinite "
-            "friction there admits no equilibrium state) while the joints with a friction "
-            "of their own keep it: base-A (f = 0.1)") in out, out
+    for flow in ([], ["--flow", "non-associative"]):
+        code, out, _ = run(capsys, ["friction", path, "--load-factor", "0.3", *flow])
+        assert ("verdict    UNSTABLE: no friction of the other joints suffices (even "
+                "infinite friction there admits no equilibrium state) while the joints with "
+                "a friction of their own keep it: base-A (f = 0.1)") in out, out
     code, out, _ = run(capsys, ["load", path])
     assert "lambda* = 0.1," in out
 

@@ -157,6 +157,8 @@ STATE_NOTE = ("non-associative sliding (no dilatancy): the answer is the one rea
 
 
 #: why the limit iteration has no start at a friction
+#: the note of a friction search whose static problem has no state at any friction
+STATIC_UNSTABLE = "no friction admits an equilibrium state (static problem)"
 #: the note of a limit fixed point from X0 whose multiplier is below 0
 BELOW_DEAD_LOAD = "the limit fixed point from X0 does not carry even the dead load"
 DEAD_LOAD_BREACH = ("the state reached from the elastic state X0 under the dead load "
@@ -1129,10 +1131,9 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
 
     if lim.status != "stable":
         # the static f* bounds the non-associative one from below: without it, nothing
-        na.notes.append("no friction admits an equilibrium state (static problem)"
-                        if lim.status == "unstable" else "the static f*, below which no "
-                        f"state stands, was not found ({lim.status}): the search starts "
-                        "there")
+        na.notes.append(STATIC_UNSTABLE if lim.status == "unstable" else
+                        "the static f*, below which no state stands, was not found "
+                        f"({lim.status}): the search starts there")
         return out("unstable" if lim.status == "unstable" else lim.status, converged=True)
     # without dilatancy f* does not say whether the scene's own friction suffices
     # (lambda(f) need not grow with f): that friction is tried as well
