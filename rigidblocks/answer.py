@@ -178,6 +178,18 @@ def _own_friction(res: Any, f: Any) -> str:
     return f"{'enough' if ok else 'NOT enough'}: {there}{below}"
 
 
+def _figures(x: float, up: bool, rtol: float | None, digits: int = 6) -> str:
+    """An answer to ``digits`` figures on the safe side (:func:`fmt_safe`), or to as
+    many more as keep the rounding within the accuracy ``rtol`` asked of it: the
+    reference model's lambda* = 1.1999998, asked to 1e-6, was printed 1.19999 (8e-6
+    below); now 1.199999."""
+    for d in range(digits, 16):
+        shown = fmt_safe(x, d, up)
+        if not rtol or not math.isfinite(x) or abs(float(shown) - x) <= rtol * abs(x):
+            return shown
+    return repr(x)
+
+
 def _within(x: float, bracket: Any, digits: int = 6) -> str:
     """A non-associative f*, rounded up (as :func:`fmt_safe`) to ``digits`` figures, or
     to two more than its bracket's relative width resolves, up to 10: the answer stands
@@ -454,7 +466,7 @@ class _Words:
                     "equilibrium state)", "", "", self.live_hint(res))
         fs = float(res.friction_factor)
         na = without_dilatancy(res)
-        shown = _within(fs, res.bracket) if na else fmt_safe(fs, 6, True)
+        shown = _within(fs, res.bracket) if na else _figures(fs, True, res.rtol)
         number = (f"f* = {shown} (friction angle "
                   f"{math.degrees(math.atan(float(shown))):.4f}{self.deg})")
         why = []
@@ -500,7 +512,7 @@ class _Words:
         lm = float(res.load_multiplier)
         size = self.live_size
         short = float(fmt_safe(lm, 4, False))
-        number = (f"{self.lam}* = {fmt_safe(lm, 6, False)}, that is "
+        number = (f"{self.lam}* = {_figures(lm, False, res.rtol)}, that is "
                   f"{short:g} {self.x} {self.force(size)} = "
                   f"{fmt_safe(lm * size, 4, False)} {self.fu} "
                   f"{self.direction()}").rstrip()

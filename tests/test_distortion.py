@@ -6,6 +6,7 @@ from __future__ import annotations
 import itertools
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -448,6 +449,21 @@ def test_governing_joints_at_the_accuracy_of_the_bisection(capsys):
     assert main(["load", path, "--method", "distortion", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["governing_joints"] == \
         [j.split("-") for j in bed.split(", ")]
+
+
+def test_an_answer_asked_finer_is_printed_to_its_accuracy(capsys):
+    """The reference model (lambda* = 1.2, above) by the distortion method asked to
+    1e-6: its certified lower end 1.1999998 was printed to six figures on the safe side,
+    1.19999, 8e-6 below it; now with the figures the accuracy asked needs, still at or
+    below the answer."""
+    from rigidblocks.cli.main import main
+
+    path = str(EXAMPLES / "reference.json")
+    assert main(["load", path, "--method", "distortion", "--rtol", "1e-6", "--json"]) == 0
+    lam = json.loads(capsys.readouterr().out)["load_multiplier"]
+    assert main(["load", path, "--method", "distortion", "--rtol", "1e-6"]) == 0
+    shown = float(re.search(r"lambda\* = ([0-9.]+),", capsys.readouterr().out).group(1))
+    assert lam - 1e-6 * lam <= shown <= lam
 
 # -- where the iteration cannot decide ---------------------------------------------------
 def test_check_just_below_fstar_is_undecided_with_reason():
