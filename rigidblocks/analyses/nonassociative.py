@@ -156,11 +156,11 @@ STATE_NOTE = ("non-associative sliding (no dilatancy): the answer is the one rea
               "not cause; other states, and so other answers, may exist")
 
 
-#: why the limit iteration has no start at a friction
 #: the note of a friction search whose static problem has no state at any friction
 STATIC_UNSTABLE = "no friction admits an equilibrium state (static problem)"
 #: the note of a limit fixed point from X0 whose multiplier is below 0
 BELOW_DEAD_LOAD = "the limit fixed point from X0 does not carry even the dead load"
+#: why the limit iteration has no start at a friction
 DEAD_LOAD_BREACH = ("the state reached from the elastic state X0 under the dead load "
                     "alone breaches the joint laws")
 
