@@ -471,6 +471,17 @@ def test_bench_nonassoc_lmgc90_is_skipped_without_the_peer(tmp_path):
     data = bench.main(["--only", "lmgc90", "--tiny", "--lmgc90-python", "none",
                        "--out", str(tmp_path)])
     assert data["lmgc90"]["skipped"] == "LMGC90 part not run (--lmgc90-python none)"
+    # a table measured with the peer is kept: a run without it wrote "skipped" over the
+    # recorded benchmarks/results/bench_nonassoc_lmgc90
+    import json
+
+    recorded = {"skipped": "", "rows": [{"case": "block"}]}
+    (tmp_path / "bench_nonassoc_lmgc90.json").write_text(json.dumps(recorded))
+    (tmp_path / "bench_nonassoc_lmgc90.md").write_text("the recorded table\n")
+    data = bench.main(["--only", "lmgc90", "--tiny", "--lmgc90-python", str(missing),
+                       "--out", str(tmp_path)])
+    assert data["lmgc90"]["rows"] == recorded["rows"]
+    assert (tmp_path / "bench_nonassoc_lmgc90.md").read_text() == "the recorded table\n"
 
 
 @pytest.mark.parametrize("direction", [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.6, 0.8, 0.0)])
