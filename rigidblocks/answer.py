@@ -401,7 +401,7 @@ class _Words:
                 f = friction_value(res.friction) if res.friction is not None else math.inf
                 # a ratio above f within the verdict's tolerance (of the largest force:
                 # |T|/N = 0.60008 at f = 0.6 on a joint carrying 6e-4 of it) is f
-                reach = (f"the friction limit f = {f:g}" if fd[0] >= f * (1 - 1e-4)
+                reach = (f"the friction limit f = {f:.10g}" if fd[0] >= f * (1 - 1e-4)
                          else f"{fd[0]:.4g}")
                 # not "needs": another admissible state may do with less (f*)
                 why.append(f"in {state} |T|/N reaches {reach}{among} (joint {a}-{b}); the "
@@ -480,7 +480,7 @@ class _Words:
                           "decided at this accuracy")
             else:
                 enough = "enough" if float(f) >= fs else "NOT enough"
-            why.append(f"the scene's friction f = {float(f):g} is {enough}")
+            why.append(f"the scene's friction f = {float(f):.10g} is {enough}")
         if na:
             why.append("without dilatancy a larger f need not carry more: f* is where the "
                        "state reached from X0 carries the load, not a bound for every f "
@@ -503,7 +503,7 @@ class _Words:
                 from .analyses.nonassociative import BELOW_DEAD_LOAD
 
                 what = ("loaded from X0 it collapses below the dead load alone, lambda* "
-                        "< 0," if any(BELOW_DEAD_LOAD in n for n in res.notes or ()) else
+                        "< 0" if any(BELOW_DEAD_LOAD in n for n in res.notes or ()) else
                         "the state reached from X0 under the dead load alone breaches the "
                         "joint laws")
                 return (f"UNSTABLE: {what} (without dilatancy; other states may stand: "

@@ -584,6 +584,9 @@ def test_a_non_associative_multiplier_below_0_is_unstable(capsys):
     assert printed == "0.7651297008"
     assert main(["check", path, "--load-factor", "0", "--friction", printed, *na]) == 0
     assert "verdict    ADMISSIBLE" in capsys.readouterr().out
+    # a friction given is printed as given (the demand line read "f = 0.76513")
+    assert main(["check", path, "--load-factor", "0", "--friction", printed]) == 0
+    assert f"reaches the friction limit f = {printed} " in capsys.readouterr().out
 
 
 def test_a_limit_step_whose_caps_carry_nothing_steps_back(capsys):

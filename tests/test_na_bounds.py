@@ -376,3 +376,26 @@ def test_cli_load_safe(capsys, tmp_path):
     write_scene(build("wall", courses=10, blocks_per_course=10), wall)
     main(["load", str(wall), "--flow", "non-associative", "--safe"])
     assert "safe       not computed:" in capsys.readouterr().out
+
+
+def test_cli_safe_line_is_rounded_on_the_safe_side(capsys):
+    """The inclined corbel arch at f = 1 without dilatancy: the limit iteration's answer
+    from X0 is the smallest multiplier over all states (0.0592032278: the mixed-integer
+    LP proves it). The `safe` line read 0.05920323, above the answer's 0.0592032 and the
+    starts line's 0.05920322 for the same value; a smallest multiplier is rounded down,
+    as every collapse multiplier."""
+    import json
+    import re
+
+    from rigidblocks.cli.main import main
+
+    path = str(EXAMPLES / "corbel_arch_inclined.json")
+    args = ["load", path, "--flow", "non-associative", "--friction", "1"]
+    assert main([*args, "--json"]) == 0
+    lam = json.loads(capsys.readouterr().out)["load_multiplier"]
+    assert main([*args, "--safe"]) == 0
+    out = capsys.readouterr().out
+    safe = float(re.search(r"safe       lambda = ([0-9.e+-]+):", out).group(1))
+    starts = float(re.search(r"from the elastic state X0: lambda = ([0-9.e+-]+)", out)
+                   .group(1))
+    assert safe == starts <= lam and lam - safe < 1e-6 * lam  # seven figures

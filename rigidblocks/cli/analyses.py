@@ -163,8 +163,10 @@ def _safe(scene: Any, args: argparse.Namespace, res: Any) -> dict[str, Any]:
 
 
 def _safe_line(safe: dict[str, Any], answer: float | None) -> str:
-    def num(v: Any) -> str:
-        return "-" if v is None else f"{v:.7g}"
+    def num(v: Any, up: bool = False) -> str:
+        # on the safe side, as the answer's: the smallest multiplier rounded down (it
+        # read 0.05920323 above the answer's 0.0592032, one value 0.0592032278)
+        return "-" if v is None else fmt_safe(float(v), 7, up)
 
     st = safe["status"]
     if st == "not computed":
@@ -178,7 +180,7 @@ def _safe_line(safe: dict[str, Any], answer: float | None) -> str:
                      f"state that collapses at {num(safe['value'])}")
         return line
     why = f"; {safe['notes'][0]}" if safe.get("notes") else ""
-    return (f"safe       {st}: bracket [{num(safe['lower'])}, {num(safe['upper'])}] "
+    return (f"safe       {st}: bracket [{num(safe['lower'])}, {num(safe['upper'], True)}] "
             f"(mixed-integer LP{why})")
 
 
