@@ -37,6 +37,10 @@ _SOLVER_NOTE = re.compile(
 #: the verdict of a non-associative check that fails
 NA_INADMISSIBLE = ("NOT ADMISSIBLE: the state reached from the elastic state X0 does not "
                    "stand (sliding without dilatancy; another state may stand)")
+#: ... where the state reached from X0 at the load stands but the limit fixed point
+#: from X0 collapses below it (two "states reached from X0" were read as one)
+NA_BELOW_LOAD = ("NOT ADMISSIBLE: loaded from X0 it collapses below this load (the limit "
+                 "fixed point from X0, `load`'s answer; sliding without dilatancy)")
 #: ... and where it stands: without dilatancy no static theorem makes an admissible
 #: state a proof (the Arpino gate at f = 0.6: the distortion method's state reached from
 #: X0 at lambda = 0.12 is admissible, while 0.1187021 is the smallest multiplier of any
@@ -435,6 +439,12 @@ class _Words:
         # either flow rule)
         verdict = (NA_INADMISSIBLE if na and res.history else "NOT ADMISSIBLE: no "
                    "equilibrium state keeps every joint in compression and within friction")
+        from .analyses.nonassociative import DIRECT_STANDS
+
+        if na and any(DIRECT_STANDS in n for n in res.notes or ()):
+            # two "states reached from X0": the one at this load stands, the limit
+            # fixed point from X0 (`load`'s answer) collapses below it
+            verdict = NA_BELOW_LOAD
         return (verdict, number, ("breached at " + joint_list(names)) if names else "", why)
 
     def friction(self, res: Any) -> tuple[str, str, str, list[str]]:
@@ -681,6 +691,6 @@ def mechanism_text(res: Any) -> str:
             + f" and {len(order) - FIRST} more")
 
 
-__all__ = ["NA_INADMISSIBLE", "AnswerBlock", "answer_block", "block_reach", "bodies_text",
-           "joint_list", "live_load_size", "live_load_text", "mechanism_groups",
+__all__ = ["NA_BELOW_LOAD", "NA_INADMISSIBLE", "AnswerBlock", "answer_block", "block_reach",
+           "bodies_text", "joint_list", "live_load_size", "live_load_text", "mechanism_groups",
            "mechanism_text", "rigid_bodies", "split_notes", "without_dilatancy"]

@@ -160,6 +160,9 @@ STATE_NOTE = ("non-associative sliding (no dilatancy): the answer is the one rea
 STATIC_UNSTABLE = "no friction admits an equilibrium state (static problem)"
 #: the note of a limit fixed point from X0 whose multiplier is below 0
 BELOW_DEAD_LOAD = "the limit fixed point from X0 does not carry even the dead load"
+#: the note of a check whose state reached from X0 stands while the limit fixed point
+#: from X0 does not carry the load
+DIRECT_STANDS = "directly is admissible"
 #: why the limit iteration has no start at a friction
 DEAD_LOAD_BREACH = ("the state reached from the elastic state X0 under the dead load "
                     "alone breaches the joint laws")
@@ -623,7 +626,7 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
         return ADMISSIBLE
     na.notes.append(f"loaded from X0 it collapses at lambda = {fmt_safe(r.lam, 7, False)} "
                     f"< {lf:.10g} (the limit fixed point from X0, `load`'s answer), though the "
-                    f"state reached from X0 at lambda = {lf:.10g} directly is admissible (the "
+                    f"state reached from X0 at lambda = {lf:.10g} {DIRECT_STANDS} (the "
                     "state shown)")
     return INADMISSIBLE
 
