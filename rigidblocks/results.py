@@ -604,10 +604,9 @@ class LoadResult(Result):
         if self.flow != "associative":
             b = self.load_multiplier_bounds
             out["load_multiplier_bounds"] = None if b is None else list(b)
-        if self.mechanism is None and self.governing:
-            # a method without a mechanism (bisection): the joints at their friction
-            # limit in its state, as the text's "governing" line names them
-            out["governing_joints"] = [list(p) for p in self.governing_joints]
+        # the joints the "governing" line names (a method without a mechanism: those at
+        # their friction limit in its state), as friction's JSON gives them
+        out["governing_joints"] = [list(p) for p in self.governing_joints]
         if self.mechanism is not None:
             m = self.mechanism
             order = m.ranking
