@@ -614,6 +614,26 @@ def test_a_limit_step_whose_caps_carry_nothing_steps_back(capsys):
             assert ("verdict    ADMISSIBLE" in out) is stands, (f, lf, out)
 
 
+def test_non_associative_friction_keeps_the_accuracy_asked(capsys):
+    """The arch at load factor 0.1 without dilatancy: its f* is the static one. Asked to
+    1e-9 by HiGHS it printed 0.4450388805 with "accuracy 5.0e-08 ... requested 1e-09" (the
+    static f* searched to 1e-7 whatever was asked), while `friction` without --flow gives
+    0.4450388585 to 6.2e-10; by Clarabel, which `friction` refuses at 1e-9 (an
+    interior-point solver certifies about 1e-7), it gave a number. Now the same f* to the
+    accuracy asked, and the same refusal."""
+    path = str(EXAMPLES / "arch.json")
+    ask = ["--load-factor", "0.1", "--rtol", "1e-9", "--json"]
+    assert main(["friction", path, "--solver", "highs", *ask]) == 0
+    static = json.loads(capsys.readouterr().out)
+    assert main(["friction", path, "--solver", "highs", "--flow", "non-associative",
+                 *ask]) == 0
+    na = json.loads(capsys.readouterr().out)
+    assert na["accuracy"] <= 1e-9 and na["friction_factor"] == static["friction_factor"]
+    for flow in ([], ["--flow", "non-associative"]):
+        assert main(["friction", path, *ask, *flow]) == 2
+        assert "finer than an interior-point solver certifies f*" in capsys.readouterr().err
+
+
 def test_no_finite_friction_is_not_said_of_infinite_friction(tmp_path, capsys):
     """An 8 x 6 running-bond wall with an opening (courses 2-4, blocks 2-3) under its
     dead load: the state reached from X0 has joints that must carry shear with no

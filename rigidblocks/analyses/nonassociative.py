@@ -1120,7 +1120,7 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
     trials: list[dict[str, Any]] = []
     # the static f* as the associative analysis gives it (same accuracy, same solves):
     # where the answer equals it, the two print the same number
-    lim = cv.friction_limit(lf, VERDICT_RTOL)
+    lim = cv.friction_limit(lf, min(VERDICT_RTOL, rtol))
 
     def out(status: str, fstar: float | None = None, v: Verdict | None = None,
             lower: float | None = None, upper: float | None = None,
