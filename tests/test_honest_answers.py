@@ -578,6 +578,10 @@ def test_a_non_associative_multiplier_below_0_is_unstable(capsys):
         out.split("verdict")[1].split("\n")[1]
     assert main(["check", path, "--load-factor", "0", "--friction", "0.7652", *na]) == 0
     assert "NOT ADMISSIBLE" in capsys.readouterr().out
+    # `--safe` said "no collapse within the bounds: bracket [4.314002e-05, -]" beside it
+    assert main(["load", path, "--friction", "0.7652", "--safe", *na]) == 0
+    assert "safe       not computed: the limit fixed point from X0 collapses below the " \
+        "dead load alone" in capsys.readouterr().out
     assert main(["friction", path, "--load-factor", "0", *na]) == 0
     printed = next(ln for ln in capsys.readouterr().out.splitlines()
                    if ln.startswith("answer")).split()[3]

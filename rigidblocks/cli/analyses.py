@@ -144,9 +144,22 @@ def _safe(scene: Any, args: argparse.Namespace, res: Any) -> dict[str, Any]:
     (or the reason it was not computed); the answer ``res``, where the limit iteration
     ended at a checked collapse state, bounds it from above."""
     from ..analyses.na_bounds import safe_multiplier
-    from ..analyses.nonassociative import collapse_state_at, is_nonassociative
+    from ..analyses.nonassociative import (
+        BELOW_DEAD_LOAD,
+        collapse_state_at,
+        is_nonassociative,
+    )
 
     q = question(args)
+    if any(BELOW_DEAD_LOAD in n for n in res.notes or ()):
+        # the mixed-integer LP seeks collapse multipliers from its capacity bound up: it
+        # said "no collapse within the bounds: bracket [4.3e-05, -]" beside a collapse
+        # state at -2.7e-5 (the inclined corbel arch at f = 0.7652)
+        return {"status": "not computed",
+                "reason": "the limit fixed point from X0 collapses below the dead load "
+                          "alone (the answer): the smallest multiplier over all states is "
+                          "at most its lambda, below 0, where the mixed-integer LP does not "
+                          "seek"}
     if not is_nonassociative(scene, q.get("flow")):
         return {"status": "not computed",
                 "reason": "no joint slides without dilatancy (give --flow "
