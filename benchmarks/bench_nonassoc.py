@@ -45,6 +45,7 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from common import (  # noqa: E402
+    cli_process,
     markdown_table,
     out_dir,
     read_results,
@@ -693,19 +694,13 @@ def _command_cpu(scene: Scene, *options: str) -> tuple[float, int]:
     """The CPU seconds (user + system) of ``rigidblocks load SCENE OPTIONS`` as a user
     runs it, one whole process (imports, contacts, the analysis, its state and the
     printed answer), and its exit code."""
-    import resource
-
     from rigidblocks.io.scene_file import write_scene
 
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "wall.json"
         write_scene(scene, path)
-        cmd = [sys.executable, "-c", "import sys; from rigidblocks.cli.main import main; "
-               "sys.exit(main())", "load", str(path), *options]
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        code = subprocess.run(cmd, stdout=subprocess.DEVNULL, check=False).returncode
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return (after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime), code
+        proc, cpu, _ = cli_process(["load", str(path), *options])
+    return cpu, proc.returncode
 
 
 def large_walls(sizes: Sequence[tuple], frictions: Sequence[float],

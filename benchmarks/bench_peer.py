@@ -95,7 +95,6 @@ if __name__ == "__main__":  # before numpy loads its BLAS
 import argparse  # noqa: E402
 import json  # noqa: E402
 import math  # noqa: E402
-import resource  # noqa: E402
 import subprocess  # noqa: E402
 import tempfile  # noqa: E402
 import time  # noqa: E402
@@ -107,6 +106,8 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from common import (  # noqa: E402
+    child_cpu,
+    cli_process,
     machine,
     markdown_table,
     out_dir,
@@ -328,12 +329,6 @@ def run_ours(make_scene: Any, pyramid: int | None = None, forces: bool = False,
     return out
 
 
-def _child_cpu() -> float:
-    """CPU seconds (user + system) of this process's finished children so far."""
-    r = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return r.ru_utime + r.ru_stime
-
-
 def compile_package() -> str:
     """Compile our package's modules to bytecode (``__pycache__`` beside them), as
     ``pip install`` leaves an installed package and as the peer's and the libraries'
@@ -355,16 +350,8 @@ def run_ours_process(path: Path) -> dict:
     pays: interpreter start, imports, reading and validating the scene file, contacts,
     the verdict and the force state, the JSON answer written; one thread (``THREADS``).
     Its CPU seconds (the finished child's user + system time) and wall seconds."""
-    import rigidblocks
-
-    env = {**os.environ, **THREADS}
-    here = str(Path(rigidblocks.__file__).resolve().parents[1])  # this run's package
-    env["PYTHONPATH"] = os.pathsep.join(p for p in (here, env.get("PYTHONPATH")) if p)
-    cmd = [sys.executable, "-m", "rigidblocks.cli.main", "check", str(path),
-           "--load-factor", "0", "--json"]
-    c0, t0 = _child_cpu(), time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
-    wall, cpu = time.perf_counter() - t0, _child_cpu() - c0
+    proc, cpu, wall = cli_process(["check", str(path), "--load-factor", "0", "--json"],
+                                  THREADS)
     try:
         verdict = json.loads(proc.stdout)["status"]
     except (ValueError, KeyError):
@@ -391,7 +378,7 @@ def run_peer(python: str, case: dict, method: str, timeout: float, tmp: Path,
     src.write_text(json.dumps(case))
     dst.unlink(missing_ok=True)
     env = {**os.environ, **THREADS}
-    c0, t0 = _child_cpu(), time.perf_counter()
+    c0, t0 = child_cpu(), time.perf_counter()
     try:
         proc = subprocess.run([python, str(RUNNER), str(src), str(dst), method,
                                *(["cold"] if cold else [])],
@@ -399,7 +386,7 @@ def run_peer(python: str, case: dict, method: str, timeout: float, tmp: Path,
     except subprocess.TimeoutExpired:
         return {"method": method, "status": "timeout", "times": {"limit": timeout},
                 "message": f"no answer within {timeout:g} s (stopped)", "joints": []}
-    wall, cpu = time.perf_counter() - t0, _child_cpu() - c0
+    wall, cpu = time.perf_counter() - t0, child_cpu() - c0
     if not dst.exists():
         return {"method": method, "status": "error", "times": {}, "joints": [],
                 "message": (proc.stderr or proc.stdout).strip()[-300:]}

@@ -1,4 +1,4 @@
-"""What every benchmark script shares: where results go, the machine, and a timer.
+"""What every benchmark script shares: where results go, the machine, and timers.
 
 Each script ``benchmarks/NAME.py`` is runnable as ``python benchmarks/NAME.py`` and
 has ``main(argv) -> dict``; ``--out DIR`` (default ``benchmarks/results``) receives
@@ -44,6 +44,32 @@ def machine() -> dict[str, Any]:
             "python": platform.python_version(), "platform": platform.platform(),
             "numpy": numpy.__version__, "scipy": scipy.__version__,
             "clarabel": clarabel.__version__}
+
+
+def child_cpu() -> float:
+    """CPU seconds (user + system) of this process's finished children so far."""
+    import resource
+
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def cli_process(args: list[str], env: dict[str, str] | None = None) -> tuple[Any, float,
+                                                                              float]:
+    """One whole ``rigidblocks ARGS`` process, as a user runs it, of this run's package
+    (first on its path), with ``env`` added to the environment: the finished process
+    (its output captured), its CPU seconds (user + system) and its wall seconds."""
+    import subprocess
+
+    import rigidblocks
+
+    env = {**os.environ, **(env or {})}
+    here = str(Path(rigidblocks.__file__).resolve().parents[1])  # this run's package
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (here, env.get("PYTHONPATH")) if p)
+    cmd = [sys.executable, "-m", "rigidblocks.cli.main", *args]
+    c0, t0 = child_cpu(), time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    return proc, child_cpu() - c0, time.perf_counter() - t0
 
 
 def out_dir(path: str | Path | None) -> Path:
