@@ -234,11 +234,10 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
         :mod:`rigidblocks.methods.convex`).
     """
     if is_nonassociative(scene, flow):
-        lf = _load_factor(scene, load_factor)
-        opened = dict(solver=solver, settings=settings, pyramid=pyramid,
-                      contact_tol=contact_tol)
-        return check_nonassociative(scene, friction, lf, method, flow=flow, state=state,
-                                    progress=progress, **opened)
+        return check_nonassociative(scene, friction, _load_factor(scene, load_factor), method,
+                                    flow=flow, state=state, solver=solver, settings=settings,
+                                    pyramid=pyramid, contact_tol=contact_tol,
+                                    progress=progress)
     f = friction_value(scene.effective_friction if friction is None else friction)
     lf = _load_factor(scene, load_factor)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
