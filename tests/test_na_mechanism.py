@@ -37,14 +37,14 @@ def _lp(seed: int = 4):
 
 def _changed_bounds(lo, up, n: int):
     """n changes of the random LP's row bounds: its first 30 upper bounds scaled by 0.5
-    to 1.5, and one box row k fixed at 0.3 (an equality) in the k-th."""
+    to 1.5, and one box row (k modulo 8) fixed at 0.3 (an equality) in the k-th."""
     rng = np.random.default_rng(7)
     out = []
     for k in range(n):
         up2 = up.copy()
         up2[:30] = up[:30] * rng.uniform(0.5, 1.5, 30)
         lo2 = lo.copy()
-        lo2[30 + k] = up2[30 + k] = 0.3
+        lo2[30 + k % 8] = up2[30 + k % 8] = 0.3
         out.append((lo2, up2))
     return out
 
@@ -81,14 +81,16 @@ def test_warm_lp_follows_changed_bounds(kind, monkeypatch):
         assert lp.cold == 1
 
 
-def test_the_solve_after_a_warm_one_given_up_goes_to_ipm_at_once():
-    """With every warm solve given up (a limit of 0 iterations), four solves of the
-    random LP: without the rule the last three are each tried warm and given up;
-    with ``cold_after_give_up`` the third goes to IPM at once (two given up). The
-    optima are the same."""
+def test_the_solves_after_a_warm_one_given_up_go_to_ipm_at_once():
+    """With every warm solve given up (a limit of 0 iterations), nine solves of the
+    random LP: without the rule the last eight are each tried warm and given up; with
+    ``cold_after_give_up`` the second is given up, the third goes to IPM at once, the
+    fourth is given up again, the fifth and sixth go to IPM at once, the seventh is
+    given up, the last two go to IPM at once (three given up; four when only the one
+    solve after each give-up went to IPM at once). The optima are the same."""
     c, A, lo, up = _lp()
     rows = np.arange(A.shape[0])
-    bounds = _changed_bounds(lo, up, 4)
+    bounds = _changed_bounds(lo, up, 9)
     got = {}
     for rule in (False, True):
         lp = WarmLp(c, A, lo, up)
@@ -98,8 +100,8 @@ def test_the_solve_after_a_warm_one_given_up_goes_to_ipm_at_once():
         for lo2, up2 in bounds:
             assert lp.solve(rows, lo2, up2) == "optimal"
             got[rule].append(c @ lp.x)
-        assert lp.cold == lp.solves == 4
-        assert lp.given_up == (2 if rule else 3)
+        assert lp.cold == lp.solves == 9
+        assert lp.given_up == (3 if rule else 8)
     assert got[True] == pytest.approx(got[False], abs=1e-9)
 
 

@@ -114,7 +114,11 @@ PHASE2_WARM_LIMIT = 1000
 #: given up in runs (36 of the 1,041-block wall's 60 at f = 0.8). Whole processes in
 #: turn: 0.908-0.974 of the CPU time on the walls 10 x 10 at f = 0.8, 20 x 15 and
 #: 32 x 32 at f = 0.6 and 0.8 (175.0 s against 189.7 s on the last), the same answers
-#: from X0
+#: from X0. After further give-ups in a row, twice as many solves go to IPM at once each
+#: time: on the 1,041-block wall at f = 0.8 the walks' warm phase-2 solves that follow
+#: an IPM one are given up every time (1,000 iterations, 0.9 s, then IPM 0.45 s); whole
+#: `load` processes in turn, two pairs: 0.971 of the CPU time (110.3 s against
+#: 113.6 s), the same answers
 PHASE2_COLD_AFTER_GIVE_UP = True
 #: the answer passes its check where, at its own caps, phase 1's multiplier and
 #: phase 2's total normal force are its own to this (relative)

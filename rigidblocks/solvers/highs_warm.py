@@ -10,10 +10,11 @@ the warm solve can take longer than a solve from scratch by the interior-point m
 (on the 1,041-block wall: 5 s warm against 1.3 s IPM with crossover): a warm solve that
 runs past ``WARM_LIMIT`` simplex iterations is given up and the LP solved by IPM with
 crossover, which ends on a basis again; where ``cold_after_give_up`` is set, the solve
-after one given up goes to IPM at once (phase 2 of the mechanisms' walk, whose warm
-solves are given up in runs). Every answer is a basic solution, so its row
-duals are those of a vertex: a row whose dual is not zero is active in every optimal
-solution (complementary slackness), which the mechanism walk relies on.
+after one given up goes to IPM at once, and after each further give-up in a row twice
+as many (phase 2 of the mechanisms' walk, whose warm solves are given up in runs).
+Every answer is a basic solution, so its row duals are those of a vertex: a row whose
+dual is not zero is active in every optimal solution (complementary slackness), which
+the mechanism walk relies on.
 """
 
 from __future__ import annotations
@@ -86,11 +87,13 @@ class WarmLp:
         self.cold = 0
         #: simplex iterations of a warm solve before it is solved from scratch by IPM
         self.limit = WARM_LIMIT
-        #: does the solve after a warm one given up go to IPM at once?
+        #: do the solves after a warm one given up go to IPM at once (one after the
+        #: first give-up, twice as many after each further one in a row)?
         self.cold_after_give_up = False
         #: warm solves given up
         self.given_up = 0
-        self._gave_up = False
+        self._cold_left = 0  # solves still to go to IPM at once
+        self._backoff = 1  # ... after the next give-up
         self.iterations = 0
 
     def solve(self, rows: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> str:
@@ -100,8 +103,8 @@ class WarmLp:
         h.changeRowsBounds(len(rows), np.asarray(rows, dtype=np.int32),
                            np.maximum(lower, -inf), np.minimum(upper, inf))
         self.solves += 1
-        skip = self.cold_after_give_up and self._gave_up
-        self._gave_up = False
+        skip = self._cold_left > 0
+        self._cold_left = max(self._cold_left - 1, 0)
         self.iterations = 0
         if self.warm and not skip:
             h.setOptionValue("solver", "simplex")
@@ -110,9 +113,11 @@ class WarmLp:
             self.iterations = self._iterations()
             st = self._status()
             if st != FAILURE:
+                self._backoff = 1
                 return st
-            self._gave_up = True
             self.given_up += 1
+            if self.cold_after_give_up:
+                self._cold_left, self._backoff = self._backoff, 2 * self._backoff
         self.cold += 1
         h.clearSolver()
         h.setOptionValue("solver", "ipm")
