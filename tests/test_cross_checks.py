@@ -16,12 +16,13 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+from conftest import EXAMPLES
 
 from rigidblocks.analyses import check, max_load_multiplier, min_friction
 from rigidblocks.cli.main import main
 from rigidblocks.equilibrium import assemble
 from rigidblocks.generators.catalogue import scene2d
-from rigidblocks.io.scene_file import dumps_scene
+from rigidblocks.io.scene_file import dumps_scene, read_scene
 
 
 def wedge(heavy: float, length: float = 1.0, force: float = 1.0) -> object:
@@ -226,6 +227,26 @@ def test_a_rejected_answer_is_solved_again_and_said():
     assert r.rejected and "scs" in r.rejected[0]
     assert "clarabel" in r.answered_by
     assert any("solved again by clarabel" in n for n in r.notes)
+
+
+def test_at_the_brink_of_the_dead_load_highs_load_agrees_with_check():
+    """The inclined corbel arch at f = 0.7651297, 4.8e-9 above its f* (HiGHS at
+    --rtol 1e-9: [0.7651296944, 0.7651296952]; at f = 0.7651298 HiGHS's lambda* is
+    6.09e-8): `check` stands, but HiGHS's maximum-load LP was infeasible with a
+    certificate of margin 1.4e-9 (its residual 1e-15), and `load` said UNSTABLE. A
+    certificate counts only with a margin ten times the tolerance at which a state
+    stands (ADMISSIBLE_TOL, 1e-9): this one fails, Clarabel answers, lambda* = 0 (to
+    its accuracy) as Clarabel's `load` alone gives, and the result says so."""
+    scene = read_scene(EXAMPLES / "corbel_arch_inclined.json")
+    assert check(scene, friction=0.7651297, solver="highs").status == "admissible"
+    r = max_load_multiplier(scene, friction=0.7651297, solver="highs", state=False)
+    assert r.status == "collapse"
+    assert r.load_multiplier == pytest.approx(0.0, abs=1e-6)
+    assert "clarabel" in r.answered_by and r.rejected
+    assert any("solved again by clarabel" in n for n in r.notes)
+    # well below f*, the dead load is not carried: a certificate that counts
+    low = max_load_multiplier(scene, friction=0.76, solver="highs", state=False)
+    assert low.status == "unstable" and tuple(low.answered_by) == ("highs",)
 
 
 # -- non-associative answers on closed forms ---------------------------------------------
