@@ -18,7 +18,14 @@ from typing import Any
 
 import numpy as np
 
-from .results import Result, fmt_safe, max_demand
+from .results import (
+    BELOW_DEAD_LOAD,
+    DIRECT_STANDS,
+    STATIC_UNSTABLE,
+    Result,
+    fmt_safe,
+    max_demand,
+)
 from .scene.geometry import scene_weights
 from .scene.model import Scene, friction_value
 
@@ -439,19 +446,16 @@ class _Words:
         # either flow rule)
         verdict = (NA_INADMISSIBLE if na and res.history else "NOT ADMISSIBLE: no "
                    "equilibrium state keeps every joint in compression and within friction")
-        from .analyses.nonassociative import DIRECT_STANDS
-
-        if na and any(DIRECT_STANDS in n for n in res.notes or ()):
+        if na and res.cause == DIRECT_STANDS:
             # two "states reached from X0": the one at this load stands, the limit
             # fixed point from X0 (`load`'s answer) collapses below it
             verdict = NA_BELOW_LOAD
         return (verdict, number, ("breached at " + joint_list(names)) if names else "", why)
 
     def friction(self, res: Any) -> tuple[str, str, str, list[str]]:
-        from .analyses.nonassociative import NA_FRICTION_CEILING, STATIC_UNSTABLE
+        from .analyses.nonassociative import NA_FRICTION_CEILING
 
-        static = not without_dilatancy(res) or any(STATIC_UNSTABLE in n
-                                                   for n in res.notes or ())
+        static = not without_dilatancy(res) or res.cause == STATIC_UNSTABLE
         if res.status != "stable" and not static:
             # the search stops at a finite ceiling: infinite friction (no sliding at
             # all) is another joint law, which may stand (a running-bond wall with
@@ -510,10 +514,8 @@ class _Words:
             if without_dilatancy(res) and bounds is not None and bounds[1] is not None:
                 # (the associative analysis has a state: the upper bound; without one,
                 # no state stands under the dead load at all)
-                from .analyses.nonassociative import BELOW_DEAD_LOAD
-
                 what = ("loaded from X0 it collapses below the dead load alone, lambda* "
-                        "< 0" if any(BELOW_DEAD_LOAD in n for n in res.notes or ()) else
+                        "< 0" if res.cause == BELOW_DEAD_LOAD else
                         "the state reached from X0 under the dead load alone breaches the "
                         "joint laws")
                 return (f"UNSTABLE: {what} (without dilatancy; other states may stand: "

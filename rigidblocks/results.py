@@ -314,6 +314,13 @@ class Result:
     #: problem and were solved again by another (the notes say so too)
     answered_by: tuple[str, ...] = ()
     rejected: tuple[str, ...] = ()
+    #: why a non-associative status is what it is, where its notes give it in words and
+    #: the answer's verdict depends on it: BELOW_DEAD_LOAD ("unstable" `load`: the limit
+    #: fixed point from X0 is below 0), DIRECT_STANDS ("inadmissible" `check`: the state
+    #: reached from X0 at the load stands, the limit fixed point from X0 collapses below
+    #: it), STATIC_UNSTABLE ("unstable" `friction`: no friction admits a state at all);
+    #: "" otherwise
+    cause: str = ""
 
     #: the statuses that are not verdicts: the method could not decide, or broke down
     UNDECIDED: ClassVar[tuple[str, ...]] = ("undecided", "failure")
@@ -411,6 +418,11 @@ class Result:
 #: the joint's size is round-off of 0 in the joint table (floating point's, not a
 #: solver's: ZERO_FORCE is that)
 TABLE_ZERO = 1e-12
+
+#: the values of :attr:`Result.cause`
+BELOW_DEAD_LOAD = "below_dead_load"
+DIRECT_STANDS = "direct_stands"
+STATIC_UNSTABLE = "static_unstable"
 
 #: forces below this fraction of the largest joint force count as zero in the demand
 DEMAND_TOL = 1e-7

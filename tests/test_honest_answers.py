@@ -578,6 +578,10 @@ def test_a_non_associative_multiplier_below_0_is_unstable(capsys):
         out.split("verdict")[1].split("\n")[1]
     assert main(["check", path, "--load-factor", "0", "--friction", "0.7652", *na]) == 0
     assert "NOT ADMISSIBLE" in capsys.readouterr().out
+    # the field the verdict and `--safe` read (a note's words before)
+    res = rb.max_load_multiplier(rb.read_scene(path), friction=0.7652, flow=na[1],
+                                 state=False)
+    assert res.status == "unstable" and res.cause == "below_dead_load"
     # `--safe` said "no collapse within the bounds: bracket [4.314002e-05, -]" beside it
     assert main(["load", path, "--friction", "0.7652", "--safe", *na]) == 0
     assert "safe       not computed: the limit fixed point from X0 collapses below the " \
@@ -850,6 +854,9 @@ def test_no_friction_suffices_names_the_joints_that_keep_their_own(tmp_path, cap
         assert ("verdict    UNSTABLE: no friction of the other joints suffices (even "
                 "infinite friction there admits no equilibrium state) while the joints with "
                 "a friction of their own keep it: base-A (f = 0.1)") in out, out
+    res = rb.min_friction(rb.read_scene(path), load_factor=0.3, flow="non-associative",
+                          state=False)
+    assert res.cause == "static_unstable"
     code, out, _ = run(capsys, ["load", path])
     assert "lambda* = 0.1," in out
 

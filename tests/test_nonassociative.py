@@ -585,6 +585,7 @@ def test_check_load_and_friction_agree_without_dilatancy(method, capsys):
         # the flow line counts the check's iterations at 0.12 and the limit run's steps
         # apart (before: "12 iteration(s)", the two summed)
         res = rb.check(scene, load_factor=0.12, flow=NA, state=False)
+        assert res.cause == "direct_stands"  # the field the verdict reads
         (trial,) = res.history
         assert trial["iterations"] + trial["limit_steps"] == res.iterations
         assert (f"flow       {NA}: {trial['iterations']} iteration(s) at lambda = 0.12, "

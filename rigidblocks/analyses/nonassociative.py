@@ -72,6 +72,9 @@ from ..methods.convex import ADMISSIBLE_TOL, STATE_SLACK, VERDICT_RTOL, ConvexMe
 from ..methods.distortion import DistortionMethod
 from ..problems.formulation import build_energy_qp, build_max_load, build_relaxation, flexibility
 from ..results import (
+    BELOW_DEAD_LOAD,
+    DIRECT_STANDS,
+    STATIC_UNSTABLE,
     CheckResult,
     ForceState,
     FrictionResult,
@@ -156,13 +159,6 @@ STATE_NOTE = ("non-associative sliding (no dilatancy): the answer is the one rea
               "not cause; other states, and so other answers, may exist")
 
 
-#: the note of a friction search whose static problem has no state at any friction
-STATIC_UNSTABLE = "no friction admits an equilibrium state (static problem)"
-#: the note of a limit fixed point from X0 whose multiplier is below 0
-BELOW_DEAD_LOAD = "the limit fixed point from X0 does not carry even the dead load"
-#: the note of a check whose state reached from X0 stands while the limit fixed point
-#: from X0 does not carry the load
-DIRECT_STANDS = "directly is admissible"
 #: why the limit iteration has no start at a friction
 DEAD_LOAD_BREACH = ("the state reached from the elastic state X0 under the dead load "
                     "alone breaches the joint laws")
@@ -265,6 +261,8 @@ class NonAssociative(Method):
         self.marked = np.asarray(marked, dtype=bool)
         self.runs = 0
         self.fp_iterations = 0
+        #: the result's :attr:`~rigidblocks.results.Result.cause`
+        self.cause = ""
         self.converged_runs = 0
         #: the limit analyses answered by iterating the limit problem: True, or "walk"
         #: where they walked to a mechanism (2D)
@@ -526,7 +524,7 @@ def _fields(na: NonAssociative, analysis: str, status: str, friction: Any,
                 units=(na.scene.length_unit, na.scene.force_unit), notes=tuple(notes),
                 timings=dict(na.timings.wall), cpu_timings=dict(na.timings.cpu),
                 flow=NON_ASSOCIATIVE, converged=converged, history=history,
-                answered_by=na.answered_by, rejected=na.rejected,
+                answered_by=na.answered_by, rejected=na.rejected, cause=na.cause,
                 sliding_joints=(None if na.marked.all() else int(na.marked.sum())))
 
 
@@ -626,8 +624,9 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
         return ADMISSIBLE
     na.notes.append(f"loaded from X0 it collapses at lambda = {fmt_safe(r.lam, 7, False)} "
                     f"< {lf:.10g} (the limit fixed point from X0, `load`'s answer), though the "
-                    f"state reached from X0 at lambda = {lf:.10g} {DIRECT_STANDS} (the "
+                    f"state reached from X0 at lambda = {lf:.10g} directly is admissible (the "
                     "state shown)")
+    na.cause = DIRECT_STANDS
     return INADMISSIBLE
 
 
@@ -887,7 +886,9 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
         # multiplier, the dead load alone collapses it (the inclined corbel arch at
         # f = 0.7652, just above its f* = 0.7651297: -2.7e-5)
         na.notes.append(f"loaded from X0 it collapses at lambda = {fmt_safe(lam, 7, False)} "
-                        f"< 0: {BELOW_DEAD_LOAD}")
+                        "< 0: the limit fixed point from X0 does not carry even the dead "
+                        "load")
+        na.cause = BELOW_DEAD_LOAD
         return LoadResult(**_fields(na, "max_load_multiplier", "unstable", f, None, trials,
                                     True), load_multiplier_bounds=bounds)
     hi = bounds[1]
@@ -1143,9 +1144,11 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
 
     if lim.status != "stable":
         # the static f* bounds the non-associative one from below: without it, nothing
-        na.notes.append(STATIC_UNSTABLE if lim.status == "unstable" else
+        na.notes.append("no friction admits an equilibrium state (static problem)"
+                        if lim.status == "unstable" else
                         "the static f*, below which no state stands, was not found "
                         f"({lim.status}): the search starts there")
+        na.cause = STATIC_UNSTABLE if lim.status == "unstable" else ""
         return out("unstable" if lim.status == "unstable" else lim.status, converged=True)
     # without dilatancy f* does not say whether the scene's own friction suffices
     # (lambda(f) need not grow with f): that friction is tried as well

@@ -144,14 +144,11 @@ def _safe(scene: Any, args: argparse.Namespace, res: Any) -> dict[str, Any]:
     (or the reason it was not computed); the answer ``res``, where the limit iteration
     ended at a checked collapse state, bounds it from above."""
     from ..analyses.na_bounds import safe_multiplier
-    from ..analyses.nonassociative import (
-        BELOW_DEAD_LOAD,
-        collapse_state_at,
-        is_nonassociative,
-    )
+    from ..analyses.nonassociative import collapse_state_at, is_nonassociative
+    from ..results import BELOW_DEAD_LOAD
 
     q = question(args)
-    if any(BELOW_DEAD_LOAD in n for n in res.notes or ()):
+    if res.cause == BELOW_DEAD_LOAD:
         # the mixed-integer LP seeks collapse multipliers from its capacity bound up: it
         # said "no collapse within the bounds: bracket [4.3e-05, -]" beside a collapse
         # state at -2.7e-5 (the inclined corbel arch at f = 0.7652)
