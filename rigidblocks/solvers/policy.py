@@ -136,9 +136,10 @@ _DONE = (OPTIMAL, INFEASIBLE, UNBOUNDED)
 #: dome's relaxation at f = 1, where the tight tolerances are out of its reach), two
 #: orders below what SCS leaves at its defaults (1e-4)
 VERIFY_TOL = 1e-6
-#: smallest relative margin -b'y of a verified infeasibility certificate: ten times the
-#: tolerance at which a state counts as admissible (ADMISSIBLE_TOL, 1e-9), below which
-#: "no state" and "a state" are one answer to round-off. With 1e-9, HiGHS's maximum-load
+#: smallest relative margin of a verified infeasibility certificate (-b'y) or unbounded
+#: ray (-c'd), :func:`~rigidblocks.solvers.base.residuals`: ten times the tolerance at
+#: which a state counts as admissible (ADMISSIBLE_TOL, 1e-9), below which "no state" and
+#: "a state" are one answer to round-off. With 1e-9, HiGHS's maximum-load
 #: LP of the inclined corbel arch at f = 0.7651297, 4.8e-9 above its f*, was infeasible
 #: by a margin of 1.4e-9 (its certificate exact to 1e-15) while `check` stood there:
 #: `load` said UNSTABLE; now Clarabel answers, lambda* = 0
