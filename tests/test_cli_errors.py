@@ -258,6 +258,11 @@ def test_solver_not_installed_says_how_to_install_it(capsys, monkeypatch):
     one_line_error(capsys, "'ecos'", "pip install 'rigidblocks[solvers]'")
     assert main(["check", str(EXAMPLES / "arch.json"), "--solver", "cvxpy-mosek"]) == 2
     one_line_error(capsys, "'mosek'", "pip install mosek")
+    # a name cvxpy does not know is a typo, with no package to install (it said "pip
+    # install foo")
+    assert main(["check", str(EXAMPLES / "arch.json"), "--solver", "cvxpy-FOO"]) == 2
+    msg = one_line_error(capsys, "cvxpy has no solver 'foo'", "installed: ")
+    assert "pip install" not in msg
 
 
 def test_dxf_without_the_cad_extra_names_it(tmp_path, capsys, monkeypatch):

@@ -70,6 +70,9 @@ def test_malformed_json(tmp_path):
     text = json.dumps(base_doc())[:-5]
     msg = expect_error(write_doc(tmp_path, text), "malformed JSON")
     assert "line 1" in msg
+    # json's own message ends in "at" before its position ("starting at at line 1")
+    msg = expect_error(write_doc(tmp_path, text[:40]), "Unterminated string starting at line 1")
+    assert " at at " not in msg
 
 
 @pytest.mark.parametrize("key, value", [("format", "rigidblocks"), ("version", 2),

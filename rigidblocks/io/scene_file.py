@@ -299,7 +299,8 @@ def loads_json(text: str, source: str | None = None) -> Any:
     try:
         doc = json.loads(text, parse_constant=_nonfinite_constant)
     except json.JSONDecodeError as err:
-        raise InputError(f"malformed JSON: {err.msg} at line {err.lineno} column {err.colno}",
+        raise InputError(f"malformed JSON: {err.msg.removesuffix(' at')} at line "
+                         f"{err.lineno} column {err.colno}",
                          source) from None
     except InputError as err:
         raise (err.located(source) if source else err) from None

@@ -34,11 +34,15 @@ def solve_cvxpy(problem: ConicProblem, solver: str, **options) -> SolverResult:
 
     name = solver.upper()
     if name not in cp.installed_solvers():
+        from cvxpy.settings import SOLVERS
+
         from ..extras import solver_install_hint
 
+        installed = f"(installed: {', '.join(cp.installed_solvers())})"
+        if name not in SOLVERS:  # a typo: no package to install
+            raise InputError(f"cvxpy has no solver {solver!r} {installed}")
         raise InputError(f"solver {solver!r} is not installed for cvxpy: "
-                         f"{solver_install_hint(solver)} "
-                         f"(installed: {', '.join(cp.installed_solvers())})")
+                         f"{solver_install_hint(solver)} {installed}")
     n = problem.n
     z = cp.Variable(n)
     A = problem.A.tocsr()
