@@ -21,6 +21,7 @@ import numpy as np
 from .results import (
     BELOW_DEAD_LOAD,
     DIRECT_STANDS,
+    MODE_WORDS,
     STATIC_UNSTABLE,
     Result,
     fmt_safe,
@@ -573,11 +574,6 @@ class _Words:
         return [f"the live load is included at load factor {res.load_factor:.10g}; "
                 f"--load-factor 0 asks for the {self.dead_word()} alone, `rigidblocks load {src}"
                 f"{flow}` for the collapse multiplier"]
-
-
-#: a mechanism's joint modes, in the words of the answer (exclusive groups)
-MODE_WORDS = (("hinge", "hinging"), ("slide", "sliding"),
-              ("slide+hinge", "sliding and hinging"), ("open", "opening"))
 
 
 def mechanism_groups(res: Any) -> list[tuple[str, list[str]]]:

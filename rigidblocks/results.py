@@ -419,6 +419,11 @@ class Result:
 #: solver's: ZERO_FORCE is that)
 TABLE_ZERO = 1e-12
 
+#: a mechanism's joint modes, in the words of the answer (exclusive groups, in the order
+#: the answer's governing line gives them)
+MODE_WORDS = (("hinge", "hinging"), ("slide", "sliding"),
+              ("slide+hinge", "sliding and hinging"), ("open", "opening"))
+
 #: the values of :attr:`Result.cause`
 BELOW_DEAD_LOAD = "below_dead_load"
 DIRECT_STANDS = "direct_stands"
@@ -616,12 +621,16 @@ class LoadResult(Result):
         if self.flow != "associative":
             b = self.load_multiplier_bounds
             out["load_multiplier_bounds"] = None if b is None else list(b)
-        # the joints the "governing" line names (a method without a mechanism: those at
-        # their friction limit in its state), as friction's JSON gives them
+        # the joints the "governing" line names, as friction's JSON gives them: the
+        # mechanism's moving joints by mode, fastest first (it gave the sliding ones
+        # alone: [] for the segmental arch's four hinges); a method without a mechanism,
+        # those at their friction limit in its state
         out["governing_joints"] = [list(p) for p in self.governing_joints]
         if self.mechanism is not None:
             m = self.mechanism
             order = m.ranking
+            out["governing_joints"] = [list(self.joint_name(k)) for mode, _ in MODE_WORDS
+                                       for k in order if m.modes[k] == mode]
             out["mechanism"] = {
                 "kind": m.kind,
                 "hinges": [list(self.joint_name(k)) for k in order if m.modes[k] == "hinge"],

@@ -96,6 +96,25 @@ def test_load_json(capsys, block_file, solver):
     assert abs(d["load_multiplier"] - 0.5) <= 1e-6 * 0.5
 
 
+@pytest.mark.parametrize("name", ["segmental_arch.json", "arpino_gate.json"])
+def test_load_json_governing_joints_are_those_its_governing_line_names(capsys, name):
+    """`load --json`'s governing_joints are the joints the governing line names, in its
+    order: the segmental arch's four hinges (it gave [], the sliding joints alone), the
+    Arpino gate's two hinges and one sliding joint (it gave the sliding one)."""
+    path = str(EXAMPLES / name)
+    assert main(["load", path]) == 0
+    line = next(x for x in capsys.readouterr().out.splitlines()
+                if x.startswith("governing"))
+    named = [j for group in line.split(None, 1)[1].split("; ")
+             for j in group.split("(", 1)[1].rstrip(")").split(", ")]
+    code, d, _ = run_json(capsys, ["load", path, "--json"])
+    assert code == 0 and len(named) >= 3
+    assert ["-".join(p) for p in d["governing_joints"]] == named
+    m = d["mechanism"]
+    assert {tuple(p) for p in d["governing_joints"]} == \
+        {tuple(p) for p in m["hinges"] + m["sliding"] + m["open"]}
+
+
 def test_load_unbounded_json(capsys, tmp_path):
     """A live force straight down with infinite friction never causes collapse."""
     p = write(tmp_path, "down.json", [
