@@ -29,6 +29,7 @@ from .results import (
 )
 from .scene.geometry import scene_weights
 from .scene.model import Scene, friction_value
+from .solvers.policy import LP_ONLY
 
 #: the statuses that are verdicts (any other is none: undecided, failure, ...)
 VERDICTS = ("admissible", "inadmissible", "stable", "unstable", "collapse", "unbounded")
@@ -108,6 +109,7 @@ def answer_block(scene: Scene, result: Any, symbols: bool = False) -> AnswerBloc
     w = _Words(scene, symbols)
     a = getattr(result, "analysis", "")
     reasons, notes = split_notes(getattr(result, "notes", ()) or ())
+    reasons += _other_back_ends(result)
     asked = w.asked(result)
     if getattr(result, "status", "") not in VERDICTS:
         return AnswerBlock(asked, *w.undecided(result), reasons=reasons + notes,
@@ -146,6 +148,20 @@ def split_notes(notes: Any) -> tuple[tuple[str, ...], tuple[str, ...]]:
                            f"solved again by {again[2]}: the result is not a "
                            f"cross-check of {again[2]} by {again[1]}")
     return tuple(reasons), tuple(solver)
+
+
+def _other_back_ends(res: Any) -> tuple[str, ...]:
+    """Where back ends other than the one chosen answered some solves without its
+    answers failing a check (an LP-only back end hands quadratic and conic problems on:
+    `check --solver highs` has its state of least complementary energy, the
+    non-associative analyses their selection steps, solved by Clarabel), a reason that
+    says so: the result is not that back end's alone."""
+    solver = getattr(res, "solver", "")
+    others = [n for n in getattr(res, "answered_by", ()) or () if n != solver]
+    if not others or getattr(res, "rejected", ()) or solver not in LP_ONLY:
+        return ()
+    return (f"{solver} solves linear programs only: {' and '.join(others)} solved the "
+            "other problems of this analysis (its quadratic or conic ones)",)
 
 
 def _own_friction(res: Any, f: Any) -> str:

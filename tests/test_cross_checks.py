@@ -304,3 +304,23 @@ def test_the_json_answer_names_the_back_ends_that_answered(tmp_path, capsys):
         assert main(["check", str(path), "--method", "distortion", "--flow", flow,
                      "--json"]) == 0
         assert json.loads(capsys.readouterr().out)["answered_by"] == ["distortion"]
+
+
+@pytest.mark.parametrize("argv", [["check", "reference.json"],
+                                  ["friction", "segmental_arch.json", "--flow",
+                                   "non-associative"]])
+def test_an_lp_only_back_end_says_which_solved_the_other_problems(capsys, argv):
+    """HiGHS solves linear programs only: `check` hands its state of least complementary
+    energy, the non-associative analyses their selection steps, to Clarabel. The JSON
+    said so (answered_by) but the printed answer did not, so that `--solver highs`
+    read as HiGHS's answer alone; a why line says it now. With Clarabel alone, no
+    such line."""
+    path = str(EXAMPLES / argv[1])
+    line = ("why        highs solves linear programs only: clarabel solved the other "
+            "problems of this analysis (its quadratic or conic ones)")
+    assert main([argv[0], path, *argv[2:], "--solver", "highs"]) == 0
+    assert line in capsys.readouterr().out.splitlines()
+    assert main([argv[0], path, *argv[2:], "--solver", "highs", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["answered_by"] == ["highs", "clarabel"]
+    assert main([argv[0], path, *argv[2:]]) == 0
+    assert "solves linear programs only" not in capsys.readouterr().out
