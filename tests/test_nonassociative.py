@@ -551,6 +551,18 @@ def test_cli_names_the_starts_and_bounds(tmp_path, capsys):
     assert "from the associative collapse state: lambda = 0.7142857" in line
     assert "spread" not in line
     assert any(s.startswith("bounds     [0, 0.770492]") for s in out.splitlines())
+    # the upper end is the associative multiplier 0.7704918, rounded up where `load`
+    # rounds it down: the line says so (it read as another value)
+    assert "bounds     [0, 0.770492]   (rounded outward; lower: the joints without " \
+        "dilatancy frictionless; upper: associative)" in out.splitlines()
+    assert main(["load", str(p)]) == 0
+    assert "answer     lambda* = 0.770491, " in capsys.readouterr().out
+    # an end that is missing says why: the segmental arch's piers do not stand with
+    # their joints frictionless (it printed "[-, 0.287208]" alone)
+    assert main(["load", str(EXAMPLES / "segmental_arch.json"), "--flow", NA]) == 0
+    assert "bounds     [-, 0.287208]   (rounded outward; lower, -: none with the joints " \
+        "without dilatancy frictionless; upper: associative)" in \
+        capsys.readouterr().out.splitlines()
 
 
 @pytest.mark.parametrize("method", ["clarabel", "distortion"])

@@ -322,11 +322,16 @@ def _flow_lines(res) -> list[str]:
         out = [f"flow       {res.flow}: {res.iterations} iteration(s), {done}"]
     b = getattr(res, "load_multiplier_bounds", None)
     if b is not None:
-        # each bound on its own safe side: the lower one down, the upper one up
+        # each bound on its own safe side: the lower one down, the upper one up (the
+        # associative multiplier read 0.583757 here beside `load`'s 0.583756, as if two)
         lo = "-" if b[0] is None else fmt_safe(b[0], 6, False)
         hi = "-" if b[1] is None else fmt_safe(b[1], 6, True)
-        out.append(f"bounds     [{lo}, {hi}]   (lower: the joints without dilatancy "
-                   "frictionless; upper: associative)")
+        what = ["rounded outward"] if b[0] is not None or b[1] is not None else []
+        what.append("lower: the joints without dilatancy frictionless" if b[0] is not None
+                    else "lower, -: none with the joints without dilatancy frictionless")
+        what.append("upper: associative" if b[1] is not None else
+                    "upper, -: the associative analysis gives none")
+        out.append(f"bounds     [{lo}, {hi}]   ({'; '.join(what)})")
     if starts:
         out.append("starts     " + starts_text(starts))
     return out
