@@ -24,6 +24,7 @@ from .results import (
     MODE_WORDS,
     STATIC_UNSTABLE,
     Result,
+    fmt_bracket,
     fmt_safe,
     max_demand,
 )
@@ -406,7 +407,7 @@ class _Words:
         br = getattr(result, "bracket", None)
         what = {"min_friction": "f*", "max_load_multiplier": f"{self.lam}*"}.get(
             getattr(result, "analysis", ""), "")
-        number = f"{what} in [{br[0]:.10g}, {br[1]:.10g}]" if br is not None else ""
+        number = f"{what} in {fmt_bracket(*br)}" if br is not None else ""
         return verdict, number
 
     def check(self, res: Any) -> tuple[str, str, str, list[str]]:

@@ -65,6 +65,19 @@ def fmt_safe(x: float, digits: int, up: bool) -> str:
     return f"{near:.{digits}g}"
 
 
+def fmt_bracket(lower: float, upper: float, digits: int = 10) -> str:
+    """"[lower, upper]", each end on its own side (:func:`fmt_safe`: the lower one down,
+    the upper one up) to ``digits`` figures, or to as many more as tell two different
+    ends apart: the reference model's lambda* asked to 1e-12 read "in [1.2, 1.2]",
+    3.6e-10 wide."""
+    lo, hi = float(lower), float(upper)
+    for d in range(digits, 18):
+        a, b = fmt_safe(lo, d, False), fmt_safe(hi, d, True)
+        if a != b or not lo < hi:
+            break
+    return f"[{a}, {b}]"
+
+
 def no_force(N: np.ndarray, T: np.ndarray) -> np.ndarray:
     """Joints whose normal and shear forces are both below ``ZERO_FORCE`` of the largest
     of them: round-off of a joint that carries nothing."""

@@ -140,6 +140,20 @@ def test_the_command_prints_the_accuracy_reached_and_requested(capsys):
                for line in out.splitlines())
 
 
+def test_a_bracket_narrower_than_ten_figures_shows_its_width(capsys):
+    """The reference model's lambda* asked to 1e-12 by Clarabel: undecided, its bracket
+    3.6e-10 wide read "lambda* in [1.2, 1.2]"; its ends are printed on their own sides
+    (the lower one down, the upper one up) to as many figures as tell them apart."""
+    path = str(EXAMPLES / "reference.json")
+    res = rb.max_load_multiplier(rb.read_scene(path), rtol=1e-12, state=False)
+    lo, hi = res.bracket
+    assert res.status == "undecided" and 0 < hi - lo < 1e-9
+    main(["load", path, "--rtol", "1e-12"])
+    line = next(x for x in capsys.readouterr().out.splitlines() if x.startswith("answer"))
+    a, b = (float(v) for v in line.split("[", 1)[1].rstrip("]").split(", "))
+    assert a < b and a <= lo * (1 + 1e-9) and b >= hi
+
+
 def test_an_accuracy_finer_than_the_interior_point_verdicts_is_refused():
     """f* finer than 1e-7 is refused with Clarabel (its verdicts hold to 1e-9 of the
     largest force: asked for 1e-8, the 3D box on a 20 degree slope came out 1.06e-7

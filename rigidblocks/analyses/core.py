@@ -23,6 +23,7 @@ from ..results import (
     CheckResult,
     FrictionResult,
     LoadResult,
+    fmt_bracket,
     fmt_safe,
     relative_width,
     within,
@@ -101,7 +102,7 @@ def certified(m: Method, lim: Limit, rtol: float, what: str, atol: float = 0.0) 
             return lim
     elif within(lim.lower, lim.upper, rtol, atol):
         return lim
-    m.notes.append(f"{what} is bracketed in [{lim.lower:.10g}, {lim.upper:.10g}]: accuracy "
+    m.notes.append(f"{what} is bracketed in {fmt_bracket(lim.lower, lim.upper)}: accuracy "
                    f"{reached:.1e} reached, {rtol:.1e} requested (rtol): no number is "
                    "given")
     return replace(lim, status="undecided", value=None, at=None)

@@ -79,6 +79,7 @@ from ..results import (
     ForceState,
     FrictionResult,
     LoadResult,
+    fmt_bracket,
     fmt_safe,
     relative_width,
 )
@@ -576,6 +577,7 @@ def _check(na: NonAssociative, cv: ConvexMethod, f: float, lf: float, state: boo
         before = na.fp_iterations
         status = _loaded_from_x0(na, cv, f, lf)
         trial["limit_steps"] = na.fp_iterations - before
+        trial["limit_status"] = status
         if status != ADMISSIBLE:  # the state shown breaches nothing
             admissible, violation = (False if status == INADMISSIBLE else None), math.nan
     return CheckResult(**_fields(na, "check", status, f, lf, (trial,),
@@ -758,7 +760,7 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
     if br.undecided_at is not None:
         last = trials[-1]
         na.notes.append(f"the iteration did not settle at lambda = {br.undecided_at:.9g}: "
-                        f"the multiplier is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
+                        f"the multiplier is bracketed in {fmt_bracket(br.lower, br.upper, 9)}")
         if br.too_wide(rtol, BRACKET_ATOL):
             na.notes.append(_too_wide_note(br, rtol))
             return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None,
@@ -1237,7 +1239,7 @@ def _friction_by_verdicts(na: NonAssociative, lf: float, lim: Any, rtol: float, 
     best = br.good_data or best
     if br.undecided_at is not None:
         na.notes.append(f"the iteration did not settle at f = {br.undecided_at:.9g}: the "
-                        f"friction is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
+                        f"friction is bracketed in {fmt_bracket(br.lower, br.upper, 9)}")
         if br.too_wide(rtol, BRACKET_ATOL):
             na.notes.append(_too_wide_note(br, rtol))
             return out(UNDECIDED, lower=br.lower, upper=br.upper, converged=False)

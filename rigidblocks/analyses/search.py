@@ -29,6 +29,7 @@ from ..methods.engine import (
     run,
     undecided_band,
 )
+from ..results import fmt_bracket
 
 #: a bisection stopped by an undecided trial with a bracket wider than the requested
 #: accuracy (relative) plus BRACKET_ATOL gives no number (the floor: f* or lambda* = 0);
@@ -222,7 +223,7 @@ def _limit(m: Method, s: Search, name: str, status: str) -> Limit:
     br = Bracket(s.bad, s.good, s.end(True).data, _undecided_at(s))
     if br.undecided_at is not None:
         m.notes.append(f"the iteration could not decide at {name} = {br.undecided_at:.9g}: "
-                       f"{name}* is bracketed in [{br.lower:.9g}, {br.upper:.9g}]")
+                       f"{name}* is bracketed in {fmt_bracket(br.lower, br.upper, 9)}")
         if br.too_wide(max(s.rtol, BRACKET_RTOL)):
             m.notes.append(f"accuracy {s.accuracy:.1e} reached, {s.rtol:.1e} requested "
                            "(rtol): undecided")

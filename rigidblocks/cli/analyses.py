@@ -314,10 +314,12 @@ def _flow_lines(res) -> list[str]:
                f"{len(starts)} start(s){each}, {done}"]
     elif len(res.history) == 1 and res.history[0].get("limit_steps") is not None:
         # a check at its load factor, then `load`'s limit run from X0
+        # (the limit run's outcome too: "converged" alone stood beside its UNDECIDED)
         t = res.history[0]
+        run = ", undecided" if t.get("limit_status") == "undecided" else ""
         out = [f"flow       {res.flow}: {t.get('iterations', '?')} iteration(s) at lambda "
                f"= {t['load_factor']:.10g}, {done}; then {t['limit_steps']} limit step(s) "
-               "loading from X0"]
+               f"loading from X0{run}"]
     else:
         out = [f"flow       {res.flow}: {res.iterations} iteration(s), {done}"]
     b = getattr(res, "load_multiplier_bounds", None)

@@ -22,6 +22,7 @@ import numpy as np
 from ..equilibrium import EquilibriumSystem, mechanism
 from ..errors import InputError
 from ..problems.formulation import Scaling
+from ..results import fmt_bracket
 from ..scene.model import Scene
 from ..solvers import INFEASIBLE, UNBOUNDED, Runner, SolverResult
 from ..solvers.policy import FALLBACK, Ladder, describe, ladder_of
@@ -232,11 +233,10 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
         if reach > rtol * scale:
             upper = lam + reach
             self.notes.append(
-                f"lambda* = {lam:.10g} is the solver's answer (its state carries it); "
-                f"what the residual of its duals could account for ({SPREAD_MARGIN:g} "
-                f"times its work on that state) allows lambda* up to {upper:.10g}: "
-                f"lambda* is in [{lam:.10g}, {upper:.10g}], the upper end by value, not "
-                "certified")
+                "the solver's answer, the lower end, carries its state; what the residual "
+                f"of its duals could account for ({SPREAD_MARGIN:g} times its work on "
+                f"that state) allows lambda* above it: lambda* is in "
+                f"{fmt_bracket(lam, upper)}, the upper end by value, not certified")
         return Limit("collapse", lam, lam, upper, governing=sliding, mechanism=mech,
                      at=Verdict(ADMISSIBLE, 0.0, (), (res, prob)), resolution=reach / scale)
 

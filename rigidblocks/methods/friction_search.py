@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import SolverFailure
+from ..results import fmt_bracket
 from ..solvers import SolverResult
 from . import friction_rules
 from .base import Limit
@@ -120,7 +121,7 @@ class FrictionSearch:
                 f"below the certified upper end f = {hi:.10g} the relaxation is about "
                 f"{below:.1e} (slope {lower.slope:.4g}), below what the solver certifies "
                 f"there (its dual bound was {rx.shortfall:.1e} short at f = {lo:.10g}): "
-                f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
+                f"f* is bracketed in {fmt_bracket(lo, hi)} (relative width "
                 f"{(hi - lo) / hi:.1e}), certified at the upper end")
         if search.of_kind(*UNDECIDED_KINDS) and not self._bracket_note(search):
             return Limit("undecided", None, lo, upper)
@@ -158,7 +159,7 @@ class FrictionSearch:
             at = (f" (the last at f = {top:.10g}, {(hi - top) / hi:.1e} below the "
                   f"certified upper end{'' if wide else ', which is reported'})")
         self.notes.append(f"near f* some relaxations ended with status {status}{at}; "
-                          f"f* is bracketed in [{lo:.10g}, {hi:.10g}] (relative width "
+                          f"f* is bracketed in {fmt_bracket(lo, hi)} (relative width "
                           f"{(hi - lo) / hi:.1e})")
         if wide:
             self.notes.append(f"the bracket is wider than {max(search.rtol, WIDE):g} "

@@ -13,6 +13,7 @@ import numpy as np
 
 from ..errors import SolverFailure
 from ..problems.formulation import build_max_load
+from ..results import fmt_bracket
 from ..solvers import INFEASIBLE, UNBOUNDED, SolverResult
 from ..solvers.policy import ESTIMATE, FINER_VALUE, VALUE, Ladder
 from . import load_rules
@@ -187,8 +188,9 @@ class LoadSearch:
             self.notes.append(
                 f"f* is certified from above: at f = {hi:.10g} a state carries the load "
                 f"factor {lf:g} (f* from lambda*(f) = {lf:g}, the largest load "
-                f"multiplier at friction f). Below, f* is bracketed in [{lo:.10g}, "
-                f"{hi:.10g}] (relative width {(hi - lo) / hi:.1e}) by lambda*'s value at "
+                f"multiplier at friction f). Below, f* is bracketed in "
+                f"{fmt_bracket(lo, hi)} (relative width {(hi - lo) / hi:.1e}) by lambda*'s "
+                f"value at "
                 f"the lower end ({lower.value + lf:.10g}: below {lf:g} by more than "
                 f"{SPREAD_MARGIN:g} times the solver's resolution there), not by a "
                 "certified bound")
