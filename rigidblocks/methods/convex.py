@@ -233,9 +233,9 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
         if reach > rtol * scale:
             upper = lam + reach
             self.notes.append(
-                "the solver's answer, the lower end, carries its state; what the residual "
-                f"of its duals could account for ({SPREAD_MARGIN:g} times its work on "
-                f"that state) allows lambda* above it: lambda* is in "
+                f"lambda* = {lam:.10g} is the solver's answer (its state carries it); "
+                f"what the residual of its duals could account for ({SPREAD_MARGIN:g} "
+                f"times its work on that state) allows lambda* above it: lambda* is in "
                 f"{fmt_bracket(lam, upper)}, the upper end by value, not certified")
         return Limit("collapse", lam, lam, upper, governing=sliding, mechanism=mech,
                      at=Verdict(ADMISSIBLE, 0.0, (), (res, prob)), resolution=reach / scale)
