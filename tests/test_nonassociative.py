@@ -565,6 +565,27 @@ def test_cli_names_the_starts_and_bounds(tmp_path, capsys):
         capsys.readouterr().out.splitlines()
 
 
+@pytest.mark.parametrize("name", ["segmental_arch.json", "stocky_arch.json"])
+def test_friction_for_the_dead_load_is_where_check_stands(name, capsys):
+    """`friction --load-factor 0` without dilatancy judges f as `check` does: the state
+    reached from X0 under the dead load stands and the limit fixed point loaded from it
+    carries lambda >= 0. Judged by the first alone, the segmental arch's f* was
+    0.18274331, where `check` is undecided (the limit run's capped laws carry nothing
+    at a step); now 0.182948 (measured), where it stands. The stocky arch's (0.298753
+    before, 0.298747 now) stood either way."""
+    path = str(EXAMPLES / name)
+    res = rb.min_friction(read_scene(path), load_factor=0.0, flow=NA, state=False)
+    assert res.status == "stable"
+    assert main(["friction", path, "--flow", NA, "--load-factor", "0"]) == 0
+    line = next(x for x in capsys.readouterr().out.splitlines() if x.startswith("answer"))
+    printed = line.split("f* = ", 1)[1].split()[0]
+    # six figures, rounded up
+    assert res.friction_factor <= float(printed) <= res.friction_factor * (1 + 1e-5)
+    assert main(["check", path, "--flow", NA, "--load-factor", "0", "--friction",
+                 printed]) == 0
+    assert "verdict    ADMISSIBLE" in capsys.readouterr().out
+
+
 @pytest.mark.parametrize("method", ["clarabel", "distortion"])
 def test_check_load_and_friction_agree_without_dilatancy(method, capsys):
     """The Arpino gate at f = 0.6 and lambda = 0.12: the state reached from X0 at 0.12

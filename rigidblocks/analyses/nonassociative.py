@@ -1158,10 +1158,23 @@ def min_friction_nonassociative(scene: Scene, load_factor: float = 1.0,
     own = float(fsc) if not isinstance(fsc, str) and 0 < float(fsc) < _m.inf else None
     if own is not None and own < (lim.lower if lim.lower is not None else lim.value):
         own = None  # below the static f* no state stands at all: nothing to try
-    if isinstance(na, ConvexNonAssociative) and scene.has_live_load and lf > 0:
-        # (without a live load, or at lambda = 0, there is no limit to iterate: the
-        # state reached from X0 answers below)
+    if isinstance(na, ConvexNonAssociative) and scene.has_live_load and lf >= 0:
+        # as `check` judges a load factor (:func:`_loaded_from_x0`), at lambda = 0 too:
+        # judged by the state reached from X0 alone, the segmental arch's f* for its
+        # dead load was 0.18274331, where `check` is undecided (loaded from X0, the
+        # capped laws carry nothing at a step), now 0.182948, where it stands. The
+        # limit runs start from that state: at lambda = 0, where it stands at no
+        # friction, its own search says why (the breach that no f changes)
+        if lf == 0:
+            seen = len(na.notes)
+            first = _friction_by_verdicts(na, lf, lim, rtol, out, trials, own)
+            if first.status != "stable":
+                return first
+            del na.notes[seen:]
+            trials.clear()
         return _friction_by_limit(na, cv, lf, lim, rtol, out, trials, own)
+    # without a live load there is no limit to iterate: the state reached from X0
+    # answers
     return _friction_by_verdicts(na, lf, lim, rtol, out, trials, own)
 
 
