@@ -81,6 +81,25 @@ def test_warm_lp_follows_changed_bounds(kind, monkeypatch):
         assert lp.cold == 1
 
 
+@pytest.mark.parametrize("kind", ["warm", "cold"])
+def test_minimise_follows_changed_costs(kind):
+    """One LP's feasible set, five costs in turn (the safe multiplier's slack bounds):
+    each optimum is linprog's from scratch (the warm model from the last basis by the
+    primal simplex)."""
+    from scipy.optimize import linprog
+
+    c, A, lo, up = _lp()
+    lp = (ColdLp if kind == "cold" else WarmLp)(c, A, lo, up)
+    rng = np.random.default_rng(3)
+    for _ in range(5):
+        cost = rng.normal(size=len(c))
+        assert lp.minimise(cost) == "optimal"
+        ref = linprog(cost, A_ub=sp.vstack([A, -A[lo > -np.inf]]),
+                      b_ub=np.concatenate([up, -lo[lo > -np.inf]]), bounds=(None, None),
+                      method="highs")
+        assert cost @ lp.x == pytest.approx(ref.fun, abs=1e-9)
+
+
 def test_the_solves_after_a_warm_one_given_up_go_to_ipm_at_once():
     """With every warm solve given up (a limit of 0 iterations), nine solves of the
     random LP: without the rule the last eight are each tried warm and given up; with

@@ -76,8 +76,9 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                        "(a mixed-integer LP solved by HiGHS, at most --safe-time-limit "
                        "per solve; docs/safe-multiplier.md)")
         p.add_argument("--safe-time-limit", type=_seconds, default=60.0, metavar="S",
-                       help="the time limit of each mixed-integer solve of --safe, in "
-                       "seconds (default 60); past it the safe multiplier is a bracket")
+                       help="the time limit of each mixed-integer solve of --safe, and of "
+                       "the bounds' LPs before them, in seconds (default 60); past it "
+                       "the safe multiplier is a bracket")
     if name in ("friction", "load"):
         add_rtol(p, name)
     p.add_argument("--joints", nargs="?", const="-", default=None, metavar="CSV",

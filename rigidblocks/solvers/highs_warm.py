@@ -128,6 +128,30 @@ class WarmLp:
         self.warm = st == OPTIMAL
         return st
 
+    def minimise(self, c: np.ndarray) -> str:
+        """Change the cost to ``c`` and solve: from the last basis by the primal simplex
+        (the rows are unchanged, so that basis stays primal feasible), the first solve
+        by IPM with crossover. OPTIMAL, INFEASIBLE, UNBOUNDED or FAILURE."""
+        h = self.h
+        c = np.asarray(c, dtype=float)
+        h.changeColsCost(len(c), np.arange(len(c), dtype=np.int32), c)
+        self.solves += 1
+        if self.warm:
+            h.setOptionValue("solver", "simplex")
+            h.setOptionValue("simplex_strategy", 4)  # primal
+            h.setOptionValue("simplex_iteration_limit", 2**31 - 1)
+            h.run()
+            h.setOptionValue("simplex_strategy", 1)
+            self.iterations = self._iterations()
+            return self._status()
+        self.cold += 1
+        h.setOptionValue("solver", "ipm")
+        h.run()
+        self.iterations = self._iterations()
+        st = self._status()
+        self.warm = st == OPTIMAL
+        return st
+
     def _iterations(self) -> int:
         info = self.h.getInfo()
         return int(max(info.simplex_iteration_count, 0) + max(info.ipm_iteration_count, 0))
@@ -193,6 +217,11 @@ class ColdLp:
             y[ge] -= ineq[int(le.sum()):]
             self._y = y
         return st
+
+    def minimise(self, c: np.ndarray) -> str:
+        """Change the cost to ``c`` and solve (from scratch)."""
+        self.c = np.asarray(c, dtype=float)
+        return self.solve(np.zeros(0, dtype=int), np.zeros(0), np.zeros(0))
 
     @property
     def x(self) -> np.ndarray:
