@@ -638,12 +638,12 @@ class LoadResult(Result):
         # mechanism's moving joints by mode, fastest first (it gave the sliding ones
         # alone: [] for the segmental arch's four hinges); a method without a mechanism,
         # those at their friction limit in its state
-        out["governing_joints"] = [list(p) for p in self.governing_joints]
-        if self.mechanism is not None:
-            m = self.mechanism
+        m = self.mechanism
+        named = self.governing if m is None else \
+            [k for mode, _ in MODE_WORDS for k in m.ranking if m.modes[k] == mode]
+        out["governing_joints"] = [list(self.joint_name(k)) for k in named]
+        if m is not None:
             order = m.ranking
-            out["governing_joints"] = [list(self.joint_name(k)) for mode, _ in MODE_WORDS
-                                       for k in order if m.modes[k] == mode]
             out["mechanism"] = {
                 "kind": m.kind,
                 "hinges": [list(self.joint_name(k)) for k in order if m.modes[k] == "hinge"],
