@@ -44,7 +44,8 @@ def add_question_args(p: argparse.ArgumentParser, takes: tuple[str, ...]) -> Non
                    help=" or ".join(f'"{m}"' for m in METHODS)
                    + ' (default "clarabel": the convex path; "distortion": the seed\'s '
                    "impressed-distortion iteration, its procedure with --flow "
-                   "non-associative, a cross-check of the convex path otherwise)")
+                   "non-associative, a cross-check of the convex path otherwise); a back "
+                   "end's name is the convex path with that back end, as --solver")
     p.add_argument("--solver", default=None,
                    help="back end of the convex path: clarabel, highs, osqp, scs, ecos, "
                    "cvxpy-NAME")
