@@ -451,6 +451,20 @@ def test_governing_joints_at_the_accuracy_of_the_bisection(capsys):
         [j.split("-") for j in bed.split(", ")]
 
 
+def test_governing_joints_within_the_shear_the_bracket_adds():
+    """The wall example (4 x 4 running bond, f = 0.6; the convex path: the wall slides
+    on its four foundation joints at lambda* = 0.6) by the distortion method: its state at
+    the bracket's lower end puts the slack of the sliding on one foundation joint (0.01
+    kN, 2.7e-3 of its threshold, in a bracket 1.6e-3 wide), which its governing line
+    left out. A joint whose shear the live load could bring to its limit within the
+    bracket (the live load's size times the bracket's width) is named: all four."""
+    res = rb.max_load_multiplier(_example("wall.json"), method="distortion", state=False)
+    lo, hi = res.bracket
+    assert lo < 0.6 <= hi
+    gov = {f"{a}-{b}" for a, b in res.governing_joints}
+    assert {f"foundation-c0b{k}" for k in range(4)} <= gov
+
+
 def test_an_answer_asked_finer_is_printed_to_its_accuracy(capsys):
     """The reference model (lambda* = 1.2, above) by the distortion method asked to
     1e-6: its certified lower end 1.1999998 was printed to six figures on the safe side,

@@ -419,7 +419,9 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     if at is not None:
         m.explain(at)
         if lim.mechanism is None:
-            gov = gov or m.governing_load(f, at, lim.accuracy or 0.0)
+            width = 0.0 if lim.lower is None or lim.upper is None else \
+                float(lim.upper) - float(lim.lower)
+            gov = gov or m.governing_load(f, at, lim.accuracy or 0.0, width)
     st = m.state(f, lam, at, limit=True) if (state and at is not None) else None
     lam = _round_off_of_zero(lam, lim.accuracy)  # (its state is the solver's)
     return LoadResult(**_fields(m, "max_load_multiplier", "collapse", f, lam), state=st,

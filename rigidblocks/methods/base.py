@@ -200,10 +200,11 @@ class Method:
         bracket, not at the limit itself)."""
         return ()
 
-    def governing_load(self, f: float, verdict: Verdict, rel: float = 0.0
-                       ) -> tuple[int, ...]:
+    def governing_load(self, f: float, verdict: Verdict, rel: float = 0.0,
+                       width: float = 0.0) -> tuple[int, ...]:
         """Joints at their friction limit in the state at lambda* (to the relative
-        accuracy ``rel`` of lambda*)."""
+        accuracy ``rel`` of lambda*, and within the shear that ``width``, the bracket's
+        width in lambda, times the live load could add)."""
         return ()
 
     # -- bookkeeping -------------------------------------------------------------------
