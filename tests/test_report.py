@@ -286,6 +286,24 @@ def test_3d_report_in_chromium(tmp_path):
 
 
 @needs_chromium
+def test_3d_check_report_has_no_mechanism_controls(tmp_path):
+    """A check has no mechanism: its 3D view showed the legend "moving block
+    (mechanism)", a mechanism layer, slider and play button (disabled). They are left
+    out, and the page runs its self-test without them."""
+    html = tmp_path / "check.html"
+    rb.report(EXAMPLES / "box_stack_3d.json", analysis="check", path=html)
+    page = html.read_text(encoding="utf-8")
+    for gone in ("moving block (mechanism)", 'class="rb-play"', 'class="rb-amp"',
+                 'data-layer="mechanism"', "hinge line (dots", "mechanism's displacements"):
+        assert gone not in page, gone
+    assert "joint resultant" in page
+    st = page_state(html)
+    assert st.errors == () and st.data.get("viewer-ready") == "1"
+    ctl = page_state(html, fragment="rb-selftest")
+    assert ctl.errors == () and ctl.data.get("selftest") == "done"
+
+
+@needs_chromium
 def test_browser_check_sees_javascript_errors(tmp_path):
     """The page's own hook catches errors, so a clean run above means something."""
     page = rb.report(box_stack(boxes=1))

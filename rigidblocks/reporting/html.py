@@ -136,20 +136,24 @@ def _answer_html(ans: content.Answer) -> str:
 
 def _view3d_html(mechanism: bool, moving: list[tuple[str, str]] | None = None) -> str:
     """The 3D view's canvas, legend and layer switches; ``moving``: the legend's rows of
-    the moving blocks' colours (:func:`rigidblocks.plotting.marks.mechanism_colours`)."""
-    rows = moving or [("#e39a5b", "moving block (mechanism)")]
+    the moving blocks' colours (:func:`rigidblocks.plotting.marks.mechanism_colours`).
+    Without a mechanism (a check) its legend rows, layer, slider and play button are left
+    out: a check's report showed "moving block (mechanism)" and a mechanism to play."""
+    rows = (moving or [("#e39a5b", "moving block (mechanism)")]) if mechanism else []
     legend = (
         '<div class="rb-legend">'
         '<div><span class="sw" style="background:#d9c7a7"></span>block</div>'
         '<div><span class="sw" style="background:#8a8a8a"></span>support</div>'
         + "".join(f'<div><span class="sw" style="background:{_e(c)}"></span>{_e(t)}</div>'
                   for c, t in rows) +
-        '<div><span class="ln" style="border-color:#d62728"></span>hinge line (dots at its '
-        'ends)</div>'
-        '<div><span class="ln" style="border-color:#1f77b4"></span>sliding joint / joint '
-        'resultant</div>'
-        '<div><span class="ln" style="border-color:#ff8c00"></span>opening joint</div>'
-        '<div><span class="ln" style="border-color:#333"></span>dead load</div>'
+        ('<div><span class="ln" style="border-color:#d62728"></span>hinge line (dots at '
+         'its ends)</div>'
+         '<div><span class="ln" style="border-color:#1f77b4"></span>sliding joint / joint '
+         'resultant</div>'
+         '<div><span class="ln" style="border-color:#ff8c00"></span>opening joint</div>'
+         if mechanism else
+         '<div><span class="ln" style="border-color:#1f77b4"></span>joint resultant</div>')
+        + '<div><span class="ln" style="border-color:#333"></span>dead load</div>'
         '<div><span class="ln" style="border-color:#c2185b"></span>live load '
         '(\N{MULTIPLICATION SIGN} \N{GREEK SMALL LETTER LAMDA})</div></div>')
     layers = "".join(
@@ -159,17 +163,20 @@ def _view3d_html(mechanism: bool, moving: list[tuple[str, str]] | None = None) -
                            # with a mechanism the forces are one layer too many at first
                            ("forces", "forces", not mechanism),
                            ("mechanism", "mechanism", True), ("loads", "loads", True),
-                           ("joints", "joint dots", True)))
+                           ("joints", "joint dots", True))
+        if mechanism or k != "mechanism")
+    play = ('<label>mechanism <input type="range" class="rb-amp" min="0" max="1000" '
+            'value="1000"></label><button class="rb-play" type="button">play</button>'
+            if mechanism else "")
     return (
         '<div class="rb-view" id="rb-view"><canvas aria-label="interactive 3D view">'
         "</canvas>" + legend + '<div class="rb-labels"></div><div class="rb-tip" hidden>'
-        '</div><div class="rb-panel">' + layers +
-        '<label>mechanism <input type="range" class="rb-amp" min="0" max="1000" '
-        'value="1000"></label><button class="rb-play" type="button">play</button>'
+        '</div><div class="rb-panel">' + layers + play +
         '<button class="rb-reset" type="button">reset view</button></div></div>'
         '<p class="rb-help">Drag to turn, wheel to zoom, right-drag or shift-drag to pan; '
-        "hover a joint (its dot) for its forces, click a row of the table to find it. "
-        "The mechanism's displacements are to an arbitrary scale (the slider).</p>"
+        "hover a joint (its dot) for its forces, click a row of the table to find it."
+        + (" The mechanism's displacements are to an arbitrary scale (the slider)."
+           if mechanism else "") + "</p>"
         '<p id="rb-view-msg" hidden>The 3D view could not start (it needs WebGL); the '
         "tables below are complete.</p>")
 
