@@ -301,6 +301,17 @@ def test_path_standing_at_its_end_says_how_far_it_went(capsys):
                   if ln.startswith("status"))
     assert status.startswith("status     STANDING at lambda = 2 (200 N), the end of the "
                              "path")
+    assert "at its end joints" not in status  # nothing happens at lambda = 2
+    # the bonded model's path to lambda = 1 ends where its bed joints become plastic,
+    # and the path to 2 collapses at 1: STANDING at 1 said nothing of it
+    assert main(["path", str(EXAMPLES / "fig4a_bonded.json"), "--max-load", "1",
+                 "--steps", "5"]) == 0
+    status = next(ln for ln in capsys.readouterr().out.splitlines()
+                  if ln.startswith("status"))
+    assert status.endswith("; at its end joints became plastic: it may collapse at once "
+                           "beyond"), status
+    assert main(["path", str(EXAMPLES / "fig4a_bonded.json")]) == 0
+    assert "status     COLLAPSE at lambda = 1" in capsys.readouterr().out
 
 
 def test_check_friction_demand_is_not_called_what_the_structure_needs(capsys):

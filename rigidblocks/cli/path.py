@@ -98,6 +98,13 @@ def _status_tail(res, live: float, fu: str) -> str:
         return f": not decided at lambda = {lo:.9g} (no verdict beyond)"
     if res.status == "standing" and res.steps:
         end = res.steps[-1].load_factor
+        # (the bonded reference model to --max-load 1: STANDING at 1 beside its bed
+        # joints' plasticisation there, where the path to 2 collapses)
+        done = {"crack": "cracked", "plastic": "became plastic", "slide": "slid"}
+        last = sorted({done.get(e.kind, e.kind) for e in res.events
+                       if e.load_factor >= end * (1 - 1e-9)})
+        at_end = (f"; at its end joints {' and '.join(last)}: it may collapse at once "
+                  "beyond" if last else "")
         return (f" at lambda = {end:g} ({end * live:.4g} {fu}), the end of the path "
-                "(--max-load goes further)")
+                f"(--max-load goes further){at_end}")
     return ""
