@@ -118,15 +118,7 @@ class WarmLp:
             self.given_up += 1
             if self.cold_after_give_up:
                 self._cold_left, self._backoff = self._backoff, 2 * self._backoff
-        self.cold += 1
-        h.clearSolver()
-        h.setOptionValue("solver", "ipm")
-        h.setOptionValue("simplex_iteration_limit", 2**31 - 1)
-        h.run()
-        self.iterations += self._iterations()
-        st = self._status()
-        self.warm = st == OPTIMAL
-        return st
+        return self._from_scratch()
 
     def minimise(self, c: np.ndarray) -> str:
         """Change the cost to ``c`` and solve: from the last basis by the primal simplex
@@ -136,18 +128,28 @@ class WarmLp:
         c = np.asarray(c, dtype=float)
         h.changeColsCost(len(c), np.arange(len(c), dtype=np.int32), c)
         self.solves += 1
-        if self.warm:
-            h.setOptionValue("solver", "simplex")
-            h.setOptionValue("simplex_strategy", 4)  # primal
-            h.setOptionValue("simplex_iteration_limit", 2**31 - 1)
-            h.run()
-            h.setOptionValue("simplex_strategy", 1)
-            self.iterations = self._iterations()
-            return self._status()
-        self.cold += 1
-        h.setOptionValue("solver", "ipm")
+        self.iterations = 0
+        if not self.warm:
+            return self._from_scratch()
+        h.setOptionValue("solver", "simplex")
+        h.setOptionValue("simplex_strategy", 4)  # primal
+        h.setOptionValue("simplex_iteration_limit", 2**31 - 1)
         h.run()
+        h.setOptionValue("simplex_strategy", 1)
         self.iterations = self._iterations()
+        return self._status()
+
+    def _from_scratch(self) -> str:
+        """Solve the model as it stands by IPM with crossover (no iteration limit: a
+        warm attempt's does not carry over), counted as cold; the iterations add to
+        :attr:`iterations`."""
+        h = self.h
+        self.cold += 1
+        h.clearSolver()
+        h.setOptionValue("solver", "ipm")
+        h.setOptionValue("simplex_iteration_limit", 2**31 - 1)
+        h.run()
+        self.iterations += self._iterations()
         st = self._status()
         self.warm = st == OPTIMAL
         return st
