@@ -285,6 +285,22 @@ def test_import_without_unit_weight_warns_and_every_analysis_says_so(tmp_path, c
     assert not any("weigh nothing" in n for n in rb.check(sc2, load_factor=0).notes)
 
 
+def test_a_weightless_scene_without_loads_has_no_forces_and_needs_no_friction(tmp_path):
+    """A weightless drawing with no load carries nothing: its state has no forces and
+    needs no friction, and the note says that nothing loads it (the round-off of the
+    solver, forces of 1e-12, read as |T|/N = 8.5 at one of its joints)."""
+    path = quirky_drawing(tmp_path / "q.dxf")
+    r = rb.check(rb.read_dxf(path), load_factor=0)
+    assert r.status == "admissible"
+    assert r.friction_demand == (0.0, 0)
+    assert not np.any(r.state.joint_normal) and not np.any(r.state.joint_shear)
+    assert any("no load acts: every force is zero" in n for n in r.notes)
+    # with its weight the state carries it, and the note is not given
+    r2 = rb.check(rb.read_dxf(path, unit_weight=20.0), load_factor=0)
+    assert np.abs(r2.state.joint_normal).max() > 1.0
+    assert not any("no load acts" in n for n in r2.notes)
+
+
 def test_export_of_a_3d_scene_is_refused_before_its_analysis(tmp_path, capsys, monkeypatch):
     """`export-dxf` of a 3D scene: one line, exit 2, and no analysis run first (it
     took the corbel dome's load analysis, 1.1 s CPU against 0.5 s, to say no)."""

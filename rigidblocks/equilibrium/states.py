@@ -16,10 +16,20 @@ MODE_TOL = 1e-6
 #: a joint slides, or hinges as it slides, when its slip, or the spread of its opening
 #: over its points, exceeds this fraction of the joint's own largest motion
 MODE_SHARE = 0.1
+#: link forces all below this fraction of the largest load on a block are the solver's
+#: round-off of a state that carries nothing
+NOISE = 1e-9
 
 
 def force_state(system: EquilibriumSystem, x: np.ndarray, method: str) -> ForceState:
-    """Joint resultants, eccentricities and the thrust line of link forces ``x``."""
+    """Joint resultants, eccentricities and the thrust line of link forces ``x``; where
+    nothing loads the blocks (every force below ``NOISE`` of their largest load, or no
+    load at all) the state without forces: a weightless drawing without loads gave
+    |T|/N = 8.5 from forces of 1e-12."""
+    load = max(float(np.abs(system.dead).max(initial=0.0)),
+               float(np.abs(system.live).max(initial=0.0)))
+    if float(np.abs(x).max(initial=0.0)) <= NOISE * load or load == 0.0:
+        x = np.zeros_like(x)
     c = system.contacts
     lay = system.layout
     pj = c.point_joint

@@ -148,7 +148,9 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
     if not np.any(system.dead) and not any(b.unit_weight for b in scene.blocks) and \
             not scene.effective_unit_weight:
         m.notes.append("the blocks weigh nothing (no unit_weight): self-weight is not part "
-                       "of this analysis, only the loads act")
+                       "of this analysis, only the loads act" + (
+                           "; and no load acts: every force is zero (set unit_weight, or "
+                           "add loads)" if not np.any(system.live) else ""))
     loose, adrift = unsupported_blocks(scene, contacts)
     if loose:
         one = len(loose) == 1
