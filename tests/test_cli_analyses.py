@@ -17,6 +17,7 @@ from pathlib import Path
 import pytest
 from conftest import EXAMPLES, rect
 
+import rigidblocks as rb
 from rigidblocks.cli.main import main
 from rigidblocks.generators import catalogue as cat
 from rigidblocks.io import write_scene
@@ -235,6 +236,25 @@ def test_extrude_command_keeps_the_answers(tmp_path, capsys, block_file):
                                                                                  rel=1e-6)
     assert main(["extrude", str(out), "-o", str(tmp_path / "x.json")]) == 2
     assert "2D scene" in capsys.readouterr().err
+
+
+def test_extrude_to_another_depth_says_that_point_loads_do_not_scale(tmp_path, capsys):
+    """The reference model with self-weight (depth 0.25) extruded 0.5 deep: its weights
+    double and its point loads do not, so its lambda* is not the 2D scene's (2.4 in 2D,
+    3.6 extruded; the 2D scene's own depth keeps it): the message said it was."""
+    from rigidblocks.io import read_scene
+
+    src = str(EXAMPLES / "reference_self_weight.json")
+    out = tmp_path / "r3.json"
+    assert main(["extrude", src, "-o", str(out), "--depth", "0.5"]) == 0
+    said = capsys.readouterr().out
+    assert "f* and lambda* are not the 2D scene's unless the loads are scaled by 2" in said
+    lam = rb.max_load_multiplier(read_scene(out)).load_multiplier
+    assert lam == pytest.approx(3.6, rel=1e-5)
+    assert main(["extrude", src, "-o", str(out)]) == 0
+    assert "f* and lambda* are the 2D scene's)" in capsys.readouterr().out
+    assert rb.max_load_multiplier(read_scene(out)).load_multiplier == pytest.approx(
+        2.4, rel=1e-5)  # the seed's reference model with self-weight
 
 
 def test_example_help_shows_the_generator_parameters(capsys):

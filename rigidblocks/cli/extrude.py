@@ -28,6 +28,13 @@ def run(args: argparse.Namespace) -> int:
     write_scene(solid, args.output)
     depth = scene.effective_depth if args.depth is None else args.depth
     unit = f" {scene.length_unit}" if scene.length_unit else ""
+    same = "f* and lambda* are the 2D scene's"
+    if depth != scene.effective_depth and scene.loads:
+        ratio = depth / scene.effective_depth
+        same = (f"its {len(scene.loads)} point load(s) are kept as given while the weights "
+                f"and the joints' strengths scale with the depth ({ratio:g} times the "
+                f"scene's {scene.effective_depth:g}{unit}): f* and lambda* are not the 2D "
+                f"scene's unless the loads are scaled by {ratio:g} too")
     print(f"wrote {args.output}: {len(solid.blocks)} prisms {depth:g}{unit} deep (the 2D "
-          "plane x-y is the vertical plane x-z; f* and lambda* are the 2D scene's)")
+          f"plane x-y is the vertical plane x-z; {same})")
     return 0

@@ -15,7 +15,9 @@ def extrude(scene: Scene, depth: float | None = None) -> Scene:
     runs along y from 0 to ``depth``; gravity stays vertical (-z). Forces (fx, fy)
     become (fx, 0, fy), points (x, y) become (x, depth / 2, y), and a couple m (about
     the 2D out-of-plane axis, counter-clockwise positive) becomes (0, -m, 0). Weights,
-    friction and joint laws are unchanged, so f* and lambda* are the same.
+    friction and joint laws are unchanged, so f* and lambda* are the same; at another
+    ``depth`` than the scene's the weights and the joints' strengths (stresses) scale
+    with it and the point loads do not.
     A non-convex polygon becomes a non-convex prism (its two caps non-convex faces).
     """
     if scene.dimension != 2:
