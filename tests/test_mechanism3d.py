@@ -190,3 +190,31 @@ def test_report_legend_and_view_colour_the_dome_by_speed():
     for colour, label in m["legend"]:
         assert f'background:{colour}"></span>{label.replace(chr(39), "&#x27;")}' in page
     assert "moving block (mechanism)" not in page
+
+
+@pytest.mark.parametrize("f,mode", [(1.0, "hinge"), (5.0, "hinge")])
+def test_a_box_tipping_over_its_corner_hinges(f, mode):
+    """A 1 x 1 x 2 box loaded at 45 degrees in plan tips over its corner at
+    lambda* = (b / sqrt 2) / (h / 2) ... = 0.7071 (the weight's lever to the corner
+    against the load's, rigid-body statics), below f: its bed joint hinges, with
+    |T|/N = 0.7071 < f. Its contact points that lift carry no force, and the vertex of
+    the duals may let them slip as they open: at f = 1 the joint read "slide+hinge"
+    (at f = 5 "hinge")."""
+    sc = build("box_stack", boxes=1, height=2.0, load_azimuth=45.0, friction=f)
+    res = rb.max_load_multiplier(sc)
+    assert res.load_multiplier == pytest.approx(1 / np.sqrt(2), rel=1e-5)
+    assert res.mechanism.modes == (mode,)
+
+
+def test_a_block_lifted_off_its_base_opens():
+    """A block under an upward live body force lifts off at lambda* = 1 (the load equal
+    to its weight): its bed joint carries nothing and opens; it read "sliding" at
+    f = 0.6 (the duals' vertex slips as it lifts)."""
+    from conftest import make_scene, rect
+
+    sc = make_scene([{"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+                     {"id": "B", "vertices": rect(0, 0, 1, 2)}],
+                    unit_weight=20.0, friction=0.6, live_body_force=[0, 1])
+    res = rb.max_load_multiplier(sc)
+    assert res.load_multiplier == pytest.approx(1.0, rel=1e-6)
+    assert res.mechanism.modes == ("open",)

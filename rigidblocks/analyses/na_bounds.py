@@ -678,7 +678,7 @@ def _result(ctx: _Context, status: str, value: float | None, lower: float | None
         sol = best[1]
         st = force_state(sysm, sol[:n] * F, "a non-associative collapse state of the "
                          "least multiplier over all states")
-        mech = mechanism(sysm, cv.scaling.row, sol[n + 1:n + 1 + ne], "vertex")
+        mech = mechanism(sysm, cv.scaling.row, sol[n + 1:n + 1 + ne], "vertex", sol[:n] * F)
     tol = SAME * max(1.0, abs(upper or 0.0))
     if upper is not None and ctx.low is not None and upper < ctx.low - tol:
         notes.append(f"the state found ({upper:.9g}) is below the frictionless bound "

@@ -1052,7 +1052,8 @@ def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: flo
         return None, ()
     y_eq, got = cv.mechanism_duals(prob, res, lam_cap, kind, "the capped laws' multiplier")
     na.notes.extend(n for n in cv.notes if n.startswith("mechanism:") and n not in na.notes)
-    mech = mechanism(cv.system, cv.scaling.row, y_eq, got)
+    mech = mechanism(cv.system, cv.scaling.row, y_eq, got,
+                     res.z[prob.cols["x"]] * cv.scaling.force)
     sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
     return mech, sliding
 

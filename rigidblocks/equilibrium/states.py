@@ -26,8 +26,7 @@ def force_state(system: EquilibriumSystem, x: np.ndarray, method: str) -> ForceS
     nothing loads the blocks (every force below ``NOISE`` of their largest load, or no
     load at all) the state without forces: a weightless drawing without loads gave
     |T|/N = 8.5 from forces of 1e-12."""
-    load = max(float(np.abs(system.dead).max(initial=0.0)),
-               float(np.abs(system.live).max(initial=0.0)))
+    load = _load_scale(system)
     if float(np.abs(x).max(initial=0.0)) <= NOISE * load or load == 0.0:
         x = np.zeros_like(x)
     c = system.contacts
@@ -73,6 +72,12 @@ def force_state(system: EquilibriumSystem, x: np.ndarray, method: str) -> ForceS
     return ForceState(normal=N, shear=T, joint_normal=Nj, joint_shear=Tj, eccentricity=ecc,
                       demand=demand, thrust_points=thrust,
                       thrust_order=chain_order(system), method=method)
+
+
+def _load_scale(system: EquilibriumSystem) -> float:
+    """The largest load on a block, dead or live (force units)."""
+    return max(float(np.abs(system.dead).max(initial=0.0)),
+               float(np.abs(system.live).max(initial=0.0)))
 
 
 def joint_breaches(system: EquilibriumSystem, x: np.ndarray, f_joint: np.ndarray,
@@ -139,10 +144,17 @@ def chain_order(system: EquilibriumSystem) -> np.ndarray:
 
 
 def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray,
-              kind: str = "blend") -> Mechanism:
+              kind: str = "blend", x: np.ndarray | None = None) -> Mechanism:
     """Virtual velocities from the duals ``y_eq`` of the equilibrium rows, scaled by
     ``row_scale`` (the rows' scaling in the problem, :class:`Scaling` ``.row``);
-    ``kind`` says how the duals were chosen (see :class:`Mechanism`)."""
+    ``kind`` says how the duals were chosen (see :class:`Mechanism`).
+
+    ``x``, the link forces (force units) of the state the duals go with: a joint slides
+    only where it slips at contact points that carry force. Where a point carries
+    none, the joint law admits any motion that opens it (with friction that dilates,
+    opening at least f times the slip), and a vertex of the duals may take such a
+    slip: a block lifted off its base read "sliding", a box tipping over its corner at
+    |T|/N = 0.71 < f = 1 "sliding and hinging"."""
     v = row_scale * y_eq
     if v @ system.live < 0:
         v = -v
@@ -163,16 +175,24 @@ def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray
     opening = delta[lay.normal]
     slip = delta[lay.tangential]
     tol = MODE_TOL * max(np.abs(delta).max(initial=0.0), 1e-300)
+    pressed = np.ones(len(opening), dtype=bool)
+    if x is not None:
+        N = np.asarray(x)[lay.normal]
+        pressed = N > MODE_TOL * max(float(N.max(initial=0.0)), _load_scale(system))
+    per_point = np.abs(slip.reshape(len(opening), -1)).max(axis=1) \
+        if not (lay.shear == "joint" and nd == 2) else None
     modes = []
     rates = np.zeros(c.n_joints)
     for k in range(c.n_joints):
         pts = slice(c.joint_start[k], c.joint_start[k + 1])
         dn = opening[pts]
-        if lay.shear == "joint" and nd == 2:
-            ds = abs(slip[k])
+        if per_point is None:
+            moved = abs(slip[k])
+            ds = moved if pressed[pts].any() else 0.0
         else:
-            ds = float(np.abs(slip.reshape(len(opening), -1)[pts]).max())
-        rates[k] = max(ds, float(np.abs(dn).max(initial=0.0)))
+            moved = float(per_point[pts].max())
+            ds = float(per_point[pts][pressed[pts]].max(initial=0.0))
+        rates[k] = max(moved, float(np.abs(dn).max(initial=0.0)))
         # what the joint does is what makes up more than MODE_SHARE of its motion (a
         # sliding joint of a 3D mechanism also turns a little: it slides)
         share = max(tol, MODE_SHARE * rates[k])

@@ -220,7 +220,8 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
             return Limit("unstable")
         y_eq, kind = self.mechanism_duals(prob, res, lam, mechanism_kind, "lambda*")
         with self.timings.stage("state"):
-            mech = mechanism(self.system, self.lscaling.row, y_eq, kind)
+            mech = mechanism(self.system, self.lscaling.row, y_eq, kind,
+                             self.lscaling.forces(res.z[prob.cols["x"]]))
         sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))
         # lambda* is read from the solver's answer, whose state carries it; above it,
         # what the duals' residual could account for (SPREAD_MARGIN times its work on
