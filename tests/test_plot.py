@@ -262,3 +262,32 @@ def test_svg_keeps_text_as_text(tmp_path):
     svg = out.read_text()
     assert "<text" in svg and "COLLAPSE: λ* = " in svg
     assert 'id="DejaVuSans' not in svg  # no glyphs stored as paths
+
+
+def test_the_moving_blocks_drawn_are_those_the_answer_counts():
+    """The 2D mechanism colours as moving the blocks the answer's text counts as moving
+    (its rigid bodies), and the others in the colour of blocks at rest, each with its
+    legend row: a block at rest was drawn in the colour the legend called "collapse
+    mechanism (displaced)", and blocks moving at less than 1 % of the fastest's speed
+    were drawn at rest while the text counted them as moving."""
+    from matplotlib.colors import to_hex
+
+    from rigidblocks.answer import rigid_bodies
+    from rigidblocks.plotting.plot2d import FREE_COLOUR, MOVING_COLOUR
+
+    sc = read_scene(EXAMPLES / "arch.json")  # four hinges: the springers rest
+    res = rb.max_load_multiplier(sc)
+    ax = rb.plot(sc, res)
+    (pc,) = by_gid(ax, "rb-displaced")
+    free = np.flatnonzero(~sc.support_mask)
+    colours = [to_hex(c) for c in pc.get_facecolors()]
+    moving = {i for body in rigid_bodies(res) for i in body}
+    assert 0 < len(moving) < len(free)
+    pairs = list(zip(free, colours, strict=True))
+    assert {int(i) for i, c in pairs if c == MOVING_COLOUR} == moving
+    assert all(c == FREE_COLOUR for i, c in pairs if int(i) not in moving)
+    legends = list(ax.figure.legends) + ([ax.get_legend()] if ax.get_legend() else [])
+    labels = [t.get_text() for lg in legends for t in lg.get_texts()]
+    assert "moving block (displaced)" in labels
+    assert "block at rest in the mechanism" in labels
+    assert not any("collapse mechanism" in t for t in labels)

@@ -381,18 +381,27 @@ def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, s
         DISPLACEMENT_FRACTION * size / top if top > 0 else 0.0)
     moved = displaced_polygons(scene, vel, s, centroids)
     free = ~scene.support_mask
-    moving = free & (reach > 0.01 * top) if top > 0 else np.zeros_like(free)
+    # the blocks the answer's text counts as moving (:func:`~rigidblocks.answer.rigid_bodies`)
+    from ..answer import rigid_bodies
+
+    moving = np.zeros_like(free)
+    moving[[i for body in rigid_bodies(result) for i in body]] = True
     pc = PolyCollection([moved[i] for i in np.flatnonzero(free)], closed=True,
                         facecolors=[MOVING_COLOUR if moving[i] else FREE_COLOUR
                                     for i in np.flatnonzero(free)], edgecolors="k",
                         linewidths=0.8 if len(moved) < 500 else 0.2, zorder=2)
     pc.set_gid("rb-displaced")
-    pc.set_label("collapse mechanism (displaced)")
+    # a legend row per colour (a collection's swatch shows its first block's colour)
+    pc.set_label("_collapse mechanism")
     ax.add_collection(pc)
-    if moving.any():
-        from matplotlib.patches import Patch
+    from matplotlib.patches import Patch
 
-        extra.append(Patch(facecolor=MOVING_COLOUR, edgecolor="k", label="moving block"))
+    if moving.any():
+        extra.append(Patch(facecolor=MOVING_COLOUR, edgecolor="k",
+                           label="moving block (displaced)"))
+    if (free & ~moving).any():
+        extra.append(Patch(facecolor=FREE_COLOUR, edgecolor="k",
+                           label="block at rest in the mechanism"))
     c = result.contacts
     first = c.points[c.joint_start[:-1]]
     last = c.points[c.joint_start[1:] - 1]
