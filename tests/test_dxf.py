@@ -301,6 +301,54 @@ def test_a_weightless_scene_without_loads_has_no_forces_and_needs_no_friction(tm
     assert not any("no load acts" in n for n in r2.notes)
 
 
+@pytest.mark.parametrize("args,said", [
+    (["--unit-weight", "-1"], "unit_weight must be >= 0, got -1"),
+    (["--depth", "0"], "depth must be > 0, got 0"),
+    (["--depth", "-5"], "depth must be > 0, got -5"),
+    (["--snap-tol", "1"], "snap_tol must be > 0 and at most 0.01"),
+    (["--snap-tol", "0"], "snap_tol must be > 0 and at most 0.01"),
+    (["--near-miss", "-1"], "near_miss must be >= 0, got -1")])
+def test_import_refuses_numbers_the_scene_file_would_refuse(tmp_path, capsys, args, said):
+    """A unit weight of -1 or a depth of 0 was written into the scene, which every
+    analysis then refused; a snapping tolerance of the drawing's size merged every
+    block's corners and said "its ends are 0 apart, more than the snapping tolerance"."""
+    path = quirky_drawing(tmp_path / "q.dxf")
+    out = tmp_path / "q.json"
+    assert main(["import-dxf", str(path), "-o", str(out), *args]) == 2
+    err = capsys.readouterr().err
+    assert said in err and str(path) in err and len(err.strip().splitlines()) == 1
+    assert not out.exists()
+
+
+def test_import_reads_the_drawings_length_unit_and_warns_where_another_is_given(
+        tmp_path, capsys):
+    """A drawing that declares millimetres ($INSUNITS 4) is read in millimetres where no
+    length unit is given (the scene recorded none), and where metres are given the
+    import says that it reads the coordinates as metres (a 1 x 2 m block drawn in mm,
+    1000 x 2000, then weighs 1e9 times as much, 4e+07 at 20 per m^3: said nothing)."""
+    doc = ezdxf.new()
+    doc.header["$INSUNITS"] = 4
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(-1000, -1000), (3000, -1000), (3000, 0), (-1000, 0)], close=True)
+    msp.add_lwpolyline([(0, 0), (1000, 0), (1000, 2000), (0, 2000)], close=True)
+    path = tmp_path / "mm.dxf"
+    doc.saveas(path)
+    out = tmp_path / "mm.json"
+    assert main(["import-dxf", str(path), "-o", str(out), "--force-unit", "kN"]) == 0
+    said = capsys.readouterr()
+    assert "lengths in mm, as the drawing declares ($INSUNITS)" in said.out
+    assert "warning: the drawing declares" not in said.err
+    sc = read_scene(out)
+    assert (sc.units.length, sc.units.force) == ("mm", "kN")
+    assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", "m"]) == 0
+    err = capsys.readouterr().err
+    assert ("warning: the drawing declares its lengths in mm ($INSUNITS 4), the length "
+            "unit given is m: its coordinates are read as m") in err
+    assert read_scene(out).units.length == "m"
+    assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", "mm"]) == 0
+    assert "declares" not in capsys.readouterr().err
+
+
 def test_export_of_a_3d_scene_is_refused_before_its_analysis(tmp_path, capsys, monkeypatch):
     """`export-dxf` of a 3D scene: one line, exit 2, and no analysis run first (it
     took the corbel dome's load analysis, 1.1 s CPU against 0.5 s, to say no)."""

@@ -36,7 +36,8 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
         p.add_argument("--unit-weight", type=finite_float, default=None, help="unit weight")
         p.add_argument("--depth", type=finite_float, default=None, help="out-of-plane depth")
         p.add_argument("--friction", default=None, help='friction f or "infinite"')
-        p.add_argument("--length-unit", default=None, help="e.g. mm")
+        p.add_argument("--length-unit", default=None,
+                       help="e.g. mm (default: the unit the drawing declares, $INSUNITS)")
         p.add_argument("--force-unit", default=None, help="e.g. kN")
         p.add_argument("--live-body-force", type=_pair, default=None, metavar="'FX FY'",
                        help="live body force vector, e.g. '1 0'")
@@ -92,6 +93,10 @@ def run(args: argparse.Namespace) -> int:
         print(rep.summary())
         from ..io.dxf import NO_FRICTION_NOTE, NO_UNIT_WEIGHT_NOTE
 
+        if rep.unit_conflict:
+            print(f"rigidblocks: warning: {rep.unit_conflict}", file=sys.stderr)
+        elif rep.declared_unit and not args.length_unit:
+            print(f"lengths in {rep.declared_unit}, as the drawing declares ($INSUNITS)")
         if scene.unit_weight is None:
             print(f"rigidblocks: warning: {NO_UNIT_WEIGHT_NOTE}", file=sys.stderr)
         if scene.friction is None:

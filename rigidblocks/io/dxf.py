@@ -155,6 +155,56 @@ def _metadata(doc: Any, src: str) -> dict | None:
     return meta
 
 
+#: the length units of the DXF header's $INSUNITS codes (AutoCAD's; 0: unitless)
+INSUNITS = {1: "in", 2: "ft", 4: "mm", 5: "cm", 6: "m", 7: "km", 10: "yd", 14: "dm"}
+
+
+def _declared_units(doc: Any, units: tuple[str, str] | str | None, rep: DxfReport,
+                    adopt: bool = True) -> tuple[str | None, str | None] | None:
+    """The scene's units: the drawing's own length unit ($INSUNITS) where none is given
+    (and ``adopt``: not where the drawing carries its scene's units); where one is given
+    that differs, the one given, said in ``rep.unit_conflict`` (a drawing in millimetres
+    read as metres weighs 1e9 times as much)."""
+    if isinstance(units, str):
+        units = (units, None)
+    code = doc.header.get("$INSUNITS", 0)
+    declared = INSUNITS.get(int(code)) if isinstance(code, int | float) else None
+    rep.declared_unit = declared
+    if declared is None:
+        return units
+    given = units[0] if units else None
+    if given is None:
+        if not adopt:
+            rep.declared_unit = None
+            return units
+        return (declared, units[1] if units else None)
+    if given.strip().lower() != declared:
+        rep.unit_conflict = (f"the drawing declares its lengths in {declared} ($INSUNITS "
+                             f"{int(code)}), the length unit given is {given}: its "
+                             f"coordinates are read as {given}")
+    return units
+
+
+#: the largest snapping tolerance taken: one that merges corners a hundredth of the
+#: drawing's size apart merges its blocks
+MAX_SNAP_TOL = 1e-2
+
+
+def _check_numbers(src: str, *, unit_weight: float | None, depth: float | None,
+                   snap_tol: float, near_miss: float) -> None:
+    """The import's numbers, as the scene file would take them (a unit weight of -1 was
+    written and then refused by every analysis of the scene)."""
+    if unit_weight is not None and not unit_weight >= 0:
+        raise InputError(f"unit_weight must be >= 0, got {unit_weight:g}", src)
+    if depth is not None and not depth > 0:
+        raise InputError(f"depth must be > 0, got {depth:g}", src)
+    if not 0 < snap_tol <= MAX_SNAP_TOL:
+        raise InputError(f"snap_tol must be > 0 and at most {MAX_SNAP_TOL:g} (relative to "
+                         f"the drawing's size), got {snap_tol:g}", src)
+    if not near_miss >= 0:
+        raise InputError(f"near_miss must be >= 0, got {near_miss:g}", src)
+
+
 def read_dxf(path: str | os.PathLike, *, supports: str | None = None,
              unit_weight: float | None = None, depth: float | None = None,
              friction: Any = None, units: tuple[str, str] | str | None = None,
@@ -191,6 +241,8 @@ def read_dxf(path: str | os.PathLike, *, supports: str | None = None,
     """
     ezdxf = _ezdxf()
     src = str(path)
+    _check_numbers(src, unit_weight=unit_weight, depth=depth, snap_tol=snap_tol,
+                   near_miss=near_miss)
     try:
         doc = ezdxf.readfile(src)
     except OSError:
@@ -210,6 +262,7 @@ def read_dxf(path: str | os.PathLike, *, supports: str | None = None,
             return layer not in ANALYSIS_LAYERS
     raws, lines, tags = _entities(doc.modelspace(), rep, keep)
     meta = _metadata(doc, src)
+    units = _declared_units(doc, units, rep, adopt=meta is None or "units" not in meta)
     allpts = [r.points for r in raws] + [
         np.array([[e.dxf.start[0], e.dxf.start[1]], [e.dxf.end[0], e.dxf.end[1]]])
         for e in lines]

@@ -50,6 +50,8 @@ class DxfReport:
         blocks: block id -> DXF handle(s) of the entity or entities it came from.
         restored: the drawing carried the scene written by
             :func:`rigidblocks.io.dxf.write_dxf`, and it was restored from it.
+        declared_unit, unit_conflict: the drawing's own length unit ($INSUNITS), and
+            what was done where the unit given differs from it.
     """
 
     source: str
@@ -66,6 +68,10 @@ class DxfReport:
     supports: list[str] = field(default_factory=list)
     blocks: dict[str, str] = field(default_factory=dict)
     restored: bool = False
+    #: the length unit the drawing declares ($INSUNITS), None where it declares none
+    declared_unit: str | None = None
+    #: where the length unit given differs from the drawing's: what was done
+    unit_conflict: str = ""
 
     def summary(self) -> str:
         """One line: what was read and what was repaired."""
@@ -178,13 +184,14 @@ def close_polyline(raw: Outline, tol: float, bid: str, report: DxfReport) -> np.
             report.retraced.append(bid)
         report.closed_by_snap.append(bid)
         pts = pts[:k]
-    elif not raw.closed_flag:
-        gap = float(np.linalg.norm(pts[-1] - pts[0])) if len(pts) else 0.0
+    elif not raw.closed_flag and len(pts) >= 3:
+        gap = float(np.linalg.norm(pts[-1] - pts[0]))
         raise InputError(f"open polyline: its ends are {gap:.6g} apart, more than the "
                          f"snapping tolerance {tol:.3g}", f"{report.source}: {raw.kind} "
                          f"#{raw.handle} (block '{bid}')")
     if len(pts) < 3:
-        raise InputError("closed polyline with fewer than 3 distinct vertices",
+        raise InputError(f"{'closed ' if raw.closed_flag else ''}polyline with fewer than "
+                         f"3 vertices apart by more than the snapping tolerance {tol:.3g}",
                          f"{report.source}: {raw.kind} #{raw.handle} (block '{bid}')")
     return pts
 
