@@ -286,6 +286,16 @@ class _Words:
             self.live_size, self.live_balanced = total, True
         self.n_dead_points = len(dead_pts)
         self.dead_points = float(sum(np.linalg.norm(ld.force) for ld in dead_pts))
+        #: the live couples' sizes summed (force x length), where the live load is
+        #: couples alone (no force: its size above is 0)
+        self.live_moment = 0.0
+        if self.live_size == 0:
+            self.live_moment = float(sum(np.linalg.norm(np.atleast_1d(ld.moment))
+                                         for ld in scene.loads
+                                         if ld.is_live and ld.moment is not None))
+        lu = scene.length_unit
+        self.mu = f"{scene.force_unit} {lu}" if scene.force_unit and lu else \
+            "force x length units"
 
     # -- the loads --------------------------------------------------------------------
     def force(self, v: float) -> str:
@@ -321,6 +331,9 @@ class _Words:
             vec = ", ".join(f"{v:g}" for v in lbf)
             parts.append(f"each free block's weight {self.x} ({vec})")
         n = sum(ld.is_live for ld in sc.loads)
+        if self.live_moment:
+            return (f"{n} live couple{'s' if n > 1 else ''}, no force: "
+                    f"{fmt(self.live_moment)} {self.mu}")
         if n:
             parts.append(f"{n} live point load{'s' if n > 1 else ''}")
         if not parts:
@@ -541,11 +554,15 @@ class _Words:
             return ("UNSTABLE: the dead load alone has no admissible state", "", "", [])
         lm = float(res.load_multiplier)
         size = self.live_size
-        short = float(fmt_safe(lm, 4, False))
-        number = (f"{self.lam}* = {_figures(lm, False, res.rtol)}, that is "
-                  f"{short:g} {self.x} {self.force(size)} = "
-                  f"{fmt_safe(lm * size, 4, False)} {self.fu} "
-                  f"{self.direction()}").rstrip()
+        shown = _figures(lm, False, res.rtol)
+        if self.live_moment:
+            number = (f"{self.lam}* = {shown}, that is {shown} {self.x} "
+                      f"{fmt(self.live_moment)} {self.mu} = "
+                      f"{fmt_safe(lm * self.live_moment, 4, False)} {self.mu} of couples")
+        else:
+            number = (f"{self.lam}* = {shown}, that is {shown} {self.x} {self.force(size)} = "
+                      f"{fmt_safe(lm * size, 4, False)} {self.fu} "
+                      f"{self.direction()}").rstrip()
         why = []
         if res.tilt_angle_deg is not None:
             a = float(np.linalg.norm(np.asarray(self.scene.live_body_force)[:-1]))

@@ -333,3 +333,31 @@ def test_check_friction_demand_is_not_called_what_the_structure_needs(capsys):
     gov = next(ln for ln in capsys.readouterr().out.splitlines()
                if ln.startswith("governing"))
     assert gov.endswith("v1-abutment_r (at its friction limit)")
+
+
+def test_the_answer_line_multiplies_the_number_it_prints(tmp_path, capsys):
+    """The answer line multiplies lambda* as printed (it repeated it to 4 figures, cut
+    down: "lambda* = 0.0749999, that is 0.07499 x 192 kN"), and a live load of couples
+    alone is given as a moment (it read "20 x 0 force units = 0 force units in all").
+    The block 1 x 2 (weight 40) under a live couple of 1 tips at lambda* = 20: the
+    weight's lever 0.5 times 40 against lambda times 1 (rigid-body statics)."""
+    from rigidblocks.io import write_scene
+    from rigidblocks.io.scene_file import scene_from_dict
+
+    assert main(["load", str(EXAMPLES / "arch.json")]) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines()
+                if ln.startswith("answer"))
+    m = re.match(r"answer +lambda\* = ([0-9.]+), that is ([0-9.]+) x ", line)
+    assert m and m.group(1) == m.group(2), line
+    doc = {"format": "rigidblocks-scene", "version": 1, "dimension": 2,
+           "units": {"length": "m", "force": "kN"}, "unit_weight": 20.0, "friction": 0.6,
+           "blocks": [{"id": "base", "vertices": [[-1, -1], [3, -1], [3, 0], [-1, 0]],
+                       "support": True},
+                      {"id": "B", "vertices": [[0, 0], [1, 0], [1, 2], [0, 2]]}],
+           "loads": [{"block": "B", "force": [0, 0], "moment": 1.0, "live": True}]}
+    path = tmp_path / "couple.json"
+    write_scene(scene_from_dict(doc), path)
+    assert main(["load", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "1 live couple, no force: 1 kN m" in out
+    assert "lambda* = 20, that is 20 x 1 kN m = 20 kN m of couples" in out
