@@ -150,11 +150,11 @@ def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray
     ``kind`` says how the duals were chosen (see :class:`Mechanism`).
 
     ``x``, the link forces (force units) of the state the duals go with: a joint slides
-    only where it slips at contact points that carry force. Where a point carries
-    none, the joint law admits any motion that opens it (with friction that dilates,
-    opening at least f times the slip), and a vertex of the duals may take such a
-    slip: a block lifted off its base read "sliding", a box tipping over its corner at
-    |T|/N = 0.71 < f = 1 "sliding and hinging"."""
+    only where it slips at contact points that carry force or stay shut. Where a point
+    carries none, the joint law admits any motion that opens it (with friction that
+    dilates, opening at least f times the slip), and a vertex of the duals may take
+    such a slip: a block lifted off its base read "sliding", a box tipping over its
+    corner at |T|/N = 0.71 < f = 1 "sliding and hinging"."""
     v = row_scale * y_eq
     if v @ system.live < 0:
         v = -v
@@ -186,16 +186,19 @@ def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray
     for k in range(c.n_joints):
         pts = slice(c.joint_start[k], c.joint_start[k + 1])
         dn = opening[pts]
-        if per_point is None:
-            moved = abs(slip[k])
-            ds = moved if pressed[pts].any() else 0.0
-        else:
-            moved = float(per_point[pts].max())
-            ds = float(per_point[pts][pressed[pts]].max(initial=0.0))
+        moved = abs(slip[k]) if per_point is None else float(per_point[pts].max())
         rates[k] = max(moved, float(np.abs(dn).max(initial=0.0)))
         # what the joint does is what makes up more than MODE_SHARE of its motion (a
         # sliding joint of a 3D mechanism also turns a little: it slides)
         share = max(tol, MODE_SHARE * rates[k])
+        # its slip counts at points that carry force or stay shut (a block may slide out
+        # from under another that rests elsewhere: in contact, without force), not at
+        # points that open without force
+        counts = pressed[pts] | (dn <= share)
+        if per_point is None:
+            ds = moved if counts.any() else 0.0
+        else:
+            ds = float(per_point[pts][counts].max(initial=0.0))
         uneven = dn.max() - dn.min() > share
         if ds > share:
             modes.append("slide+hinge" if uneven else "slide")
