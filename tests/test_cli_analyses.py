@@ -308,3 +308,22 @@ def test_a_check_process_imports_only_what_it_uses(tmp_path):
     assert out.stdout.splitlines()[-1] == str(["rigidblocks.cli.analyses", "rigidblocks.cli.main",
                                                "rigidblocks.cli.options",
                                                "rigidblocks.cli.progress"])
+
+
+def test_example_list_with_a_name_lists_that_generator(capsys):
+    """`example --list arch` lists the arch generator alone (it listed all twelve)."""
+    assert main(["example", "--list", "arch"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("arch: ") and "wall:" not in out and "--voussoirs" in out
+    assert main(["example", "--list"]) == 0
+    assert "wall:" in capsys.readouterr().out
+    assert main(["example", "--list", "archx"]) == 2
+    assert "unknown example 'archx'" in capsys.readouterr().err
+
+
+def test_export_dxf_refuses_another_extension(tmp_path, capsys):
+    """`export-dxf -o x.txt` wrote a DXF named .txt (plot, report and sweep refuse a
+    wrong extension); nothing is written."""
+    out = tmp_path / "x.txt"
+    assert main(["export-dxf", str(EXAMPLES / "arch.json"), "-o", str(out)]) == 2
+    assert "use .dxf, not '.txt'" in capsys.readouterr().err and not out.exists()

@@ -103,9 +103,14 @@ def run(args: argparse.Namespace) -> int:
             print(f"rigidblocks: warning: {NO_FRICTION_NOTE}", file=sys.stderr)
         print(f"wrote {args.output}")
         return 0
+    from pathlib import Path
+
     from .analyses import EXIT, question
     from .plot import analyse
 
+    if Path(args.output).suffix.lower() != ".dxf":
+        raise InputError(f"a drawing is a DXF file: use .dxf, not "
+                         f"'{Path(args.output).suffix}'", str(args.output))
     scene = read_scene(args.scene)
     require_2d(scene)  # before the analysis, which a 3D scene would wait for in vain
     result = analyse(scene, args.analysis, question(args))

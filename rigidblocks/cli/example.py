@@ -154,7 +154,8 @@ def run(args: argparse.Namespace) -> int:
     from ..io.scene_file import dumps_scene, write_scene
 
     if args.list:
-        print(listing())
+        # `--list NAME`: that generator alone (an unknown name says which there are)
+        print(describe(get(args.generator)) if args.generator else listing())
         return 0
     if not args.generator:
         raise InputError("example: give a generator name, or --list")
