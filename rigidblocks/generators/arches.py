@@ -237,7 +237,8 @@ def arch(shape: str = "semicircular", voussoirs: int | None = None, thickness: f
         right = ((ri - e, 0.0), (ro - e, 0.0))
         left = ((e - ri, 0.0), (e - ro, 0.0))
     blocks += _springing_blocks(left, right, springing, pw, ph)
-    name = f"{shape} arch, {n} voussoirs, t/R = {ratio:g}, {joints} joints, on {springing}"
+    name = (f"{shape} arch, {n} voussoir{'s' if n != 1 else ''}, t/R = {ratio:g}, "
+            f"{joints} joints, on {springing}")
     return make_scene(name, blocks, unit_weight=uw, friction=fr, depth=d)
 
 
@@ -281,7 +282,8 @@ def stocky_arch(voussoirs: int = 7, thickness: float = 0.6, radius: float = 1.5,
     return arch("semicircular", voussoirs, thickness, radius, joints, springing,
                 pier_width=pier_width, pier_height=pier_height, unit_weight=unit_weight,
                 friction=friction, depth=depth).with_changes(
-        name=f"stocky arch, {voussoirs} voussoirs, t/R = {thickness:g}, on {springing}")
+        name=f"stocky arch, {voussoirs} voussoir{'s' if voussoirs != 1 else ''}, "
+             f"t/R = {thickness:g}, on {springing}")
 
 
 # -- flat arch ------------------------------------------------------------------------
@@ -322,7 +324,8 @@ def flat_arch(span: float = 2.0, height: float = 0.4, voussoirs: int = 9,
     left = ((xs[0], 0.0), (top[0], h))
     blocks += _flat_springing(left, right, springing, pw, ph)
     extra = f", centre {c:g} below" if joints == "radial" else ""
-    name = f"flat arch, span {L:g}, {n} voussoirs, {joints} joints{extra}, on {springing}"
+    name = (f"flat arch, span {L:g}, {n} voussoir{'s' if n != 1 else ''}, {joints} "
+            f"joints{extra}, on {springing}")
     overrides = None
     if bonded_piers and springing == "piers":
         overrides = [{"blocks": [p, "ground"], "friction": "infinite"}
