@@ -76,3 +76,26 @@ def test_registered_round_trips_and_cli(tmp_path):
 def test_bad_parameters(params, word):
     with pytest.raises(InputError, match=word):
         keyed_wall(**params)
+
+
+def test_associative_answers_on_keys_say_that_dilatancy_clamps_them():
+    """In plane, along its keys, the keyed wall at f = 0.05 (foundation f = 1) carries
+    lambda* = 1 with friction that dilates: a key cannot slide in its groove, since
+    opening one side face closes the other, and the wall tips as one body about its
+    foundation's end (lambda W H/2 = W L/2, the wall as long as high, 1.2 m: lambda = 1;
+    sliding on the foundation, f = 1, gives 1 too). Dry joints that do not dilate slide
+    at f = 0.05, as the plain wall does with either flow (a bed joint slides at
+    lambda = f). The answer says so; the plain wall's does not."""
+    keyed = keyed_wall(courses=6, blocks_per_course=3, friction=0.05, base_friction=1.0,
+                       load_direction="in_plane")
+    res = rb.max_load_multiplier(keyed)
+    assert res.load_multiplier == pytest.approx(1.0, rel=1e-5)
+    assert any("blocks touch on opposed faces" in n and "--flow non-associative" in n
+               for n in res.notes)
+    plain = keyed_wall(courses=6, blocks_per_course=3, friction=0.05, base_friction=1.0,
+                       load_direction="in_plane", key_height=0.0)
+    res = rb.max_load_multiplier(plain)
+    assert res.load_multiplier == pytest.approx(0.05, rel=1e-5)
+    assert not any("opposed faces" in n for n in res.notes)
+    assert not any("opposed faces" in n for n in rb.check(keyed, load_factor=0.0,
+                                                           flow="non-associative").notes)

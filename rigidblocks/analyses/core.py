@@ -37,7 +37,7 @@ from .nonassociative import (
     max_load_nonassociative,
     min_friction_nonassociative,
 )
-from .notes import friction_governs
+from .notes import friction_governs, interlocking_note
 from .search import friction_by_bisection, load_by_bisection
 
 #: the default accuracy of lambda*, as f*'s (FRICTION_RTOL, chosen from the chart)
@@ -243,6 +243,7 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
     lf = _load_factor(scene, load_factor)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol, progress=progress)
+    interlocking_note(m)
     with _large_friction_named(f):
         v = m.admissible(f, lf, for_state=state)
     m.explain(v)
@@ -303,6 +304,7 @@ def min_friction(scene: Scene, load_factor: float | None = None,
             pyramid=pyramid, contact_tol=contact_tol, progress=progress, rtol=rtol), rtol)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol, progress=progress)
+    interlocking_note(m)
     if m.contacts.n_joints and not m.uniform.any():
         raise InputError("every joint has its own friction override: there is no uniform "
                          "friction to minimise", scene.source)
@@ -398,6 +400,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     f = friction_value(scene.effective_friction if friction is None else friction)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
                     contact_tol=contact_tol, progress=progress)
+    interlocking_note(m)
     with _large_friction_named(f):
         lim: Limit = m.load_limit(f, rtol, mechanism) or load_by_bisection(m, f, rtol)
     lim = certified(m, lim, rtol, "lambda*")

@@ -35,3 +35,20 @@ def with_friction_governs(res: Any, m: Method, f: float, load_factor: float) -> 
     notes stays out of it)."""
     note = friction_governs(m, f, load_factor, na=True)
     return replace(res, notes=(*res.notes, note)) if note else res
+
+
+def interlocking_note(m: Method) -> None:
+    """A note for the associative analyses where blocks touch on opposed faces (keys in
+    grooves, :meth:`~rigidblocks.contacts.model.Contacts.opposed_pairs`): friction that
+    dilates cannot slide along them, and the answer may rest on that clamping (the
+    keyed wall in plane at f = 0.05: lambda* = 1, tipping; 0.05 without dilatancy)."""
+    pairs = m.contacts.opposed_pairs()
+    if not pairs:
+        return
+    ids = m.contacts.block_ids
+    named = ", ".join(f"{ids[a]}-{ids[b]}" for a, b in pairs[:3])
+    more = f" and {len(pairs) - 3} more" if len(pairs) > 3 else ""
+    m.notes.append(f"blocks touch on opposed faces ({named}{more}: keys or interlocking): "
+                   "with associative friction (dilatancy) they cannot slide along them, "
+                   "which may carry what dry joints that do not dilate do not; compare "
+                   "`--flow non-associative`")

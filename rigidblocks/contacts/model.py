@@ -65,6 +65,23 @@ class Contacts:
         counts = np.diff(self.joint_start)
         return np.repeat(self.areas / counts, counts)
 
+    def opposed_pairs(self, cos: float = -0.99) -> list[tuple[int, int]]:
+        """The block pairs that touch on faces facing each other's opposite ways (two
+        of their joints' normals at a cosine below ``cos``): a key in its groove. Along
+        those faces the blocks cannot slide with friction that dilates (opening one
+        face closes the other)."""
+        out = []
+        by_pair: dict[tuple[int, int], list[int]] = {}
+        for k, (a, b) in enumerate(self.pairs):
+            by_pair.setdefault((int(a), int(b)), []).append(k)
+            by_pair.setdefault((int(b), int(a)), [])
+        for (a, b), ks in by_pair.items():
+            back = by_pair.get((b, a), [])
+            n = [self.normals[k] for k in ks] + [-self.normals[k] for k in back]
+            if a < b and len(n) > 1 and float(np.min(np.array(n) @ np.array(n).T)) < cos:
+                out.append((a, b))
+        return out
+
     def block_pairs_ids(self) -> list[tuple[str, str]]:
         """(id_i, id_j) of every joint."""
         ids = self.block_ids
