@@ -177,3 +177,56 @@ def test_cli_help_after_the_generator(capsys):
     assert main(["thickness", "arch", "--help"]) == 0
     out = capsys.readouterr().out
     assert out.startswith("usage: rigidblocks thickness arch") and "--pier_width" in out
+
+
+def test_minimum_thickness_under_a_lateral_load():
+    """A wall (wall3d, 6 courses of 0.2 m: H = 1.2 m, loaded out of plane, no sliding)
+    overturns as one body about its base edge at lambda = t / H (rigid-body statics:
+    lambda W H/2 = W t/2; docs/validation.md, block on a support), so at load factor
+    0.2 it needs t >= 0.2 x 1.2 = 0.24 m. The load factor was not an option of
+    `thickness`, and a sweep's min_thickness ignored its row's load factor (the arch's
+    0.106264 at 0, 0.1 and 0.3) and gave no solve time (0.0)."""
+    r = min_thickness("wall3d", lo=0.05, hi=1.0, load_factor=0.2)
+    assert r.thickness == pytest.approx(0.24, rel=2e-4) and r.lower <= 0.24
+    assert r.load_factor == 0.2 and r.solve_time > 0
+    assert min_thickness("wall3d", lo=0.05, hi=1.0, load_factor=0.1).thickness == \
+        pytest.approx(0.12, rel=2e-4)
+
+def test_cli_minimum_thickness_under_a_lateral_load(capsys):
+    """`thickness --load-factor` (the wall of the test above) says its load factor."""
+    import json
+
+    assert main(["thickness", "wall3d", "--load-factor", "0.2", "--lo", "0.05",
+                 "--json"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    assert got["load_factor"] == 0.2
+    assert got["min_thickness"] == pytest.approx(0.24, rel=2e-4)
+    assert main(["thickness", "wall3d", "--load-factor", "0.2", "--lo", "0.05"]) == 0
+    assert "load factor 0.2 (the dead load plus 0.2 x the live load)" in \
+        capsys.readouterr().out
+
+
+def test_a_sweep_finds_the_minimum_thickness_at_each_load_factor():
+    """The arch (15 voussoirs): thicker under a larger horizontal load, and the row's
+    check at its own load factor agrees with the minimum found (t/R = 0.15 stands at
+    0.1 and not at 0.3, where the minimum is above 0.15)."""
+    from rigidblocks import study
+
+    res = study.run("arch", grid={"load_factor": [0.0, 0.1, 0.3]},
+                    analyses=["min_thickness", "check"], workers=1, progress=False)
+    df = res.frame.sort_values("load_factor")
+    t = list(df["min_thickness"])
+    assert t[0] == pytest.approx(0.10626, rel=1e-3)  # Heyman's 0.106 (module docstring)
+    assert t[0] < t[1] < 0.15 < t[2]
+    assert list(df["check_status"]) == ["admissible", "admissible", "inadmissible"]
+    assert (df["solve_time"] > 0).all()
+
+
+def test_a_method_that_cannot_answer_is_named_not_the_bound(capsys):
+    """The distortion method on a 3D family: the method is the reason (it said the vault
+    "cannot be built at the upper bound" and to lower --hi, and named it "1 ring x 9
+    --voussoirs, stack --bond")."""
+    assert main(["thickness", "barrel_vault", "--method", "distortion"]) == 2
+    err = capsys.readouterr().err
+    assert "the distortion method is not supported for 3D scenes" in err
+    assert "--hi" not in err and "--voussoirs" not in err

@@ -7,7 +7,7 @@ import json
 
 from ..errors import InputError
 from ..results import fmt_safe
-from .options import add_rtol, finite_float, friction_option, relative_tolerance
+from .options import add_rtol, finite_float, friction_option, load_factor, relative_tolerance
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
@@ -24,6 +24,9 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("--method", default="clarabel",
                    help='"clarabel" (default), "distortion", or a back end of the convex '
                    'path (highs, scs, ecos, cvxpy-NAME)')
+    p.add_argument("--load-factor", type=load_factor, default=0.0,
+                   help="the multiple of the live load it must carry besides its dead "
+                   "load (a wall's lateral load; default 0: the dead load alone)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("params", nargs=argparse.REMAINDER,
                    help="--PARAM VALUE pairs of the generator")
@@ -68,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         res = min_thickness(args.generator, param=param, lo=args.lo, hi=args.hi,
                             rtol=args.rtol, friction=args.friction, method=args.method,
-                            **params)
+                            load_factor=args.load_factor, **params)
     except InputError as err:
         raise as_options(err, gen, typed, "thickness") from None
     if args.json:
@@ -77,7 +80,10 @@ def run(args: argparse.Namespace) -> int:
         extra = " ".join(f"{typed[k]} {v}" for k, v in params.items()) or "defaults"
         what = next((p.help for p in gen.params if p.name == param), "") or shown
         print(f"generator  {res.generator} ({extra})")
-        print(f"friction   {res.friction}   load factor 0 (dead load only)")
+        lf = args.load_factor
+        print(f"friction   {res.friction}   load factor " + (
+            f"{lf:g} (the dead load plus {lf:g} x the live load)" if lf else
+            "0 (dead load only)"))
         print(f"method     {method}" + (f" (back end {backend})" if backend else ""))
         print(f"minimised  {shown}: {what}")
         bracket = f"[{res.lower:.10g}, {res.thickness:.10g}]"
@@ -96,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
 
 _OWN = {"--param": str, "--lo": finite_float, "--hi": finite_float,
         "--rtol": relative_tolerance,
-        "--friction": friction_option, "--method": str}
+        "--friction": friction_option, "--method": str, "--load-factor": load_factor}
 
 
 def _own_options(args: argparse.Namespace, tokens: list[str]) -> list[str]:
@@ -112,7 +118,7 @@ def _own_options(args: argparse.Namespace, tokens: list[str]) -> list[str]:
             if i + 1 >= len(tokens):
                 raise InputError(f"thickness: {tok} needs a value")
             try:
-                setattr(args, tok[2:], _OWN[tok](tokens[i + 1]))
+                setattr(args, tok[2:].replace("-", "_"), _OWN[tok](tokens[i + 1]))
             except (ValueError, argparse.ArgumentTypeError) as err:
                 raise InputError(f"thickness: {tok}: {err}") from None
             i += 2

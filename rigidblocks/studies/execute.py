@@ -83,9 +83,10 @@ def answer(analysis: Analysis, job: _Job, params: Mapping[str, Any],
         from .thickness import min_thickness
 
         th = min_thickness(job.generator, method=method,  # type: ignore[arg-type]
-                           **dict(analysis.options), **params)
+                           load_factor=load_factor or 0.0, **dict(analysis.options),
+                           **params)
         return {"min_thickness_status": th.status, "min_thickness": th.thickness,
-                "min_thickness_lower": th.lower}, 0.0
+                "min_thickness_lower": th.lower}, th.solve_time
     if name not in ANALYSES:
         raise InputError(f"unknown analysis {name!r} (choose from {', '.join(ANALYSES)})")
     from ..analyses import analysis as registered

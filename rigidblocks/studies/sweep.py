@@ -5,9 +5,9 @@ with each case's parameters, or one scene whose ``friction``, ``depth`` or
 ``unit_weight`` a case overrides -- plus the cases (a grid, a list, or random samples
 with a seed) and the analyses to run on each: ``check``, ``min_friction``,
 ``max_load_multiplier``, ``min_thickness``. The reserved parameter ``load_factor``
-(default 1, as in :func:`rigidblocks.check`) multiplies the live loads in ``check``
-and ``min_friction``; the arch generators carry a live horizontal body force, so
-``load_factor = 0`` means self-weight only.
+(default 1, as in :func:`rigidblocks.check`) multiplies the live loads in ``check``,
+``min_friction`` and ``min_thickness`` (there default 0); the arch generators carry a
+live horizontal body force, so ``load_factor = 0`` means self-weight only.
 
 Every case is independent: a case that raises (a generator rejecting its parameters,
 a solver failure) is recorded with its error message and the study goes on. Results

@@ -1,7 +1,8 @@
 """Geometric safety: the minimum thickness of a parametric family of structures.
 
 The thickness parameter t of a generator is bisected on the admissibility of the
-structure under its dead load alone (lambda = 0): an equilibrium state in compression
+structure under its dead load alone (lambda = 0), or under the dead load plus a given
+multiple of its live load: an equilibrium state in compression
 within the joints (and within the friction cones when friction is finite) exists for
 t >= t_min and not below. Admissibility is monotone in t for the usual arch families
 (a thicker ring contains every thrust line of a thinner one), which bisection requires.
@@ -39,6 +40,8 @@ class ThicknessResult:
         status: "found" (the bracket is ``rtol`` wide), or "undecided" when a check
             could not decide (the distortion method near the limit): the bracket
             ``[lower, thickness]`` is then wider, and ``notes`` say where it stopped.
+        load_factor, solve_time: the multiple of the live load the checks stood under,
+            and the seconds they spent in the solvers.
     """
 
     generator: str
@@ -50,21 +53,27 @@ class ThicknessResult:
     params: dict[str, Any] = field(default_factory=dict)
     status: str = "found"
     notes: tuple[str, ...] = ()
+    #: the load factor of the live load the checks stood under (0: dead load only)
+    load_factor: float = 0.0
+    #: seconds spent in the solvers by the checks
+    solve_time: float = 0.0
 
     def to_dict(self) -> dict[str, Any]:
         return {"status": self.status, "notes": list(self.notes),
                 "generator": self.generator, "param": self.param,
                 "min_thickness": self.thickness, "lower": self.lower,
                 "n_checks": self.n_checks, "friction": friction_label(self.friction),
+                "load_factor": self.load_factor, "solve_time": self.solve_time,
                 "params": dict(self.params)}
 
 
 def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness",
                   lo: float = 0.01, hi: float = 1.0, rtol: float = 1e-4,
                   friction: Any = "infinite", method: str = "clarabel",
-                  **params: Any) -> ThicknessResult:
+                  load_factor: float = 0.0, **params: Any) -> ThicknessResult:
     """Smallest value of ``param`` for which ``generator(**params)`` admits equilibrium
-    under its dead load (load factor 0), by bisection to a relative bracket ``rtol``.
+    under its dead load plus ``load_factor`` times its live load (0: the dead load
+    alone), by bisection to a relative bracket ``rtol``.
 
     Args:
         generator: a registered generator name (:mod:`rigidblocks.generators`) or a
@@ -73,6 +82,8 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         lo, hi: the initial bracket; ``hi`` must be admissible and ``lo`` not.
         friction: friction coefficient for every joint (default: no sliding).
         method: the method deciding admissibility (see :func:`rigidblocks.check`).
+        load_factor: the multiple of the live load it must carry (a wall's lateral
+            load; default 0, its dead load alone).
 
     Example:
         >>> r = min_thickness("arch", voussoirs=20, rtol=1e-3)
@@ -93,24 +104,35 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
     if param in params:
         raise InputError(f"min_thickness: {param!r} is the bisected parameter; do not "
                          "give it")
+    if not (math.isfinite(load_factor) and load_factor >= 0):
+        raise InputError(f"min_thickness: load_factor must be >= 0, got {load_factor!r}")
     n = 0
+    spent = 0.0
+
+    def build(t: float) -> Scene:
+        try:
+            return gen(**params, **{param: t})
+        except InputError as err:
+            raise InputError(f"min_thickness: {name} cannot be built at {param}={t:g} "
+                             f"({err})" + ("; give a smaller upper bound (hi, --hi)"
+                                           if t == hi else "")) from None
 
     def admissible(t: float) -> tuple[bool | None, str]:
-        nonlocal n
+        nonlocal n, spent
         n += 1
-        scene = gen(**params, **{param: t})
-        r = check(scene, friction=friction, load_factor=0.0, method=method, state=False)
+        scene = build(t)
+        try:
+            r = check(scene, friction=friction, load_factor=load_factor, method=method,
+                      state=False)
+        except InputError as err:  # the question, not the family (its name left out)
+            raise InputError(f"min_thickness: {err.detail}") from None
+        spent += float(r.solve_time)
         return {"admissible": True, "inadmissible": False}.get(r.status), r.status
 
-    try:
-        at_hi = admissible(hi)[0]
-    except InputError as err:
-        raise InputError(f"min_thickness: {name} cannot be built at the upper bound "
-                         f"{param}={hi:g} ({err}); give a smaller upper bound (hi, --hi)"
-                         ) from None
+    at_hi = admissible(hi)[0]
     if at_hi is not True:
-        raise InputError(_not_at_hi(gen(**params, **{param: hi}), name, f"{param}={hi:g}",
-                                    at_hi, friction, method))
+        raise InputError(_not_at_hi(build(hi), name, f"{param}={hi:g}", at_hi, friction,
+                                    method, load_factor))
     at_lo, status = admissible(lo)
     if at_lo is not False:
         what = "already admissible" if at_lo else f"{status}, not certified inadmissible,"
@@ -121,12 +143,14 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         note = (f"the check could not decide at {param}={br.undecided_at:.6g}: the minimum "
                 f"is bracketed in [{br.bad:.6g}, {br.good:.6g}]")
         return ThicknessResult(name, param, br.good, br.bad, n, friction, dict(params),
-                               status="undecided", notes=(note,))
-    return ThicknessResult(name, param, br.good, br.bad, n, friction, dict(params))
+                               status="undecided", notes=(note,), load_factor=load_factor,
+                               solve_time=spent)
+    return ThicknessResult(name, param, br.good, br.bad, n, friction, dict(params),
+                           load_factor=load_factor, solve_time=spent)
 
 
 def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction: Any,
-               method: str) -> str:
+               method: str, load_factor: float = 0.0) -> str:
     """Why the search cannot start at its upper bound ``where``, and what to change: the
     bound where the structure falls by rotation, the friction where it stands there
     without sliding, or the bound: the friction a ring needs falls with its thickness,
@@ -138,10 +162,10 @@ def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction
         return (f"min_thickness: {name} could not be decided at the upper bound {where}; "
                 "give another upper bound (hi, --hi)")
     if friction_value(friction) != math.inf:
-        stands = check(scene, friction="infinite", load_factor=0.0, method=method,
+        stands = check(scene, friction="infinite", load_factor=load_factor, method=method,
                        state=False).status == "admissible"
         if stands:
-            need = min_friction(scene, load_factor=0.0, state=False)
+            need = min_friction(scene, load_factor=load_factor, state=False)
             f = f"f >= {fmt_safe(need.friction_factor, 4, True)}" \
                 if need.status == "stable" else "a larger f"
             return (f"{head} with f = {friction_label(friction)}, although it stands "
