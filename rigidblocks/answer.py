@@ -244,7 +244,12 @@ def _to_accuracy(res: Any, symbol: str) -> str:
 
 
 def joint_list(names: list[str], first: int = FIRST) -> str:
-    """``a-b, c-d, ... and N more`` (the first ``first``)."""
+    """``a-b, c-d, ... and N more`` (the first ``first``); a name that comes back (two
+    blocks touching on several faces: a key in its groove) once, with how many faces."""
+    count: dict[str, int] = {}
+    for n in names:
+        count[n] = count.get(n, 0) + 1
+    names = [n if k == 1 else f"{n} ({k} faces)" for n, k in count.items()]
     if len(names) <= first:
         return ", ".join(names)
     return ", ".join(names[:first]) + f" and {len(names) - first} more"
@@ -713,14 +718,24 @@ def mechanism_text(res: Any) -> str:
         return kind + "no joint moves"
     order = m.ranking
     if len(order) <= FIRST:
-        return kind + "; ".join(f"{len(n)} {w} ({', '.join(n)})" for w, n in groups)
+        return kind + "; ".join(f"{len(n)} {w} ({joint_list(n, len(n))})"
+                                for w, n in groups)
     word = dict(MODE_WORDS)
-    fastest = [f"{a}-{b} ({word[m.modes[k]]})"
-               for a, b, k in ((*res.joint_name(k), k) for k in order[:FIRST])]
+    # the fastest FIRST joints, a pair's faces of one mode once (a key in its groove)
+    faces: dict[str, int] = {}
+    shown = 0
+    for k in order:
+        a, b = res.joint_name(k)
+        label = f"{a}-{b} ({word[m.modes[k]]})"
+        if label not in faces and len(faces) == FIRST:
+            break
+        faces[label] = faces.get(label, 0) + 1
+        shown += 1
+    fastest = [lab if n == 1 else f"{lab[:-1]}, {n} faces)" for lab, n in faces.items()]
     return (kind + f"{len(order)} joints move: "
             + ", ".join(f"{len(n)} {w}" for w, n in groups)
             + "; fastest: " + ", ".join(fastest)
-            + f" and {len(order) - FIRST} more")
+            + (f" and {len(order) - shown} more" if len(order) > shown else ""))
 
 
 __all__ = ["NA_BELOW_LOAD", "NA_INADMISSIBLE", "AnswerBlock", "answer_block", "block_reach",

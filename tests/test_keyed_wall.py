@@ -99,3 +99,24 @@ def test_associative_answers_on_keys_say_that_dilatancy_clamps_them():
     assert not any("opposed faces" in n for n in res.notes)
     assert not any("opposed faces" in n for n in rb.check(keyed, load_factor=0.0,
                                                            flow="non-associative").notes)
+
+
+def test_a_pair_of_keyed_blocks_is_named_once_with_its_faces(tmp_path, capsys):
+    """Two keyed blocks touch on four faces (bed, key top and its two sides), four
+    joints of one pair: the governing line named the pair four times in a row
+    ("c0b0-c1b0 (sliding), c0b0-c1b0 (sliding), ..."); now once, with its faces."""
+    from rigidblocks.answer import joint_list
+    from rigidblocks.io import write_scene
+
+    assert joint_list(["a-b", "a-b", "c-d"]) == "a-b (2 faces), c-d"
+    keyed = keyed_wall(courses=6, blocks_per_course=3, friction=0.05, base_friction=1.0,
+                       load_direction="in_plane")
+    res = rb.max_load_multiplier(keyed, flow="non-associative")
+    assert res.load_multiplier == pytest.approx(0.05, rel=1e-4)  # a bed joint slides at f
+    path = tmp_path / "k.json"
+    write_scene(keyed, path)
+    assert main(["load", str(path), "--flow", "non-associative"]) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines()
+                if ln.startswith("governing"))
+    assert "c0b0-c1b0 (sliding, 4 faces)" in line
+    assert line.count("c0b0-c1b0") == 1
