@@ -404,3 +404,30 @@ def test_one_function_maps_an_analysis_name_to_its_answer():
     assert row["min_friction_status"] == "stable" and row["friction_factor"] > 0
     with pytest.raises(InputError, match="unknown analysis 'nope'"):
         answer(Analysis("nope"), job, {}, 0.0, lambda: scene)
+
+
+def test_a_friction_grid_with_infinite_is_drawn_on_a_numeric_axis():
+    """A friction grid with "infinite" holds strings: its chart spaced the frictions
+    evenly as categories (0.05, 0.1, 0.2, ... drawn as equal steps bent the line
+    lambda = f of a block that slides); now on a numeric axis, the infinite case left
+    out and named. Several cases at one x without a hue are refused (they were joined
+    in one zig-zag line)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+
+    from rigidblocks.errors import InputError
+    from rigidblocks.studies import plot
+
+    df = pd.DataFrame({"friction": [0.05, 0.1, 0.2, "infinite"], "status": ["ok"] * 4,
+                       "load_multiplier": [0.05, 0.1, 0.2, 0.5]})
+    ax = plot(df, x="friction", y="load_multiplier")
+    (line,) = ax.get_lines()
+    assert list(line.get_xdata()) == [0.05, 0.1, 0.2]
+    assert list(line.get_ydata()) == [0.05, 0.1, 0.2]
+    assert "not drawn: 1 case(s) at friction = infinite" in ax.get_title()
+    two = pd.DataFrame({"d": [1.0, 1.0, 2.0, 2.0], "n": [5, 9, 5, 9],
+                        "f": [0.1, 0.2, 0.3, 0.4]})
+    with pytest.raises(InputError, match="several cases share a value of 'd': give hue"):
+        plot(two, x="d", y="f")
+    assert len(plot(two, x="d", y="f", hue="n").get_lines()) == 2

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
+
 from ..errors import InputError
 
 
@@ -25,18 +27,41 @@ def plot(frame: Any, x: str, y: str, hue: str | None = None, ax: Any = None,
     if "status" in df.columns:
         df = df[df["status"] == "ok"]
     df = df[df[y].notna()]
+    # a friction grid with "infinite" is a column of strings: drawn as numbers (an axis
+    # of categories spaced evenly bent the line lambda = f), the infinite ones left out
+    xs = _numbers(df[x])
+    left_out = 0
+    if xs is not None:
+        left_out = int((~np.isfinite(xs)).sum())
+        df = df.assign(**{x: xs})[np.isfinite(xs)]
+    if hue is None and df[x].duplicated().any():
+        raise InputError(f"several cases share a value of {x!r}: give hue, the parameter "
+                         "that varies besides it (one line each)")
     groups = [(None, df)] if hue is None else list(df.groupby(hue, sort=True))
     style = {"marker": "o", "markersize": 3, **kwargs}
     for key, g in groups:
         g = g.sort_values(x)
         ax.plot(g[x], g[y].astype(float), label=None if hue is None else f"{hue} = {key}",
                 **style)
+    if left_out:
+        ax.set_title(f"not drawn: {left_out} case(s) at {x} = infinite", fontsize=9)
     ax.set_xlabel(x)
     ax.set_ylabel(y)
     if hue is not None and groups:
         ax.legend()
     ax.grid(True, alpha=0.3)
     return ax
+
+
+def _numbers(col: Any) -> Any:
+    """A column of numbers and "infinite" (a friction grid) as floats; None where it
+    holds other words (drawn as they are)."""
+    import pandas as pd
+
+    if pd.api.types.is_numeric_dtype(col):
+        return None
+    out = pd.to_numeric(col.replace({"infinite": np.inf, "inf": np.inf}), errors="coerce")
+    return None if out.isna().any() else out.to_numpy(dtype=float)
 
 
 __all__ = ["plot"]
