@@ -431,3 +431,33 @@ def test_a_friction_grid_with_infinite_is_drawn_on_a_numeric_axis():
     with pytest.raises(InputError, match="several cases share a value of 'd': give hue"):
         plot(two, x="d", y="f")
     assert len(plot(two, x="d", y="f", hue="n").get_lines()) == 2
+
+
+def test_ctrl_c_ends_a_sweep_with_a_message_and_no_traceback(tmp_path):
+    """Ctrl-C (SIGINT to the process group, as a terminal sends it) ends a sweep on
+    worker processes with status 130 and "rigidblocks: interrupted": it printed a
+    worker's traceback (KeyboardInterrupt inside a solve) and waited for the workers'
+    cases (11 s)."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    spec = tmp_path / "walls.json"
+    spec.write_text(json.dumps({
+        "format": "rigidblocks-sweep", "version": 1, "generator": "wall",
+        "parameters": {"load_factor": 1.0},
+        "grid": {"courses": [10, 20, 30], "blocks_per_course": [10, 20, 30, 40],
+                 "friction": [0.4, 0.6]},
+        "analyses": ["max_load_multiplier", "min_friction"]}))
+    out = tmp_path / "walls.csv"
+    p = subprocess.Popen([sys.executable, "-m", "rigidblocks.cli.main", "sweep", str(spec),
+                          "-o", str(out), "--no-progress", "--workers", "2"],
+                         start_new_session=True, stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    time.sleep(6)
+    os.killpg(p.pid, signal.SIGINT)
+    _, err = p.communicate(timeout=120)
+    assert p.returncode == 130, err
+    assert "rigidblocks: interrupted" in err and "Traceback" not in err, err

@@ -120,6 +120,7 @@ def _main(argv: Sequence[str] | None) -> int:
         print(f"rigidblocks: solver failure: {_one_line(err)}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:  # pragma: no cover
+        print("rigidblocks: interrupted", file=sys.stderr)
         return 130
 
 
