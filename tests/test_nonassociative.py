@@ -793,3 +793,24 @@ def test_the_distortion_methods_answer_names_a_lower_one_of_the_convex_path(tmp_
     assert main(argv + ["--json"]) == 0
     assert json.loads(capsys.readouterr().out)["load_multiplier"] == pytest.approx(
         7 / 11, abs=1e-7)
+
+
+def test_non_associative_friction_near_zero_and_where_it_carries_any_load():
+    """The flat arch between fixed abutments stands without friction with radial joints
+    (static f* = 0): the non-associative search halved [0, 1e-3] to its trial budget,
+    [0, 6.2e-64], "wider than 0.002" relative, and gave no number; an absolute floor
+    (1e-9) ends it. With vertical joints it carries any multiple of its live load from
+    f* on (the associative multiplier is unbounded): the note read "carries lambda =
+    nan"."""
+    from rigidblocks.generators import build
+
+    radial = build("flat_arch", joints="radial", springing="abutments")
+    assert rb.min_friction(radial, load_factor=0.0).friction_factor == 0.0
+    r = rb.min_friction(radial, load_factor=0.0, flow="non-associative", state=False)
+    assert r.status == "stable" and 0 <= r.friction_factor <= 1e-9
+    vertical = build("flat_arch", joints="vertical", springing="abutments")
+    assert rb.max_load_multiplier(vertical).status == "unbounded"
+    r = rb.min_friction(vertical, load_factor=0.0, flow="non-associative", state=False)
+    assert r.status == "stable" and 0.80 < r.friction_factor < 0.82
+    assert not any("nan" in n for n in r.notes)
+    assert any("loaded from X0 it does not collapse" in n for n in r.notes)

@@ -70,6 +70,7 @@ from ..errors import InputError, SolverFailure
 from ..methods import ADMISSIBLE, FAILURE, INADMISSIBLE, UNDECIDED, Method, Verdict
 from ..methods.convex import ADMISSIBLE_TOL, STATE_SLACK, VERDICT_RTOL, ConvexMethod
 from ..methods.distortion import DistortionMethod
+from ..methods.relaxation import FRICTION_ATOL
 from ..problems.formulation import build_energy_qp, build_max_load, build_relaxation, flexibility
 from ..results import (
     BELOW_DEAD_LOAD,
@@ -1324,7 +1325,9 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     fs = float(lim.value)
     oracle = _limit_oracle(na, cv, lf, trials)
 
-    s = Search(fs, fs, rtol)
+    # (an absolute floor too: where f* is 0 a relative bracket is never narrow; the flat
+    # arch on fixed abutments, radial joints, halved [0, 6.2e-64] to its trial budget)
+    s = Search(fs, fs, rtol, FRICTION_ATOL)
     t = oracle(fs)
     s.record(t)
     if t.side:
@@ -1376,9 +1379,11 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     below = s.end(False)
     short = f"it carries {below.value + lf:.9g}" if math.isfinite(below.value) else \
         (below.why or "it does not carry it")
-    na.notes.append(f"at f = {s.good!r} the limit fixed point from X0 carries lambda = "
-                    f"{at.value + lf:.9g} {carried_text(at.value + lf, lf, tol)}; at f = "
-                    f"{s.bad!r} {short}")
+    carried = (f"the limit fixed point from X0 carries lambda = {at.value + lf:.9g} "
+               f"{carried_text(at.value + lf, lf, tol)}" if math.isfinite(at.value) else
+               "loaded from X0 it does not collapse: no multiplier of the live load makes "
+               "the capped problem collapse")
+    na.notes.append(f"at f = {s.good!r} {carried}; at f = {s.bad!r} {short}")
     na.notes.extend(_flat_below(trials))
     return out("stable", s.good, at.data, s.lower, s.upper, True)
 

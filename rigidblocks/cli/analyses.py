@@ -270,7 +270,11 @@ def _accuracy(res) -> list[str]:
         where = f"bracket [{res.bracket[0]:.10g}, {res.bracket[1]:.10g}], "
     else:
         where = ""
-    return [f"accuracy   {res.accuracy:.1e} ({where}relative width; requested {res.rtol:.0e})"]
+    near_zero = ""
+    if where and res.accuracy > res.rtol:  # decided by an absolute floor near 0
+        near_zero = f"; decided by its width {res.bracket[1] - res.bracket[0]:.1e}, near 0"
+    return [f"accuracy   {res.accuracy:.1e} ({where}relative width; requested "
+            f"{res.rtol:.0e}{near_zero})"]
 
 
 def _table(res, scene) -> list[str]:
