@@ -684,15 +684,16 @@ def test_numbers_given_are_echoed_as_given_and_the_path_rounds_safe(capsys):
     """The arch (examples/arch.json): `check --friction 0.346598` echoed "friction f =
     0.3466", the line of `check --friction 0.3466`, which stands where 0.346598 does not
     (f* = 0.3465980065); `path` printed its collapse load 0.1497649 as 0.149765, above
-    lambda* (check at it does not stand), now 0.149764."""
+    lambda* (check at it does not stand), now 0.149764895 (to nine figures, cut down),
+    the number it multiplies too (it multiplied 0.149764)."""
     path = str(EXAMPLES / "arch.json")
     code, out, _ = run(capsys, ["check", path, "--friction", "0.346598"])
     assert "at friction f = 0.346598 (" in out and "verdict    NOT ADMISSIBLE" in out
     code, out, _ = run(capsys, ["path", path])
     status = next(ln for ln in out.splitlines() if ln.startswith("status"))
-    assert status.startswith("status     COLLAPSE at lambda = 0.14976") and \
-        ": 0.149764 x 37.6948 kN = 5.6453" in status, status
-    code, out, _ = run(capsys, ["check", path, "--load-factor", "0.149764"])
+    assert status.startswith("status     COLLAPSE at lambda = 0.149764895: ") and \
+        ": 0.149764895 x 37.6948 kN = 5.6453" in status, status
+    code, out, _ = run(capsys, ["check", path, "--load-factor", "0.149764895"])
     assert "verdict    ADMISSIBLE" in out
 
 

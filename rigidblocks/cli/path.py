@@ -87,9 +87,11 @@ def _status_tail(res, live: float, fu: str) -> str:
     undecided run, or the end of the path a structure still standing has reached."""
     if res.collapse_load is not None:
         lam = res.collapse_load
-        # the collapse load is the last admissible one: rounded on its safe side
-        return (f" at lambda = {fmt_safe(lam, 9, False)}: {fmt_safe(lam, 6, False)} x "
-                f"{live:.6g} {fu} = {fmt_safe(lam * live, 6, False)} {fu}")
+        # the collapse load is the last admissible one: rounded on its safe side, and
+        # multiplied as printed (it read "lambda = 0.149764895: 0.149764 x 37.6948 kN")
+        shown = fmt_safe(lam, 9, False)
+        return (f" at lambda = {shown}: {shown} x {live:.6g} {fu} = "
+                f"{fmt_safe(lam * live, 6, False)} {fu}")
     if res.status == "undecided" and res.bracket:
         lo, hi = res.bracket
         if hi > lo:
