@@ -361,3 +361,16 @@ def test_the_answer_line_multiplies_the_number_it_prints(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "1 live couple, no force: 1 kN m" in out
     assert "lambda* = 20, that is 20 x 1 kN m = 20 kN m of couples" in out
+
+
+def test_a_mechanism_that_is_one_of_several_says_so(capsys):
+    """The reference model is symmetric: it collapses at lambda* = 1.2 (the seed's Fig.
+    4) as its central blocks slide out to the left or to the right, and the vertex drawn
+    is one of those mechanisms (it named support-left and right-top only, with nothing
+    said of the others). The arch's four-hinge mechanism is the only one: no note."""
+    assert main(["load", str(EXAMPLES / "reference.json")]) == 0
+    out = capsys.readouterr().out
+    assert "answer     lambda* = 1.2," in out
+    assert "why        other collapse mechanisms reach lambda* too" in out
+    assert main(["load", str(EXAMPLES / "arch.json")]) == 0
+    assert "other collapse mechanisms" not in capsys.readouterr().out

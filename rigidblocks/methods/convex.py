@@ -263,6 +263,9 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
             self.notes.append(f"mechanism: the one drawn (an extreme point next to the "
                               f"optimal face) balances at lambda = {work_at:.6g}, "
                               f"{work_at / lam - 1:.1e} (relative) above {what}")
+        elif _other_mechanisms(res.y[eq], vd[0][eq]):
+            self.notes.append(f"other collapse mechanisms reach {what} too: the one drawn "
+                              "is one of them (`--mechanism blend` shows their mix)")
         return vd[0][eq], vd[1]
 
     def _dead_admissible(self, f: float) -> bool | None:
@@ -281,6 +284,24 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
             self.notes.append("the dead load alone is not admissible")
             return False
         return True
+
+
+#: the interior-point duals (the centre of the optimal face) and the vertex drawn are one
+#: mechanism where their velocities, each scaled to its largest, agree to this
+SAME_MECHANISM = 1e-3
+
+
+def _other_mechanisms(y_blend: np.ndarray, y_vertex: np.ndarray) -> bool:
+    """Does the optimal face hold other mechanisms than the vertex drawn: is the centre
+    of the face, which moves as every optimal mechanism does in part, not the vertex
+    itself (to SAME_MECHANISM)? The symmetric reference model drew one side's sliding
+    with nothing said of its mirror image."""
+    a, b = np.asarray(y_blend, dtype=float), np.asarray(y_vertex, dtype=float)
+    na, nb = float(np.abs(a).max(initial=0.0)), float(np.abs(b).max(initial=0.0))
+    if na == 0 or nb == 0:
+        return False
+    a, b = a / na, b / nb
+    return float(min(np.abs(a - b).max(), np.abs(a + b).max())) > SAME_MECHANISM
 
 
 __all__ = ["ADMISSIBLE_TOL", "ConvexMethod", "FRICTION_ATOL", "FRICTION_RTOL", "Relaxation",
