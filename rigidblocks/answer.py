@@ -130,10 +130,12 @@ def live_load_text(scene: Scene, symbols: bool = False) -> str:
     return _Words(scene, symbols).live_text()
 
 
-def live_load_size(scene: Scene) -> float:
+def live_load_size(scene: Scene) -> tuple[float, str]:
     """The live load's size in the scene's force unit (its resultant, or where its
-    point loads balance, the sum of their sizes): what lambda = 1 means."""
-    return _Words(scene, False).live_size
+    point loads balance, the sum of their sizes): what lambda = 1 means; and its
+    direction in words ("horizontal", "in all (balanced: no resultant)", ...)."""
+    w = _Words(scene, False)
+    return w.live_size, w.direction()
 
 
 def split_notes(notes: Any) -> tuple[tuple[str, ...], tuple[str, ...]]:

@@ -374,3 +374,14 @@ def test_a_mechanism_that_is_one_of_several_says_so(capsys):
     assert "why        other collapse mechanisms reach lambda* too" in out
     assert main(["load", str(EXAMPLES / "arch.json")]) == 0
     assert "other collapse mechanisms" not in capsys.readouterr().out
+
+
+def test_the_path_says_what_its_live_load_is(capsys):
+    """The reference model's two pulls of 50 N balance: the path's collapse line said
+    "1.2 x 100 N = 120 N" where `load` says "in all (balanced: no resultant)" (the seed
+    pulls each central block with 50 N, the 100 N is their sum)."""
+    assert main(["path", str(EXAMPLES / "reference.json")]) == 0
+    status = next(ln for ln in capsys.readouterr().out.splitlines()
+                  if ln.startswith("status"))
+    assert status == ("status     COLLAPSE at lambda = 1.2: 1.2 x 100 N = 120 N in all "
+                      "(balanced: no resultant)")

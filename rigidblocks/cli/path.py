@@ -55,7 +55,7 @@ def _lines(scene, res, args: argparse.Namespace) -> list[str]:
     from ..answer import live_load_size, live_load_text, split_notes
 
     fu = scene.force_unit or "force units"
-    live = live_load_size(scene)
+    live, direction = live_load_size(scene)
     flow = ("non-associative flow (no dilatancy: the seed's procedure)"
             if res.flow == "non-associative" else "associative flow")
     lines = [f"scene      {scene.name or scene.source}",
@@ -63,7 +63,7 @@ def _lines(scene, res, args: argparse.Namespace) -> list[str]:
              f"{args.max_load:g} in {args.steps} steps, lambda multiplying the live load "
              f"({live_load_text(scene)}); {res.sliding} sliding, {flow}, friction "
              f"{res.friction}",
-             f"status     {res.status.upper()}" + _status_tail(res, live, fu)]
+             f"status     {res.status.upper()}" + _status_tail(res, live, fu, direction)]
     if res.events:
         lines.append(f"  {'lambda [-]':>14}  {'live [' + fu + ']':>12}  {'event':8s}  "
                      "joints (blocks a-b)")
@@ -82,7 +82,7 @@ def _lines(scene, res, args: argparse.Namespace) -> list[str]:
     return lines
 
 
-def _status_tail(res, live: float, fu: str) -> str:
+def _status_tail(res, live: float, fu: str, direction: str = "") -> str:
     """What the status line says after the status: the collapse load, the bracket of an
     undecided run, or the end of the path a structure still standing has reached."""
     if res.collapse_load is not None:
@@ -91,7 +91,7 @@ def _status_tail(res, live: float, fu: str) -> str:
         # multiplied as printed (it read "lambda = 0.149764895: 0.149764 x 37.6948 kN")
         shown = fmt_safe(lam, 9, False)
         return (f" at lambda = {shown}: {shown} x {live:.6g} {fu} = "
-                f"{fmt_safe(lam * live, 6, False)} {fu}")
+                f"{fmt_safe(lam * live, 6, False)} {fu} {direction}").rstrip()
     if res.status == "undecided" and res.bracket:
         lo, hi = res.bracket
         if hi > lo:
