@@ -579,7 +579,7 @@ def test_a_check_whose_limit_run_is_undecided_says_so_in_its_flow_line(capsys):
 def test_a_non_associative_multiplier_below_0_is_unstable(capsys):
     """The inclined corbel arch (examples/corbel_arch_inclined.json) under its dead load
     without dilatancy: `friction --load-factor 0` gives f* = 0.7651297008 (in a bracket
-    8.6e-8 wide; the static f* is 0.76536 to 2e-3, docs/seed-examples.md). Just above
+    8.6e-8 wide; the static f* is 0.76536 to 2e-3, 0.7651 to 1e-5). Just above
     it the limit fixed point from X0 collapses below the dead load: at f = 0.7652,
     lambda = -2.7e-5, which `load` printed as "COLLAPSE, lambda* = -2.70611e-05"; it is
     UNSTABLE, as `check` at the dead load says. f* was printed 0.76513, where `check`
@@ -795,7 +795,8 @@ def test_a_structure_that_slides_under_its_dead_load_is_told_friction_governs(ca
     `load` said only "UNSTABLE: the dead load alone has no admissible state" and `check`
     "NOT ADMISSIBLE", as of a structure that cannot stand. Without sliding it stands: the
     note says so and names the command that gives the friction it needs, f* = 0.76536
-    (docs/seed-examples.md: 0.7654, the seed gives no value), at which `check` stands.
+    (to 2e-3; docs/seed-examples.md gives 0.7651 to 1e-5, the seed no value), at which
+    `check` stands.
     The arch at load factor 0.2, above its hinging multiplier 0.1498, breaches the laws
     without sliding too: no such note."""
     path = str(EXAMPLES / "corbel_arch_inclined.json")
