@@ -1371,21 +1371,26 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
         return out(UNDECIDED, lower=s.lower, upper=s.upper, converged=False)
     at = s.end(True)
     _also_at(own, trials, oracle)
-    # f to the last digit (repr): the answer from X0 is not unique and moves with f at
-    # round-off (the 10 x 10 wall at load factor 0.5: 0.500014578 at f* =
-    # 0.5346341035199138, 0.500001342 at 0.534634104), so that `load --friction` at the
-    # printed f gives the printed lambda
+    na.notes.append(_across_f_star(s, lf, trials))
+    na.notes.extend(_flat_below(trials))
+    return out("stable", s.good, at.data, s.lower, s.upper, True)
+
+
+def _across_f_star(s: Any, lf: float, trials: list[dict[str, Any]]) -> str:
+    """What the limit fixed point from X0 carries at the two ends of f*'s bracket, f to
+    the last digit (repr): the answer from X0 is not unique and moves with f at
+    round-off (the 10 x 10 wall at load factor 0.5: 0.500014578 at f* =
+    0.5346341035199138, 0.500001342 at 0.534634104), so that `load --friction` at the
+    printed f gives the printed lambda."""
+    at, below = s.end(True), s.end(False)
     tol = next(t["carry_tol"] for t in reversed(trials) if t.get("friction") == s.good)
-    below = s.end(False)
     short = f"it carries {below.value + lf:.9g}" if math.isfinite(below.value) else \
         (below.why or "it does not carry it")
     carried = (f"the limit fixed point from X0 carries lambda = {at.value + lf:.9g} "
                f"{carried_text(at.value + lf, lf, tol)}" if math.isfinite(at.value) else
                "loaded from X0 it does not collapse: no multiplier of the live load makes "
                "the capped problem collapse")
-    na.notes.append(f"at f = {s.good!r} {carried}; at f = {s.bad!r} {short}")
-    na.notes.extend(_flat_below(trials))
-    return out("stable", s.good, at.data, s.lower, s.upper, True)
+    return f"at f = {s.good!r} {carried}; at f = {s.bad!r} {short}"
 
 
 def _flat_below(trials: list[dict[str, Any]], found: bool = True) -> list[str]:

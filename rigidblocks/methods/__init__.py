@@ -9,6 +9,7 @@ and refuses options that do not apply to it.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -100,6 +101,17 @@ def _names(ids: list[str], most: int = 5) -> str:
     return f"block{'s' if len(ids) > 1 else ''} {head}{more}"
 
 
+def _weightless(scene: Scene, system: Any) -> list[str]:
+    """The note on blocks that weigh nothing (and on a scene that nothing loads)."""
+    if np.any(system.dead) or any(b.unit_weight for b in scene.blocks) or \
+            scene.effective_unit_weight:
+        return []
+    return ["the blocks weigh nothing (no unit_weight): self-weight is not part of this "
+            "analysis, only the loads act" + ("; and no load acts: every force is zero (set "
+                                             "unit_weight, or add loads)"
+                                             if not np.any(system.live) else "")]
+
+
 def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = None,
                 settings: dict | None = None, pyramid: int | None = None,
                 contact_tol: float | None = None, progress: Progress | None = None,
@@ -145,12 +157,7 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
     else:
         m = ConvexMethod(scene, system, timings, solver=solver or "clarabel",
                          settings=settings, pyramid=pyramid, progress=progress)
-    if not np.any(system.dead) and not any(b.unit_weight for b in scene.blocks) and \
-            not scene.effective_unit_weight:
-        m.notes.append("the blocks weigh nothing (no unit_weight): self-weight is not part "
-                       "of this analysis, only the loads act" + (
-                           "; and no load acts: every force is zero (set unit_weight, or "
-                           "add loads)" if not np.any(system.live) else ""))
+    m.notes.extend(_weightless(scene, system))
     loose, adrift = unsupported_blocks(scene, contacts)
     if loose:
         one = len(loose) == 1
