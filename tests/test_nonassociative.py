@@ -814,3 +814,22 @@ def test_non_associative_friction_near_zero_and_where_it_carries_any_load():
     assert r.status == "stable" and 0.80 < r.friction_factor < 0.82
     assert not any("nan" in n for n in r.notes)
     assert any("loaded from X0 it does not collapse" in n for n in r.notes)
+
+
+def test_the_seeds_procedure_standing_above_the_convex_answer_says_so():
+    """The Arpino gate at f = 0.6 without dilatancy: the distortion method (the seed's
+    procedure) stands at lambda = 0.12, where `load` by the convex path collapses from
+    X0 at 0.1187021 (the smallest multiplier over all states, `load --safe`,
+    benchmarks/results/bench_na_bounds.md); its check said nothing of it. At 0.1, below
+    both, no note."""
+    from conftest import EXAMPLES
+
+    from rigidblocks.io import read_scene
+
+    sc = read_scene(EXAMPLES / "arpino_gate.json")
+    r = rb.check(sc, load_factor=0.12, method="distortion", flow="non-associative")
+    assert r.status == "admissible"
+    assert any("collapses from X0 at lambda = 0.118702, below this load factor 0.12" in n
+               for n in r.notes)
+    r = rb.check(sc, load_factor=0.1, method="distortion", flow="non-associative")
+    assert r.status == "admissible" and not any("default method" in n for n in r.notes)

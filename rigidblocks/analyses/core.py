@@ -186,6 +186,27 @@ def _lower_by_the_convex_path(res: Any, scene: Scene, friction: Any, flow: str |
         "is the safer")))
 
 
+def _below_by_the_convex_path(res: Any, scene: Scene, friction: Any, flow: str | None,
+                              lf: float, **kw: Any) -> Any:
+    """The distortion method's non-associative check that stands at ``lf``, with a note
+    where the convex path's limit iteration from X0 collapses below it (the Arpino gate
+    at f = 0.6 and lambda = 0.12: ADMISSIBLE here, where `load` by the convex path gives
+    0.1187021, the smallest multiplier of any state, `load --safe`)."""
+    try:
+        other = max_load_nonassociative(scene, friction, "clarabel", flow=flow,
+                                        state=False, **kw)
+    except SolverFailure:
+        return res
+    low = other.load_multiplier
+    if other.status != "collapse" or low is None or not low < lf:
+        return res
+    return replace(res, notes=(*res.notes, (
+        "the default method (the convex path: the same question to `load` without "
+        f"--method) collapses from X0 at lambda = {fmt_safe(float(low), 6, False)}, below "
+        f"this load factor {lf:.10g}: non-associative collapse states are not unique, and "
+        "the lower is the safer")))
+
+
 def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
           method: str = "clarabel", *, solver: str | None = None, state: bool = True,
           settings: dict | None = None, pyramid: int | None = None,
@@ -235,10 +256,15 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
         :mod:`rigidblocks.methods.convex`).
     """
     if is_nonassociative(scene, flow):
-        return check_nonassociative(scene, friction, _load_factor(scene, load_factor), method,
-                                    flow=flow, state=state, solver=solver, settings=settings,
-                                    pyramid=pyramid, contact_tol=contact_tol,
-                                    progress=progress)
+        lf = _load_factor(scene, load_factor)
+        res = check_nonassociative(scene, friction, lf, method, flow=flow, state=state,
+                                   solver=solver, settings=settings, pyramid=pyramid,
+                                   contact_tol=contact_tol, progress=progress)
+        if method == "distortion" and res.status == ADMISSIBLE and lf > 0 and \
+                scene.has_live_load:
+            res = _below_by_the_convex_path(res, scene, friction, flow, lf,
+                                            pyramid=pyramid, contact_tol=contact_tol)
+        return res
     f = friction_value(scene.effective_friction if friction is None else friction)
     lf = _load_factor(scene, load_factor)
     m = open_method(scene, method, solver=solver, settings=settings, pyramid=pyramid,
