@@ -222,9 +222,9 @@ def test_legend_and_labels_keep_off_the_axes(tmp_path):
     assert not lb.overlaps(ax.get_window_extent(r))
     assert not lb.overlaps(ax.xaxis.label.get_window_extent(r))
     labels = [t.get_text() for t in leg.get_texts()]
-    for want in ("thrust line", "governing joint", "joint force resultant", "dead load",
-                 "live load"):
+    for want in ("thrust line", "governing joint", "joint force resultant", "dead load"):
         assert any(want in t for t in labels), (want, labels)
+    assert not any("live load" in t for t in labels)  # not at load factor 0
 
 
 def test_loads_drawn_with_values():
@@ -291,3 +291,28 @@ def test_the_moving_blocks_drawn_are_those_the_answer_counts():
     assert "moving block (displaced)" in labels
     assert "block at rest in the mechanism" in labels
     assert not any("collapse mechanism" in t for t in labels)
+
+
+def test_a_thrust_line_only_through_a_chain_of_blocks():
+    """The reference model's central blocks have three joints each (not a chain): it
+    drew a "thrust line" from left-top to support-right across the open middle joint;
+    now the resultants alone. The arch, a chain, keeps its thrust line."""
+    for name, label in (("reference", "resultant on joint"), ("arch", "thrust line")):
+        sc = read_scene(EXAMPLES / f"{name}.json")
+        ax = rb.plot(sc, rb.min_friction(sc))
+        assert [ln.get_label() for ln in by_gid(ax, "rb-thrust")] == [label]
+
+
+def test_no_live_load_arrow_where_it_does_not_act():
+    """A check or a friction search at load factor 0 (the arch under its self-weight)
+    drew "live: lambda x 37.69 kN" over its ring, its title saying "load factor 0"; the
+    live load is drawn where it acts (a check at 0.1, the collapse)."""
+    sc = read_scene(EXAMPLES / "arch.json")
+
+    def labels(res):
+        return [t.get_text() for t in rb.plot(sc, res).texts if t.get_gid() == "rb-loads"
+                and "live" in t.get_text()]
+
+    assert labels(rb.check(sc)) == [] and labels(rb.min_friction(sc)) == []
+    assert len(labels(rb.check(sc, load_factor=0.1))) == 1
+    assert len(labels(rb.max_load_multiplier(sc))) == 1

@@ -280,8 +280,12 @@ def _accuracy(res) -> list[str]:
 def _table(res, scene) -> list[str]:
     rows = res.joint_table()
     if not rows:
+        if res.status == "unbounded":  # admissible at every lambda: no limit state
+            return ["joints     no force state (unbounded: no collapse state to show)"]
         return ["joints     no force state (the analysis found no admissible state)"]
     fu, lu = f"[{scene.force_unit or 'force'}]", f"[{scene.length_unit or 'length'}]"
+    # 3D: the shear's size (its direction lies in the joint's plane)
+    t_head = ("|T| " if scene.dimension == 3 else "T ") + fu
     # the joints' own laws, where they are not all the same: their f, c and ft
     su = f"[{scene.force_unit or 'force'}/{scene.length_unit or 'length'}^2]"
     law = [(key, head, fmt) for key, head, fmt in
@@ -290,7 +294,7 @@ def _table(res, scene) -> list[str]:
            if len({r[key] for r in rows}) > 1]
     # the mechanism's mode of each joint, after a collapse only
     modes = any(r["mode"] for r in rows)
-    out = [(f"{'joint':<24} {'N ' + fu:>12} {'T ' + fu:>12} {'e ' + lu:>10} {'|T|/N':>8}  "
+    out = [(f"{'joint':<24} {'N ' + fu:>12} {t_head:>12} {'e ' + lu:>10} {'|T|/N':>8}  "
             + "".join(f"{head:>{max(len(head), 8)}}  " for _, head, _ in law)
             + f"{'state':<26} " + ("mode" if modes else "")).rstrip()]
     for r in rows:

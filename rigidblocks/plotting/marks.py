@@ -60,10 +60,19 @@ class LoadMark:
         return self.tail + self.length * self.direction
 
 
-def load_marks(scene: Scene) -> list[LoadMark]:
+def live_applies(result: Any) -> bool:
+    """Does the live load act in ``result``: not in a check or a friction search at load
+    factor 0 (a picture of the arch's self-weight check drew "live: lambda x 37.69 kN"
+    over its ring, where its title said "load factor 0")."""
+    return not (getattr(result, "analysis", "") in ("check", "min_friction")
+                and not getattr(result, "load_factor", None))
+
+
+def load_marks(scene: Scene, live: bool = True) -> list[LoadMark]:
     """The self-weight and the live body force as resultants at the free blocks' centre
     of gravity (with their totals), and every point load ending at its point of
-    application (length in proportion to its size, the value in the label)."""
+    application (length in proportion to its size, the value in the label); the live
+    ones only with ``live``."""
     d = scene.dimension
     fu = f" {scene.force_unit}" if scene.force_unit else ""
     size = scene_size(scene)
@@ -78,7 +87,7 @@ def load_marks(scene: Scene) -> list[LoadMark]:
         out.append(LoadMark(cg, down, BODY_ARROW_FRACTION * size, False,
                             f"self-weight {W:.4g}{fu}", "self-weight"))
         lbf = scene.live_body_force
-        if lbf is not None and any(v != 0 for v in lbf):
+        if live and lbf is not None and any(v != 0 for v in lbf):
             v = np.asarray(lbf, dtype=float)
             mag = float(np.linalg.norm(v))
             out.append(LoadMark(cg, v / mag, BODY_ARROW_FRACTION * size, True,
@@ -88,7 +97,7 @@ def load_marks(scene: Scene) -> list[LoadMark]:
     for ld in scene.loads:
         v = np.asarray(ld.force, dtype=float)
         mag = float(np.linalg.norm(v))
-        if mag == 0:
+        if mag == 0 or (ld.is_live and not live):
             continue
         at = (centroids[scene.index[ld.block]] if ld.point is None
               else np.asarray(ld.point, dtype=float))

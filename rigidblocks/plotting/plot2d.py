@@ -53,6 +53,7 @@ from .marks import (
     SLIDE_COLOUR,
     arrow_handle,
     line_handle,
+    live_applies,
     load_legend,
     load_marks,
     marked_joints,
@@ -137,7 +138,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     state = getattr(result, "state", None)
     extra: list[Any] = []
     if loads:
-        lo, hi = _draw_loads(ax, scene, lo, hi, extra)
+        lo, hi = _draw_loads(ax, scene, lo, hi, extra, live_applies(result))
     if mech is not None:
         lo, hi = _draw_mechanism(ax, scene, result, centroids, size, displacement_scale,
                                  lo, hi, extra)
@@ -184,9 +185,9 @@ def _nice(x: float) -> float:
 
 
 def _draw_loads(ax: Any, scene: Scene, lo: np.ndarray, hi: np.ndarray,
-                extra: list[Any]) -> tuple[np.ndarray, np.ndarray]:
+                extra: list[Any], live: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Load arrows with their values (see :func:`rigidblocks.plotting.marks.load_marks`)."""
-    marks = load_marks(scene)
+    marks = load_marks(scene, live)
     kinds = set()
     for m in marks:
         colour = LIVE_COLOUR if m.live else DEAD_COLOUR
@@ -295,8 +296,12 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
     # thrust line
     pts = st.thrust_points
     order = np.asarray(st.thrust_order)
-    chain = len(order) == m and m > 1 and all(
-        set(c.pairs[order[k]]) & set(c.pairs[order[k + 1]]) for k in range(m - 1))
+    # a chain: every free block between two joints (as chain_order asks), each joint
+    # sharing a block with the next (the reference model, whose central blocks have three
+    # joints, drew a "thrust line" across its open middle joint)
+    deg = np.bincount(c.pairs.ravel(), minlength=len(scene.blocks))
+    chain = len(order) == m and m > 1 and bool(np.all(deg[~scene.support_mask] == 2)) \
+        and all(set(c.pairs[order[k]]) & set(c.pairs[order[k + 1]]) for k in range(m - 1))
     line = st.thrust_line
     suffix = " (least-violation state, NOT admissible)" if not_admissible else ""
     if chain:

@@ -42,6 +42,7 @@ from .marks import (
     OPEN_COLOUR,
     SLIDE_COLOUR,
     line_handle,
+    live_applies,
     load_legend,
     load_marks,
     marked_joints,
@@ -188,7 +189,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     lo, hi = allpts.min(axis=0), allpts.max(axis=0)
     extra: list[Any] = []
     if loads:
-        lo, hi = _draw_loads(ax, scene, lo, hi, extra)
+        lo, hi = _draw_loads(ax, scene, lo, hi, extra, live_applies(result))
     if mech is not None:
         moved = _draw_mechanism(ax, scene, result, centroids, size, displacement_scale,
                                 Poly3DCollection, extra)
@@ -266,9 +267,9 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
 
 
 def _draw_loads(ax: Any, scene: Scene, lo: np.ndarray, hi: np.ndarray,
-                extra: list[Any]) -> tuple[np.ndarray, np.ndarray]:
+                extra: list[Any], live: bool = True) -> tuple[np.ndarray, np.ndarray]:
     kinds = set()
-    for m in load_marks(scene):
+    for m in load_marks(scene, live):
         colour = LIVE_COLOUR if m.live else DEAD_COLOUR
         d = m.tip - m.tail
         q = ax.quiver(*m.tail, *d, color=colour, linewidths=2.0, arrow_length_ratio=0.15,

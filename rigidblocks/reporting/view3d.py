@@ -22,6 +22,7 @@ import numpy as np
 from ..answer import block_reach
 from ..plotting.marks import (
     MOST_MARKED_3D,
+    live_applies,
     load_marks,
     marked_joints,
     mechanism_colours,
@@ -87,7 +88,7 @@ def view_data(scene: Scene, result: Any = None) -> dict[str, Any]:
         "vstart": u32(g["vstart"]), "centroids": f32(centroids),
         "n_triangles": len(g["triangles"]),
         "units": {"length": scene.length_unit, "force": scene.force_unit},
-        "loads": _loads(scene),
+        "loads": _loads(scene, live_applies(result)),
     }
     c = getattr(result, "contacts", None)
     if c is not None and c.n_joints:
@@ -98,10 +99,10 @@ def view_data(scene: Scene, result: Any = None) -> dict[str, Any]:
     return out
 
 
-def _loads(scene: Scene) -> list[dict[str, Any]]:
+def _loads(scene: Scene, live: bool = True) -> list[dict[str, Any]]:
     """Load arrows (:func:`rigidblocks.plotting.marks.load_marks`)."""
     return [{"tail": m.tail.tolist(), "tip": m.tip.tolist(), "live": m.live,
-             "label": m.label, "kind": m.kind} for m in load_marks(scene)]
+             "label": m.label, "kind": m.kind} for m in load_marks(scene, live)]
 
 
 def _joints(scene: Scene, result: Any) -> dict[str, Any]:
