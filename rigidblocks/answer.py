@@ -740,6 +740,45 @@ def mechanism_text(res: Any) -> str:
             + (f" and {len(order) - shown} more" if len(order) > shown else ""))
 
 
+def flow_lines(res: Any) -> list[str]:
+    """The non-associative analysis in labelled lines: its iterations ("flow"), its
+    bounds and the answers from each start (a terminal's and a report's)."""
+    from .analyses.nonassociative import start_entries, starts_text
+
+    starts = start_entries(res.history)
+    done = "converged" if res.converged else "not converged"
+    if starts:  # the limit iteration: its steps, summed over the starts
+        steps = " + ".join(str(h.get("iterations", "?")) for h in starts)
+        each = f" ({steps})" if len(starts) > 1 else ""
+        out = [f"flow       {res.flow}: {res.iterations} limit step(s) over "
+               f"{len(starts)} start(s){each}, {done}"]
+    elif len(res.history) == 1 and res.history[0].get("limit_steps") is not None:
+        # a check at its load factor, then `load`'s limit run from X0
+        # (the limit run's outcome too: "converged" alone stood beside its UNDECIDED)
+        t = res.history[0]
+        run = ", undecided" if t.get("limit_status") == "undecided" else ""
+        out = [f"flow       {res.flow}: {t.get('iterations', '?')} iteration(s) at lambda "
+               f"= {t['load_factor']:.10g}, {done}; then {t['limit_steps']} limit step(s) "
+               f"loading from X0{run}"]
+    else:
+        out = [f"flow       {res.flow}: {res.iterations} iteration(s), {done}"]
+    b = getattr(res, "load_multiplier_bounds", None)
+    if b is not None:
+        # each bound on its own safe side: the lower one down, the upper one up (the
+        # associative multiplier read 0.583757 here beside `load`'s 0.583756, as if two)
+        lo = "-" if b[0] is None else fmt_safe(b[0], 6, False)
+        hi = "-" if b[1] is None else fmt_safe(b[1], 6, True)
+        what = ["rounded outward"] if b[0] is not None or b[1] is not None else []
+        what.append("lower: the joints without dilatancy frictionless" if b[0] is not None
+                    else "lower, -: none with the joints without dilatancy frictionless")
+        what.append("upper: associative" if b[1] is not None else
+                    "upper, -: the associative analysis gives none")
+        out.append(f"bounds     [{lo}, {hi}]   ({'; '.join(what)})")
+    if starts:
+        out.append("starts     " + starts_text(starts))
+    return out
+
+
 __all__ = ["NA_BELOW_LOAD", "NA_INADMISSIBLE", "AnswerBlock", "answer_block", "block_reach",
-           "bodies_text", "joint_list", "live_load_size", "live_load_text", "mechanism_groups",
-           "mechanism_text", "rigid_bodies", "split_notes", "without_dilatancy"]
+           "bodies_text", "flow_lines", "joint_list", "live_load_size", "live_load_text",
+           "mechanism_groups", "mechanism_text", "rigid_bodies", "split_notes", "without_dilatancy"]

@@ -327,3 +327,21 @@ def test_undecided_result_reads_as_no_verdict_everywhere(block_on_base):
     assert "NO VERDICT" in page  # the picture's title and message
     assert "ADMISSIBLE" not in page.replace("NOT ADMISSIBLE", "")
     assert "the bracket did not close" in page
+
+
+def test_a_non_associative_report_gives_its_flow_and_bounds(tmp_path, capsys):
+    """The terminal's "flow" and "bounds" lines of a non-associative answer are in the
+    page too (the reference model with self-weight: bounds [0, 2.4], 0 with the joints
+    that do not dilate frictionless, 2.4 associative); the page had neither."""
+    import html
+
+    src = str(EXAMPLES / "reference_self_weight.json")
+    assert main(["load", src, "--flow", "non-associative"]) == 0
+    said = capsys.readouterr().out
+    bounds = next(ln for ln in said.splitlines() if ln.startswith("bounds"))[11:].strip()
+    out = tmp_path / "r.html"
+    assert main(["report", src, "--analysis", "load", "--flow", "non-associative", "-o",
+                 str(out)]) == 0
+    text = html.unescape(re.sub(r"<[^>]+>", " ", out.read_text()))
+    assert f"bounds: {bounds}" in text and bounds.startswith("[0, 2.4]")
+    assert "flow: non-associative: " in text

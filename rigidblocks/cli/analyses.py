@@ -13,10 +13,8 @@ from ..analyses import analysis
 from ..analyses.nonassociative import (
     SPREAD_NOTE,
     is_nonassociative,
-    start_entries,
-    starts_text,
 )
-from ..answer import answer_block
+from ..answer import answer_block, flow_lines
 from ..errors import InputError
 from ..io import read_scene
 from ..methods import METHODS, Progress
@@ -243,7 +241,7 @@ def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
              f"blocks     {len(scene.blocks)} ({supports}), "
              f"joints {res.contacts.n_joints}"]
     block = answer_block(scene, res)
-    flow = _flow_lines(res) if res.flow != "associative" else []
+    flow = flow_lines(res) if res.flow != "associative" else []
     if any(line.startswith("starts ") for line in flow):  # the spread note, once
         block = replace(block, reasons=tuple(r for r in block.reasons
                                              if not r.startswith(SPREAD_NOTE)))
@@ -311,42 +309,6 @@ def _table(res, scene) -> list[str]:
 def _own(fmt: str, value: float) -> str:
     """A joint's law in the table: "infinite" as in the scene file."""
     return INFINITE if math.isinf(value) else fmt.format(value)
-
-
-def _flow_lines(res) -> list[str]:
-    """The non-associative analysis: its iterations and bounds."""
-    starts = start_entries(res.history)
-    done = "converged" if res.converged else "not converged"
-    if starts:  # the limit iteration: its steps, summed over the starts
-        steps = " + ".join(str(h.get("iterations", "?")) for h in starts)
-        each = f" ({steps})" if len(starts) > 1 else ""
-        out = [f"flow       {res.flow}: {res.iterations} limit step(s) over "
-               f"{len(starts)} start(s){each}, {done}"]
-    elif len(res.history) == 1 and res.history[0].get("limit_steps") is not None:
-        # a check at its load factor, then `load`'s limit run from X0
-        # (the limit run's outcome too: "converged" alone stood beside its UNDECIDED)
-        t = res.history[0]
-        run = ", undecided" if t.get("limit_status") == "undecided" else ""
-        out = [f"flow       {res.flow}: {t.get('iterations', '?')} iteration(s) at lambda "
-               f"= {t['load_factor']:.10g}, {done}; then {t['limit_steps']} limit step(s) "
-               f"loading from X0{run}"]
-    else:
-        out = [f"flow       {res.flow}: {res.iterations} iteration(s), {done}"]
-    b = getattr(res, "load_multiplier_bounds", None)
-    if b is not None:
-        # each bound on its own safe side: the lower one down, the upper one up (the
-        # associative multiplier read 0.583757 here beside `load`'s 0.583756, as if two)
-        lo = "-" if b[0] is None else fmt_safe(b[0], 6, False)
-        hi = "-" if b[1] is None else fmt_safe(b[1], 6, True)
-        what = ["rounded outward"] if b[0] is not None or b[1] is not None else []
-        what.append("lower: the joints without dilatancy frictionless" if b[0] is not None
-                    else "lower, -: none with the joints without dilatancy frictionless")
-        what.append("upper: associative" if b[1] is not None else
-                    "upper, -: the associative analysis gives none")
-        out.append(f"bounds     [{lo}, {hi}]   ({'; '.join(what)})")
-    if starts:
-        out.append("starts     " + starts_text(starts))
-    return out
 
 
 __all__ = ["add_args", "run", "report", "InputError"]

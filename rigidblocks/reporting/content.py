@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..answer import MODE_WORDS, answer_block, live_load_text
+from ..answer import MODE_WORDS, answer_block, flow_lines, live_load_text, without_dilatancy
 from ..plotting.marks import scene_weights
 from ..results import force_state_words
 from ..scene.model import Scene
@@ -142,6 +142,10 @@ def answer(scene: Scene, result: Any) -> Answer:
                       block.reasons + block.notes)
     details = [f"governing joints: {block.governing}"] if block.governing else []
     details += block.reasons
+    if without_dilatancy(result):  # its iterations and bounds, as the terminal's lines
+        # (the answers from each start are among the reasons already)
+        details += [f"{ln[:10].strip()}: {ln[11:].strip()}" for ln in flow_lines(result)
+                    if not ln.startswith("starts")]
     notes = list(block.notes)
     solver = getattr(result, "solver", None)
     if solver:
