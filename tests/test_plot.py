@@ -222,7 +222,7 @@ def test_legend_and_labels_keep_off_the_axes(tmp_path):
     assert not lb.overlaps(ax.get_window_extent(r))
     assert not lb.overlaps(ax.xaxis.label.get_window_extent(r))
     labels = [t.get_text() for t in leg.get_texts()]
-    for want in ("thrust line", "governing joint", "joint force resultant", "dead load"):
+    for want in ("thrust line", "governing joint", "joint force on its lower block", "dead load"):
         assert any(want in t for t in labels), (want, labels)
     assert not any("live load" in t for t in labels)  # not at load factor 0
 
@@ -316,3 +316,13 @@ def test_no_live_load_arrow_where_it_does_not_act():
     assert labels(rb.check(sc)) == [] and labels(rb.min_friction(sc)) == []
     assert len(labels(rb.check(sc, load_factor=0.1))) == 1
     assert len(labels(rb.max_load_multiplier(sc))) == 1
+
+
+def test_force_arrows_act_on_the_lower_block_of_each_joint():
+    """The arch under its self-weight: each joint's arrow is the force on its lower block,
+    so all point down the ring towards the abutments on both halves (drawn on each
+    joint's second block, the arrows of one half pointed up to the crown)."""
+    sc = read_scene(EXAMPLES / "arch.json")
+    ax = rb.plot(sc, rb.min_friction(sc))
+    (q,) = by_gid(ax, "rb-forces")
+    assert len(q.V) > 10 and all(v < 0 for v in q.V)

@@ -321,7 +321,12 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
         sc.set_gid("rb-governing")
     # force arrows, scaled to a reference arrow drawn below the structure
     if not heat:
+        # each on the lower of its joint's two blocks (its second block's in the tables):
+        # in the joints' own order the arrows of an arch's two halves pointed opposite
+        # ways, up to the crown on one side, down to the abutment on the other
         vec = joint_force_vectors(c, st)
+        cy = block_weights(scene)[1][:, 1]
+        vec = np.where((cy[c.pairs[:, 1]] > cy[c.pairs[:, 0]])[:, None], -vec, vec)
         mag = np.linalg.norm(vec, axis=1)
         top = mag.max(initial=0.0)
         if top > 0:
@@ -339,8 +344,8 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
             key.set_gid("rb-force-key")
             lo = np.minimum(lo, [lo[0], y - 0.03 * size])
             hi = np.maximum(hi, [lo[0] + ref * scale + 0.15 * size, y])
-            extra.append(arrow_handle("tab:blue", f"joint force resultant (key arrow "
-                                      f"{ref:g} {unit}, below)"))
+            extra.append(arrow_handle("tab:blue", f"joint force on its lower block (key "
+                                      f"arrow {ref:g} {unit}, below)"))
     return lo, hi
 
 
