@@ -374,6 +374,8 @@ def test_joint_table_on_request(tmp_path, capsys):
     with open(csv_path) as fh:
         table = list(csv.DictReader(fh))
     assert len(table) == 5 and {"N", "T", "eccentricity", "demand", "state"} <= set(table[0])
+    # with its units (the reference model's: N and m)
+    assert {(r["force_unit"], r["length_unit"]) for r in table} == {("N", "m")}
     # at f* = 0.5 the four bed joints are at their friction limit
     assert sum("at friction limit" in r["state"] for r in table) == 4
     assert main(["friction", path, "--joints", str(tmp_path / "no" / "x.csv")]) == 2

@@ -115,7 +115,7 @@ def run(args: argparse.Namespace) -> int:
         scene, state=state, progress=progress, **question(args), **options), progress,
         show=not args.json and sys.stderr.isatty())
     if csv_path is not None:
-        _write_csv(res, csv_path)
+        _write_csv(res, csv_path, scene)
     safe = _safe(scene, args, res) if getattr(args, "safe", False) else None
     if args.json:
         doc = res.to_dict(joints=args.joints == "-")
@@ -205,19 +205,23 @@ def _writable(path: str) -> None:
         raise InputError(f"cannot write: folder {folder} is not writable", path)
 
 
-def _write_csv(res: Any, path: str) -> None:
+def _write_csv(res: Any, path: str, scene: Any) -> None:
+    """The joint table as CSV, with the scene's units in every row (a file opened later
+    did not say whether its forces were N or kN)."""
     import csv
 
     rows = res.joint_table()
+    units = [scene.force_unit or "", scene.length_unit or ""]
     try:
         with open(path, "w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(["block_a", "block_b", "N", "T", "eccentricity", "demand", "state",
-                        "mode", "friction", "cohesion", "tensile_strength"])
+                        "mode", "friction", "cohesion", "tensile_strength", "force_unit",
+                        "length_unit"])
             for r in rows:
                 w.writerow([*r["joint"], r["N"], r["T"], r["eccentricity"], r["demand"],
                             r["state"], r["mode"], friction_label(r["friction"]),
-                            r["cohesion"], r["tensile_strength"]])
+                            r["cohesion"], r["tensile_strength"], *units])
     except OSError as err:
         raise InputError(f"cannot write: {err}", path) from None
 
