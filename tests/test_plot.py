@@ -326,3 +326,23 @@ def test_force_arrows_act_on_the_lower_block_of_each_joint():
     ax = rb.plot(sc, rb.min_friction(sc))
     (q,) = by_gid(ax, "rb-forces")
     assert len(q.V) > 10 and all(v < 0 for v in q.V)
+
+
+def test_block_ids_sit_on_the_displaced_blocks_of_a_mechanism():
+    """`plot --ids` of a collapse: each id at its block's displaced centroid (they sat at
+    the original centroids, on the corners and edges of the moved blocks)."""
+    from rigidblocks.scene.geometry import block_weights
+
+    sc = read_scene(EXAMPLES / "wall.json")
+    res = rb.max_load_multiplier(sc)
+    ax = rb.plot(sc, res, ids=True)
+    moved = by_gid(ax, "rb-displaced")[0].get_paths()
+    free = [b for b in sc.blocks if not b.support]
+    at = {t.get_text(): np.array(t.get_position()) for t in ax.texts}
+    centroids = block_weights(sc)[1]
+    far = 0
+    for b, path in zip(free, moved, strict=True):
+        poly = path.vertices[:-1] if len(path.vertices) > len(b.points) else path.vertices
+        assert np.allclose(at[b.id], poly.mean(axis=0), atol=1e-8), b.id
+        far += not np.allclose(at[b.id], centroids[sc.index[b.id]], atol=1e-6)
+    assert far > 0  # some blocks moved

@@ -127,10 +127,6 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
         pc.set_label("support" if gid == "rb-supports" else
                      "block (original position)" if faded else "block")
         ax.add_collection(pc)
-    if ids:
-        fs = 8 if len(polys) < 60 else 5
-        for b, c in zip(scene.blocks, centroids, strict=True):
-            ax.text(c[0], c[1], b.id, ha="center", va="center", fontsize=fs, zorder=6)
     allpts = np.concatenate(polys)
     lo, hi = allpts.min(axis=0), allpts.max(axis=0)
 
@@ -139,14 +135,19 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     extra: list[Any] = []
     if loads:
         lo, hi = _draw_loads(ax, scene, lo, hi, extra, live_applies(result))
+    label_at = centroids
     if mech is not None:
-        lo, hi = _draw_mechanism(ax, scene, result, centroids, size, displacement_scale,
-                                 lo, hi, extra)
+        lo, hi, label_at = _draw_mechanism(ax, scene, result, centroids, size,
+                                           displacement_scale, lo, hi, extra)
     elif state is not None and result.contacts.n_joints:
         lo, hi = _draw_forces(ax, scene, result, size, max_arrows, force_scale, colorbar,
                               LineCollection, lo, hi, extra)
     elif result is not None and getattr(result, "status", None) is not None:
         _no_state(ax, result, scene.force_unit)
+    if ids:  # on the blocks as drawn (displaced in a mechanism)
+        fs = 8 if len(polys) < 60 else 5
+        for b, c in zip(scene.blocks, label_at, strict=True):
+            ax.text(c[0], c[1], b.id, ha="center", va="center", fontsize=fs, zorder=6)
     place_legend(ax, extra)
     pad = 0.05 * (hi - lo).max()
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
@@ -350,8 +351,10 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
 
 
 def displaced_polygons(scene: Scene, velocities: np.ndarray, s: float,
-                       centroids: np.ndarray | None = None) -> list[np.ndarray]:
-    """Block polygons moved by s times their virtual velocities (u, v, omega).
+                       centroids: np.ndarray | None = None,
+                       points: list[np.ndarray] | None = None) -> list[np.ndarray]:
+    """Block polygons (or other ``points`` of each block) moved by s times their virtual
+    velocities (u, v, omega).
 
     (u, v) is the velocity of the block's centroid c. A block that turns (omega != 0)
     is rotated by s omega about its instantaneous centre p0 = c + (-v, u) / omega, the
@@ -362,21 +365,25 @@ def displaced_polygons(scene: Scene, velocities: np.ndarray, s: float,
     if centroids is None:
         centroids = block_weights(scene)[1]
     out = []
-    for b, c, (u, v, w) in zip(scene.blocks, centroids, velocities, strict=True):
+    for k, (b, c, (u, v, w)) in enumerate(zip(scene.blocks, centroids, velocities,
+                                              strict=True)):
+        pts = b.points if points is None else points[k]
         r = float(np.linalg.norm(b.points - c, axis=1).max())
         if abs(w) * r <= 1e-12 * max(math.hypot(u, v), 1e-300):
-            out.append(b.points + s * np.array([u, v]))
+            out.append(pts + s * np.array([u, v]))
             continue
         p0 = c + np.array([-v, u]) / w
         t = s * w
         rot = np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
-        out.append(p0 + (b.points - p0) @ rot.T)
+        out.append(p0 + (pts - p0) @ rot.T)
     return out
 
 
 def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, size: float,
-                    displacement_scale: float | None, lo: np.ndarray,
-                    hi: np.ndarray, extra: list[Any]) -> tuple[np.ndarray, np.ndarray]:
+                    displacement_scale: float | None, lo: np.ndarray, hi: np.ndarray,
+                    extra: list[Any]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The displaced blocks, their joints' marks and the legend rows: the bounds drawn
+    and the blocks' displaced centroids (where their ids go)."""
     from matplotlib.collections import LineCollection, PolyCollection
 
     mech = result.mechanism
@@ -447,7 +454,9 @@ def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, s
         extra.append(line_handle("none", f"{len(marks['left_out'])} joint(s) moving "
                                  "< 5 % of the largest: not marked"))
     allm = np.concatenate(moved)
-    return np.minimum(lo, allm.min(axis=0)), np.maximum(hi, allm.max(axis=0))
+    at = displaced_polygons(scene, vel, s, centroids, [c[None, :] for c in centroids])
+    return (np.minimum(lo, allm.min(axis=0)), np.maximum(hi, allm.max(axis=0)),
+            np.array([a[0] for a in at]))
 
 
 def save_figure(ax: Any, path: Any) -> None:
