@@ -346,3 +346,25 @@ def test_block_ids_sit_on_the_displaced_blocks_of_a_mechanism():
         assert np.allclose(at[b.id], poly.mean(axis=0), atol=1e-8), b.id
         far += not np.allclose(at[b.id], centroids[sc.index[b.id]], atol=1e-6)
     assert far > 0  # some blocks moved
+
+
+def test_two_plots_in_one_figure_keep_their_legends_off_everything():
+    """Notebook 01 draws the arch's friction state and its collapse in two axes of one
+    figure (no constrained layout): each legend sat right of its axes, under the
+    friction state's colour bar; now below its own axes, clear of the axes, their x
+    label and the colour bar."""
+    sc = read_scene(EXAMPLES / "arch.json")
+    fig, axes = plt.subplots(2, 1, figsize=(9, 10))
+    rb.plot(sc, rb.min_friction(sc, load_factor=0.0), ax=axes[0])
+    rb.plot(sc, rb.max_load_multiplier(sc), ax=axes[1])
+    fig.tight_layout()
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    bars = [a for a in fig.axes if a not in axes]
+    assert bars  # the friction state's colour bar
+    for ax in axes:
+        lb = ax.get_legend().get_window_extent(r)
+        assert not lb.overlaps(ax.get_window_extent(r))
+        assert not lb.overlaps(ax.xaxis.label.get_window_extent(r))
+        assert not any(lb.overlaps(b.get_window_extent(r)) for b in bars)
+    plt.close(fig)

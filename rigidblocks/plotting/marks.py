@@ -208,7 +208,7 @@ def new_axes(dimension: int, n_blocks: int) -> Any:
 
 def place_legend(ax: Any, extra: list[Any] | None = None) -> Any:
     """One legend entry per mark, below the figure when it has constrained layout (never
-    over the axes or their labels), otherwise to the right of the axes."""
+    over the axes or their labels), otherwise below the axes."""
     from matplotlib.layout_engine import ConstrainedLayoutEngine
 
     handles, labels = ax.get_legend_handles_labels()
@@ -223,9 +223,9 @@ def place_legend(ax: Any, extra: list[Any] | None = None) -> Any:
         for old in list(fig.legends):
             old.remove()
         leg = fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=8)
-    else:
-        leg = ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0),
-                        borderaxespad=0.0, fontsize=8)
+    else:  # below its own axes: a colour bar takes their right (notebook 01's overlapped)
+        leg = ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, -0.17),
+                        ncol=ncol, borderaxespad=0.0, fontsize=8)
     leg.set_gid("rb-legend")
     return leg
 
