@@ -15,11 +15,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
+from conftest import EXAMPLES  # noqa: E402
 
 import rigidblocks as rb  # noqa: E402
 from rigidblocks.cli.main import main  # noqa: E402
 from rigidblocks.generators.solids import box_stack, corbel_dome  # noqa: E402
-from rigidblocks.io import write_scene  # noqa: E402
+from rigidblocks.io import read_scene, write_scene  # noqa: E402
 from rigidblocks.plotting.plot3d import displaced_vertices  # noqa: E402
 
 
@@ -124,3 +125,18 @@ def test_png_written_by_api_and_cli(tmp_path, capsys):
     assert main(["plot", str(path), "--analysis", "load", "-o", str(cli_out)]) == 0
     assert cli_out.stat().st_size > 1000
     assert "wrote" in capsys.readouterr().out
+
+
+def test_a_3d_mechanism_names_the_blocks_at_rest_in_its_legend():
+    """The box stack (examples/box_stack_3d.json) tips above its first box, which stays:
+    the 3D legend now has the 2D picture's row for blocks at rest (it had none); the
+    wall3d, which moves as one body, has none."""
+    from rigidblocks.generators import build
+
+    def labels(sc):
+        ax = rb.plot(sc, rb.max_load_multiplier(sc))
+        return [t.get_text() for lg in ax.figure.legends for t in lg.get_texts()]
+
+    assert "block at rest in the mechanism" in labels(
+        read_scene(EXAMPLES / "box_stack_3d.json"))
+    assert "block at rest in the mechanism" not in labels(build("wall3d"))

@@ -359,6 +359,9 @@ def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, s
         from matplotlib.patches import Patch
 
         extra.extend(Patch(facecolor=col, edgecolor="k", label=lab) for col, lab in legend)
+        if any(colour_of[i] is None for i in free):  # as the 2D picture's
+            extra.append(Patch(facecolor=FREE_COLOUR, edgecolor="k",
+                               label="block at rest in the mechanism"))
     styles = {"hinge": (HINGE_COLOUR, 3.0, "hinge line", "rb-hinges"),
               "slide": (SLIDE_COLOUR, 1.8, "sliding joint (outline)", "rb-sliding"),
               "open": (OPEN_COLOUR, 1.8, "opening joint (outline)", "rb-open")}
