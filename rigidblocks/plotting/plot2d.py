@@ -340,7 +340,9 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
             ref = _nice(top)
             unit = scene.force_unit or "force units"
             y = lo[1] - 0.08 * size
-            key = ax.quiverkey(q, lo[0], y, ref, f"{ref:g} {unit}", labelpos="E",
+            # (centred on its point: its tail at the structure's left edge, not past it)
+            key = ax.quiverkey(q, lo[0] + 0.5 * ref * scale, y, ref, f"{ref:g} {unit}",
+                               labelpos="E",
                                coordinates="data", fontproperties={"size": 8})
             key.set_gid("rb-force-key")
             lo = np.minimum(lo, [lo[0], y - 0.03 * size])
