@@ -461,3 +461,14 @@ def test_ctrl_c_ends_a_sweep_with_a_message_and_no_traceback(tmp_path):
     _, err = p.communicate(timeout=120)
     assert p.returncode == 130, err
     assert "rigidblocks: interrupted" in err and "Traceback" not in err, err
+
+
+def test_min_thickness_friction_given_twice_is_a_spec_error():
+    """A case parameter friction beside min_thickness's own friction option failed every
+    case with "min_thickness() got multiple values for keyword argument 'friction'"."""
+    from rigidblocks.errors import InputError
+
+    with pytest.raises(InputError, match="'friction' is given both as its option and as "
+                                         "a case parameter"):
+        study.make_sweep("arch", grid={"voussoirs": [9, 11]}, parameters={"friction": 0.6},
+                         analyses=["check", {"analysis": "min_thickness", "friction": 0.6}])

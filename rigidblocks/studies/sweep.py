@@ -247,6 +247,11 @@ def make_sweep(source: str | Scene, *, grid: Mapping[str, Sequence[Any]] | None 
             if any(p in c for c in checked):
                 raise InputError(f"min_thickness bisects {p!r}: it cannot also be a case "
                                  "parameter", "analyses")
+            both = sorted({k for k in dict(a.options) for c in checked if k in c})
+            if both:  # (every case failed with a TypeError)
+                raise InputError(f"min_thickness: {', '.join(map(repr, both))} is given "
+                                 "both as its option and as a case parameter: give it once",
+                                 "analyses")
     answer_cols = {c for a in ans for c in (f"{a.name}_status", *ANSWERS[a.name])}
     for k in {k for c in checked for k in c}:
         if k in answer_cols or k in BASE_COLUMNS:
