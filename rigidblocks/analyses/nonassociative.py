@@ -68,7 +68,13 @@ import numpy as np
 from ..equilibrium import force_state
 from ..errors import InputError, SolverFailure
 from ..methods import ADMISSIBLE, FAILURE, INADMISSIBLE, UNDECIDED, Method, Verdict
-from ..methods.convex import ADMISSIBLE_TOL, STATE_SLACK, VERDICT_RTOL, ConvexMethod
+from ..methods.convex import (
+    ADMISSIBLE_TOL,
+    OTHER_MECHANISMS,
+    STATE_SLACK,
+    VERDICT_RTOL,
+    ConvexMethod,
+)
 from ..methods.distortion import DistortionMethod
 from ..methods.relaxation import FRICTION_ATOL
 from ..problems.formulation import build_energy_qp, build_max_load, build_relaxation, flexibility
@@ -199,6 +205,10 @@ def _bound_notes(na: NonAssociative, cv: ConvexMethod, seen: int, symbol: str,
     the convex path; merged once on the distortion path). The rest (tolerances, the
     dead load) are the run's and stay as they are."""
     prefix, name = wording
+    # the bound's mechanism is not the one shown: whether it is one of several is moot
+    for k in reversed(range(seen, len(cv.notes))):
+        if cv.notes[k] == OTHER_MECHANISMS:
+            del cv.notes[k]
     for k in range(seen, len(cv.notes)):
         if symbol in cv.notes[k]:
             cv.notes[k] = prefix + cv.notes[k].replace(symbol, name)

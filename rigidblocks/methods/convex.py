@@ -263,9 +263,8 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
             self.notes.append(f"mechanism: the one drawn (an extreme point next to the "
                               f"optimal face) balances at lambda = {work_at:.6g}, "
                               f"{work_at / lam - 1:.1e} (relative) above {what}")
-        elif _other_mechanisms(res.y[eq], vd[0][eq]):
-            self.notes.append(f"other collapse mechanisms reach {what} too: the one drawn "
-                              "is one of them (`--mechanism blend` shows their mix)")
+        if _other_mechanisms(res.y[eq], vd[0][eq]):
+            self.notes.append(OTHER_MECHANISMS)
         return vd[0][eq], vd[1]
 
     def _dead_admissible(self, f: float) -> bool | None:
@@ -286,6 +285,9 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
         return True
 
 
+#: the note where the mechanism drawn is one of several optimal ones
+OTHER_MECHANISMS = ("other collapse mechanisms reach the same multiplier: the one drawn is "
+                    "one of them (their blend: `rigidblocks load --mechanism blend`)")
 #: the interior-point duals (the centre of the optimal face) and the vertex drawn are one
 #: mechanism where their velocities, each scaled to its largest, agree to this
 SAME_MECHANISM = 1e-3
