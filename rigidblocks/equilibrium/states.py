@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..results import ForceState, Mechanism
+from ..results import ZERO_FORCE, ForceState, Mechanism
 from .assembly import EquilibriumSystem
 
 #: a joint's opening or slip below this fraction of the mechanism's largest counts as
@@ -177,8 +177,12 @@ def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray
     tol = MODE_TOL * max(np.abs(delta).max(initial=0.0), 1e-300)
     pressed = np.ones(len(opening), dtype=bool)
     if x is not None:
+        # a point carries force as the tables say a joint does (ZERO_FORCE of the largest
+        # joint force: a wall's joint at 2.6e-5 of it read "slide+hinge" beside "open")
         N = np.asarray(x)[lay.normal]
-        pressed = N > MODE_TOL * max(float(N.max(initial=0.0)), _load_scale(system))
+        Nj = np.bincount(c.point_joint, N, minlength=c.n_joints)
+        pressed = N > ZERO_FORCE * max(float(np.abs(Nj).max(initial=0.0)),
+                                       MODE_TOL * _load_scale(system))
     per_point = np.abs(slip.reshape(len(opening), -1)).max(axis=1) \
         if not (lay.shear == "joint" and nd == 2) else None
     modes = []
