@@ -326,8 +326,7 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
         # in the joints' own order the arrows of an arch's two halves pointed opposite
         # ways, up to the crown on one side, down to the abutment on the other
         vec = joint_force_vectors(c, st)
-        cy = block_weights(scene)[1][:, 1]
-        vec = np.where((cy[c.pairs[:, 1]] > cy[c.pairs[:, 0]])[:, None], -vec, vec)
+        vec = np.where(_second_is_higher(scene, c.pairs)[:, None], -vec, vec)
         mag = np.linalg.norm(vec, axis=1)
         top = mag.max(initial=0.0)
         if top > 0:
@@ -347,9 +346,22 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
             key.set_gid("rb-force-key")
             lo = np.minimum(lo, [lo[0], y - 0.03 * size])
             hi = np.maximum(hi, [lo[0] + ref * scale + 0.15 * size, y])
-            extra.append(arrow_handle("tab:blue", f"joint force on its lower block (key "
-                                      f"arrow {ref:g} {unit}, below)"))
+            extra.append(arrow_handle("tab:blue", f"joint force on its lower (or outer) "
+                                      f"block (key arrow {ref:g} {unit}, below)"))
     return lo, hi
+
+
+def _second_is_higher(scene: Scene, pairs: np.ndarray) -> np.ndarray:
+    """(m,) is each joint's second block the higher of its two (its force is drawn on
+    the other)? Where their centroids are level (a flat arch's voussoirs), the one
+    nearer the middle of the structure is the higher: the force goes out to the
+    supports (one way on one joint, the other on the next, before)."""
+    cen = block_weights(scene)[1]
+    y, x = cen[:, 1], np.abs(cen[:, 0] - 0.5 * (cen[:, 0].min() + cen[:, 0].max()))
+    a, b = pairs[:, 0], pairs[:, 1]
+    tol = 1e-9 * max(float(np.ptp(cen[:, 1])), float(np.ptp(cen[:, 0])), 1e-300)
+    level = np.abs(y[b] - y[a]) <= tol
+    return np.where(level, x[b] < x[a], y[b] > y[a])
 
 
 def displaced_polygons(scene: Scene, velocities: np.ndarray, s: float,
