@@ -140,3 +140,20 @@ def test_a_3d_mechanism_names_the_blocks_at_rest_in_its_legend():
     assert "block at rest in the mechanism" in labels(
         read_scene(EXAMPLES / "box_stack_3d.json"))
     assert "block at rest in the mechanism" not in labels(build("wall3d"))
+
+
+def test_3d_block_ids_sit_on_the_displaced_blocks_of_a_mechanism():
+    """`plot --ids` of a 3D collapse: the ids sat at the original centroids, inside the
+    drawn (displaced) blocks, where they could not be seen; now at the displaced ones."""
+    from rigidblocks.answer import rigid_bodies
+    from rigidblocks.scene.polyhedra import polyhedron_volume_centroid
+
+    sc = box_stack(boxes=3, offset=0.2, friction=0.8)
+    res = rb.max_load_multiplier(sc)
+    ax = rb.plot(sc, res, ids=True)
+    at = {t.get_text(): np.array(t.get_position_3d()) for t in ax.texts}
+    moving = {sc.blocks[i].id for body in rigid_bodies(res) for i in body}
+    assert moving
+    for b in sc.blocks:
+        still = np.allclose(at[b.id], polyhedron_volume_centroid(b)[1])
+        assert still == (b.id not in moving), b.id

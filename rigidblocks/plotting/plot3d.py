@@ -96,8 +96,10 @@ def _skew(w: np.ndarray) -> np.ndarray:
 
 
 def displaced_vertices(scene: Scene, velocities: np.ndarray, s: float,
-                       centroids: np.ndarray | None = None) -> list[np.ndarray]:
-    """Block vertices moved by s times their virtual velocities (u, v, w, wx, wy, wz).
+                       centroids: np.ndarray | None = None,
+                       points: list[np.ndarray] | None = None) -> list[np.ndarray]:
+    """Block vertices (or other ``points`` of each block) moved by s times their virtual
+    velocities (u, v, w, wx, wy, wz).
 
     The velocity field of block b is u + omega x (p - c), c its centroid; the finite
     motion is its exponential: p' = c + R (p - c) + V s u, with K = s [omega]x,
@@ -109,8 +111,9 @@ def displaced_vertices(scene: Scene, velocities: np.ndarray, s: float,
     if centroids is None:
         centroids = np.array([polyhedron_volume_centroid(b)[1] for b in scene.blocks])
     out = []
-    for b, c, vel in zip(scene.blocks, centroids, np.asarray(velocities, float),
-                         strict=True):
+    for k, (b, c, vel) in enumerate(zip(scene.blocks, centroids,
+                                        np.asarray(velocities, float), strict=True)):
+        pts = b.points if points is None else points[k]
         u, w = vel[:3], vel[3:6]
         K = _skew(s * w)
         th = float(np.linalg.norm(s * w))
@@ -121,7 +124,7 @@ def displaced_vertices(scene: Scene, velocities: np.ndarray, s: float,
             R = np.eye(3) + math.sin(th) / th * K + (1 - math.cos(th)) / th**2 * K @ K
             V = np.eye(3) + (1 - math.cos(th)) / th**2 * K + \
                 (th - math.sin(th)) / th**3 * K @ K
-        out.append(c + (b.points - c) @ R.T + V @ (s * u))
+        out.append(c + (pts - c) @ R.T + V @ (s * u))
     return out
 
 
@@ -181,18 +184,15 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
         pc.set_label("support" if gid == "rb-supports" else
                      "block (original position)" if mech is not None else "block")
         ax.add_collection3d(pc)
-    if ids:
-        fs = 7 if len(scene.blocks) < 60 else 4
-        for b, c in zip(scene.blocks, centroids, strict=True):
-            ax.text(c[0], c[1], c[2], b.id, fontsize=fs, ha="center", va="center")
     allpts = np.concatenate([b.points for b in scene.blocks])
     lo, hi = allpts.min(axis=0), allpts.max(axis=0)
     extra: list[Any] = []
     if loads:
         lo, hi = _draw_loads(ax, scene, lo, hi, extra, live_applies(result))
+    label_at = centroids
     if mech is not None:
-        moved = _draw_mechanism(ax, scene, result, centroids, size, displacement_scale,
-                                Poly3DCollection, extra)
+        moved, label_at = _draw_mechanism(ax, scene, result, centroids, size,
+                                          displacement_scale, Poly3DCollection, extra)
         if moved is not None:
             lo, hi = np.minimum(lo, moved.min(axis=0)), np.maximum(hi, moved.max(axis=0))
     elif getattr(result, "state", None) is not None and result.contacts.n_joints:
@@ -201,6 +201,10 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
         from .plot2d import _no_state
 
         _no_state(ax, result, scene.force_unit)
+    if ids:  # on the blocks as drawn (displaced in a mechanism)
+        fs = 7 if len(scene.blocks) < 60 else 4
+        for b, c in zip(scene.blocks, label_at, strict=True):
+            ax.text(c[0], c[1], c[2], b.id, fontsize=fs, ha="center", va="center")
     place_legend(ax, extra)
     _limits(ax, lo, hi)
     unit = scene.length_unit
@@ -329,7 +333,10 @@ def mechanism_joints(scene: Scene, result: Any
 
 def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, size: float,
                     displacement_scale: float | None, Poly3DCollection: Any,
-                    extra: list[Any]) -> np.ndarray | None:
+                    extra: list[Any]) -> tuple[np.ndarray | None, np.ndarray]:
+    """The displaced blocks, their joints' marks and the legend rows: the displaced
+    vertices of the free blocks (None without any) and every block's displaced
+    centroid (where its id goes)."""
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
     vel = np.asarray(result.mechanism.velocities, dtype=float)
@@ -379,7 +386,9 @@ def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, s
         extra.append(line_handle("none", f"{len(left)} slower joint(s) not marked (the "
                                  f"{MOST_MARKED_3D} fastest are, down to 5 % of the "
                                  "largest)"))
-    return np.concatenate([moved[i] for i in free]) if len(free) else None
+    at = displaced_vertices(scene, vel, s, centroids, [c[None, :] for c in centroids])
+    return ((np.concatenate([moved[i] for i in free]) if len(free) else None),
+            np.array([a[0] for a in at]))
 
 
 def _move(scene: Scene, moved: list[np.ndarray], owner: int, seg: np.ndarray) -> np.ndarray:
