@@ -379,3 +379,19 @@ def test_force_arrows_on_a_level_course_point_out_to_the_supports():
     ax = rb.plot(sc, rb.check(sc))
     (q,) = by_gid(ax, "rb-forces")
     assert all(u * x > 0 for x, u in zip(q.X, q.U, strict=True) if abs(x) > 1e-9)
+
+
+def test_no_resultant_dot_on_an_open_joint():
+    """The reference model's middle joint left-right is open (N = 0, drawn dashed as
+    "open joint (no force)"): a "resultant on joint" dot sat on its middle."""
+    sc = read_scene(EXAMPLES / "reference.json")
+    res = rb.check(sc)
+    ax = rb.plot(sc, res)
+    (dots,) = by_gid(ax, "rb-thrust")
+    c = res.contacts
+    k = next(i for i, (a, b) in enumerate(res.contacts.block_pairs_ids())
+             if {a, b} == {"left", "right"})
+    mid = 0.5 * (c.points[c.joint_start[k]] + c.points[c.joint_start[k + 1] - 1])
+    xy = np.column_stack([dots.get_xdata(), dots.get_ydata()])
+    assert len(xy) == c.n_joints - 1
+    assert not np.any(np.all(np.isclose(xy, mid), axis=1))

@@ -308,10 +308,10 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
     if chain:
         (tl,) = ax.plot(line[:, 0], line[:, 1], "-", color="tab:red", lw=1.5, zorder=4,
                         label="thrust line" + suffix)
-    else:
+    else:  # the joints that carry a force (an open joint's dot sat on its middle)
         ms = 3 if m < 500 else 1
-        (tl,) = ax.plot(pts[:, 0], pts[:, 1], "o", color="tab:red", ms=ms, zorder=4,
-                        label="resultant on joint" + suffix)
+        (tl,) = ax.plot(pts[~is_open, 0], pts[~is_open, 1], "o", color="tab:red", ms=ms,
+                        zorder=4, label="resultant on joint" + suffix)
     tl.set_gid("rb-thrust")
     # governing joints
     gov = np.asarray(result.governing, dtype=int)
