@@ -336,7 +336,8 @@ def test_import_reads_the_drawings_length_unit_and_warns_where_another_is_given(
     out = tmp_path / "mm.json"
     assert main(["import-dxf", str(path), "-o", str(out), "--force-unit", "kN"]) == 0
     said = capsys.readouterr()
-    assert "lengths in mm, as the drawing declares ($INSUNITS)" in said.out
+    assert ("lengths in mm, as the drawing declares ($INSUNITS): give the unit weight "
+            "per mm^3 and the depth in mm") in said.out
     assert "warning: the drawing declares" not in said.err
     sc = read_scene(out)
     assert (sc.units.length, sc.units.force) == ("mm", "kN")

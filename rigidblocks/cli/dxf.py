@@ -96,7 +96,9 @@ def run(args: argparse.Namespace) -> int:
         if rep.unit_conflict:
             print(f"rigidblocks: warning: {rep.unit_conflict}", file=sys.stderr)
         elif rep.declared_unit and not args.length_unit:
-            print(f"lengths in {rep.declared_unit}, as the drawing declares ($INSUNITS)")
+            print(f"lengths in {rep.declared_unit}, as the drawing declares ($INSUNITS): "
+                  f"give the unit weight per {rep.declared_unit}^3 and the depth in "
+                  f"{rep.declared_unit}")
         if scene.unit_weight is None:
             print(f"rigidblocks: warning: {NO_UNIT_WEIGHT_NOTE}", file=sys.stderr)
         if scene.friction is None:
