@@ -395,3 +395,26 @@ def test_no_resultant_dot_on_an_open_joint():
     xy = np.column_stack([dots.get_xdata(), dots.get_ydata()])
     assert len(xy) == c.n_joints - 1
     assert not np.any(np.all(np.isclose(xy, mid), axis=1))
+
+
+def test_plots_in_a_users_constrained_figure_keep_every_legend():
+    """Two plots in a user's figure with constrained layout: each removed every figure
+    legend, the user's and the other plot's; now each has its own below its axes, and
+    the user's stays."""
+    import warnings
+
+    sc = read_scene(EXAMPLES / "arch.json")
+    fig, axs = plt.subplots(1, 2, layout="constrained", figsize=(12, 7))
+    mine = fig.legend(["mine"], loc="upper right")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # (constrained layout collapsed with wide legends)
+        rb.plot(sc, rb.max_load_multiplier(sc), ax=axs[0])
+        rb.plot(sc, rb.check(sc), ax=axs[1])
+        fig.canvas.draw()
+    assert fig.legends == [mine]
+    r = fig.canvas.get_renderer()
+    boxes = [a.get_legend().get_window_extent(r) for a in axs]
+    assert not boxes[0].overlaps(boxes[1])
+    for a, lb in zip(axs, boxes, strict=True):
+        assert not lb.overlaps(a.get_window_extent(r))
+    plt.close(fig)

@@ -219,13 +219,18 @@ def place_legend(ax: Any, extra: list[Any] | None = None) -> Any:
         return None
     fig = ax.figure
     ncol = min(len(handles), 3)
-    if isinstance(fig.get_layout_engine(), ConstrainedLayoutEngine):
+    # the figure's own axes, colour bars aside: more than one is a user's figure, where
+    # one figure legend per plot would overlap the others (and each plot removed them)
+    alone = len([a for a in fig.axes if not hasattr(a, "_colorbar")]) == 1
+    if isinstance(fig.get_layout_engine(), ConstrainedLayoutEngine) and alone:
         for old in list(fig.legends):
-            old.remove()
+            if old.get_gid() == "rb-legend":  # a plot's before (not the user's)
+                old.remove()
         leg = fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=8)
     else:  # below its own axes: a colour bar takes their right (notebook 01's overlapped)
-        leg = ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, -0.17),
-                        ncol=ncol, borderaxespad=0.0, fontsize=8)
+        # (its gap in points, under the tick labels and the x label whatever the height)
+        leg = ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                        ncol=ncol if alone else 1, borderaxespad=4.5, fontsize=8)
     leg.set_gid("rb-legend")
     return leg
 

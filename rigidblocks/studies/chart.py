@@ -43,8 +43,9 @@ def plot(frame: Any, x: str, y: str, hue: str | None = None, ax: Any = None,
         g = g.sort_values(x)
         ax.plot(g[x], g[y].astype(float), label=None if hue is None else f"{hue} = {key}",
                 **style)
-    if left_out:
-        ax.set_title(f"not drawn: {left_out} case(s) at {x} = infinite", fontsize=9)
+    if left_out:  # in the axes (the title is the user's)
+        ax.text(0.01, 0.99, f"not drawn: {left_out} case(s) at {x} = infinite",
+                transform=ax.transAxes, ha="left", va="top", fontsize=8)
     ax.set_xlabel(x)
     ax.set_ylabel(y)
     if hue is not None and groups:
