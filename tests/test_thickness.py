@@ -230,3 +230,12 @@ def test_a_method_that_cannot_answer_is_named_not_the_bound(capsys):
     err = capsys.readouterr().err
     assert "the distortion method is not supported for 3D scenes" in err
     assert "--hi" not in err and "--voussoirs" not in err
+
+
+def test_an_upper_bound_near_the_thickest_the_family_builds_is_not_told_to_rise(capsys):
+    """An arch under 5 x its weight sideways at t/R = 1.9 does not stand, and no arch is
+    built at t/R >= 2: the error said "raise the upper bound"."""
+    assert main(["thickness", "arch", "--load-factor", "5", "--hi", "1.9"]) == 2
+    err = capsys.readouterr().err
+    assert "cannot be built at thickness=2.85" in err and "raise the upper bound" not in err
+    assert "or a smaller load factor" in err

@@ -131,8 +131,17 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
 
     at_hi = admissible(hi)[0]
     if at_hi is not True:
-        raise InputError(_not_at_hi(build(hi), name, f"{param}={hi:g}", at_hi, friction,
-                                    method, load_factor))
+        why = _not_at_hi(build(hi), name, f"{param}={hi:g}", at_hi, friction, method,
+                         load_factor)
+        if why.endswith("raise the upper bound (hi, --hi)"):
+            try:  # is there a thicker one to try? (t/R < 2 for an arch)
+                gen(**params, **{param: 1.5 * hi})
+            except InputError as err:
+                why = (f"min_thickness: {name} is not admissible at the upper bound "
+                       f"{param}={hi:g}, and it cannot be built at {param}={1.5 * hi:g} "
+                       f"({err}): an upper bound between the two is all that is left" +
+                       (", or a smaller load factor" if load_factor else ""))
+        raise InputError(why)
     at_lo, status = admissible(lo)
     if at_lo is not False:
         what = "already admissible" if at_lo else f"{status}, not certified inadmissible,"
