@@ -418,3 +418,16 @@ def test_plots_in_a_users_constrained_figure_keep_every_legend():
     for a, lb in zip(axs, boxes, strict=True):
         assert not lb.overlaps(a.get_window_extent(r))
     plt.close(fig)
+
+
+def test_load_labels_lie_under_the_force_arrows_and_ids():
+    """The reference model's "lambda x 50 N" boxes hid its live-load arrowheads, the
+    joint forces' arrows and the ids "left" and "right": the labels now lie under them."""
+    sc = read_scene(EXAMPLES / "reference.json")
+    ax = rb.plot(sc, rb.check(sc), ids=True)
+    labels = [t for t in ax.texts if t.get_gid() == "rb-loads" and t.get_text().strip()]
+    (forces,) = by_gid(ax, "rb-forces")
+    ids = [t for t in ax.texts if t.get_text() in ("left", "right")]
+    assert labels and len(ids) == 2
+    assert max(t.get_zorder() for t in labels) < min(forces.get_zorder(),
+                                                     *(t.get_zorder() for t in ids))

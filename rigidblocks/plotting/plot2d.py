@@ -197,11 +197,13 @@ def _draw_loads(ax: Any, scene: Scene, lo: np.ndarray, hi: np.ndarray,
                                       "shrinkA": 0, "shrinkB": 0, "mutation_scale": 16})
         ann.set_gid("rb-loads")
         at = m.tip if m.kind != "point load" else m.tail
-        t = ax.text(at[0], at[1], " " + m.label, color=colour, fontsize=8, zorder=7,
+        # under the force arrows and the ids, its box half clear (a box over them hid
+        # the reference model's arrowheads and its blocks' ids)
+        t = ax.text(at[0], at[1], " " + m.label, color=colour, fontsize=8, zorder=4.5,
                     ha="left" if m.direction[0] >= 0 else "right",
                     va="top" if m.direction[1] < 0 else "bottom",
                     bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
-                          "alpha": 0.7})
+                          "alpha": 0.5})
         t.set_gid("rb-loads")
         kinds.add(m.live)
         lo = np.minimum(lo, np.minimum(m.tail, m.tip))
