@@ -70,17 +70,20 @@ class Contacts:
         of their joints' normals at a cosine below ``cos``): a key in its groove. Along
         those faces the blocks cannot slide with friction that dilates (opening one
         face closes the other)."""
+        if not self.n_joints:
+            return []
+        lo, hi = self.pairs.min(axis=1), self.pairs.max(axis=1)
+        # each normal from the pair's lower block into its higher one
+        n = np.where((self.pairs[:, 0] == lo)[:, None], self.normals, -self.normals)
+        key = lo.astype(np.int64) * (int(hi.max()) + 1) + hi
+        order = np.argsort(key, kind="stable")
+        _, start, count = np.unique(key[order], return_index=True, return_counts=True)
         out = []
-        by_pair: dict[tuple[int, int], list[int]] = {}
-        for k, (a, b) in enumerate(self.pairs):
-            by_pair.setdefault((int(a), int(b)), []).append(k)
-            by_pair.setdefault((int(b), int(a)), [])
-        for (a, b), ks in by_pair.items():
-            back = by_pair.get((b, a), [])
-            n = [self.normals[k] for k in ks] + [-self.normals[k] for k in back]
-            if a < b and len(n) > 1 and float(np.min(np.array(n) @ np.array(n).T)) < cos:
-                out.append((a, b))
-        return out
+        for s0, k in zip(start[count > 1], count[count > 1], strict=True):
+            js = order[s0:s0 + k]  # the joints of one pair that touches on several faces
+            if float(np.min(n[js] @ n[js].T)) < cos:
+                out.append((int(js.min()), int(lo[js[0]]), int(hi[js[0]])))
+        return [(a, b) for _, a, b in sorted(out)]  # in the order of their first joints
 
     def block_pairs_ids(self) -> list[tuple[str, str]]:
         """(id_i, id_j) of every joint."""
