@@ -131,17 +131,19 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
 
     at_hi = admissible(hi)[0]
     if at_hi is not True:
-        why = _not_at_hi(build(hi), name, f"{param}={hi:g}", at_hi, friction, method,
-                         load_factor)
-        if why.endswith("raise the upper bound (hi, --hi)"):
-            try:  # is there a thicker one to try? (t/R < 2 for an arch)
+        def thicker() -> str:
+            """Where the family cannot be built much thicker (t/R < 2 for an arch),
+            that; else the advice to raise the upper bound."""
+            try:
                 gen(**params, **{param: 1.5 * hi})
             except InputError as err:
-                why = (f"min_thickness: {name} is not admissible at the upper bound "
-                       f"{param}={hi:g}, and it cannot be built at {param}={1.5 * hi:g} "
-                       f"({err}): an upper bound between the two is all that is left" +
-                       (", or a smaller load factor" if load_factor else ""))
-        raise InputError(why)
+                return (f", and it cannot be built at {param}={1.5 * hi:g} ({err}): an "
+                        "upper bound between the two is all that is left" +
+                        (", or a smaller load factor" if load_factor else ""))
+            return "; raise the upper bound (hi, --hi)"
+
+        raise InputError(_not_at_hi(build(hi), name, f"{param}={hi:g}", at_hi, friction,
+                                    method, load_factor, thicker))
     at_lo, status = admissible(lo)
     if at_lo is not False:
         what = "already admissible" if at_lo else f"{status}, not certified inadmissible,"
@@ -159,13 +161,14 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
 
 
 def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction: Any,
-               method: str, load_factor: float = 0.0) -> str:
+               method: str, load_factor: float, thicker: Callable[[], str]) -> str:
     """Why the search cannot start at its upper bound ``where``, and what to change: the
     bound where the structure falls by rotation, the friction where it stands there
     without sliding, or the bound: the friction a ring needs falls with its thickness,
     then stops falling (the semicircular arch under its self-weight: f* = 0.347 at t/R =
     0.15, 0.309 at 0.3 and at 1), so that at f = 0.35 an upper bound of 0.12 is too
-    thin (it needs 0.378 there; the minimum is 0.1466), while at f = 0.3 none helps."""
+    thin (it needs 0.378 there; the minimum is 0.1466), while at f = 0.3 none helps.
+    ``thicker()`` ends the last case: raise the bound, or why that cannot help."""
     head = f"min_thickness: {name} is not admissible at the upper bound {where}"
     if at_hi is None:
         return (f"min_thickness: {name} could not be decided at the upper bound {where}; "
@@ -181,7 +184,7 @@ def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction
                     f"there without sliding (it needs {f} there): a thicker one may need "
                     "a smaller f (raise the upper bound: hi, --hi) or as large (give a "
                     "larger f: --friction)")
-    return f"{head}; raise the upper bound (hi, --hi)"
+    return head + thicker()
 
 
 __all__ = ["ThicknessResult", "min_thickness"]
