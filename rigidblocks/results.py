@@ -16,7 +16,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from .contacts import Contacts
-from .scene.model import friction_label
+from .scene.model import Scene, friction_label
 
 #: a contact force below this fraction of the state's largest counts as none (an open
 #: joint, or a joint's end that carries nothing): interior-point force states leave
@@ -219,6 +219,9 @@ class ForceState:
         thrust_order: joint indices along the structure (a chain of blocks), or all
             joints in detection order when the structure is not a chain.
         method: how the state was chosen, e.g. "least complementary energy".
+        thrust_chain: do the blocks form a chain, so that a thrust line joins the
+            thrust points in ``thrust_order``? (Elsewhere the points are resultants,
+            one per joint, and a line through them means nothing.)
     """
 
     normal: np.ndarray
@@ -230,6 +233,7 @@ class ForceState:
     thrust_points: np.ndarray
     thrust_order: np.ndarray
     method: str
+    thrust_chain: bool = False
 
     @property
     def thrust_line(self) -> np.ndarray:
@@ -244,6 +248,31 @@ def joint_force_vectors(contacts: Contacts, state: ForceState) -> np.ndarray:
     n = contacts.normals
     s = contacts.tangents[:, 0, :]
     return state.joint_normal[:, None] * n + state.joint_shear[:, None] * s
+
+
+def lower_block_forces(scene: Scene, contacts: Contacts, state: ForceState) -> np.ndarray:
+    """(m, 2) each 2D joint's resultant force on the lower of its two blocks, as the
+    pictures and the DXF export draw it (:func:`joint_force_vectors` gives it on the
+    second block, as the tables do): in the joints' own order the arrows of an arch's
+    two halves pointed opposite ways, up to the crown on one side, down to the abutment
+    on the other."""
+    vec = joint_force_vectors(contacts, state)
+    return np.where(second_is_higher(scene, contacts.pairs)[:, None], -vec, vec)
+
+
+def second_is_higher(scene: Scene, pairs: np.ndarray) -> np.ndarray:
+    """(m,) is each joint's second block the higher of its two (its force is drawn on
+    the other)? Where their centroids are level (a flat arch's voussoirs), the one
+    nearer the middle of the structure is the higher: the force goes out to the
+    supports (one way on one joint, the other on the next, before)."""
+    from .scene.geometry import block_weights
+
+    cen = block_weights(scene)[1]
+    y, x = cen[:, 1], np.abs(cen[:, 0] - 0.5 * (cen[:, 0].min() + cen[:, 0].max()))
+    a, b = pairs[:, 0], pairs[:, 1]
+    tol = 1e-9 * max(float(np.ptp(cen[:, 1])), float(np.ptp(cen[:, 0])), 1e-300)
+    level = np.abs(y[b] - y[a]) <= tol
+    return np.where(level, x[b] < x[a], y[b] > y[a])
 
 
 @dataclass(frozen=True, eq=False)

@@ -127,8 +127,12 @@ def test_cli_import_and_export(tmp_path, capsys):
     on = {lay: [e for e in msp if e.dxf.layer == lay] for lay in
           ("RB_BLOCKS", "RB_SUPPORTS", "RB_THRUST_LINE", "RB_FORCES")}
     assert len(on["RB_BLOCKS"]) == 3 and len(on["RB_SUPPORTS"]) == 1
-    assert len(on["RB_THRUST_LINE"]) == 1
+    # block A carries B and stands on the base beside C: not a chain of blocks, so no
+    # thrust line, a circle at each loaded joint's resultant (it drew a line from A's
+    # base up to A-B and down to C's base)
+    assert {e.dxftype() for e in on["RB_THRUST_LINE"]} == {"CIRCLE"}
     n_joints = rb.detect_contacts(sc).n_joints
+    assert len(on["RB_THRUST_LINE"]) == n_joints
     assert len(on["RB_FORCES"]) == 3 * n_joints  # shaft + two head strokes each
     # the exported blocks read back as the same scene geometry
     back = rb.read_dxf(dxf_out, layers=["RB_BLOCKS", "RB_SUPPORTS"],
@@ -364,3 +368,22 @@ def test_export_of_a_3d_scene_is_refused_before_its_analysis(tmp_path, capsys, m
     err = capsys.readouterr().err.strip()
     assert err.endswith("DXF export is for 2D scenes") and len(err.splitlines()) == 1
     assert not (tmp_path / "a.dxf").exists()
+
+
+def test_export_draws_the_thrust_line_of_a_chain_and_forces_on_the_lower_blocks(tmp_path):
+    """The arch under its self-weight, a chain of voussoirs: one thrust line, and each
+    joint's force arrow on its lower block, pointing down the ring to the abutments on
+    both halves, as the pictures draw them (the export drew it on each joint's second
+    block, up to the crown on one half)."""
+    sc = read_scene(EXAMPLES / "arch.json")
+    out = tmp_path / "arch.dxf"
+    rb.io.dxf.write_dxf(sc, out, rb.min_friction(sc))
+    msp = ezdxf.readfile(out).modelspace()
+    (line,) = [e for e in msp if e.dxf.layer == "RB_THRUST_LINE"]
+    assert line.dxftype() == "LWPOLYLINE"
+    n = rb.detect_contacts(sc).n_joints
+    assert len(line.get_points()) == n
+    strokes = [e for e in msp if e.dxf.layer == "RB_FORCES"]
+    shafts = strokes[::3]  # a shaft, then its two head strokes, per joint
+    assert len(shafts) == n
+    assert all(e.dxf.end[1] < e.dxf.start[1] for e in shafts)

@@ -69,9 +69,11 @@ def force_state(system: EquilibriumSystem, x: np.ndarray, method: str) -> ForceS
     with np.errstate(invalid="ignore", divide="ignore"):
         demand = np.where(Nj > 1e-12 * scale, Tabs / np.where(Nj > 0, Nj, 1.0),
                           np.where(Tabs > 1e-12 * scale, np.inf, 0.0))
+    walk = chain_walk(system)
     return ForceState(normal=N, shear=T, joint_normal=Nj, joint_shear=Tj, eccentricity=ecc,
                       demand=demand, thrust_points=thrust,
-                      thrust_order=chain_order(system), method=method)
+                      thrust_order=np.arange(m) if walk is None else walk, method=method,
+                      thrust_chain=walk is not None)
 
 
 def _load_scale(system: EquilibriumSystem) -> float:
@@ -107,25 +109,31 @@ def joint_breaches(system: EquilibriumSystem, x: np.ndarray, f_joint: np.ndarray
 
 
 def chain_order(system: EquilibriumSystem) -> np.ndarray:
-    """Joints in order along the structure when the blocks form a chain (an arch).
+    """Joints in order along the structure when the blocks form a chain (an arch), else
+    in detection order (:func:`chain_walk` tells which)."""
+    order = chain_walk(system)
+    return np.arange(system.contacts.n_joints) if order is None else order
+
+
+def chain_walk(system: EquilibriumSystem) -> np.ndarray | None:
+    """Joints in order along the structure where the blocks form a chain, else None.
 
     A chain: every free block has exactly two joints, to different neighbours, and the
-    walk from a support reaches every joint. Otherwise joints keep detection order.
+    walk from a support reaches every joint.
     """
     c = system.contacts
     m = c.n_joints
-    fallback = np.arange(m)
     free = system.block_rows >= 0
     deg = np.bincount(c.pairs.ravel(), minlength=len(free))
-    if m == 0 or np.any(deg[free] != 2):
-        return fallback
+    if m < 2 or np.any(deg[free] != 2):
+        return None
     by_block: dict[int, list[int]] = {}
     for k, (a, b) in enumerate(c.pairs):
         by_block.setdefault(int(a), []).append(k)
         by_block.setdefault(int(b), []).append(k)
     starts = [k for k in range(m) if not (free[c.pairs[k, 0]] and free[c.pairs[k, 1]])]
     if not starts:
-        return fallback
+        return None
     k = starts[0]
     a, b = c.pairs[k]
     here = int(b) if free[b] else int(a)
@@ -134,13 +142,13 @@ def chain_order(system: EquilibriumSystem) -> np.ndarray:
     while free[here]:
         nxt = [j for j in by_block[here] if j not in used]
         if len(nxt) != 1:
-            return fallback
+            return None
         k = nxt[0]
         used.add(k)
         order.append(k)
         a, b = c.pairs[k]
         here = int(b) if int(a) == here else int(a)
-    return np.array(order) if len(order) == m else fallback
+    return np.array(order) if len(order) == m else None
 
 
 def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray,

@@ -24,14 +24,16 @@ The layers :func:`write_dxf` gives an analysis (thrust line, force arrows, text)
 never read as blocks; ``layers`` names the layers to read in other drawings.
 
 Writing (:func:`write_dxf`): the blocks (supports on their own layer), and, given a
-result with a force state, the thrust line and the joint force arrows on layers of
-their own. The scene's metadata travels with the drawing: each block's polyline
-carries its id (XDATA of application ``RIGIDBLOCKS``), and the scene file without the
-block vertices (supports, unit weights, friction, loads, joint overrides, units,
-depth, load factor ...) is stored in an XRECORD ``RIGIDBLOCKS_SCENE`` of the drawing's root
-dictionary. Reading such a drawing restores the same scene: the geometry as written
-(no repair: it was a validated scene) when every block still carries its id; values
-given to :func:`read_dxf` replace the stored ones.
+result with a force state, the thrust line (through a chain of blocks; elsewhere a
+small circle at each loaded joint's resultant) and the joint force arrows (each on the
+lower block of its joint, as the pictures draw them) on layers of their own. The
+scene's metadata travels with the drawing: each block's polyline carries its id (XDATA
+of application ``RIGIDBLOCKS``), and the scene file without the block vertices
+(supports, unit weights, friction, loads, joint overrides, units, depth, load factor
+...) is stored in an XRECORD ``RIGIDBLOCKS_SCENE`` of the drawing's root dictionary.
+Reading such a drawing restores the same scene: the geometry as written (no repair: it
+was a validated scene) when every block still carries its id; values given to
+:func:`read_dxf` replace the stored ones.
 
 A drawing read without a unit weight (given or stored) has weightless blocks:
 ``import-dxf`` warns, and every analysis of a scene whose blocks weigh nothing says so
@@ -49,7 +51,7 @@ import numpy as np
 
 from ..answer import answer_block
 from ..errors import InputError
-from ..results import joint_force_vectors
+from ..results import joint_force_vectors, lower_block_forces, unloaded
 from ..scene.geometry import signed_area
 from ..scene.model import Scene, Units, make_block
 from .dxf_repair import DxfReport, Outline, line_loops, repair
@@ -468,12 +470,17 @@ def write_dxf(scene: Scene, path: str | os.PathLike, result: Any = None, *,
         from ..scene.geometry import scene_size
 
         c = result.contacts
-        line = state.thrust_line
-        if len(line) > 1:
-            msp.add_lwpolyline([tuple(p) for p in line], dxfattribs={"layer": LAYERS["thrust"]})
-        force = joint_force_vectors(c, state)
-        mag = np.linalg.norm(force, axis=1)
         size = scene_size(scene)
+        if state.thrust_chain:
+            msp.add_lwpolyline([tuple(p) for p in state.thrust_line],
+                               dxfattribs={"layer": LAYERS["thrust"]})
+        else:  # not a chain of blocks: each loaded joint's resultant, as the pictures
+            for p in state.thrust_points[~unloaded(c, state)[0]]:
+                if np.all(np.isfinite(p)):
+                    msp.add_circle(tuple(p), 0.005 * size,
+                                   dxfattribs={"layer": LAYERS["thrust"]})
+        force = lower_block_forces(scene, c, state)
+        mag = np.linalg.norm(force, axis=1)
         if force_scale is None:
             top = mag.max(initial=0.0)
             force_scale = 0.1 * size / top if top > 0 else 0.0

@@ -242,7 +242,7 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
                  force_scale: float | None, colorbar: bool, LineCollection: Any,
                  lo: np.ndarray, hi: np.ndarray, extra: list[Any]
                  ) -> tuple[np.ndarray, np.ndarray]:
-    from ..results import joint_force_vectors
+    from ..results import lower_block_forces
 
     c = result.contacts
     st = result.state
@@ -298,16 +298,11 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
         ax.figure.colorbar(lc, ax=ax, label=label, shrink=0.8, extend="max")
     # thrust line
     pts = st.thrust_points
-    order = np.asarray(st.thrust_order)
-    # a chain: every free block between two joints (as chain_order asks), each joint
-    # sharing a block with the next (the reference model, whose central blocks have three
-    # joints, drew a "thrust line" across its open middle joint)
-    deg = np.bincount(c.pairs.ravel(), minlength=len(scene.blocks))
-    chain = len(order) == m and m > 1 and bool(np.all(deg[~scene.support_mask] == 2)) \
-        and all(set(c.pairs[order[k]]) & set(c.pairs[order[k + 1]]) for k in range(m - 1))
+    # only through a chain of blocks (the reference model, whose central blocks have
+    # three joints, drew a "thrust line" across its open middle joint)
     line = st.thrust_line
     suffix = " (least-violation state, NOT admissible)" if not_admissible else ""
-    if chain:
+    if st.thrust_chain:
         (tl,) = ax.plot(line[:, 0], line[:, 1], "-", color="tab:red", lw=1.5, zorder=4,
                         label="thrust line" + suffix)
     else:  # the joints that carry a force (an open joint's dot sat on its middle)
@@ -324,11 +319,8 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
         sc.set_gid("rb-governing")
     # force arrows, scaled to a reference arrow drawn below the structure
     if not heat:
-        # each on the lower of its joint's two blocks (its second block's in the tables):
-        # in the joints' own order the arrows of an arch's two halves pointed opposite
-        # ways, up to the crown on one side, down to the abutment on the other
-        vec = joint_force_vectors(c, st)
-        vec = np.where(_second_is_higher(scene, c.pairs)[:, None], -vec, vec)
+        # each on the lower of its joint's two blocks (its second block's in the tables)
+        vec = lower_block_forces(scene, c, st)
         mag = np.linalg.norm(vec, axis=1)
         top = mag.max(initial=0.0)
         if top > 0:
@@ -351,19 +343,6 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
             extra.append(arrow_handle("tab:blue", f"joint force on its lower (or outer) "
                                       f"block (key arrow {ref:g} {unit}, below)"))
     return lo, hi
-
-
-def _second_is_higher(scene: Scene, pairs: np.ndarray) -> np.ndarray:
-    """(m,) is each joint's second block the higher of its two (its force is drawn on
-    the other)? Where their centroids are level (a flat arch's voussoirs), the one
-    nearer the middle of the structure is the higher: the force goes out to the
-    supports (one way on one joint, the other on the next, before)."""
-    cen = block_weights(scene)[1]
-    y, x = cen[:, 1], np.abs(cen[:, 0] - 0.5 * (cen[:, 0].min() + cen[:, 0].max()))
-    a, b = pairs[:, 0], pairs[:, 1]
-    tol = 1e-9 * max(float(np.ptp(cen[:, 1])), float(np.ptp(cen[:, 0])), 1e-300)
-    level = np.abs(y[b] - y[a]) <= tol
-    return np.where(level, x[b] < x[a], y[b] > y[a])
 
 
 def displaced_polygons(scene: Scene, velocities: np.ndarray, s: float,
