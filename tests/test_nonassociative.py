@@ -206,6 +206,24 @@ def test_single_box_3d():
     assert res.load_multiplier == pytest.approx(0.3, rel=RTOL)
 
 
+@pytest.mark.parametrize("dim", [2, 3])
+def test_a_block_lifted_off_its_base(dim):
+    """A block under an upward live body force lifts off at lambda* = 1, the load equal
+    to its weight (rigid-body statics), under either law. In 3D the fixed point, whose
+    forces are round-off of the loads at lambda = 1, failed its check (a residual of
+    9e-5 of its largest force read as a breach of Coulomb's law of 1): UNDECIDED."""
+    if dim == 2:
+        scene = make_scene([{"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+                            {"id": "B", "vertices": rect(0, 0, 1, 2)}],
+                           unit_weight=20.0, friction=0.6, live_body_force=[0, 1])
+    else:
+        d = json.loads(dumps_scene(build("box_stack", boxes=1, height=2.0, friction=0.6)))
+        scene = scene_from_dict({**d, "live_body_force": [0, 0, 1]})
+    res = rb.max_load_multiplier(scene, flow=NA)
+    assert res.status == "collapse"
+    assert res.load_multiplier == pytest.approx(1.0, rel=1e-6)
+
+
 # -- properties ------------------------------------------------------------------------
 WALLS = [dict(courses=c, blocks_per_course=b, friction=f)
          for c, b, f in [(2, 2, 0.4), (3, 2, 0.7), (3, 3, 0.9), (4, 2, 0.6)]]

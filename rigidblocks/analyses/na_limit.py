@@ -104,7 +104,8 @@ DUAL_ZERO = 1e-9
 class LimitRun:
     """One fixed-point run of the limit problem from one start.
 
-    ``lam`` the last multiplier; ``x`` the last state's link forces (scene units);
+    ``lam`` the last multiplier; ``x`` the last state's link forces (scaled: the
+    largest block load is 1);
     ``history`` (lambda, relative change of the normal forces) per step.
     """
 
@@ -142,13 +143,13 @@ class LimitRun:
     @property
     def resolution(self) -> float:
         """How far the state's normal forces are from the caps it was solved under,
-        relative to its largest force: the last step's change for a plain fixed point
+        relative to its largest force or to the largest block load where that is larger
+        (as :func:`certificate` measures): the last step's change for a plain fixed point
         (its caps are the previous iterate's forces), 0 for a mechanism's state (its
         caps are its own)."""
         if self.span is not None or not self.history or self.x is None:
             return 0.0
-        big = float(np.abs(self.x).max(initial=0.0))
-        return self.history[-1][1] * max(1.0, big) / max(big, 1e-300)
+        return self.history[-1][1]
 
 
 def carried_text(lam: float, lf: float, tol: float) -> str:
@@ -434,7 +435,7 @@ def _iterate(capped: CappedLimit, N_start: np.ndarray, start: str, step: Any, wh
                            f"fixed point after {k + extra} {what}", hist,
                            time.perf_counter() - t0)
             run.reason += f" (its normal forces {run.resolution:.1g} of its largest force " \
-                          "from their caps)"
+                          "or block load from their caps)"
             return run
         damped, best, since = _damped(beta, best, since, change)
         if damped != beta:
@@ -545,11 +546,13 @@ def certificate(cv: ConvexMethod, f: float, lam: float, x: np.ndarray
                 ) -> tuple[float, float]:
     """(equilibrium residual, breach of the Coulomb laws with the state's own normal
     forces), both relative to the largest force of the state ``x`` (scene units) at
-    multiplier ``lam``: the a-posteriori check of a fixed point."""
+    multiplier ``lam``, or to the largest load on a block where that is larger (a block
+    lifted off its base at lambda* = 1 has no forces but round-off, of which its
+    residual 9e-5 read as a breach of 1): the a-posteriori check of a fixed point."""
     from ..problems.formulation import joint_violations
 
     sysm = cv.system
-    scale = max(float(np.abs(x).max(initial=0.0)), 1e-300)
+    scale = max(float(np.abs(x).max(initial=0.0)), cv.scaling.force)
     res = sysm.A @ x + sysm.dead + lam * sysm.live
     prob, jr = build_max_load(sysm, cv.scaling, cv.f_joint(f), cv.pyramid)
     z = np.concatenate([x / cv.scaling.force, [lam]])

@@ -812,11 +812,11 @@ def _starts(na: ConvexNonAssociative, cv: ConvexMethod, up: Any, f: float
 def _limit_checks(cv: ConvexMethod, f: float, run: LimitRun,
                   bounds: tuple[float | None, float | None]) -> list[str]:
     """What the fixed point ``run`` fails of its a-posteriori checks (empty: none):
-    equilibrium to CERT_TOL of its largest force, Coulomb's law with its own normal
-    forces to CERT_TOL plus f times the distance of those forces from the caps it was
-    solved under (:attr:`~rigidblocks.analyses.na_limit.LimitRun.resolution`: a plain
-    fixed point's last change; the corbel dome's cone runs end 3e-6 of its largest
-    force from their caps), lo <= lambda <= hi (Drucker 1954; Radenkovic's
+    equilibrium to CERT_TOL of its largest force (or block load), Coulomb's law with
+    its own normal forces to CERT_TOL plus f times the distance of those forces from
+    the caps it was solved under (:attr:`~rigidblocks.analyses.na_limit.LimitRun.
+    resolution`: a plain fixed point's last change; the corbel dome's cone runs end
+    3e-6 of its largest force from their caps), lo <= lambda <= hi (Drucker 1954; Radenkovic's
     first theorem)."""
     lam, x = run.lam, run.x * cv.scaling.force
     eq, breach = certificate(cv, f, lam, x)
@@ -826,7 +826,7 @@ def _limit_checks(cv: ConvexMethod, f: float, run: LimitRun,
     if eq > CERT_TOL or breach > CERT_TOL + fmax * run.resolution:
         bad.append(f"the fixed point fails its check: equilibrium residual {eq:.2g}, "
                    f"breach of Coulomb's law with its own normal forces {breach:.2g} "
-                   f"(of the largest force; its normal forces settled to "
+                   f"(of the largest force or block load; its normal forces settled to "
                    f"{run.resolution:.2g})")
     lo, hi = bounds
     slack = 1e-6 * max(abs(lam), 1.0)
