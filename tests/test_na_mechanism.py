@@ -324,16 +324,20 @@ def test_a_walk_that_finds_no_state_goes_on_by_least_squares(monkeypatch):
 
 
 def test_a_walk_that_wanders_ends_before_unsettled_walk(monkeypatch):
-    """The 10 x 10 wall at f = 0.956 from X0: each vertex step of its walk changes 19 to
-    50 of its 254 to 278 rows (6.8 % and more), and the walk never settles; it ends at
-    WANDER_STEPS (15) instead of UNSETTLED_WALK (20), and the run reaches the same
-    collapse state as with the 20-step walk (0.5428571, one state), in 5 limit solves
-    fewer."""
+    """The 10 x 10 wall at f = 0.956 from X0: each vertex step of its walk changes many
+    of its 254 to 278 rows, and the walk never settles; a walk none of whose steps
+    changed fewer than WANDER of its rows ends at WANDER_STEPS (15) instead of
+    UNSETTLED_WALK (20), and the run reaches the same collapse state as with the
+    20-step walk (0.5428571, one state), in 5 limit solves fewer. The smallest share a
+    step changes follows the simplex path, which differs between machines (6.8 % on one,
+    5.4 % on another, around WANDER = 6 %): WANDER is set to 0 here, so that the walk
+    wanders on every machine."""
     from rigidblocks.analyses import na_mechanism
 
     f = 0.956
     scene = build("wall", courses=10, blocks_per_course=10, friction=f)
     na, cv = nonassociative._open(scene, "clarabel", NA)
+    monkeypatch.setattr(na_mechanism, "WANDER", 0.0)
     got = {}
     for steps in (na_mechanism.WANDER_STEPS, 10**9):
         monkeypatch.setattr(na_mechanism, "WANDER_STEPS", steps)
@@ -351,7 +355,7 @@ def test_a_walk_that_wanders_ends_before_unsettled_walk(monkeypatch):
     share = re.fullmatch(r"the mechanism did not settle within 15 vertex steps, each step "
                          r"changing at least ([0-9.]+)% of its rows after 4 least-squares "
                          r"steps", why)
-    assert share and 6.0 < float(share.group(1)) < 7.0, why
+    assert share and float(share.group(1)) > 0, why
     assert why_long.startswith("the mechanism did not settle within 20 vertex steps")
     assert short.lam == pytest.approx(long.lam, rel=1e-12)
     assert long.lam == pytest.approx(0.5428571, abs=1e-7)
