@@ -55,6 +55,9 @@ NA_BELOW_LOAD = ("NOT ADMISSIBLE: loaded from X0 it collapses below this load (t
 #: state a proof (the Arpino gate at f = 0.6: the distortion method's state reached from
 #: X0 at lambda = 0.12 is admissible, while 0.1187021 is the smallest multiplier of any
 #: state, `load --safe`)
+#: the bounds line's words for the capacity bound (rigidblocks.analyses.na_bounds)
+CAPACITY_LOWER = ("lower: capacity bound, every collapse state at lambda >= 0 (Radenkovic's "
+                  "second theorem with each joint's least normal force)")
 NA_ADMISSIBLE = ("ADMISSIBLE: it stands in the state reached from the elastic state X0 "
                  "(every joint in compression and within friction; sliding without "
                  "dilatancy: another state may collapse at a lower load)")
@@ -747,6 +750,8 @@ def flow_lines(res: Any) -> list[str]:
 
     starts = start_entries(res.history)
     done = "converged" if res.converged else "not converged"
+    if res.status == "collapse" and not res.converged:
+        done += " (the bounds meet: they give the answer)"
     if starts:  # the limit iteration: its steps, summed over the starts
         steps = " + ".join(str(h.get("iterations", "?")) for h in starts)
         each = f" ({steps})" if len(starts) > 1 else ""
@@ -769,7 +774,9 @@ def flow_lines(res: Any) -> list[str]:
         lo = "-" if b[0] is None else fmt_safe(b[0], 6, False)
         hi = "-" if b[1] is None else fmt_safe(b[1], 6, True)
         what = ["rounded outward"] if b[0] is not None or b[1] is not None else []
-        what.append("lower: the joints without dilatancy frictionless" if b[0] is not None
+        by = getattr(res, "lower_bound_by", None)
+        what.append(CAPACITY_LOWER if by == "capacity" else
+                    "lower: the joints without dilatancy frictionless" if b[0] is not None
                     else "lower, -: none with the joints without dilatancy frictionless")
         what.append("upper: associative" if b[1] is not None else
                     "upper, -: the associative analysis gives none")

@@ -652,9 +652,15 @@ class LoadResult(Result):
     tilt_angle_deg: float | None = None
     #: non-associative: [lo, hi], bounds on every non-associative collapse multiplier:
     #: hi the associative multiplier, lo the frictionless one (None where it is not
-    #: defined); the answer reached from X0 is not a lower bound (other states may
-    #: collapse earlier: rigidblocks.analyses.na_bounds)
+    #: defined) or the capacity bound (``lower_bound_by``); the answer reached from X0
+    #: is not a lower bound (other states may collapse earlier:
+    #: rigidblocks.analyses.na_bounds)
     load_multiplier_bounds: tuple[float | None, float | None] | None = None
+    #: what lo is: "frictionless" (the associative multiplier with the joints without
+    #: dilatancy frictionless: every collapse state) or "capacity" (the capacity bound,
+    #: :func:`rigidblocks.analyses.na_bounds.capacity_bound`: every collapse state at
+    #: lambda >= 0)
+    lower_bound_by: str | None = None
 
     def _answer(self) -> dict[str, Any]:
         out = {"load_multiplier": self.load_multiplier,
@@ -663,6 +669,7 @@ class LoadResult(Result):
         if self.flow != "associative":
             b = self.load_multiplier_bounds
             out["load_multiplier_bounds"] = None if b is None else list(b)
+            out["lower_bound_by"] = self.lower_bound_by
         # the joints the "governing" line names, as friction's JSON gives them: the
         # mechanism's moving joints by mode, fastest first (it gave the sliding ones
         # alone: [] for the segmental arch's four hinges); a method without a mechanism,

@@ -191,7 +191,10 @@ def test_examples_between_the_bounds(name, value):
     if value is not None:
         assert res.value == pytest.approx(value, abs=1e-9, rel=RTOL)
     collapse_state_holds(scene, res)
-    bracketed(res, rb.max_load_multiplier(scene, flow=NA, state=False))
+    x0 = rb.max_load_multiplier(scene, flow=NA, state=False)
+    bracketed(res, x0)
+    # `load`'s own lower bound (the capacity bound, computed by itself) is one too
+    assert x0.load_multiplier_bounds[0] <= res.value + 1e-9 * max(1.0, res.value)
 
 
 @pytest.mark.parametrize("name", ["reference_self_weight.json", "fig4a_bonded.json",

@@ -176,9 +176,14 @@ def test_single_block_both_laws(method, f):
     na = rb.max_load_multiplier(block(f=f), method=method, flow=NA)
     assert na.load_multiplier == pytest.approx(expect, rel=RTOL)
     assert na.load_multiplier_bounds[1] == pytest.approx(expect, rel=1e-6)
-    # the lower bound holds for every state: the frictionless multiplier (Drucker 1954),
-    # 0 here (without friction it slides at once), not the answer from X0
-    assert na.load_multiplier_bounds[0] == 0.0
+    # the lower bound holds for every state: not the answer from X0 but the capacity
+    # bound, each joint's shear capacity f times its least normal force over the
+    # admissible states (Radenkovic's second theorem): the block's normal force is its
+    # weight W in every state (vertical equilibrium), so that the capped structure
+    # slides at lambda = f or tips at b/h: min(f, b/h) again (the frictionless
+    # multiplier, 0, before)
+    assert na.load_multiplier_bounds[0] == pytest.approx(expect, rel=1e-7)
+    assert na.lower_bound_by == "capacity"
 
 
 @pytest.mark.parametrize("f", [0.3, 0.8])
@@ -222,6 +227,41 @@ def test_a_block_lifted_off_its_base(dim):
     res = rb.max_load_multiplier(scene, flow=NA)
     assert res.status == "collapse"
     assert res.load_multiplier == pytest.approx(1.0, rel=1e-6)
+
+
+@pytest.mark.parametrize("f", [0.8, 0.85])
+def test_the_inclined_corbel_arch_is_decided_by_its_bounds(f):
+    """The seed's inclined corbel arch (Fig. 7c) above its static f* = 0.7651: the limit
+    iteration from X0 stops after a few steps (the capped laws of the next normal forces
+    carry not even the dead load), and `load` and `check` were undecided from f = 0.77
+    to 0.87. Its capacity bound (each joint's least normal force over the admissible
+    states, Radenkovic's second theorem) meets the associative multiplier: every
+    collapse state at lambda >= 0 collapses there. Independent checks at f = 0.8: the
+    distortion method, the seed's procedure, gives the same multiplier, and the
+    mixed-integer LP over all states finds no collapse state below it. At f = 0.85 the
+    state the distortion iteration follows from X0 breaches the joint laws from 0.049
+    on, below the bound (no collapse state there): its answer says so."""
+    from rigidblocks.analyses.na_bounds import NONE_WITHIN_BOUNDS, safe_multiplier
+
+    scene = read_scene(EXAMPLES / "corbel_arch_inclined.json")
+    assoc = rb.max_load_multiplier(scene, friction=f, state=False)
+    res = rb.max_load_multiplier(scene, friction=f, flow=NA)
+    assert res.status == "collapse" and res.lower_bound_by == "capacity"
+    lo, hi = res.load_multiplier_bounds
+    assert lo == pytest.approx(hi, rel=1e-9) and hi == pytest.approx(assoc.load_multiplier,
+                                                                     rel=1e-7)
+    assert res.load_multiplier == pytest.approx(assoc.load_multiplier, rel=1e-7)
+    assert res.state is not None
+    seed = rb.max_load_multiplier(scene, friction=f, flow=NA, method="distortion",
+                                  state=False)
+    if f == 0.8:
+        assert seed.load_multiplier == pytest.approx(res.load_multiplier, rel=RTOL)
+    else:  # the state the seed's iteration follows breaches the laws from 0.049 on
+        assert seed.load_multiplier < lo
+        assert any("below the capacity bound" in n for n in seed.notes)
+    assert rb.check(scene, friction=f, load_factor=0.0, flow=NA).status == "admissible"
+    if f == 0.8:
+        assert safe_multiplier(scene, friction=f, flow=NA).status == NONE_WITHIN_BOUNDS
 
 
 # -- properties ------------------------------------------------------------------------
@@ -575,11 +615,21 @@ def test_cli_names_the_starts_and_bounds(tmp_path, capsys):
         "dilatancy frictionless; upper: associative)" in out.splitlines()
     assert main(["load", str(p)]) == 0
     assert "answer     lambda* = 0.770491, " in capsys.readouterr().out
-    # an end that is missing says why: the segmental arch's piers do not stand with
-    # their joints frictionless (it printed "[-, 0.287208]" alone)
-    assert main(["load", str(EXAMPLES / "segmental_arch.json"), "--flow", NA]) == 0
-    assert "bounds     [-, 0.287208]   (rounded outward; lower, -: none with the joints " \
+    # an end that is missing says why: an arch's voussoirs do not stand with their joints
+    # frictionless (it printed "[-, 0.287208]" alone); of more than 50 joints, the
+    # capacity bound is not computed
+    p60 = tmp_path / "arch60.json"
+    p60.write_text(dumps_scene(build("arch", voussoirs=60)))
+    assert main(["load", str(p60), "--flow", NA]) == 0
+    assert "bounds     [-, 0.144846]   (rounded outward; lower, -: none with the joints " \
         "without dilatancy frictionless; upper: associative)" in \
+        capsys.readouterr().out.splitlines()
+    # of up to 50 joints, the capacity bound: the segmental arch's meets the associative
+    # multiplier (every collapse state at lambda >= 0 collapses there)
+    assert main(["load", str(EXAMPLES / "segmental_arch.json"), "--flow", NA]) == 0
+    assert "bounds     [0.287207, 0.287208]   (rounded outward; lower: capacity bound, " \
+        "every collapse state at lambda >= 0 (Radenkovic's second theorem with each " \
+        "joint's least normal force); upper: associative)" in \
         capsys.readouterr().out.splitlines()
 
 

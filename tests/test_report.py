@@ -331,8 +331,9 @@ def test_undecided_result_reads_as_no_verdict_everywhere(block_on_base):
 
 def test_a_non_associative_report_gives_its_flow_and_bounds(tmp_path, capsys):
     """The terminal's "flow" and "bounds" lines of a non-associative answer are in the
-    page too (the reference model with self-weight: bounds [0, 2.4], 0 with the joints
-    that do not dilate frictionless, 2.4 associative); the page had neither."""
+    page too (the reference model with self-weight: bounds [0.6, 2.4], 0.6 the capacity
+    bound, the least multiplier of any state, derived in test_na_bounds.py, 2.4
+    associative); the page had neither."""
     import html
 
     src = str(EXAMPLES / "reference_self_weight.json")
@@ -343,5 +344,5 @@ def test_a_non_associative_report_gives_its_flow_and_bounds(tmp_path, capsys):
     assert main(["report", src, "--analysis", "load", "--flow", "non-associative", "-o",
                  str(out)]) == 0
     text = html.unescape(re.sub(r"<[^>]+>", " ", out.read_text()))
-    assert f"bounds: {bounds}" in text and bounds.startswith("[0, 2.4]")
+    assert f"bounds: {bounds}" in text and bounds.startswith("[0.6, 2.4]")
     assert "flow: non-associative: " in text

@@ -60,7 +60,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -93,6 +93,7 @@ from ..results import (
 from ..scene.model import NON_ASSOCIATIVE, Scene, flow_value, friction_label, friction_value
 from ..solvers import OPTIMAL
 from .na_limit import (
+    CARRY_TOL,
     CappedLimit,
     LimitRun,
     carried_text,
@@ -275,6 +276,8 @@ class NonAssociative(Method):
         self.fp_iterations = 0
         #: the result's :attr:`~rigidblocks.results.Result.cause`
         self.cause = ""
+        #: what the lower bound of a `load` is (:func:`_lower_bound`)
+        self.lower_by = "frictionless"
         self.converged_runs = 0
         #: the limit analyses answered by iterating the limit problem: True, or "walk"
         #: where they walked to a mechanism (2D)
@@ -622,10 +625,18 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
     any state (`load --safe`). The check then says that it does not stand, as `load`
     and `friction` say."""
     with cv.runner.afresh():
-        _, r = _x0_limit_run(na, cv, f)
+        verdict, r = _x0_limit_run(na, cv, f)
     if r is None or r.status == "unbounded":
         return ADMISSIBLE
     if not r.converged or _limit_checks(cv, f, r, (None, None)):
+        lower = _bound_carries(na, cv, f, lf, verdict)
+        if lower is not None:
+            na.notes.append(f"the limit fixed point from X0 (`load`'s answer) was not "
+                            f"reached ({r.reason}), but {lower[1]} on every collapse state "
+                            f"at lambda >= 0 is {fmt_safe(lower[0], 7, False)} >= "
+                            f"{lf:.10g}: loaded from X0, whose state under the dead load "
+                            "stands, it carries the load factor")
+            return ADMISSIBLE
         na.notes.append("the limit fixed point from X0 (`load`'s answer) was not reached "
                         f"({r.reason}): whether loading from X0 reaches lambda = {lf:.10g} is "
                         "undecided")
@@ -641,6 +652,30 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
                     "state shown)")
     na.cause = DIRECT_STANDS
     return INADMISSIBLE
+
+
+def _bound_carries(na: ConvexNonAssociative, cv: ConvexMethod, f: float, lf: float,
+                   verdict: str) -> tuple[float, str] | None:
+    """Where the limit run from X0 at friction ``f`` gives no answer: the lower bound on
+    every collapse state at lambda >= 0 (:func:`_lower_bound`) and how the notes name
+    it, where it carries ``lf`` >= 0 and X0's state under the dead load stands
+    (``verdict``, :func:`~rigidblocks.analyses.na_limit.reached_normals`): the answer
+    from X0 lies at or above it. None elsewhere. The inclined corbel arch's `check`
+    without dilatancy was undecided from f = 0.77 to 0.87 (the capped laws of a step
+    carry nothing); its capacity bound is the associative multiplier there."""
+    if verdict != ADMISSIBLE or lf < 0:
+        return None
+    seen = len(cv.notes)
+    try:
+        up = cv.load_limit(f, 1e-9)
+        if up.status != "collapse":
+            return None
+        lo, by = _lower_bound(cv, na.marked, f, max(float(up.value), 0.0))
+    finally:
+        del cv.notes[seen:]  # the bounds' own analyses: not this answer's notes
+    if lo is None or lo < lf - CARRY_TOL * max(abs(lf), 1.0):
+        return None
+    return lo, LOWER_WORDS[by]
 
 
 def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "clarabel",
@@ -678,13 +713,43 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
     hi = (up.value if up.value > 0 else 0.0) if up.status == "collapse" else None
     if up.status == "unbounded":
         na.notes.append("the associative multiplier is unbounded: no upper bound")
-    lo = _frictionless_bound(cv, na.marked, f)
+    lo, na.lower_by = _lower_bound(cv, na.marked, f, hi)
     bounds = (lo, math.inf if up.status == "unbounded" else hi)
     if isinstance(na, ConvexNonAssociative) and up.status in ("collapse", "unbounded"):
         res = _load_by_limit(na, cv, f, up, bounds, state, mechanism)
     else:
         res = _load_by_bisection(na, cv, f, up, hi, lo, bounds, state, rtol, mechanism)
+    if res.load_multiplier_bounds is not None:
+        res = replace(res, lower_bound_by=na.lower_by)
     return with_friction_governs(res, cv, f, 0.0) if res.status == "unstable" else res
+
+
+#: how the notes name a lower bound (:func:`_lower_bound`)
+LOWER_WORDS = {"frictionless": "the frictionless bound", "capacity": "the capacity bound"}
+
+
+def _lower_bound(cv: ConvexMethod, marked: np.ndarray, f: float, hi: float | None
+                 ) -> tuple[float | None, str]:
+    """The best lower bound on the non-associative collapse multipliers at friction f
+    below the associative one ``hi``, and what it is: the frictionless bound (every
+    collapse state; Drucker 1954), or where it is higher the capacity bound (every
+    collapse state at lambda >= 0; :func:`~rigidblocks.analyses.na_bounds.capacity_bound`,
+    computed on 2D scenes of up to 50 joints): the inclined corbel arch's bracket at
+    f = 0.8 was [-, 0.0212988] ("none with the joints frictionless"), now [0.0212987,
+    0.0212988]; the Arpino gate's at 0.6 [-, 0.122798], now [0.118702, 0.122798]."""
+    from .na_bounds import capacity_bound
+
+    lo = _frictionless_bound(cv, marked, f)
+    cap = capacity_bound(cv, marked, f, lo, hi)
+    return (lo, "frictionless") if cap is None else (cap, "capacity")
+
+
+def _closes(bounds: tuple[float | None, float | None]) -> bool:
+    """Do the bounds [lo, hi] meet (to 1e-9 of hi): every collapse state within them
+    collapses at hi?"""
+    lo, hi = bounds
+    return lo is not None and hi is not None and math.isfinite(hi) and \
+        lo >= hi - 1e-9 * max(abs(hi), 1.0)
 
 
 def _equals_static(fs: float, rtol: float) -> str:
@@ -778,9 +843,10 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
                                         tuple(trials), bool(last["converged"])),
                               load_multiplier_bounds=bounds, bracket=(br.lower, br.upper))
     if lo is not None and br.good < lo * (1.0 - 1e-6):
-        na.notes.append(f"the computed multiplier {br.good:.6g} is below the frictionless "
-                        f"bound {lo:.6g}: the state reached from the elastic state "
-                        "collapses earlier than some other state would")
+        na.notes.append(f"the computed multiplier {br.good:.6g} is below "
+                        f"{LOWER_WORDS[getattr(na, 'lower_by', 'frictionless')]} {lo:.6g}, "
+                        "a lower bound on every collapse state: the state reached from the "
+                        "elastic state is not one")
     return result("collapse", br.good, best_v, True, (br.lower, br.upper))
 
 
@@ -810,14 +876,15 @@ def _starts(na: ConvexNonAssociative, cv: ConvexMethod, up: Any, f: float
 
 
 def _limit_checks(cv: ConvexMethod, f: float, run: LimitRun,
-                  bounds: tuple[float | None, float | None]) -> list[str]:
+                  bounds: tuple[float | None, float | None], by: str = "frictionless"
+                  ) -> list[str]:
     """What the fixed point ``run`` fails of its a-posteriori checks (empty: none):
     equilibrium to CERT_TOL of its largest force (or block load), Coulomb's law with
     its own normal forces to CERT_TOL plus f times the distance of those forces from
     the caps it was solved under (:attr:`~rigidblocks.analyses.na_limit.LimitRun.
     resolution`: a plain fixed point's last change; the corbel dome's cone runs end
     3e-6 of its largest force from their caps), lo <= lambda <= hi (Drucker 1954; Radenkovic's
-    first theorem)."""
+    first theorem; ``by`` says what lo is, :data:`LOWER_WORDS`)."""
     lam, x = run.lam, run.x * cv.scaling.force
     eq, breach = certificate(cv, f, lam, x)
     fj = cv.f_joint(f)
@@ -832,8 +899,9 @@ def _limit_checks(cv: ConvexMethod, f: float, run: LimitRun,
     slack = 1e-6 * max(abs(lam), 1.0)
     if hi is not None and lam > hi + slack:
         bad.append(f"lambda = {lam:.9g} is above the associative multiplier {hi:.9g}")
-    if lo is not None and lam < lo - slack:
-        bad.append(f"lambda = {lam:.9g} is below the frictionless bound {lo:.9g}")
+    if lo is not None and lam < lo - slack and (lam >= 0 or by == "frictionless"):
+        # (the capacity bound holds for the collapse states at lambda >= 0)
+        bad.append(f"lambda = {lam:.9g} is below {LOWER_WORDS[by]} {lo:.9g}")
     return bad
 
 
@@ -882,16 +950,16 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
                         "one, unbounded")
         return LoadResult(**_fields(na, "max_load_multiplier", "unbounded", f, None, trials,
                                     True), load_multiplier_bounds=bounds)
-    if main is None or not main.converged:
-        na.notes.append("the elastic state X0 has no solution" if main is None else
-                        f"from {main.start}: {main.reason}")
-        return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
-                                    False), load_multiplier_bounds=bounds)
-    bad = _limit_checks(cv, f, main, bounds)
+    settled = main is not None and main.converged
+    bad = ["the elastic state X0 has no solution"] if main is None else \
+        [f"from {main.start}: {main.reason}"] if not settled else \
+        _limit_checks(cv, f, main, bounds, na.lower_by)
     if bad:
         na.notes.extend(bad)
+        if _closes(bounds) and (verdict == ADMISSIBLE or na.lower_by == "frictionless"):
+            return _at_the_bounds(na, cv, f, up, bounds, trials, state)
         return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
-                                    True), load_multiplier_bounds=bounds)
+                                    settled), load_multiplier_bounds=bounds)
     na.notes.append(SPREAD_NOTE + starts_text(trials))
     lam = float(main.lam)
     if lam < -main.carry_tol:
@@ -911,12 +979,45 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
         na.notes.append(f"the non-associative multiplier equals the associative one (the "
                         f"fixed point's {lam:.10g} is {abs(lam - hi):.1e} from it)")
         lam = float(hi)
+    elif na.lower_by == "capacity" and abs(lam - bounds[0]) <= 1e-6 * max(abs(lam), 1.0):
+        # (the Arpino gate at f = 0.6: 0.118702 from X0, its capacity bound too)
+        na.notes.append(f"the answer from X0 meets the capacity bound {bounds[0]:.9g}: no "
+                        "collapse state at lambda >= 0 carries less (it is the safe "
+                        "multiplier, the least over all states)")
     st = force_state(cv.system, main.x * cv.scaling.force,
                      "non-associative collapse state reached from the elastic state")
     mech, gov = _collapse_mechanism(cv, na, f, lam, st, mechanism)
     return LoadResult(**_fields(na, "max_load_multiplier", "collapse", f, lam, trials, True),
                       state=st if state else None, load_multiplier=lam,
                       load_multiplier_bounds=bounds, mechanism=mech, governing=gov)
+
+
+def _at_the_bounds(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
+                   bounds: tuple[float | None, float | None], trials: tuple, state: bool
+                   ) -> LoadResult:
+    """The answer where the limit iteration from X0 gives none but the bounds meet
+    (:func:`_closes`): every collapse state within them, the one from X0 among them,
+    collapses at the associative multiplier, beyond which no state is admissible. The
+    state and mechanism shown are the associative collapse state's. The inclined corbel
+    arch at f = 0.8: from either start the capped laws of the next step carry nothing;
+    the capacity bound is the associative multiplier 0.0212988, as the distortion
+    method's answer and the mixed-integer LP (no collapse state below it) say."""
+    hi = float(bounds[1])
+    word = LOWER_WORDS[na.lower_by]
+    na.notes.append(f"{word} meets the associative multiplier: every collapse state "
+                    + ("" if na.lower_by == "frictionless" else "at lambda >= 0 ")
+                    + f"collapses at lambda_a = {hi:.9g}, the one reached from X0 too (its "
+                    "state under the dead load stands), and beyond it no state is "
+                    "admissible whatever the flow rule; the state and mechanism shown are "
+                    "the associative collapse state's (its sliding joints dilate)")
+    res, prob = up.at.data
+    st = force_state(cv.system, cv.lscaling.forces(res.z[prob.cols["x"]]),
+                     "associative collapse state (the bounds meet)")
+    # (converged: False, the runs did not; the bounds answer)
+    return LoadResult(**_fields(na, "max_load_multiplier", "collapse", f, hi, trials, False),
+                      state=st if state else None, load_multiplier=hi,
+                      load_multiplier_bounds=bounds, mechanism=up.mechanism,
+                      governing=tuple(up.governing))
 
 
 @dataclass(frozen=True)
@@ -1301,9 +1402,22 @@ def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
                "carry_tol": r.carry_tol}
         trials.append(rec)
         v = _verdict(r, cv.scaling.force)
-        if r.status in ("unbounded", "infeasible"):
-            return Trial(fv, r.status == "unbounded", data=v)
+        if r.status == "unbounded":
+            return Trial(fv, True, data=v)
         if not r.converged or _limit_checks(cv, fv, r, (None, None)):
+            # as `check` judges it (:func:`_loaded_from_x0`): the state reached directly
+            # at lf stands, and the bound on every collapse state carries lf
+            lower = _bound_carries(na, cv, fv, lf, verdict)
+            direct = na.admissible(fv, lf) if lower is not None else None
+            if direct is not None and direct.status == ADMISSIBLE:
+                rec["carries"] = True
+                rec["by_bound"] = lower[0]
+                return Trial(fv, True, value=lower[0] - lf, data=direct)
+            if direct is not None and direct.status != INADMISSIBLE:
+                why = f"the state reached from X0 at lambda = {lf:.10g} is undecided"
+                return Trial(fv, None, data=direct, why=why)
+            if r.status == "infeasible":
+                return Trial(fv, False, data=v)
             return Trial(fv, None, data=v, why=r.reason)
         # whether it carries lf, to the accuracy of its multiplier
         rec["carries"] = r.carries(lf)
@@ -1393,11 +1507,15 @@ def _across_f_star(s: Any, lf: float, trials: list[dict[str, Any]]) -> str:
     0.5346341035199138, 0.500001342 at 0.534634104), so that `load --friction` at the
     printed f gives the printed lambda."""
     at, below = s.end(True), s.end(False)
-    tol = next(t["carry_tol"] for t in reversed(trials) if t.get("friction") == s.good)
+    rec = next(t for t in reversed(trials) if t.get("friction") == s.good)
     short = f"it carries {below.value + lf:.9g}" if math.isfinite(below.value) else \
         (below.why or "it does not carry it")
-    carried = (f"the limit fixed point from X0 carries lambda = {at.value + lf:.9g} "
-               f"{carried_text(at.value + lf, lf, tol)}" if math.isfinite(at.value) else
+    carried = (f"the limit fixed point from X0 gives no answer, but the state reached "
+               f"from X0 at {lf:.10g} stands and the lower bound on every collapse state "
+               f"at lambda >= 0 is {rec['by_bound']:.9g}" if "by_bound" in rec else
+               f"the limit fixed point from X0 carries lambda = {at.value + lf:.9g} "
+               f"{carried_text(at.value + lf, lf, rec['carry_tol'])}"
+               if math.isfinite(at.value) else
                "loaded from X0 it does not collapse: no multiplier of the live load makes "
                "the capped problem collapse")
     return f"at f = {s.good!r} {carried}; at f = {s.bad!r} {short}"
