@@ -287,22 +287,19 @@ def _max_load_lp(prob) -> float | None:
 def _capacity_bound(m: _Model, cv: ConvexMethod, marked: np.ndarray, f: float, lo: float,
                     hi: float, max_rounds: int = 100) -> tuple[float, int]:
     """A lower bound on every non-associative collapse multiplier in [lo, hi], and the
-    rounds it took (each one LP per marked joint, and one more).
+    rounds it took.
 
     Radenkovic's second theorem with the least normal forces: a collapse state at
-    lambda in [lo, b] is admissible at lambda, so each joint's normal force sum N_j is
-    at least N_j^min, its least over the admissible states at lo <= lambda <= b, and the
-    shear its slip dissipates against, f N_j + c_j a_j, at least k_j = max(0, f N_j^min
-    + c_j a_j). The mechanism (openings where N is at its tensile limit, slips without
+    lambda is admissible at lambda, so each joint's normal force sum N_j is at least
+    N_j^min, its least over the admissible states at lo <= lambda <= hi, and the shear
+    its slip dissipates against, f N_j + c_j a_j, at least k_j = max(0, f N_j^min +
+    c_j a_j). The mechanism (openings where N is at its tensile limit, slips without
     dilatancy) is a mechanism of the structure whose non-associative joints follow the
     cohesion-only law |T_j| <= k_j (normality for it: a slip without opening), and it
     dissipates there no more than in the collapse state: by the kinematic theorem that
-    structure's associative multiplier lam is a lower bound, so that no collapse state
-    lies in [lo, min(lam, b)) (with N_j^min = 0 it is the frictionless bound, Drucker
-    1954). lo rises to it, which raises N^min: repeated until it stops rising (or
-    reaches hi). Where a round over [lo, b] does not raise it, b is halved towards lo
-    (the least forces over fewer states rise), and doubled again after a round that
-    clears its whole interval."""
+    structure's associative multiplier is a lower bound (with N_j^min = 0 it is the
+    frictionless bound, Drucker 1954). The bound raises lo, which raises N^min: repeated
+    until it stops rising (or reaches hi)."""
     from ..problems.formulation import build_max_load
 
     sysm, sc = cv.system, cv.scaling
@@ -318,26 +315,19 @@ def _capacity_bound(m: _Model, cv: ConvexMethod, marked: np.ndarray, f: float, l
         mk = np.flatnonzero((marked & np.isfinite(fj))[pj])
         starts, at = np.arange(c.n_points + 1), mk
         fk, coh = fj[pj[mk]], (c.cohesion[pj] * c.point_areas / sc.force)[mk]
-    rounds, width = 0, hi - lo
+    rounds = 0
     while rounds < max_rounds and lo < hi:
         rounds += 1
-        top = min(lo + width, hi)
-        nmin = _least_normal(m, mk, starts, lo, top)
-        if nmin is None:  # no admissible state in [lo, top]: no collapse state either
-            lam: float | None = top
-        else:
-            cap = np.zeros(c.n_points)
-            cap[at] = np.maximum(fk * nmin, -coh)
-            prob, _ = build_max_load(sysm, sc, f_eff, cv.pyramid, cap=cap)
-            lam = _max_load_lp(prob)
-        if lam is None or lam <= lo + 1e-12 * max(abs(lo), 1.0):
-            if width <= 1e-6 * max(abs(lo), abs(hi), 1e-9):
-                break
-            width *= 0.5  # a narrower interval: larger least forces
-            continue
-        if lam >= top:  # the whole interval cleared: a wider one next
-            width *= 2.0
-        lo = min(lam, top)
+        nmin = _least_normal(m, mk, starts, lo, hi)
+        if nmin is None:  # no admissible state in [lo, hi]: no collapse state either
+            return hi, rounds
+        cap = np.zeros(c.n_points)
+        cap[at] = np.maximum(fk * nmin, -coh)
+        prob, _ = build_max_load(sysm, sc, f_eff, cv.pyramid, cap=cap)
+        lam = _max_load_lp(prob)
+        if lam is None or lam <= lo * (1 + 1e-12) + 1e-12:
+            break
+        lo = min(lam, hi)
     return lo, rounds
 
 
