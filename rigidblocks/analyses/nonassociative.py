@@ -94,8 +94,10 @@ from ..scene.model import NON_ASSOCIATIVE, Scene, flow_value, friction_label, fr
 from ..solvers import OPTIMAL
 from .na_limit import (
     CARRY_TOL,
+    MIN_DAMPING,
     CappedLimit,
     LimitRun,
+    _damped,
     carried_text,
     certificate,
     reached_normals,
@@ -108,10 +110,6 @@ from .search import BRACKET_ATOL, UNBOUNDED_AT, bisect
 FIXED_POINT_TOL = 1e-6
 #: iteration budget of one fixed-point run (convex path)
 FIXED_POINT_MAX_ITER = 300
-#: iterations in a row without a falling change before the damping is halved
-STALL = 12
-#: smallest damping factor
-MIN_DAMPING = 1.0 / 64
 #: relative accuracy of the non-associative multiplier and friction
 NA_RTOL = 1e-5
 #: the opening of the note that gives the answer from every start (:func:`starts_text`;
@@ -431,7 +429,7 @@ class ConvexNonAssociative(NonAssociative):
                                   math.inf, "the equilibrium equations have no solution",
                                   time=time.perf_counter() - t0)
         N = np.maximum(x0[nsl], -t_pt)
-        beta, rises = self.damping, 0
+        beta, best, since = self.damping, math.inf, 0
         past: list[np.ndarray] = []
         hist: list[float] = []
         x, R = x0, math.inf
@@ -463,13 +461,17 @@ class ConvexNonAssociative(NonAssociative):
                                   f"solves on normal forces with which the joints cannot "
                                   f"carry the shear (breach {R * F:.3g})", hist,
                                   time.perf_counter() - t0)
-            # damping: halved when the change has not fallen for STALL iterations in a
-            # row, or when the iterate returns to one of the last few (a cycle)
-            rises = rises + 1 if len(hist) > 1 and change > 0.95 * hist[-2] else 0
-            cycle = any(float(np.abs(Nn - p).max()) <= 1e-3 * change * scale
-                        for p in past[:-1])
-            if (rises >= STALL or cycle) and beta > MIN_DAMPING:
-                beta, rises = 0.5 * beta, 0
+            # damping: halved after STALL iterations without a new smallest change
+            # (:func:`~rigidblocks.analyses.na_limit._damped`; it was after STALL rises
+            # in a row, which an oscillation of period 14 never made: the inclined corbel
+            # arch at f = 0.8 and lambda = 0.0106, undecided after 300 solves, stands
+            # after 57), or when the iterate returns to one of the last few (a cycle)
+            damped, best, since = _damped(beta, best, since, change)
+            if damped == beta and beta > MIN_DAMPING and any(
+                    float(np.abs(Nn - p).max()) <= 1e-3 * change * scale for p in past[:-1]):
+                damped, since = 0.5 * beta, 0
+            if damped != beta:
+                beta = damped
                 past.clear()
             past.append(Nn)
             if len(past) > 6:
