@@ -387,3 +387,22 @@ def test_export_draws_the_thrust_line_of_a_chain_and_forces_on_the_lower_blocks(
     shafts = strokes[::3]  # a shaft, then its two head strokes, per joint
     assert len(shafts) == n
     assert all(e.dxf.end[1] < e.dxf.start[1] for e in shafts)
+
+
+def test_export_draws_no_arrow_on_an_open_joint(tmp_path):
+    """The reference model with self-weight at its collapse: the joint between the two
+    central blocks opens (no force but round-off), and drew an arrow of three strokes
+    of no length; each loaded joint keeps its arrow and its resultant's circle."""
+    from rigidblocks.results import unloaded
+
+    sc = read_scene(EXAMPLES / "reference_self_weight.json")
+    res = rb.max_load_multiplier(sc)
+    is_open = unloaded(res.contacts, res.state)[0]
+    assert is_open.any() and not is_open.all()
+    out = tmp_path / "ref.dxf"
+    rb.io.dxf.write_dxf(sc, out, res)
+    msp = ezdxf.readfile(out).modelspace()
+    strokes = [e for e in msp if e.dxf.layer == "RB_FORCES"]
+    assert len(strokes) == 3 * int((~is_open).sum())
+    assert all(math.dist(e.dxf.start, e.dxf.end) > 0 for e in strokes)
+    assert len([e for e in msp if e.dxf.layer == "RB_THRUST_LINE"]) == int((~is_open).sum())

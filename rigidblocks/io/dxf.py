@@ -471,11 +471,12 @@ def write_dxf(scene: Scene, path: str | os.PathLike, result: Any = None, *,
 
         c = result.contacts
         size = scene_size(scene)
+        is_open = unloaded(c, state)[0]
         if state.thrust_chain:
             msp.add_lwpolyline([tuple(p) for p in state.thrust_line],
                                dxfattribs={"layer": LAYERS["thrust"]})
         else:  # not a chain of blocks: each loaded joint's resultant, as the pictures
-            for p in state.thrust_points[~unloaded(c, state)[0]]:
+            for p in state.thrust_points[~is_open]:
                 if np.all(np.isfinite(p)):
                     msp.add_circle(tuple(p), 0.005 * size,
                                    dxfattribs={"layer": LAYERS["thrust"]})
@@ -484,8 +485,9 @@ def write_dxf(scene: Scene, path: str | os.PathLike, result: Any = None, *,
         if force_scale is None:
             top = mag.max(initial=0.0)
             force_scale = 0.1 * size / top if top > 0 else 0.0
-        for p, fvec, m in zip(state.thrust_points, force, mag, strict=True):
-            if m <= 0 or not np.all(np.isfinite(p)):
+        for p, fvec, m, off in zip(state.thrust_points, force, mag, is_open, strict=True):
+            # (an open joint's round-off drew an arrow of three strokes of no length)
+            if m <= 0 or off or not np.all(np.isfinite(p)):
                 continue
             q = p + force_scale * fvec
             msp.add_line(tuple(p), tuple(q), dxfattribs={"layer": LAYERS["forces"]})
