@@ -972,3 +972,19 @@ def test_the_breach_says_what_it_measures(tmp_path, capsys):
     code, out, _ = run(capsys, ["check", path, "--friction", "infinite"])
     assert ("answer     smallest breach of the joint laws 70 kN (the most tension, or shear "
             "beyond friction, it asks of a contact; 0 would stand)") in out, out
+
+
+def test_a_linear_program_clarabel_cannot_solve_is_answered_by_highs(capsys):
+    """The inclined corbel arch at f = 0.7651, below its static f* = 0.7651297008 (the
+    least friction any state needs; docs/seed-examples.md): no state is admissible at
+    any multiplier, so `load` is UNSTABLE under either flow rule. Clarabel ended at
+    MaxIterations on that maximum-load LP and `load` printed "solver failure" (exit 1);
+    HiGHS's simplex answers the LP, with its infeasibility certificate checked, and the
+    answer says that another back end solved it."""
+    path = str(EXAMPLES / "corbel_arch_inclined.json")
+    for flow in ([], ["--flow", "non-associative"]):
+        assert main(["load", path, "--friction", "0.7651", *flow]) == 0
+        assert "verdict    UNSTABLE" in capsys.readouterr().out
+    res = rb.max_load_multiplier(rb.read_scene(path), friction=0.7651, state=False)
+    assert res.status == "unstable"
+    assert all("highs answered it" in r for r in res.rejected)

@@ -14,7 +14,8 @@ and the declarations of the ladders), written out by hand from them:
   fails, the verdict's run where a back end's answer fails its check;
 * a force state: the defaults once; an estimate: the defaults, refined;
 * LP-only back ends hand a QP to Clarabel; an answer that fails its check, or a back
-  end that fails, is solved again by Clarabel up the tight form of the ladder.
+  end that fails, is solved again by Clarabel up the tight form of the ladder; a linear
+  program on which Clarabel fails is solved by HiGHS.
 """
 
 from __future__ import annotations
@@ -98,8 +99,11 @@ def checked(problem, res: SolverResult) -> SolverResult:
     return replace(res, residuals={"primal": 1e-3 if bad else 1e-12}, verified=not bad)
 
 
-LP = SimpleNamespace(P=None)
-QP = SimpleNamespace(P="a quadratic term")
+#: a problem without a quadratic term whose cones are not all linear (the HiGHS rescue of
+#: a linear program on which Clarabel fails does not apply: see
+#: test_a_linear_program_on_which_clarabel_fails_is_solved_by_highs)
+LP = SimpleNamespace(P=None, is_lp=False)
+QP = SimpleNamespace(P="a quadratic term", is_lp=False)
 
 # (name, back end, user settings, ladder, problem, known out of reach (tight, value),
 #  answers, expected asks, expected answer: a status, or the SolverFailure message,
@@ -302,6 +306,30 @@ def test_a_rejected_answer_is_noted_with_its_reason(monkeypatch):
         assert res.solver == C and res.residuals["rejected"] == why
         assert runner.rejected == [f"the relaxation problem ({why})"]
         assert runner.answered_by == ([solver, C] if answers[0] == "bad" else [C])
+
+
+def test_a_linear_program_on_which_clarabel_fails_is_solved_by_highs(monkeypatch):
+    """Clarabel, the default, failing on every rung of a linear program: HiGHS's simplex
+    answers it, checked, and the runner notes Clarabel's failure (the inclined corbel
+    arch's maximum-load LP at f = 0.7651, MaxIterations, was a "solver failure"); a
+    failure of both raises Clarabel's; a problem with cones is not handed on."""
+    monkeypatch.setattr(policy, "verified", checked)
+    lp = SimpleNamespace(P=None, is_lp=True)
+    script = Script(["few", "few", "few", "many", "ok"])
+    monkeypatch.setattr(policy, "solve", script)
+    runner = Runner(C)
+    res = runner.run(lp, "relaxation", VERDICT)
+    assert res.solver == "highs" and res.status == "optimal"
+    assert [a[0] for a in script.asked] == [C, C, C, C, "highs"]
+    why = "clarabel ended with status many #4; highs answered it"
+    assert runner.rejected == [f"the relaxation problem ({why})"]
+    assert res.residuals["rejected"] == why and runner.answered_by == ["highs"]
+    monkeypatch.setattr(policy, "solve", Script(["few", "few", "few", "many", "many"]))
+    with pytest.raises(SolverFailure, match="clarabel could not solve .* many #4"):
+        Runner(C).run(lp, "relaxation", VERDICT)
+    monkeypatch.setattr(policy, "solve", Script(["few", "few", "few", "many"]))
+    with pytest.raises(SolverFailure, match="many #4"):
+        Runner(C).run(LP, "relaxation", VERDICT)
 
 
 def test_attempt_is_one_checked_solve_or_none(monkeypatch):

@@ -31,7 +31,9 @@ back end is driven to that answer is decided here, in one place:
   status without a certificate to check, is solved again by :data:`FALLBACK` up the
   tight rungs of its ladder (``Ladder.again``); if that answer fails too, the result
   is returned with ``verified=False`` and its residuals, and the methods report the
-  verdict as undecided with them (never as a verdict).
+  verdict as undecided with them (never as a verdict). A linear program on which
+  :data:`FALLBACK` itself fails is solved by :data:`RESCUE` (HiGHS's simplex), checked
+  with its certificate, and noted as a rejected answer; a failure of both is reported.
 """
 
 from __future__ import annotations
@@ -128,6 +130,8 @@ CONFIRM_BY = {"clarabel": CONFIRM_SETTINGS, "cvxpy-clarabel": CONFIRM_SETTINGS,
 LP_ONLY = ("highs",)
 #: the back end that takes the problems an LP-only back end cannot
 FALLBACK = "clarabel"
+#: the back end that takes a linear program on which FALLBACK failed
+RESCUE = "highs"
 #: user tolerances looser than this are noted in results (verdicts compare with 1e-9)
 LOOSE_TOL = 1e-9
 _DONE = (OPTIMAL, INFEASIBLE, UNBOUNDED)
@@ -489,8 +493,10 @@ class Runner:
         try:
             res = self._climb(problem, what, ladder.rungs, self.solver, self.settings)
         except SolverFailure as exc:
-            if not check or self.solver == FALLBACK:
+            if not check:
                 raise
+            if self.solver == FALLBACK:
+                return self._simplex_rescue(problem, what, ladder, exc)
             # another back end that fails: the default one answers, and it is noted
             rejected = f"{exc.solver} ended with status {exc.status}"
         else:
@@ -510,22 +516,43 @@ class Runner:
         self.rejected.append(f"the {what} problem ({rejected})")
         return replace(again, residuals={**again.residuals, "rejected": rejected})
 
-    def _certified(self, problem: ConicProblem, what: str,
-                   res: SolverResult) -> SolverResult:
-        """An infeasible or unbounded answer of this runner's back end given without its
-        certificate, with the one the same back end finds for it
-        (:func:`~rigidblocks.solvers.base.certificate_problem`: a negative optimum),
-        else as it is."""
+    def _simplex_rescue(self, problem: ConicProblem, what: str, ladder: Ladder,
+                        exc: SolverFailure) -> SolverResult:
+        """A linear program on which the default back end failed, solved by HiGHS's
+        simplex (scipy's) and checked, its failure in :attr:`rejected`; anything else
+        raises that failure. Clarabel ends at MaxIterations on the inclined corbel
+        arch's maximum-load LP at f = 0.7651, just below its f*, where no state is
+        admissible at any multiplier: `load` printed "solver failure" where HiGHS proves
+        it UNSTABLE."""
+        if not problem.is_lp:
+            raise exc
+        try:
+            again = self._climb(problem, what, ladder.again or ladder.rungs, RESCUE, {})
+            again = verified(problem, self._certified(problem, what, again, RESCUE))
+        except SolverFailure:
+            raise exc from None
+        if not again.verified:
+            raise exc
+        rejected = f"{exc.solver} ended with status {exc.status}; {RESCUE} answered it"
+        self.rejected.append(f"the {what} problem ({rejected})")
+        return replace(again, residuals={**again.residuals, "rejected": rejected})
+
+    def _certified(self, problem: ConicProblem, what: str, res: SolverResult,
+                   solver: str | None = None) -> SolverResult:
+        """An infeasible or unbounded answer of this runner's back end (or of
+        ``solver``, at its defaults) given without its certificate, with the one the same
+        back end finds for it (:func:`~rigidblocks.solvers.base.certificate_problem`: a
+        negative optimum), else as it is."""
+        solver, settings = (self.solver, self.settings) if solver is None else (solver, {})
         missing = (res.status == INFEASIBLE and res.y is None
                    or res.status == UNBOUNDED and res.z is None)
         # Clarabel's statuses come with its own certificate tests (:func:`verified`)
         cp = certificate_problem(problem, res.status) \
-            if missing and self.solver != FALLBACK else None
+            if missing and solver != FALLBACK else None
         if cp is None:
             return res
         try:
-            ans = self._climb(cp, f"{what} certificate", VERDICT.rungs, self.solver,
-                              self.settings)
+            ans = self._climb(cp, f"{what} certificate", VERDICT.rungs, solver, settings)
         except SolverFailure:
             return res
         if ans.status != OPTIMAL or not ans.objective < 0:
