@@ -20,6 +20,7 @@ import numpy as np
 
 from .results import (
     BELOW_DEAD_LOAD,
+    BOUND_STANDS,
     DIRECT_STANDS,
     MODE_WORDS,
     STATIC_UNSTABLE,
@@ -58,6 +59,9 @@ NA_BELOW_LOAD = ("NOT ADMISSIBLE: loaded from X0 it collapses below this load (t
 #: the bounds line's words for the capacity bound (rigidblocks.analyses.na_bounds)
 CAPACITY_LOWER = ("lower: capacity bound, every collapse state at lambda >= 0 (Radenkovic's "
                   "second theorem with each joint's least normal force)")
+NA_BOUND_STANDS = ("ADMISSIBLE: no collapse state without dilatancy lies at or below this "
+                   "load (a lower bound on every one carries it): it stands whatever state "
+                   "it is in")
 NA_ADMISSIBLE = ("ADMISSIBLE: it stands in the state reached from the elastic state X0 "
                  "(every joint in compression and within friction; sliding without "
                  "dilatancy: another state may collapse at a lower load)")
@@ -445,7 +449,8 @@ class _Words:
             plain = np.isnan(np.asarray(c.override_friction, dtype=float)) & \
                 (np.asarray(c.cohesion, dtype=float) == 0)
             fd = max_demand(res.state, plain) if res.state is not None else None
-            state = ("the state reached from the elastic state X0" if na
+            state = ("the state reached from the elastic state X0" if na and "elastic"
+                     in getattr(res.state, "method", "elastic")
                      else "the state of least complementary energy")
             among = "" if plain.all() else " among the joints without a law of their own"
             if fd is not None and fd[0] > 1e-9:
@@ -460,6 +465,8 @@ class _Words:
                            "least friction any state needs is f* (`rigidblocks friction`)")
             elif fd is not None:
                 why.append(f"{state} uses no friction")
+            if na and res.cause == BOUND_STANDS:
+                return NA_BOUND_STANDS, "", "", why
             if na:
                 return NA_ADMISSIBLE, "", "", [*why, NA_ADMISSIBLE_WHY]
             return ("ADMISSIBLE: it stands (an equilibrium state with every joint in "
@@ -585,9 +592,16 @@ class _Words:
                        "ground tilted by this angle loads it the same way")
         span = next((h.get("span") for h in (res.history or ())
                      if isinstance(h, dict) and h.get("span")), None)
-        if span and span[0] < lm * (1 - 1e-6):
+        # (not below the lower bound, under which the states lie at lambda < 0: the
+        # inclined corbel arch at f = 0.7652, from -2.7e-5 where every state at lambda >=
+        # 0 collapses at its answer 4.314e-5)
+        bounds = getattr(res, "load_multiplier_bounds", None)
+        low = span[0] if span else None
+        if low is not None and bounds is not None and bounds[0] is not None:
+            low = max(low, bounds[0])
+        if low is not None and low < lm - max(1e-6 * abs(lm), 1e-8):
             why.append(f"not a lower bound: collapse states of the same mechanism carry "
-                       f"{self.lam} from {fmt_safe(span[0], 6, False)} (the answer is the "
+                       f"{self.lam} from {fmt_safe(low, 6, False)} (the answer is the "
                        "state reached from X0; `--safe` gives the smallest over all "
                        "states)")
         lf = self.scene.load_factor

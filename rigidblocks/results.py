@@ -360,8 +360,9 @@ class Result:
     #: the answer's verdict depends on it: BELOW_DEAD_LOAD ("unstable" `load`: the limit
     #: fixed point from X0 is below 0), DIRECT_STANDS ("inadmissible" `check`: the state
     #: reached from X0 at the load stands, the limit fixed point from X0 collapses below
-    #: it), STATIC_UNSTABLE ("unstable" `friction`: no friction admits a state at all);
-    #: "" otherwise
+    #: it), BOUND_STANDS ("admissible" `check`: a lower bound on every collapse state
+    #: carries the load, whichever state the iterations from X0 reach), STATIC_UNSTABLE
+    #: ("unstable" `friction`: no friction admits a state at all); "" otherwise
     cause: str = ""
 
     #: the statuses that are not verdicts: the method could not decide, or broke down
@@ -469,6 +470,7 @@ MODE_WORDS = (("hinge", "hinging"), ("slide", "sliding"),
 #: the values of :attr:`Result.cause`
 BELOW_DEAD_LOAD = "below_dead_load"
 DIRECT_STANDS = "direct_stands"
+BOUND_STANDS = "bound_stands"
 STATIC_UNSTABLE = "static_unstable"
 
 #: forces below this fraction of the largest joint force count as zero in the demand

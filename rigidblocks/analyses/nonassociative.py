@@ -80,6 +80,7 @@ from ..methods.relaxation import FRICTION_ATOL
 from ..problems.formulation import build_energy_qp, build_max_load, build_relaxation, flexibility
 from ..results import (
     BELOW_DEAD_LOAD,
+    BOUND_STANDS,
     DIRECT_STANDS,
     STATIC_UNSTABLE,
     CheckResult,
@@ -92,6 +93,7 @@ from ..results import (
 )
 from ..scene.model import NON_ASSOCIATIVE, Scene, flow_value, friction_label, friction_value
 from ..solvers import OPTIMAL
+from .na_capacity import capacity_bound
 from .na_limit import (
     CARRY_TOL,
     MIN_DAMPING,
@@ -316,6 +318,8 @@ class NonAssociative(Method):
               limit: bool = False) -> ForceState | None:
         if verdict.status != ADMISSIBLE or verdict.data is None:
             return None
+        if isinstance(verdict.data, ForceState):  # (:func:`_bound_state`)
+            return verdict.data
         return force_state(self.system, verdict.data.x,
                            "non-associative state reached from the elastic state")
 
@@ -534,7 +538,8 @@ def _fields(na: NonAssociative, analysis: str, status: str, friction: Any,
             ) -> dict[str, Any]:
     path = getattr(na, "limit_path", False)
     first = WALK_NOTE if path == "walk" else LIMIT_NOTE if path else STATE_NOTE
-    notes = [first] + [n for n in na.notes if n not in (STATE_NOTE, LIMIT_NOTE, WALK_NOTE)]
+    notes = [first] * (na.cause != BOUND_STANDS) + \
+        [n for n in na.notes if n not in (STATE_NOTE, LIMIT_NOTE, WALK_NOTE)]
     return dict(analysis=analysis, status=status, friction=friction_label(friction),
                 load_factor=load_factor, contacts=na.contacts, solver=na.solver,
                 n_solves=na.n_solves, solve_time=na.solve_time, iterations=na.iterations,
@@ -596,6 +601,23 @@ def _check(na: NonAssociative, cv: ConvexMethod, f: float, lf: float, state: boo
         trial["limit_status"] = status
         if status != ADMISSIBLE:  # the state shown breaches nothing
             admissible, violation = (False if status == INADMISSIBLE else None), math.nan
+    if status != ADMISSIBLE and isinstance(na, ConvexNonAssociative) and \
+            na.scene.has_live_load:
+        # a theorem decides where the iterations from X0 do not stand (not on the
+        # distortion path, the seed's procedure as it is)
+        lower = _bound_carries(na, cv, f, lf)
+        shown = (v if v.status == ADMISSIBLE else _bound_state(cv, f, lf, static)) \
+            if lower is not None else None
+        if shown is not None:
+            na.notes.append(f"{lower[1]} on every collapse state "
+                            + ("at lambda >= 0 " if "capacity" in lower[1] else "")
+                            + f"is {fmt_safe(lower[0], 7, False)} > {lf:.10g}: no "
+                            "collapse state lies at or below this load, so it stands "
+                            "whatever state it is in, that reached from X0 or another"
+                            + ("" if shown is v else " (the state shown: an admissible one "
+                               "of least complementary energy)"))
+            status, admissible, violation, na.cause = ADMISSIBLE, True, 0.0, BOUND_STANDS
+            st = na.state(f, lf, shown)
     return CheckResult(**_fields(na, "check", status, f, lf, (trial,),
                                  bool(d.converged) if d else None),
                        state=st if state else None, admissible=admissible,
@@ -627,18 +649,10 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
     any state (`load --safe`). The check then says that it does not stand, as `load`
     and `friction` say."""
     with cv.runner.afresh():
-        verdict, r = _x0_limit_run(na, cv, f)
+        _, r = _x0_limit_run(na, cv, f)
     if r is None or r.status == "unbounded":
         return ADMISSIBLE
     if not r.converged or _limit_checks(cv, f, r, (None, None)):
-        lower = _bound_carries(na, cv, f, lf, verdict)
-        if lower is not None:
-            na.notes.append(f"the limit fixed point from X0 (`load`'s answer) was not "
-                            f"reached ({r.reason}), but {lower[1]} on every collapse state "
-                            f"at lambda >= 0 is {fmt_safe(lower[0], 7, False)} >= "
-                            f"{lf:.10g}: loaded from X0, whose state under the dead load "
-                            "stands, it carries the load factor")
-            return ADMISSIBLE
         na.notes.append("the limit fixed point from X0 (`load`'s answer) was not reached "
                         f"({r.reason}): whether loading from X0 reaches lambda = {lf:.10g} is "
                         "undecided")
@@ -656,16 +670,18 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
     return INADMISSIBLE
 
 
-def _bound_carries(na: ConvexNonAssociative, cv: ConvexMethod, f: float, lf: float,
-                   verdict: str) -> tuple[float, str] | None:
-    """Where the limit run from X0 at friction ``f`` gives no answer: the lower bound on
-    every collapse state at lambda >= 0 (:func:`_lower_bound`) and how the notes name
-    it, where it carries ``lf`` >= 0 and X0's state under the dead load stands
-    (``verdict``, :func:`~rigidblocks.analyses.na_limit.reached_normals`): the answer
-    from X0 lies at or above it. None elsewhere. The inclined corbel arch's `check`
-    without dilatancy was undecided from f = 0.77 to 0.87 (the capped laws of a step
-    carry nothing); its capacity bound is the associative multiplier there."""
-    if verdict != ADMISSIBLE or lf < 0:
+def _bound_carries(na: NonAssociative, cv: ConvexMethod, f: float, lf: float
+                   ) -> tuple[float, str] | None:
+    """The lower bound on every collapse state at friction ``f`` (:func:`_lower_bound`;
+    the capacity bound holds for those at lambda >= 0) and how the notes name it, where
+    it lies above ``lf`` >= 0: no collapse state lies at or below ``lf``, so the structure
+    stands there whatever state it is in (a theorem: Radenkovic's second), whichever
+    state an iteration from X0 reaches. None elsewhere. The inclined corbel arch's
+    `check` without dilatancy at f = 0.8 was undecided under its dead load (the limit
+    iteration's capped laws carry nothing after a few steps) and NOT ADMISSIBLE at
+    lambda = 0.015 (the state reached from X0 directly breaches the laws), below its
+    capacity bound 0.0212988, where `load` says it collapses."""
+    if lf < 0:
         return None
     seen = len(cv.notes)
     try:
@@ -675,9 +691,23 @@ def _bound_carries(na: ConvexNonAssociative, cv: ConvexMethod, f: float, lf: flo
         lo, by = _lower_bound(cv, na.marked, f, max(float(up.value), 0.0))
     finally:
         del cv.notes[seen:]  # the bounds' own analyses: not this answer's notes
-    if lo is None or lo < lf - CARRY_TOL * max(abs(lf), 1.0):
+    # above lf, beyond the LPs' accuracy: a collapse state may lie at the bound itself
+    # (the frictionless bound of a wall, 0, says nothing of its dead load)
+    if lo is None or lo <= lf + CARRY_TOL * max(abs(lf), 1.0):
         return None
     return lo, LOWER_WORDS[by]
+
+
+def _bound_state(cv: ConvexMethod, f: float, lf: float, static: Verdict | None = None
+                 ) -> Verdict | None:
+    """An admissible state at ``lf`` (the least complementary energy one; statics is
+    the same under either flow rule) as a verdict whose data is that state, where a
+    bound, not a state reached from X0, says that the structure stands; ``static`` the
+    convex method's verdict there, where it was solved already."""
+    static = static or cv.admissible(f, lf)
+    if static.status != ADMISSIBLE:
+        return None
+    return Verdict(ADMISSIBLE, 0.0, (), cv.state(f, lf, static))
 
 
 def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "clarabel",
@@ -721,11 +751,13 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
         res = _load_by_limit(na, cv, f, up, bounds, state, mechanism)
     else:
         res = _load_by_bisection(na, cv, f, up, hi, lo, bounds, state, rtol, mechanism)
-    if res.load_multiplier_bounds is not None:
+    if res.load_multiplier_bounds is not None and res.load_multiplier_bounds[0] is not None:
         res = replace(res, lower_bound_by=na.lower_by)
     return with_friction_governs(res, cv, f, 0.0) if res.status == "unstable" else res
 
 
+#: a computed lower bound less this (relative): the accuracy of the LPs it rests on
+BOUND_MARGIN = 1e-9
 #: how the notes name a lower bound (:func:`_lower_bound`)
 LOWER_WORDS = {"frictionless": "the frictionless bound", "capacity": "the capacity bound"}
 
@@ -739,19 +771,29 @@ def _lower_bound(cv: ConvexMethod, marked: np.ndarray, f: float, hi: float | Non
     computed on 2D scenes of up to 50 joints): the inclined corbel arch's bracket at
     f = 0.8 was [-, 0.0212988] ("none with the joints frictionless"), now [0.0212987,
     0.0212988]; the Arpino gate's at 0.6 [-, 0.122798], now [0.118702, 0.122798]."""
-    from .na_bounds import capacity_bound
-
     lo = _frictionless_bound(cv, marked, f)
     cap = capacity_bound(cv, marked, f, lo, hi)
-    return (lo, "frictionless") if cap is None else (cap, "capacity")
+    if cap is None:
+        return lo, "frictionless"
+    # less the LPs' accuracy: a bound, on the safe side of the states it bounds (the
+    # corbel arch at f = 0.9: 0.04144903032439328 above its answer, the safe multiplier
+    # 0.04144903032439297, by round-off)
+    return cap - BOUND_MARGIN * max(abs(cap), 1.0), "capacity"
+
+
+def _proven(bounds: tuple[float | None, float | None]) -> bool:
+    """Is the lower bound of [lo, hi] above 0 (beyond the LPs' accuracy)? Then no
+    collapse state lies between 0 and it, under the dead load either, whichever state an
+    iteration from X0 reaches."""
+    return bounds[0] is not None and bounds[0] > CARRY_TOL * max(abs(bounds[0]), 1.0)
 
 
 def _closes(bounds: tuple[float | None, float | None]) -> bool:
-    """Do the bounds [lo, hi] meet (to 1e-9 of hi): every collapse state within them
-    collapses at hi?"""
+    """Do the bounds [lo, hi] meet (to 10 BOUND_MARGIN of hi): every collapse state
+    within them collapses at hi?"""
     lo, hi = bounds
     return lo is not None and hi is not None and math.isfinite(hi) and \
-        lo >= hi - 1e-9 * max(abs(hi), 1.0)
+        lo >= hi - 10 * BOUND_MARGIN * max(abs(hi), 1.0)
 
 
 def _equals_static(fs: float, rtol: float) -> str:
@@ -928,11 +970,17 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
                     "least_confined": r.least_confined, "reason": r.reason,
                     "carry_tol": r.carry_tol}
                    for r in runs)
+    proven = _proven(bounds)
     if verdict == INADMISSIBLE:
         if all(r.start != FROM_X0 for r in runs):  # the starts line names it too
             trials = ({"start": FROM_X0, "load_factor": None, "status": "unstable",
                        "iterations": 0, "converged": True, "reason": DEAD_LOAD_BREACH},
                       ) + trials
+        if proven:
+            na.notes.append(f"{DEAD_LOAD_BREACH}, but no collapse state lies below "
+                            f"{LOWER_WORDS[na.lower_by]}: it stands under the dead load in "
+                            "another state")
+            return _by_the_bounds(na, cv, f, up, bounds, trials, state)
         na.notes.append(f"{DEAD_LOAD_BREACH}: it does not stand" +
                         (f"; from the associative collapse state: lambda = "
                          f"{fmt_safe(runs[0].lam, 7, False)}"
@@ -958,16 +1006,34 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
         _limit_checks(cv, f, main, bounds, na.lower_by)
     if bad:
         na.notes.extend(bad)
-        if _closes(bounds) and (verdict == ADMISSIBLE or na.lower_by == "frictionless"):
-            return _at_the_bounds(na, cv, f, up, bounds, trials, state)
+        if proven:
+            return _by_the_bounds(na, cv, f, up, bounds, trials, state)
         return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
                                     settled), load_multiplier_bounds=bounds)
+    return _x0_answer(na, cv, f, up, main, bounds, trials, state, mechanism)
+
+
+def _x0_answer(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
+               main: LimitRun, bounds: tuple[float | None, float | None], trials: tuple,
+               state: bool, mechanism: str) -> LoadResult:
+    """`load`'s answer from the limit run from X0 ``main``, converged and checked: its
+    multiplier, or the bounds' where it lies below 0 and a lower bound above 0 holds
+    (:func:`_by_the_bounds`), or UNSTABLE where it lies below 0 and none does."""
+    proven = _proven(bounds)
     na.notes.append(SPREAD_NOTE + starts_text(trials))
     lam = float(main.lam)
+    if proven and lam < -main.carry_tol:
+        # a collapse state below the dead load (a reversed live load), not on the path
+        # from 0: the inclined corbel arch at f = 0.7652 reaches lambda = -2.7e-5 where
+        # its capacity bound is its associative multiplier 4.314e-5
+        na.notes.append(f"the limit fixed point from X0 lies at lambda = "
+                        f"{fmt_safe(lam, 7, False)} < 0, under a reversed live load; no "
+                        f"collapse state lies between 0 and {LOWER_WORDS[na.lower_by]}")
+        return _by_the_bounds(na, cv, f, up, bounds, trials, state)
     if lam < -main.carry_tol:
         # as `check` at the dead load says (:func:`_loaded_from_x0`): not a collapse
-        # multiplier, the dead load alone collapses it (the inclined corbel arch at
-        # f = 0.7652, just above its f* = 0.7651297: -2.7e-5)
+        # multiplier, the dead load alone collapses it (where no lower bound above 0
+        # says otherwise)
         na.notes.append(f"loaded from X0 it collapses at lambda = {fmt_safe(lam, 7, False)} "
                         "< 0: the limit fixed point from X0 does not carry even the dead "
                         "load")
@@ -994,24 +1060,33 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
                       load_multiplier_bounds=bounds, mechanism=mech, governing=gov)
 
 
-def _at_the_bounds(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
+def _by_the_bounds(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
                    bounds: tuple[float | None, float | None], trials: tuple, state: bool
                    ) -> LoadResult:
-    """The answer where the limit iteration from X0 gives none but the bounds meet
-    (:func:`_closes`): every collapse state within them, the one from X0 among them,
-    collapses at the associative multiplier, beyond which no state is admissible. The
-    state and mechanism shown are the associative collapse state's. The inclined corbel
-    arch at f = 0.8: from either start the capped laws of the next step carry nothing;
-    the capacity bound is the associative multiplier 0.0212988, as the distortion
-    method's answer and the mixed-integer LP (no collapse state below it) say."""
-    hi = float(bounds[1])
+    """The answer where the limit iteration from X0 gives none in [0, hi] but a lower
+    bound lo > 0 holds (:func:`_lower_bound`): where the bounds meet (:func:`_closes`)
+    every collapse state at lambda >= 0 lies at the associative multiplier hi, beyond
+    which no state is admissible, and that is the answer whatever the state (shown: the
+    associative collapse state's, and its mechanism); else the answer lies in [lo, hi],
+    undecided. The inclined corbel arch at f = 0.8: from either start the capped laws of
+    the next step carry nothing; the capacity bound is the associative multiplier
+    0.0212988, as the distortion method's answer and the mixed-integer LP (no collapse
+    state below it) say."""
+    lo, hi = bounds
     word = LOWER_WORDS[na.lower_by]
+    if not _closes(bounds):
+        na.notes.append(f"{word} and the associative multiplier bracket the answer: "
+                        f"[{lo:.9g}, {hi:.9g}]")
+        return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
+                                    False), load_multiplier_bounds=bounds,
+                          bracket=(float(lo), float(hi)))
+    hi = float(hi)
     na.notes.append(f"{word} meets the associative multiplier: every collapse state "
                     + ("" if na.lower_by == "frictionless" else "at lambda >= 0 ")
-                    + f"collapses at lambda_a = {hi:.9g}, the one reached from X0 too (its "
-                    "state under the dead load stands), and beyond it no state is "
-                    "admissible whatever the flow rule; the state and mechanism shown are "
-                    "the associative collapse state's (its sliding joints dilate)")
+                    + f"collapses at lambda_a = {hi:.9g}, whichever state it is in, and "
+                    "beyond it no state is admissible whatever the flow rule; the state "
+                    "and mechanism shown are the associative collapse state's (its sliding "
+                    "joints dilate)")
     res, prob = up.at.data
     st = force_state(cv.system, cv.lscaling.forces(res.z[prob.cols["x"]]),
                      "associative collapse state (the bounds meet)")
@@ -1407,25 +1482,40 @@ def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
         if r.status == "unbounded":
             return Trial(fv, True, data=v)
         if not r.converged or _limit_checks(cv, fv, r, (None, None)):
-            # as `check` judges it (:func:`_loaded_from_x0`): the state reached directly
-            # at lf stands, and the bound on every collapse state carries lf
-            lower = _bound_carries(na, cv, fv, lf, verdict)
-            direct = na.admissible(fv, lf) if lower is not None else None
-            if direct is not None and direct.status == ADMISSIBLE:
-                rec["carries"] = True
-                rec["by_bound"] = lower[0]
-                return Trial(fv, True, value=lower[0] - lf, data=direct)
-            if direct is not None and direct.status != INADMISSIBLE:
-                why = f"the state reached from X0 at lambda = {lf:.10g} is undecided"
-                return Trial(fv, None, data=direct, why=why)
+            # the lower bound on every collapse state may carry lf (as `check` judges
+            # it): a theorem, where the run gives nothing
+            by_bound = _trial_by_the_bound(na, cv, fv, lf, rec)
+            if by_bound is not None:
+                return by_bound
             if r.status == "infeasible":
                 return Trial(fv, False, data=v)
             return Trial(fv, None, data=v, why=r.reason)
         # whether it carries lf, to the accuracy of its multiplier
         rec["carries"] = r.carries(lf)
+        if not rec["carries"]:  # (the theorem, as `check` judges it)
+            by_bound = _trial_by_the_bound(na, cv, fv, lf, rec)
+            if by_bound is not None:
+                return by_bound
         return Trial(fv, rec["carries"], value=r.lam - lf, data=v)
 
     return oracle
+
+
+def _trial_by_the_bound(na: ConvexNonAssociative, cv: ConvexMethod, fv: float, lf: float,
+                        rec: dict[str, Any]) -> Any:
+    """A trial of the friction search decided by the lower bound on every collapse state
+    at ``fv`` (:func:`_bound_carries`), as `check` decides it: it carries ``lf`` (its
+    state an admissible one, :func:`_bound_state`), its record ``rec`` saying so; None
+    where the bound does not decide it."""
+    from ..methods.engine import Trial
+
+    lower = _bound_carries(na, cv, fv, lf)
+    st = _bound_state(cv, fv, lf) if lower is not None else None
+    if st is None:
+        return None
+    rec["carries"] = True
+    rec["by_bound"] = lower[0]
+    return Trial(fv, True, value=lower[0] - lf, data=st)
 
 
 def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, lim: Any,

@@ -169,10 +169,13 @@ def _safe(scene: Any, args: argparse.Namespace, res: Any) -> dict[str, Any]:
     except InputError as err:
         return {"status": "not computed", "reason": str(err).split(": ", 1)[-1]}
     return {"status": r.status, "value": r.value, "lower": r.lower, "upper": r.upper,
-            "nodes": r.nodes, "solve_time": r.solve_time, "notes": list(r.notes)}
+            "associative": r.associative, "nodes": r.nodes, "solve_time": r.solve_time,
+            "notes": list(r.notes)}
 
 
 def _safe_line(safe: dict[str, Any], answer: float | None) -> str:
+    from ..analyses.na_bounds import NONE_WITHIN_BOUNDS
+
     def num(v: Any, up: bool = False) -> str:
         # on the safe side, as the answer's: the smallest multiplier rounded down (it
         # read 0.05920323 above the answer's 0.0592032, one value 0.0592032278)
@@ -189,6 +192,12 @@ def _safe_line(safe: dict[str, Any], answer: float | None) -> str:
                      "state reached from the elastic state X0: the joints have another "
                      f"state that collapses at {num(safe['value'])}")
         return line
+    if st == NONE_WITHIN_BOUNDS and safe.get("associative") is not None:
+        # (it read "no collapse within the bounds: bracket [0.0212988, -]" beside the
+        # collapse at the associative multiplier, the inclined corbel arch at f = 0.8)
+        return (f"safe       lambda = {num(safe['associative'])}, the associative "
+                "multiplier: no collapse state lies below it (mixed-integer LP, within its "
+                "bounds on the forces and rates) and no state is admissible above it")
     why = f"; {safe['notes'][0]}" if safe.get("notes") else ""
     return (f"safe       {st}: bracket [{num(safe['lower'])}, {num(safe['upper'], True)}] "
             f"(mixed-integer LP{why})")
