@@ -56,7 +56,7 @@ NA_BELOW_LOAD = ("NOT ADMISSIBLE: loaded from X0 it collapses below this load (t
 #: state a proof (the Arpino gate at f = 0.6: the distortion method's state reached from
 #: X0 at lambda = 0.12 is admissible, while 0.1187021 is the smallest multiplier of any
 #: state, `load --safe`)
-#: the bounds line's words for the capacity bound (rigidblocks.analyses.na_bounds)
+#: the bounds line's words for the capacity bound (rigidblocks.analyses.na_capacity)
 CAPACITY_LOWER = ("lower: capacity bound, every collapse state at lambda >= 0 (Radenkovic's "
                   "second theorem with each joint's least normal force)")
 NA_BOUND_STANDS = ("ADMISSIBLE: no collapse state without dilatancy lies at or below this "

@@ -72,6 +72,7 @@ ANSWERS = {
     "many": ("failure", REFINE_WITHIN, False, False),  # not within it
     "met": ("failure", 12, True, False),  # last iterate meets the next solve's
     "met-many": ("failure", 150, True, False),
+    "none": ("infeasible", 10, False, False),  # with a certificate that passes
 }
 
 
@@ -88,7 +89,9 @@ class Script:
         assert self.answers, f"solve #{len(self.asked)} not scripted: {self.asked[-1]}"
         tag = self.answers.pop(0)
         status, iterations, met, bad = ANSWERS[tag]
-        return SolverResult(status, None, None, 1.0 if status == "optimal" else math.nan,
+        # (an infeasible answer with its certificate, the duals)
+        y = [0.0] if status == "infeasible" else None
+        return SolverResult(status, None, y, 1.0 if status == "optimal" else math.nan,
                             solver, f"{tag} #{len(self.asked)}", iterations=iterations,
                             next_met=met)
 
@@ -309,24 +312,27 @@ def test_a_rejected_answer_is_noted_with_its_reason(monkeypatch):
 
 
 def test_a_linear_program_on_which_clarabel_fails_is_solved_by_highs(monkeypatch):
-    """Clarabel, the default, failing on every rung of a linear program: HiGHS's simplex
-    answers it, checked, and the runner notes Clarabel's failure (the inclined corbel
-    arch's maximum-load LP at f = 0.7651, MaxIterations, was a "solver failure"); a
-    failure of both raises Clarabel's; a problem with cones is not handed on."""
+    """Clarabel, the default, failing on every rung of a linear program that HiGHS's
+    simplex proves infeasible, its certificate checked: that is the answer, and the
+    runner notes Clarabel's failure (the inclined corbel arch's maximum-load LP at f =
+    0.7651, MaxIterations, was a "solver failure"). HiGHS's optimum is not taken (its
+    accuracy is its tolerances' on the problem's scale), nor its failure: Clarabel's is
+    raised; a problem with cones is not handed on."""
     monkeypatch.setattr(policy, "verified", checked)
     lp = SimpleNamespace(P=None, is_lp=True)
-    script = Script(["few", "few", "few", "many", "ok"])
+    script = Script(["few", "few", "few", "many", "none"])
     monkeypatch.setattr(policy, "solve", script)
     runner = Runner(C)
     res = runner.run(lp, "relaxation", VERDICT)
-    assert res.solver == "highs" and res.status == "optimal"
+    assert res.solver == "highs" and res.status == "infeasible"
     assert [a[0] for a in script.asked] == [C, C, C, C, "highs"]
     why = "clarabel ended with status many #4; highs answered it"
     assert runner.rejected == [f"the relaxation problem ({why})"]
     assert res.residuals["rejected"] == why and runner.answered_by == ["highs"]
-    monkeypatch.setattr(policy, "solve", Script(["few", "few", "few", "many", "many"]))
-    with pytest.raises(SolverFailure, match="clarabel could not solve .* many #4"):
-        Runner(C).run(lp, "relaxation", VERDICT)
+    for highs in ("ok", "many"):
+        monkeypatch.setattr(policy, "solve", Script(["few", "few", "few", "many", highs]))
+        with pytest.raises(SolverFailure, match="clarabel could not solve .* many #4"):
+            Runner(C).run(lp, "relaxation", VERDICT)
     monkeypatch.setattr(policy, "solve", Script(["few", "few", "few", "many"]))
     with pytest.raises(SolverFailure, match="many #4"):
         Runner(C).run(LP, "relaxation", VERDICT)

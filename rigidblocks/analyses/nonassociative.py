@@ -93,7 +93,6 @@ from ..results import (
 )
 from ..scene.model import NON_ASSOCIATIVE, Scene, flow_value, friction_label, friction_value
 from ..solvers import OPTIMAL
-from .na_capacity import capacity_bound
 from .na_limit import (
     CARRY_TOL,
     MIN_DAMPING,
@@ -771,6 +770,8 @@ def _lower_bound(cv: ConvexMethod, marked: np.ndarray, f: float, hi: float | Non
     computed on 2D scenes of up to 50 joints): the inclined corbel arch's bracket at
     f = 0.8 was [-, 0.0212988] ("none with the joints frictionless"), now [0.0212987,
     0.0212988]; the Arpino gate's at 0.6 [-, 0.122798], now [0.118702, 0.122798]."""
+    from .na_capacity import capacity_bound  # (scipy's LPs: not at every check's start)
+
     lo = _frictionless_bound(cv, marked, f)
     cap = capacity_bound(cv, marked, f, lo, hi)
     if cap is None:

@@ -32,8 +32,9 @@ back end is driven to that answer is decided here, in one place:
   tight rungs of its ladder (``Ladder.again``); if that answer fails too, the result
   is returned with ``verified=False`` and its residuals, and the methods report the
   verdict as undecided with them (never as a verdict). A linear program on which
-  :data:`FALLBACK` itself fails is solved by :data:`RESCUE` (HiGHS's simplex), checked
-  with its certificate, and noted as a rejected answer; a failure of both is reported.
+  :data:`FALLBACK` itself fails and which :data:`RESCUE` (HiGHS's simplex) proves
+  infeasible or unbounded, its certificate checked, has that answer, noted as a
+  rejected one; anything else is reported as the failure.
 """
 
 from __future__ import annotations
@@ -518,12 +519,15 @@ class Runner:
 
     def _simplex_rescue(self, problem: ConicProblem, what: str, ladder: Ladder,
                         exc: SolverFailure) -> SolverResult:
-        """A linear program on which the default back end failed, solved by HiGHS's
-        simplex (scipy's) and checked, its failure in :attr:`rejected`; anything else
-        raises that failure. Clarabel ends at MaxIterations on the inclined corbel
-        arch's maximum-load LP at f = 0.7651, just below its f*, where no state is
-        admissible at any multiplier: `load` printed "solver failure" where HiGHS proves
-        it UNSTABLE."""
+        """A linear program on which the default back end failed, proven infeasible or
+        unbounded by HiGHS's simplex (scipy's) with a certificate that passes its check,
+        its failure in :attr:`rejected`; anything else raises that failure. Clarabel
+        ends at MaxIterations on the inclined corbel arch's maximum-load LP at f =
+        0.7651, just below its f*, where no state is admissible at any multiplier:
+        `load` printed "solver failure" where HiGHS proves it UNSTABLE. An optimum of
+        HiGHS is not taken: its accuracy is its tolerances' on the problem's scale (the
+        4 x 4 wall at f = 1e6, where Clarabel ends AlmostSolved: 1.99999 against the
+        closed form 2, its residuals within the check)."""
         if not problem.is_lp:
             raise exc
         try:
@@ -531,7 +535,7 @@ class Runner:
             again = verified(problem, self._certified(problem, what, again, RESCUE))
         except SolverFailure:
             raise exc from None
-        if not again.verified:
+        if not again.verified or again.status == OPTIMAL:
             raise exc
         rejected = f"{exc.solver} ended with status {exc.status}; {RESCUE} answered it"
         self.rejected.append(f"the {what} problem ({rejected})")
