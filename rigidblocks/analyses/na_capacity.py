@@ -36,7 +36,8 @@ MAX_JOINTS = 50
 
 @dataclass(frozen=True, eq=False)
 class _Model:
-    """The data of the mixed-integer program (scaled, see the module docstring)."""
+    """The data of the safe multiplier's mixed-integer program, and of the capacity
+    bound's LPs (scaled; the equations are in :mod:`rigidblocks.analyses.na_bounds`)."""
 
     A: sp.csr_matrix  # (ne, n) equilibrium
     live: np.ndarray  # (ne,) scaled live column
