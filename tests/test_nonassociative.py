@@ -271,6 +271,23 @@ def test_the_inclined_corbel_arch_is_decided_by_its_bounds(f):
         assert safe_multiplier(scene, friction=f, flow=NA).status == NONE_WITHIN_BOUNDS
 
 
+def test_a_check_below_the_bound_stands_in_every_state(capsys):
+    """The reference model with self-weight at lambda = 0.5, below its capacity bound
+    0.6 (its safe multiplier, a closed form in test_na_bounds.py): the state reached from
+    X0 stands, and `check` said "another state may collapse at a lower load", which the
+    bound excludes: it stands in every state. At 0.7, above the bound, the caveat
+    stays."""
+    path = str(EXAMPLES / "reference_self_weight.json")
+    assert main(["check", path, "--flow", NA, "--load-factor", "0.5"]) == 0
+    out = capsys.readouterr().out
+    assert "verdict    ADMISSIBLE: no collapse state without dilatancy lies at or below " \
+        "this load" in out and "may lie below this load factor" not in out
+    assert main(["check", path, "--flow", NA, "--load-factor", "0.7"]) == 0
+    out = capsys.readouterr().out
+    assert "ADMISSIBLE: it stands in the state reached from the elastic state X0" in out
+    assert "may lie below this load factor" in out
+
+
 def test_the_state_reached_from_x0_settles_where_its_changes_oscillate():
     """The inclined corbel arch at f = 0.8 under lambda = 0.0106 (half its collapse
     multiplier, test above): the iteration from X0 oscillates with a period of about 14

@@ -600,10 +600,12 @@ def _check(na: NonAssociative, cv: ConvexMethod, f: float, lf: float, state: boo
         trial["limit_status"] = status
         if status != ADMISSIBLE:  # the state shown breaches nothing
             admissible, violation = (False if status == INADMISSIBLE else None), math.nan
-    if status != ADMISSIBLE and isinstance(na, ConvexNonAssociative) and \
-            na.scene.has_live_load:
-        # a theorem decides where the iterations from X0 do not stand (not on the
-        # distortion path, the seed's procedure as it is)
+    if isinstance(na, ConvexNonAssociative) and na.scene.has_live_load:
+        # a theorem decides where the iterations from X0 do not stand, and says more
+        # where they do: it stands in every state, not only in the one from X0 (the
+        # reference model with self-weight at 0.5, below its bound 0.6, read "another
+        # state may collapse at a lower load"); not on the distortion path, the seed's
+        # procedure as it is
         lower = _bound_carries(na, cv, f, lf)
         shown = (v if v.status == ADMISSIBLE else _bound_state(cv, f, lf, static)) \
             if lower is not None else None
@@ -615,8 +617,9 @@ def _check(na: NonAssociative, cv: ConvexMethod, f: float, lf: float, state: boo
                             "whatever state it is in, that reached from X0 or another"
                             + ("" if shown is v else " (the state shown: an admissible one "
                                "of least complementary energy)"))
+            if status != ADMISSIBLE:
+                st = na.state(f, lf, shown)
             status, admissible, violation, na.cause = ADMISSIBLE, True, 0.0, BOUND_STANDS
-            st = na.state(f, lf, shown)
     return CheckResult(**_fields(na, "check", status, f, lf, (trial,),
                                  bool(d.converged) if d else None),
                        state=st if state else None, admissible=admissible,
