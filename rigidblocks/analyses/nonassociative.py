@@ -1607,9 +1607,11 @@ def _across_f_star(s: Any, lf: float, trials: list[dict[str, Any]]) -> str:
     rec = next(t for t in reversed(trials) if t.get("friction") == s.good)
     short = f"it carries {below.value + lf:.9g}" if math.isfinite(below.value) else \
         (below.why or "it does not carry it")
-    carried = (f"the limit fixed point from X0 gives no answer, but the state reached "
-               f"from X0 at {lf:.10g} stands and the lower bound on every collapse state "
-               f"at lambda >= 0 is {rec['by_bound']:.9g}" if "by_bound" in rec else
+    # (a trial the bound decides: the run from X0 may have given no answer or one
+    # below lf, and the state shown is an admissible one, not the one reached from X0)
+    carried = (f"the lower bound on every collapse state at lambda >= 0 is "
+               f"{rec['by_bound']:.9g} > {lf:.10g}: it stands whatever state it is in"
+               if "by_bound" in rec else
                f"the limit fixed point from X0 carries lambda = {at.value + lf:.9g} "
                f"{carried_text(at.value + lf, lf, rec['carry_tol'])}"
                if math.isfinite(at.value) else
