@@ -893,7 +893,7 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
                               load_multiplier_bounds=bounds, bracket=(br.lower, br.upper))
     if lo is not None and br.good < lo * (1.0 - 1e-6):
         na.notes.append(f"the computed multiplier {br.good:.6g} is below "
-                        f"{LOWER_WORDS[getattr(na, 'lower_by', 'frictionless')]} {lo:.6g}, "
+                        f"{LOWER_WORDS[na.lower_by]} {lo:.6g}, "
                         "a lower bound on every collapse state: the state reached from the "
                         "elastic state is not one")
     return result("collapse", br.good, best_v, True, (br.lower, br.upper))
