@@ -686,16 +686,19 @@ def _bound_carries(na: NonAssociative, cv: ConvexMethod, f: float, lf: float
     if lf < 0:
         return None
     seen = len(cv.notes)
+    tol = CARRY_TOL * max(abs(lf), 1.0)
     try:
         up = cv.load_limit(f, 1e-9)
-        if up.status != "collapse":
+        # (every lower bound lies at or below the associative multiplier: none of them
+        # carries lf where that does not)
+        if up.status != "collapse" or up.value <= lf + tol:
             return None
         lo, by = _lower_bound(cv, na.marked, f, max(float(up.value), 0.0))
     finally:
         del cv.notes[seen:]  # the bounds' own analyses: not this answer's notes
     # above lf, beyond the LPs' accuracy: a collapse state may lie at the bound itself
     # (the frictionless bound of a wall, 0, says nothing of its dead load)
-    if lo is None or lo <= lf + CARRY_TOL * max(abs(lf), 1.0):
+    if lo is None or lo <= lf + tol:
         return None
     return lo, LOWER_WORDS[by]
 
