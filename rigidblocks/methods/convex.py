@@ -25,7 +25,7 @@ from ..problems.formulation import Scaling
 from ..results import fmt_bracket
 from ..scene.model import Scene
 from ..solvers import INFEASIBLE, UNBOUNDED, Runner, SolverResult
-from ..solvers.policy import Ladder, describe, ladder_of
+from ..solvers.policy import FALLBACK, RESCUE, Ladder, describe, ladder_of
 from .base import ADMISSIBLE, Limit, Method, Progress, Timings, Verdict
 from .force_state import STATE_SLACK, ForceStates
 from .friction_search import FrictionSearch
@@ -171,9 +171,10 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
                                   "largest force")
             if len(self.runner.rejected) > n and not self._rejected_noted:
                 self._rejected_noted = True
-                again = self.runner.again_by[n]
-                by = ("at the next settings of its ladder" if again == self.solver
-                      else f"by {again}")
+                first = self.runner.rejected[n]
+                by = (f"by {RESCUE}" if first.endswith(f"{RESCUE} answered it)") else
+                      "at the next settings of its ladder" if self.solver == FALLBACK
+                      else f"by {FALLBACK}")
                 self.notes.append(f"answers of {self.solver} that failed their check against "
                                   f"the problem were solved again {by} (first: "
                                   f"{self.runner.rejected[n]})")

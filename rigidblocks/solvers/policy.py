@@ -403,10 +403,8 @@ class Runner:
 
     #: check every answer (the setting ``verify``: False measures a back end alone)
     verify: bool = True
-    #: answers of the back end that were rejected and solved again by FALLBACK (or, a
-    #: linear program FALLBACK failed on, by RESCUE), and the back end that solved each
+    #: answers of the back end that were rejected and solved again by FALLBACK
     rejected: list = field(default_factory=list)
-    again_by: list = field(default_factory=list)
     #: the back ends that answered a solve (optimal, infeasible or unbounded), in the
     #: order of their first answer: others than ``solver`` where an answer of it was
     #: rejected and solved again, where a problem is beyond its capabilities (a QP for
@@ -517,7 +515,6 @@ class Runner:
                 raise
             return res
         self.rejected.append(f"the {what} problem ({rejected})")
-        self.again_by.append(again.solver)
         return replace(again, residuals={**again.residuals, "rejected": rejected})
 
     def _simplex_rescue(self, problem: ConicProblem, what: str, ladder: Ladder,
@@ -542,7 +539,6 @@ class Runner:
             raise exc
         rejected = f"{exc.solver} ended with status {exc.status}; {RESCUE} answered it"
         self.rejected.append(f"the {what} problem ({rejected})")
-        self.again_by.append(RESCUE)
         return replace(again, residuals={**again.residuals, "rejected": rejected})
 
     def _certified(self, problem: ConicProblem, what: str, res: SolverResult,
