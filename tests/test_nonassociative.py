@@ -271,6 +271,28 @@ def test_the_inclined_corbel_arch_is_decided_by_its_bounds(f):
         assert safe_multiplier(scene, friction=f, flow=NA).status == NONE_WITHIN_BOUNDS
 
 
+@pytest.mark.parametrize("lf", [0.063, 0.066])
+def test_friction_where_the_run_at_the_static_f_star_decides_nothing(lf):
+    """The inclined corbel arch under lambda = 0.063 and 0.066: the limit iteration from
+    X0 at the static f* (0.86894, 0.87392) stops where its capped laws carry nothing,
+    which counted as "does not carry"; the search doubled past it and `friction` said
+    f* = 1.0234 and 1.0430 while `check` at 0.8745 stands in every state (its capacity
+    bound 0.06635 lies above both loads). Just above the static f* the bound decides:
+    f* lies within the accuracy of the static f*, and `check` at it stands. (At 0.066
+    a mechanism becomes compatible at f = 0.8748, where the run from X0 collapses at
+    0.0365: a trial at half the accuracy above the static f* already fell there.)"""
+    scene = read_scene(EXAMPLES / "corbel_arch_inclined.json")
+    static = rb.min_friction(scene, load_factor=lf, state=False)
+    res = rb.min_friction(scene, load_factor=lf, flow=NA)
+    assert res.status == "stable"
+    fs = float(static.friction_factor)
+    assert float(res.friction_factor) == pytest.approx(fs, rel=static.rtol)
+    assert res.history[0]["status"] == "infeasible" and "carries" not in res.history[0]
+    assert res.history[-1]["carries"] and res.history[-1]["by_bound"] > lf
+    check = rb.check(scene, friction=float(res.friction_factor), load_factor=lf, flow=NA)
+    assert check.status == "admissible" and check.cause == "bound_stands"
+
+
 def test_a_check_below_the_bound_stands_in_every_state(capsys):
     """The reference model with self-weight at lambda = 0.5, below its capacity bound
     0.6 (its safe multiplier, a closed form in test_na_bounds.py): the state reached from

@@ -1495,9 +1495,10 @@ def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
             by_bound = _trial_by_the_bound(na, cv, fv, lf, rec)
             if by_bound is not None:
                 return by_bound
-            if r.status == "infeasible":
-                return Trial(fv, False, data=v)
-            return Trial(fv, None, data=v, why=r.reason)
+            # (a run whose capped laws carry nothing at a step proves nothing of the
+            # structure: the inclined corbel arch's at f = 0.87 counted as "does not
+            # carry" where every state stands under lambda = 0.063, and f* read 1.0234)
+            return Trial(fv, None, data=v, why=r.reason or r.status)
         # whether it carries lf, to the accuracy of its multiplier
         rec["carries"] = r.carries(lf)
         if not rec["carries"]:  # (the theorem, as `check` judges it)
@@ -1559,6 +1560,16 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
         _also_at(own, trials, oracle)
         return out("stable", fs, t.data, lim.lower if lim.lower is not None else fs, fs,
                    True)
+    if t.side is None:
+        # where the run at the static f* decides nothing, just above it, within the
+        # accuracy asked: a bound may decide there (the non-associative f* is the static
+        # one where the bounds meet the associative multiplier above it)
+        t = oracle(fs + 0.1 * (rtol * fs + FRICTION_ATOL))
+        s.record(t)
+        if t.side:
+            _also_at(own, trials, oracle)
+            na.notes.append(_across_f_star(s, lf, trials))
+            return out("stable", t.x, t.data, fs, t.x, True)
     good = max(2.0 * fs, 1e-3)
     if own is not None and own > fs:
         # the scene's own friction first: where it carries the load, f* is sought below
@@ -1608,8 +1619,13 @@ def _across_f_star(s: Any, lf: float, trials: list[dict[str, Any]]) -> str:
     printed f gives the printed lambda."""
     at, below = s.end(True), s.end(False)
     rec = next(t for t in reversed(trials) if t.get("friction") == s.good)
-    short = f"it carries {below.value + lf:.9g}" if math.isfinite(below.value) else \
-        (below.why or "it does not carry it")
+    if below is None:  # the static f*, where the run decided nothing
+        why = next((t.why for t in s.trials if t.x == s.bad and t.why), "")
+        short = ("the static f*: no equilibrium state lies below it (the run from X0 "
+                 f"decides nothing there{': ' + why if why else ''})")
+    else:
+        short = f"it carries {below.value + lf:.9g}" if math.isfinite(below.value) else \
+            (below.why or "it does not carry it")
     # (a trial the bound decides: the run from X0 may have given no answer or one
     # below lf, and the state shown is an admissible one, not the one reached from X0)
     carried = (f"the lower bound on every collapse state at lambda >= 0 is "
