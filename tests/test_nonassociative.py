@@ -293,6 +293,27 @@ def test_friction_where_the_run_at_the_static_f_star_decides_nothing(lf):
     assert check.status == "admissible" and check.cause == "bound_stands"
 
 
+@pytest.mark.parametrize("method", ["clarabel", "distortion"])
+def test_a_failing_check_names_its_breaches(method):
+    """A NOT ADMISSIBLE check without dilatancy lists the joints its state breaches, as
+    the associative one does (its JSON's `breaches` was empty): the 3 x 3 wall at
+    f = 0.8 under lambda = 0.76, between its non-associative multiplier 0.7468 and the
+    associative 0.7705, where the state reached from X0 breaches the laws; and at 0.8,
+    above the associative multiplier, where no state stands at all (there the breaches
+    are the associative check's own)."""
+    scene = build("wall", courses=3, blocks_per_course=3, friction=0.8)
+    res = rb.check(scene, load_factor=0.76, flow=NA, method=method)
+    assert res.status == "inadmissible" and res.breaches
+    worst = res.breaches[0][1]
+    # the answer's breach is the largest the joints list (it was the capped relaxation's
+    # own measure, 0.0031, beside joints breached by 0.0081)
+    assert worst == max(b for _, b in res.breaches) == res.violation > 1e-3
+    above = rb.check(scene, load_factor=0.8, flow=NA, method=method)
+    assoc = rb.check(scene, load_factor=0.8, method="clarabel")
+    assert above.status == assoc.status == "inadmissible"
+    assert [k for k, _ in above.breaches] == [k for k, _ in assoc.breaches]
+
+
 def test_a_check_below_the_bound_stands_in_every_state(capsys):
     """The reference model with self-weight at lambda = 0.5, below its capacity bound
     0.6 (its safe multiplier, a closed form in test_na_bounds.py): the state reached from

@@ -75,6 +75,7 @@ from ..methods.convex import (
     VERDICT_RTOL,
     ConvexMethod,
 )
+from ..methods.base import ranked_breaches
 from ..methods.distortion import DistortionMethod
 from ..methods.relaxation import FRICTION_ATOL
 from ..problems.formulation import build_energy_qp, build_max_load, build_relaxation, flexibility
@@ -312,6 +313,15 @@ class NonAssociative(Method):
         self.converged_runs += bool(r.converged)
         notes = (r.reason,) if r.reason else ()
         return Verdict(r.status, 0.0 if r.status == ADMISSIBLE else r.violation, notes, r)
+
+    def breaches(self, f: float, verdict: Verdict) -> tuple[tuple[int, float], ...]:
+        """Where the state reached from X0 that a NOT ADMISSIBLE verdict rests on breaches
+        the joint laws (the same laws as the associative ones: statics does not see the
+        flow rule)."""
+        d = verdict.data
+        if verdict.status != INADMISSIBLE or not isinstance(d, FixedPoint):
+            return ()
+        return ranked_breaches(self.system, d.x, self.f_joint(f))
 
     def state(self, f: float, load_factor: float, verdict: Verdict,
               limit: bool = False) -> ForceState | None:
@@ -582,7 +592,8 @@ def _check(na: NonAssociative, cv: ConvexMethod, f: float, lf: float, state: boo
         na.notes.append("no admissible state exists at all (the associative, static "
                         "problem has none): inadmissible under either flow rule")
         return CheckResult(**_fields(na, "check", INADMISSIBLE, f, lf, (), True),
-                           admissible=False, violation=static.violation)
+                           admissible=False, violation=static.violation,
+                           breaches=cv.breaches(f, static))
     v = na.admissible(f, lf)
     d = v.data
     # one trial, as those of load and friction, with the changes of its iterations
@@ -620,10 +631,16 @@ def _check(na: NonAssociative, cv: ConvexMethod, f: float, lf: float, state: boo
             if status != ADMISSIBLE:
                 st = na.state(f, lf, shown)
             status, admissible, violation, na.cause = ADMISSIBLE, True, 0.0, BOUND_STANDS
+    breaches = na.breaches(f, v) if status == INADMISSIBLE else ()
+    if breaches:
+        # the state's own largest breach, as the joints list it (the capped relaxation's
+        # measure, 0.0031 on the 3 x 3 wall at f = 0.8 and lambda = 0.76, read beside
+        # joints breached by 0.0081)
+        violation = breaches[0][1]
     return CheckResult(**_fields(na, "check", status, f, lf, (trial,),
                                  bool(d.converged) if d else None),
                        state=st if state else None, admissible=admissible,
-                       violation=violation)
+                       violation=violation, breaches=breaches)
 
 
 def _x0_limit_run(na: ConvexNonAssociative, cv: ConvexMethod, f: float
