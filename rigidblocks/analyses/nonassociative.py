@@ -68,6 +68,7 @@ import numpy as np
 from ..equilibrium import force_state
 from ..errors import InputError, SolverFailure
 from ..methods import ADMISSIBLE, FAILURE, INADMISSIBLE, UNDECIDED, Method, Verdict
+from ..methods.base import ranked_breaches
 from ..methods.convex import (
     ADMISSIBLE_TOL,
     OTHER_MECHANISMS,
@@ -75,7 +76,6 @@ from ..methods.convex import (
     VERDICT_RTOL,
     ConvexMethod,
 )
-from ..methods.base import ranked_breaches
 from ..methods.distortion import DistortionMethod
 from ..methods.relaxation import FRICTION_ATOL
 from ..problems.formulation import build_energy_qp, build_max_load, build_relaxation, flexibility
