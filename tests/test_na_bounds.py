@@ -52,7 +52,9 @@ def collapse_state_holds(scene, res, tol=1e-7, dilatancy=False):
     equilibrium, N_k >= -t a_k, |T_j| <= f (N_1 + N_2) + c a_j; relative displacements
     A^T v of the mechanism's block velocities v: openings >= 0 and only where N_k is at
     its tensile limit, slips only where |T| is at its limit and against T (no
-    dilatancy asked: a slip need not open); the live load does positive work. With
+    dilatancy asked: a slip need not open); the live load does positive work, or where
+    the dead load drives the mechanism (``res.driven_by``), the dead load does and the
+    live load does none or resists it. With
     ``dilatancy`` (associative flow) a slip opens the joint by f |slip| at each point
     (normality), and only the opening beyond that needs the tensile limit. Returns the
     joints that slip."""
@@ -69,7 +71,10 @@ def collapse_state_holds(scene, res, tol=1e-7, dilatancy=False):
     assert (Nmin - N).max() <= tol * scale
     assert (np.abs(T) - cap).max() <= tol * scale
     v = mech.velocities[sysm.free_blocks].ravel()
-    assert v @ sysm.live > 0
+    if res.driven_by == "dead":
+        assert v @ sysm.dead > 0 and v @ sysm.live <= tol * np.abs(v).max()
+    else:
+        assert v @ sysm.live > 0
     delta = sysm.A.T @ v
     opening, slip = delta[lay.normal], delta[lay.tangential]
     vs = float(np.abs(delta).max())
@@ -291,6 +296,34 @@ def test_single_box_3d_with_a_pyramid(f, value):
 
 
 # -- refusals -------------------------------------------------------------------------------
+@pytest.mark.parametrize("f", [0.7652, 0.8])
+def test_the_dead_load_drives_collapse_states_of_the_inclined_corbel_arch(f):
+    """The seed's inclined corbel arch (Fig. 7c) just above its static f* = 0.7651 and
+    at 0.8 has non-associative collapse states whose mechanism the live load resists:
+    the dead load drives them. The mixed-integer LP normalised by the live load's work
+    alone (F_live . u = 1, as Ferris & Tin-Loi 2001 write it) cannot see them, and the
+    capacity bound (Radenkovic's second theorem through the kinematic theorem) bounds
+    the live load's mechanisms only: both said that no state collapses below the
+    associative multiplier (4.314e-5, 0.0212988), and `load` answered it. At 0.7652 the
+    state found is the mirror image of the limit fixed point from X0, which lies at
+    lambda = -2.7061015e-5 under the same mechanism pushed the other way (the arch is
+    symmetric, the live load horizontal): two algorithms, one value up to its sign."""
+    scene = read_scene(EXAMPLES / "corbel_arch_inclined.json")
+    res = safe_multiplier(scene, friction=f, flow=NA)
+    assert res.status == "optimal" and res.driven_by == "dead"
+    collapse_state_holds(scene, res)
+    assert 0.0 < res.value < 0.7 * res.associative
+    # no bound claims more: the bound on every state stays at 0 (its first round's
+    # capped structure does not carry the dead load alone)
+    assert res.capacity_bound == 0.0
+    na = rb.max_load_multiplier(scene, friction=f, flow=NA, state=False)
+    lo = na.load_multiplier_bounds[0]
+    assert lo is None or lo <= res.value
+    if f == 0.7652:
+        x0 = na.history[0]["load_factor"]
+        assert x0 < 0 and res.value == pytest.approx(-x0, rel=1e-8)
+
+
 def test_refusals():
     wall = build("wall", courses=3, blocks_per_course=3, friction=0.8)
     with pytest.raises(InputError, match=r"22 joints.*at most 10 \(max_joints\)"):

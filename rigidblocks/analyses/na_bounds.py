@@ -58,7 +58,7 @@ import os
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -97,6 +97,11 @@ SAME = 1e-5
 #: a complementarity breach, equilibrium residual or law breach above this (in units
 #: of the reference force, or of the displacement bound) fails the check
 CHECK_TOL = 1e-6
+
+#: the two families of collapse states, searched apart (their mechanisms normalised
+#: apart): those the live load drives (F_live . u > 0) and those the dead load drives
+#: (F_live . u <= 0: the live load does no work on them, or resists them)
+LIVE, DEAD = "live", "dead"
 
 OPTIMAL = "optimal"
 BOUND_DEPENDENT = "bound-dependent"
@@ -148,6 +153,8 @@ class SafeMultiplier:
     #: the largest breach of the checked state: equilibrium, laws, complementarity
     breach: float | None = None
     notes: tuple[str, ...] = field(default_factory=tuple)
+    #: the family of the least collapse state found (LIVE or DEAD; None: none found)
+    driven_by: str | None = None
 
 
 def _static_slack_max(m: _Model, lam_hi: float | None, seconds: float = math.inf
@@ -196,15 +203,24 @@ def _columns(m: _Model) -> tuple[int, int, int, int]:
     return n, ne, L, n + 1 + ne + L
 
 
-def _common_rows(m: _Model) -> tuple[sp.csr_matrix, np.ndarray]:
-    """Equality rows over (x, lambda, u, nu): equilibrium, flow, F_live . u = 1."""
+def _common_rows(m: _Model, family: str = LIVE
+                 ) -> tuple[sp.csr_matrix, np.ndarray, np.ndarray]:
+    """Rows lo <= E (x, lambda, u, nu) <= hi: equilibrium, flow, and the mechanism's
+    normalisation by its ``family``: F_live . u = 1 (LIVE), or F_dead . u = 1 and
+    F_live . u <= 0 (DEAD)."""
     n, ne, L, _ = _columns(m)
     Z = sp.csr_matrix
     eq = sp.hstack([m.A, Z(m.live[:, None]), Z((ne, ne)), Z((ne, L))])
     flow = sp.hstack([Z((n, n)), Z((n, 1)), m.A.T, m.Q.T])
-    work = sp.hstack([Z((1, n)), Z((1, 1)), Z(m.live[None, :]), Z((1, L))])
+
+    def work(load: np.ndarray) -> sp.csr_matrix:
+        return sp.hstack([Z((1, n)), Z((1, 1)), Z(load[None, :]), Z((1, L))])
+
     rhs = np.concatenate([m.b, np.zeros(n), [1.0]])
-    return sp.vstack([eq, flow, work], format="csr"), rhs
+    if family == LIVE:
+        return sp.vstack([eq, flow, work(m.live)], format="csr"), rhs, rhs
+    E = sp.vstack([eq, flow, work(-m.b), work(m.live)], format="csr")  # (m.b: -F_dead)
+    return E, np.append(rhs, -np.inf), np.append(rhs, 0.0)
 
 
 @contextmanager
@@ -235,18 +251,20 @@ def _quiet() -> Iterator[None]:
 
 
 def _solve_milp(m: _Model, Sr: np.ndarray, V: float, time_limit: float,
-                lam_lo: float = 0.0, node_limit: int | None = None) -> dict:
-    """min lambda >= ``lam_lo`` over the collapse states within the bounds (``Sr`` on
-    the law rows' slacks, V on openings and slips): HiGHS's answer as a dict."""
+                lam_lo: float = 0.0, node_limit: int | None = None,
+                family: str = LIVE) -> dict:
+    """min lambda >= ``lam_lo`` over the collapse states of a ``family`` within the
+    bounds (``Sr`` on the law rows' slacks, V on openings and slips): HiGHS's answer as
+    a dict."""
     n, ne, L, nc = _columns(m)
-    E, e = _common_rows(m)
+    E, elo, ehi = _common_rows(m, family)
     Z = sp.csr_matrix
     laws = sp.hstack([m.G, Z((L, 1 + ne + L)), Z((L, L))])  # G x <= h
     cap_nu = sp.hstack([Z((L, n + 1 + ne)), sp.identity(L), -V * sp.identity(L)])  # nu <= V z
     # s = h - G x <= S_r (1 - z)
     cap_s = sp.hstack([-m.G, Z((L, 1 + ne + L)), sp.diags(Sr)])
     Ein = sp.hstack([E, Z((E.shape[0], L))])
-    cons = [LinearConstraint(Ein, e, e),
+    cons = [LinearConstraint(Ein, elo, ehi),
             LinearConstraint(laws, -np.inf, m.h),
             LinearConstraint(cap_nu, -np.inf, 0.0),
             LinearConstraint(cap_s, -np.inf, Sr - m.h)]
@@ -274,57 +292,65 @@ def _solve_milp(m: _Model, Sr: np.ndarray, V: float, time_limit: float,
     return out
 
 
-def _polish(m: _Model, active: np.ndarray) -> tuple[float, np.ndarray] | None:
+def _polish(m: _Model, active: np.ndarray, family: str = LIVE
+            ) -> tuple[float, np.ndarray] | None:
     """The least lambda of the active set ``active`` (law rows held at equality, the
     others with nu = 0), without bounds: exact complementarity. (lambda, the solution
     over (x, lambda, u, nu)), or None when HiGHS finds no solution."""
     n, ne, L, nc = _columns(m)
-    E, e = _common_rows(m)
+    E, elo, ehi = _common_rows(m, family)
     Z = sp.csr_matrix
     laws = sp.hstack([m.G, Z((L, 1 + ne + L))], format="csr")
-    A_ub = laws[~active]
-    A_eq = sp.vstack([E, laws[active]], format="csr")
-    b_eq = np.concatenate([e, m.h[active]])
+    tie = elo == ehi  # (the others: F_live . u <= 0)
+    A_ub = sp.vstack([laws[~active], E[~tie]], format="csr")
+    b_ub = np.concatenate([m.h[~active], ehi[~tie]])
+    A_eq = sp.vstack([E[tie], laws[active]], format="csr")
+    b_eq = np.concatenate([ehi[tie], m.h[active]])
     bounds = [(None, None)] * n + [(0.0, None)] + [(None, None)] * ne + \
         [(0.0, None) if a else (0.0, 0.0) for a in active]
     cost = np.zeros(nc)
     cost[n] = 1.0
     res = linprog(cost, A_ub=A_ub if A_ub.shape[0] else None,
-                  b_ub=m.h[~active] if A_ub.shape[0] else None, A_eq=A_eq, b_eq=b_eq,
+                  b_ub=b_ub if A_ub.shape[0] else None, A_eq=A_eq, b_eq=b_eq,
                   bounds=bounds, method="highs")
     if res.status != 0:
         return None
     return float(res.x[n]), res.x
 
 
-def _breach(m: _Model, sol: np.ndarray) -> float:
+def _breach(m: _Model, sol: np.ndarray, family: str = LIVE) -> float:
     """The largest breach of a solution over (x, lambda, u, nu): equilibrium and flow
     residuals, law breaches, complementarity (min(nu_r, s_r) over the rows, relative
     to the largest nu and the largest force)."""
     n, ne, L, nc = _columns(m)
-    E, e = _common_rows(m)
+    E, elo, ehi = _common_rows(m, family)
+    Es = E @ sol[:nc]
     x, nu = sol[:n], sol[n + 1 + ne:nc]
     s = m.h - m.G @ x
     top_nu = max(float(np.abs(nu).max(initial=0.0)), 1.0)
     top_x = max(float(np.abs(x).max(initial=0.0)), 1.0)
     comp = np.minimum(nu / top_nu, s / top_x)
-    return float(max(np.abs(E @ sol[:nc] - e).max(initial=0.0),
+    return float(max(np.maximum(elo - Es, Es - ehi).max(initial=0.0),
                      (-s).max(initial=0.0), (-nu).max(initial=0.0),
                      comp.max(initial=0.0)))
 
 
-def _bounds_of(cv: ConvexMethod) -> tuple[float, float]:
-    """Default (S, V) in scaled units: S = FORCE_FACTOR x the blocks' total load, V =
-    VELOCITY_FACTOR / the smallest nonzero live load of a block (so that a mechanism
-    that moves that block alone fits, VELOCITY_FACTOR times over)."""
+def _bounds_of(cv: ConvexMethod) -> tuple[float, float, float]:
+    """Default (S, V, V_dead) in scaled units: S = FORCE_FACTOR x the blocks' total
+    load, V = VELOCITY_FACTOR / the smallest nonzero live load of a block (so that a
+    mechanism that moves that block alone fits, VELOCITY_FACTOR times over), V_dead the
+    same of the dead loads (for the mechanisms the dead load drives)."""
     sysm, sc = cv.system, cv.scaling
     d = sysm.dofs
     dead = np.abs(sc.row * sysm.dead / sc.force).reshape(-1, d).max(axis=1)
     live = np.abs(sc.row * sysm.live / sc.force).reshape(-1, d).max(axis=1)
     total = float(np.maximum(dead, live).sum())
-    pos = live[live > 0]
-    lmin = float(pos.min()) if pos.size else 1.0
-    return FORCE_FACTOR * max(total, 1.0), VELOCITY_FACTOR / lmin
+
+    def per_unit_work(load: np.ndarray) -> float:
+        pos = load[load > 0]
+        return VELOCITY_FACTOR / (float(pos.min()) if pos.size else 1.0)
+
+    return FORCE_FACTOR * max(total, 1.0), per_unit_work(live), per_unit_work(dead)
 
 
 def _tol(a: float) -> float:
@@ -335,16 +361,17 @@ def _same(a: float, b: float) -> bool:
     return abs(a - b) <= SAME * max(1.0, abs(a), abs(b))
 
 
-def _checked(m: _Model, run: dict) -> tuple[float, np.ndarray, float] | None:
+def _checked(m: _Model, run: dict, family: str = LIVE
+             ) -> tuple[float, np.ndarray, float] | None:
     """The polished state of a run's answer, (lambda, solution, breach); None without
     an answer or when its active set has no solution."""
     if run["z"] is None:
         return None
-    got = _polish(m, run["z"])
+    got = _polish(m, run["z"], family)
     if got is None:
         return None
     lam, sol = got
-    return lam, sol, _breach(m, sol)
+    return lam, sol, _breach(m, sol, family)
 
 
 def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
@@ -391,11 +418,11 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
     marked = flow_mask(scene, c, flow)
     m = _model(cv, marked, f)
     F = cv.scaling.force
-    S, V = _bounds_of(cv)
+    S, V, V_dead = _bounds_of(cv)
     if force_bound is not None:
         S = float(force_bound) / F
     if velocity_bound is not None:
-        V = float(velocity_bound)
+        V = V_dead = float(velocity_bound)
     if not (S > 0 and V > 0 and math.isfinite(S) and math.isfinite(V)):
         raise InputError("force_bound and velocity_bound must be finite numbers > 0")
     up = cv.load_limit(f, 1e-9)
@@ -412,15 +439,57 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
     assoc = up.value if up.status == "collapse" else math.inf
     low = _frictionless_bound(cv, marked, f)
     s_max, skipped = _static_slack_max(m, assoc, time_limit)
-    cap, rounds = _capacity_bound(m, cv, marked, f, max(low or 0.0, 0.0), assoc)
-    ctx = _Context(m, cv, f, S, V, low, assoc, s_max, cap, rounds, cut, node_limit,
-                   collapse_at=collapse_at)
+    every, rounds, live = _capacity_bound(m, cv, marked, f, max(low or 0.0, 0.0), assoc,
+                                          live_too=True)
+    runs = []
+    for family, v, cap in ((LIVE, V, live), (DEAD, V_dead, every)):
+        # (the live load's mechanisms collapse at or above the capacity bound of theirs;
+        # the dead load's at or above the bound on every state only)
+        ctx = _Context(m, cv, f, S, v, low, assoc, s_max, cap, rounds, cut, node_limit,
+                       collapse_at=collapse_at, family=family)
+        runs.append(_decide(ctx, time_limit, double_check))
+    notes = [n for n in cv.notes if n.startswith("friction cones linearised")]
     if skipped:
-        ctx.skipped = (f"the largest slacks of {skipped} of the {len(s_max)} joint-law rows "
-                       f"were not computed within the time limit ({time_limit:g} s): the "
-                       "force bound bounds them")
-    ctx.notes.extend(n for n in cv.notes if n.startswith("friction cones linearised"))
-    return _decide(ctx, time_limit, double_check)
+        notes.append(f"the largest slacks of {skipped} of the {len(s_max)} joint-law rows "
+                     f"were not computed within the time limit ({time_limit:g} s): the "
+                     "force bound bounds them")
+    return _combine(*runs, every, notes)
+
+
+def _combine(live: SafeMultiplier, dead: SafeMultiplier, every: float,
+             notes: list[str]) -> SafeMultiplier:
+    """The least collapse state over the two families (LIVE, DEAD), each searched by
+    :func:`_decide`: proven where the least value found lies at or below the other
+    family's lower end; ``every`` the capacity bound on every state."""
+    runs = {LIVE: live, DEAD: dead}
+    found = sorted((r.upper, fam) for fam, r in runs.items() if r.upper is not None)
+    least = found[0][1] if found else None
+    lows = [math.inf if r.status == NONE_WITHIN_BOUNDS else
+            (every if r.lower is None else r.lower) for r in runs.values()]
+    statuses = {live.status, dead.status}
+    value = None
+    if BOUND_DEPENDENT in statuses:
+        status = BOUND_DEPENDENT
+    elif statuses <= {OPTIMAL, NONE_WITHIN_BOUNDS}:
+        status = OPTIMAL if OPTIMAL in statuses else NONE_WITHIN_BOUNDS
+    else:
+        status = UNDECIDED
+    if least is not None and runs[least].status == OPTIMAL and \
+            min(lows) >= runs[least].value - _tol(runs[least].value):
+        status, value = OPTIMAL, runs[least].value
+    elif status == OPTIMAL:  # (an optimum above the other family's undecided bracket)
+        status = UNDECIDED
+    base = runs[least] if least is not None else live
+    words = {LIVE: "the live load's mechanisms: ", DEAD: "the dead load's mechanisms: "}
+    merged = [words[fam] + n for fam in ([least] if least else []) +
+              [k for k in runs if k != least] for n in runs[fam].notes] + notes
+    upper = found[0][0] if found else None
+    lower = min(lows + ([upper] if upper is not None else []))
+    return replace(base, status=status, value=value,
+                   lower=lower if math.isfinite(lower) else every, upper=upper,
+                   capacity_bound=every,
+                   solve_time=live.solve_time + dead.solve_time,
+                   nodes=live.nodes + dead.nodes, notes=tuple(merged), driven_by=least)
 
 
 @dataclass
@@ -443,6 +512,8 @@ class _Context:
     node_limit: int | None = None
     #: the multiplier of a collapse state known already (see :func:`safe_multiplier`)
     collapse_at: float | None = None
+    #: the family of collapse states searched (LIVE or DEAD)
+    family: str = LIVE
     #: a mixed-integer solve was made
     ran: bool = False
     trials: list[tuple[float, float | None]] = field(default_factory=list)
@@ -450,8 +521,6 @@ class _Context:
     elapsed: float = 0.0
     nodes: int = 0
     gap: float | None = None
-    #: a note on the slack bounds not computed in the time limit (after the verdict's)
-    skipped: str = ""
 
 
 def _decide(ctx: _Context, time_limit: float, double_check: bool) -> SafeMultiplier:
@@ -464,12 +533,13 @@ def _decide(ctx: _Context, time_limit: float, double_check: bool) -> SafeMultipl
     raw: list[float] = []
     for k in (1.0, 2.0) if double_check else (1.0,):
         run = _solve_milp(m, _slack_bounds(m, k * ctx.S, ctx.s_max), k * ctx.V,
-                          time_limit, ctx.cap if ctx.cut else 0.0, ctx.node_limit)
+                          time_limit, ctx.cap if ctx.cut else 0.0, ctx.node_limit,
+                          ctx.family)
         ctx.ran = True
         ctx.nodes += run["nodes"]
         ctx.elapsed += run["time"]
         ctx.gap = run["gap"]
-        got = _checked(m, run)
+        got = _checked(m, run, ctx.family)
         if got is not None and got[2] > CHECK_TOL:
             ctx.notes.append(f"the state HiGHS found fails its check: with its active set "
                              f"fixed it breaches equilibrium, laws or complementarity by "
@@ -538,7 +608,8 @@ def _result(ctx: _Context, status: str, value: float | None, lower: float | None
         sol = best[1]
         st = force_state(sysm, sol[:n] * F, "a non-associative collapse state of the "
                          "least multiplier over all states")
-        mech = mechanism(sysm, cv.scaling.row, sol[n + 1:n + 1 + ne], "vertex", sol[:n] * F)
+        mech = mechanism(sysm, cv.scaling.row, sol[n + 1:n + 1 + ne], "vertex", sol[:n] * F,
+                         sysm.dead if ctx.family == DEAD else None)
     tol = SAME * max(1.0, abs(upper or 0.0))
     if upper is not None and ctx.low is not None and upper < ctx.low - tol:
         notes.append(f"the state found ({upper:.9g}) is below the frictionless bound "
@@ -557,10 +628,9 @@ def _result(ctx: _Context, status: str, value: float | None, lower: float | None
               "joint laws the admissible states do not bound, " if free else
               "normal forces as large as any admissible state's (bounded by the "
               "structure: the force bound does not enter) and ")
-    if ctx.skipped:
-        notes.append(ctx.skipped)
     notes.append(f"smallest over the collapse states with {forces}openings or slips up to "
-                 f"{k * ctx.V:.6g} per unit work of the live load (in units of {F:.6g} x "
+                 f"{k * ctx.V:.6g} per unit work of the {ctx.family} load (in units of "
+                 f"{F:.6g} x "
                  "one length unit)")
     lower = ctx.cap if lower is None or not math.isfinite(lower) else \
         max(float(lower), ctx.cap)

@@ -131,10 +131,35 @@ def _max_load_lp(prob) -> float | None:
     return float(res.x[prob.cols["lambda"]][0])
 
 
+def _carries_more_dead(prob, lam: float) -> bool:
+    """Does the (capped) structure of the maximum-load problem ``prob`` have an
+    admissible state under (1 + DEAD_MARGIN) x its dead load plus ``lam`` x its live
+    load (HiGHS's simplex)?"""
+    ne = prob.n_eq
+    A = prob.A.tocsr()
+    bounds = [(None, None)] * prob.n
+    j = prob.cols["lambda"].start
+    bounds[j] = (lam, lam)
+    res = linprog(np.zeros(prob.n), A_ub=A[ne:], b_ub=prob.b[ne:], A_eq=A[:ne],
+                  b_eq=(1.0 + DEAD_MARGIN) * prob.b[:ne], bounds=bounds, method="highs")
+    if res.status not in (0, 2):
+        raise SolverFailure(f"HiGHS: {res.message} (capped laws under more dead load)",
+                            "highs", str(res.status))
+    return res.status == 0
+
+
+#: the share by which the capped structure of a round must carry more than the dead load
+#: (:func:`_capacity_bound`): above HiGHS's feasibility tolerance (1e-7 of the scaled
+#: loads)
+DEAD_MARGIN = 1e-6
+
+
 def _capacity_bound(m: _Model, cv: ConvexMethod, marked: np.ndarray, f: float, lo: float,
-                    hi: float, max_rounds: int = 100) -> tuple[float, int]:
-    """A lower bound on every non-associative collapse multiplier in [lo, hi], and the
-    rounds it took.
+                    hi: float, max_rounds: int = 100, live_too: bool = False
+                    ) -> tuple[float, int, float]:
+    """A lower bound on every non-associative collapse multiplier in [lo, hi], the
+    rounds it took, and (``live_too``) a lower bound on those whose mechanism the live
+    load drives (else the first again).
 
     Radenkovic's second theorem with the least normal forces: a collapse state at
     lambda is admissible at lambda, so each joint's normal force sum N_j is at least
@@ -146,7 +171,21 @@ def _capacity_bound(m: _Model, cv: ConvexMethod, marked: np.ndarray, f: float, l
     dissipates there no more than in the collapse state: by the kinematic theorem that
     structure's associative multiplier is a lower bound (with N_j^min = 0 it is the
     frictionless bound, Drucker 1954). The bound raises lo, which raises N^min: repeated
-    until it stops rising (or reaches hi)."""
+    until it stops rising (or reaches hi).
+
+    The kinematic theorem bounds the collapse states whose mechanism the live load
+    drives (F_live . u > 0). Those the dead load drives (F_live . u <= 0: the live load
+    does no work on them, or resists them) are excluded only where the capped structure
+    carries (1 + DEAD_MARGIN) x the dead load plus lo x the live load
+    (:func:`_carries_more_dead`): such a state y and the collapse state's mechanism u
+    give (1 + e) F_dead . u + lo F_live . u <= D_cap(u) <= D(u) = F_dead . u + lambda
+    F_live . u, which no lambda >= lo meets while the mechanism dissipates. A round
+    whose capped structure does not carries its bound for the live load's mechanisms
+    only (``live_too``); the bound on every state stops before it. The inclined corbel
+    arch at f = 0.8: the first round's capped structure has no state under the dead load
+    alone, and a state at lambda = 0.0128 collapses by a mechanism the live load resists
+    (the mixed-integer LP of :mod:`rigidblocks.analyses.na_bounds` finds it), below the
+    live load's bound, its associative multiplier 0.0213."""
     from ..problems.formulation import build_max_load
 
     sysm, sc = cv.system, cv.scaling
@@ -162,20 +201,24 @@ def _capacity_bound(m: _Model, cv: ConvexMethod, marked: np.ndarray, f: float, l
         mk = np.flatnonzero((marked & np.isfinite(fj))[pj])
         starts, at = np.arange(c.n_points + 1), mk
         fk, coh = fj[pj[mk]], (c.cohesion[pj] * c.point_areas / sc.force)[mk]
-    rounds = 0
+    rounds, every = 0, None  # (every: the bound on every state, once it stopped)
     while rounds < max_rounds and lo < hi:
         rounds += 1
         nmin = _least_normal(m, mk, starts, lo, hi)
         if nmin is None:  # no admissible state in [lo, hi]: no collapse state either
-            return hi, rounds
+            return (hi if every is None else every), rounds, hi
         cap = np.zeros(c.n_points)
         cap[at] = np.maximum(fk * nmin, -coh)
         prob, _ = build_max_load(sysm, sc, f_eff, cv.pyramid, cap=cap)
         lam = _max_load_lp(prob)
         if lam is None or lam <= lo * (1 + 1e-12) + 1e-12:
             break
+        if every is None and not _carries_more_dead(prob, lo):
+            every = lo
+            if not live_too:
+                break
         lo = min(lam, hi)
-    return lo, rounds
+    return (lo if every is None else every), rounds, lo
 
 
 #: the rounds of the capacity bound an analysis without dilatancy computes by itself
@@ -201,8 +244,8 @@ def capacity_bound(cv: ConvexMethod, marked: np.ndarray, f: float, frictionless:
     lo = max(frictionless or 0.0, 0.0)
     if lo >= hi:
         return None
-    cap, _ = _capacity_bound(_model(cv, marked, f), cv, marked, f, lo, hi, max_rounds)
+    cap, _, _ = _capacity_bound(_model(cv, marked, f), cv, marked, f, lo, hi, max_rounds)
     return cap if cap > lo else None
 
 
-__all__ = ["BOUND_ROUNDS", "MAX_JOINTS", "capacity_bound"]
+__all__ = ["BOUND_ROUNDS", "DEAD_MARGIN", "MAX_JOINTS", "capacity_bound"]

@@ -1570,23 +1570,15 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     # (an absolute floor too: where f* is 0 a relative bracket is never narrow; the flat
     # arch on fixed abutments, radial joints, halved [0, 6.2e-64] to its trial budget)
     s = Search(fs, fs, rtol, FRICTION_ATOL)
-    t = oracle(fs)
-    s.record(t)
+    t = _at_the_static(s, oracle)
     if t.side:
-        na.notes.append(_equals_static(fs, rtol))
         _also_at(own, trials, oracle)
-        return out("stable", fs, t.data, lim.lower if lim.lower is not None else fs, fs,
-                   True)
-    if t.side is None:
-        # where the run at the static f* decides nothing, just above it, within the
-        # accuracy asked: a bound may decide there (the non-associative f* is the static
-        # one where the bounds meet the associative multiplier above it)
-        t = oracle(fs + 0.1 * (rtol * fs + FRICTION_ATOL))
-        s.record(t)
-        if t.side:
-            _also_at(own, trials, oracle)
+        if t.x > fs:
             na.notes.append(_across_f_star(s, lf, trials))
             return out("stable", t.x, t.data, fs, t.x, True)
+        na.notes.append(_equals_static(fs, rtol))
+        return out("stable", fs, t.data, lim.lower if lim.lower is not None else fs, fs,
+                   True)
     good = max(2.0 * fs, 1e-3)
     if own is not None and own > fs:
         # the scene's own friction first: where it carries the load, f* is sought below
@@ -1625,7 +1617,36 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     _also_at(own, trials, oracle)
     na.notes.append(_across_f_star(s, lf, trials))
     na.notes.extend(_flat_below(trials))
+    na.notes.extend(_undecided_below(s))
     return out("stable", s.good, at.data, s.lower, s.upper, True)
+
+
+def _at_the_static(s: Any, oracle: Any) -> Any:
+    """The trial at the static f* (``s.good``), recorded in ``s``; where it decides
+    nothing, the one just above it within a tenth of the accuracy asked, where a bound
+    may decide (the non-associative f* is the static one where the bounds meet the
+    associative multiplier above it)."""
+    fs = s.good
+    t = oracle(fs)
+    s.record(t)
+    if t.side is None:
+        t = oracle(fs + 0.1 * (s.rtol * fs + s.atol))
+        s.record(t)
+    return t
+
+
+def _undecided_below(s: Any) -> list[str]:
+    """A note where runs from X0 below f*'s bracket decided nothing: lambda(f) need not
+    grow with f, and a smaller f may carry the load there (the inclined corbel arch
+    under lambda = 0.063: at the static f* 0.86894 and just above it the capped laws
+    carry nothing, and f* is 1.02342, past a run at 0.9777 that carries 0.0555)."""
+    low = [t for t in s.trials if t.side is None and t.x < s.lower]
+    if not low:
+        return []
+    why = low[0].why
+    return [f"below f* the runs from X0 at f = {', '.join(f'{t.x:.6g}' for t in low)} "
+            f"decided nothing{f' ({why})' if why else ''}: a smaller friction may carry "
+            "the load in the state reached from X0"]
 
 
 def _across_f_star(s: Any, lf: float, trials: list[dict[str, Any]]) -> str:

@@ -170,7 +170,7 @@ def _safe(scene: Any, args: argparse.Namespace, res: Any) -> dict[str, Any]:
         return {"status": "not computed", "reason": str(err).split(": ", 1)[-1]}
     return {"status": r.status, "value": r.value, "lower": r.lower, "upper": r.upper,
             "associative": r.associative, "nodes": r.nodes, "solve_time": r.solve_time,
-            "notes": list(r.notes)}
+            "driven_by": r.driven_by, "notes": list(r.notes)}
 
 
 def _safe_line(safe: dict[str, Any], answer: float | None) -> str:
@@ -187,6 +187,10 @@ def _safe_line(safe: dict[str, Any], answer: float | None) -> str:
     if st == "optimal":
         line = (f"safe       lambda = {num(safe['value'])}: the smallest non-associative "
                 "collapse multiplier over all states (mixed-integer LP, proven)")
+        if safe.get("driven_by") == "dead":
+            line += ("; the dead load drives its mechanism (the live load does no work on "
+                     "it or resists it)" + (": some state collapses under the dead load "
+                                            "alone" if safe["value"] <= 0 else ""))
         if answer is not None and safe["value"] < answer * (1.0 - 1e-6):
             line += (f"\nsafe       BELOW the answer lambda* = {num(answer)}, which is the "
                      "state reached from the elastic state X0: the joints have another "

@@ -152,7 +152,8 @@ def chain_walk(system: EquilibriumSystem) -> np.ndarray | None:
 
 
 def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray,
-              kind: str = "blend", x: np.ndarray | None = None) -> Mechanism:
+              kind: str = "blend", x: np.ndarray | None = None,
+              driver: np.ndarray | None = None) -> Mechanism:
     """Virtual velocities from the duals ``y_eq`` of the equilibrium rows, scaled by
     ``row_scale`` (the rows' scaling in the problem, :class:`Scaling` ``.row``);
     ``kind`` says how the duals were chosen (see :class:`Mechanism`).
@@ -162,9 +163,12 @@ def mechanism(system: EquilibriumSystem, row_scale: np.ndarray, y_eq: np.ndarray
     carries none, the joint law admits any motion that opens it (with friction that
     dilates, opening at least f times the slip), and a vertex of the duals may take
     such a slip: a block lifted off its base read "sliding", a box tipping over its
-    corner at |T|/N = 0.71 < f = 1 "sliding and hinging"."""
+    corner at |T|/N = 0.71 < f = 1 "sliding and hinging".
+
+    The duals' sign is chosen so that ``driver`` (the live load by default; the dead
+    load for a mechanism the dead load drives) does positive work on the motion."""
     v = row_scale * y_eq
-    if v @ system.live < 0:
+    if v @ (system.live if driver is None else driver) < 0:
         v = -v
     d = system.dofs
     free = system.free_blocks
