@@ -592,9 +592,8 @@ class _Words:
                        "ground tilted by this angle loads it the same way")
         span = next((h.get("span") for h in (res.history or ())
                      if isinstance(h, dict) and h.get("span")), None)
-        # (not below the lower bound, under which the states lie at lambda < 0: the
-        # inclined corbel arch at f = 0.7652, from -2.7e-5 where every state at lambda >=
-        # 0 collapses at its answer 4.314e-5)
+        # (not below the lower bound: the mechanism's states below it lie at lambda < 0,
+        # under a reversed live load, where no collapse state at lambda >= 0 lies)
         bounds = getattr(res, "load_multiplier_bounds", None)
         low = span[0] if span else None
         if low is not None and bounds is not None and bounds[0] is not None:

@@ -695,11 +695,10 @@ def _bound_carries(na: NonAssociative, cv: ConvexMethod, f: float, lf: float
     the capacity bound holds for those at lambda >= 0) and how the notes name it, where
     it lies above ``lf`` >= 0: no collapse state lies at or below ``lf``, so the structure
     stands there whatever state it is in (a theorem: Radenkovic's second), whichever
-    state an iteration from X0 reaches. None elsewhere. The inclined corbel arch's
-    `check` without dilatancy at f = 0.8 was undecided under its dead load (the limit
-    iteration's capped laws carry nothing after a few steps) and NOT ADMISSIBLE at
-    lambda = 0.015 (the state reached from X0 directly breaches the laws), below its
-    capacity bound 0.0212988, where `load` says it collapses."""
+    state an iteration from X0 reaches. None elsewhere. The reference model with
+    self-weight at lambda = 0.5, below its capacity bound 0.6: the state reached from X0
+    stands, and `check` said "another state may collapse at a lower load", which the
+    bound excludes."""
     if lf < 0:
         return None
     seen = len(cv.notes)
@@ -790,18 +789,20 @@ def _lower_bound(cv: ConvexMethod, marked: np.ndarray, f: float, hi: float | Non
     below the associative one ``hi``, and what it is: the frictionless bound (every
     collapse state; Drucker 1954), or where it is higher the capacity bound (every
     collapse state at lambda >= 0; :func:`~rigidblocks.analyses.na_bounds.capacity_bound`,
-    computed on 2D scenes of up to 50 joints): the inclined corbel arch's bracket at
-    f = 0.8 was [-, 0.0212988] ("none with the joints frictionless"), now [0.0212987,
-    0.0212988]; the Arpino gate's at 0.6 [-, 0.122798], now [0.118702, 0.122798]."""
+    computed on 2D scenes of up to 50 joints): the Arpino gate's bracket at 0.6 was
+    [-, 0.122798] ("none with the joints frictionless"), now [0.118702, 0.122798]. The
+    inclined corbel arch's at f = 0.8 stays [-, 0.0212988]: the live load's mechanisms
+    collapse at or above 0.0212988, but states the dead load drives collapse at 0.0128
+    (:func:`~rigidblocks.analyses.na_capacity._capacity_bound`)."""
     from .na_capacity import capacity_bound  # (scipy's LPs: not at every check's start)
 
     lo = _frictionless_bound(cv, marked, f)
     cap = capacity_bound(cv, marked, f, lo, hi)
     if cap is None:
         return lo, "frictionless"
-    # on the safe side of the states it bounds by more than round-off (the corbel arch
-    # at f = 0.9: 0.04144903032439328 above its answer, the safe multiplier
-    # 0.04144903032439297), less than the printed figures resolve (ROUND_OFF: the
+    # on the safe side of the states it bounds by more than round-off (the inclined
+    # corbel arch's live-load bound at f = 0.9: 0.04144903032439328 above its answer, the
+    # safe multiplier 0.04144903032439297), less than the printed figures resolve (ROUND_OFF: the
     # reference model's 0.6 read 0.599999 with 1e-9)
     return cap - BOUND_MARGIN * abs(cap), "capacity"
 
@@ -1049,8 +1050,7 @@ def _x0_answer(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
     lam = float(main.lam)
     if proven and lam < -main.carry_tol:
         # a collapse state below the dead load (a reversed live load), not on the path
-        # from 0: the inclined corbel arch at f = 0.7652 reaches lambda = -2.7e-5 where
-        # its capacity bound is its associative multiplier 4.314e-5
+        # from 0, where a lower bound above 0 holds for every state at lambda >= 0
         na.notes.append(f"the limit fixed point from X0 lies at lambda = "
                         f"{fmt_safe(lam, 7, False)} < 0, under a reversed live load; no "
                         f"collapse state lies between 0 and {LOWER_WORDS[na.lower_by]}")
@@ -1093,10 +1093,10 @@ def _by_the_bounds(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
     every collapse state at lambda >= 0 lies at the associative multiplier hi, beyond
     which no state is admissible, and that is the answer whatever the state (shown: the
     associative collapse state's, and its mechanism); else the answer lies in [lo, hi],
-    undecided. The inclined corbel arch at f = 0.8: from either start the capped laws of
-    the next step carry nothing; the capacity bound is the associative multiplier
-    0.0212988, as the distortion method's answer and the mixed-integer LP (no collapse
-    state below it) say."""
+    undecided. (The inclined corbel arch at f = 0.8, where from either start the capped
+    laws of the next step carry nothing, was answered so while the capacity bound
+    counted the live load's mechanisms alone: 0.0212988, where a state the dead load
+    drives collapses at 0.0128.)"""
     lo, hi = bounds
     word = LOWER_WORDS[na.lower_by]
     if not _closes(bounds):
@@ -1513,8 +1513,8 @@ def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
             if by_bound is not None:
                 return by_bound
             # (a run whose capped laws carry nothing at a step proves nothing of the
-            # structure: the inclined corbel arch's at f = 0.87 counted as "does not
-            # carry" where every state stands under lambda = 0.063, and f* read 1.0234)
+            # structure: the inclined corbel arch's at its static f* for lambda = 0.063
+            # counted as "does not carry", a verdict no state supports)
             return Trial(fv, None, data=v, why=r.reason or r.status)
         # whether it carries lf, to the accuracy of its multiplier
         rec["carries"] = r.carries(lf)

@@ -197,8 +197,8 @@ def _safe_line(safe: dict[str, Any], answer: float | None) -> str:
                      f"state that collapses at {num(safe['value'])}")
         return line
     if st == NONE_WITHIN_BOUNDS and safe.get("associative") is not None:
-        # (it read "no collapse within the bounds: bracket [0.0212988, -]" beside the
-        # collapse at the associative multiplier, the inclined corbel arch at f = 0.8)
+        # (it read "no collapse within the bounds: bracket [lo, -]" beside a collapse at
+        # the associative multiplier, where no state is admissible above it)
         return (f"safe       lambda = {num(safe['associative'])}, the associative "
                 "multiplier: no collapse state lies below it (mixed-integer LP, within its "
                 "bounds on the forces and rates) and no state is admissible above it")
