@@ -981,3 +981,4 @@ def test_a_linear_program_clarabel_cannot_solve_is_answered_by_highs(capsys):
     res = rb.max_load_multiplier(rb.read_scene(path), friction=0.7651, state=False)
     assert res.status == "unstable"
     assert all("highs answered it" in r for r in res.rejected)
+    assert any("were solved again by highs" in n for n in res.notes), res.notes

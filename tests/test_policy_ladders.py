@@ -308,6 +308,7 @@ def test_a_rejected_answer_is_noted_with_its_reason(monkeypatch):
         res = runner.run(LP, "relaxation", VERDICT)
         assert res.solver == C and res.residuals["rejected"] == why
         assert runner.rejected == [f"the relaxation problem ({why})"]
+        assert runner.rejected[0].again_by is None  # (the usual back end: FALLBACK)
         assert runner.answered_by == ([solver, C] if answers[0] == "bad" else [C])
 
 
@@ -328,6 +329,7 @@ def test_a_linear_program_on_which_clarabel_fails_is_solved_by_highs(monkeypatch
     assert [a[0] for a in script.asked] == [C, C, C, C, "highs"]
     why = "clarabel ended with status many #4; highs answered it"
     assert runner.rejected == [f"the relaxation problem ({why})"]
+    assert runner.rejected[0].again_by == "highs"  # (the note names it from there)
     assert res.residuals["rejected"] == why and runner.answered_by == ["highs"]
     for highs in ("ok", "many"):
         monkeypatch.setattr(policy, "solve", Script(["few", "few", "few", "many", highs]))

@@ -25,7 +25,7 @@ from ..problems.formulation import Scaling
 from ..results import fmt_bracket
 from ..scene.model import Scene
 from ..solvers import INFEASIBLE, UNBOUNDED, Runner, SolverResult
-from ..solvers.policy import FALLBACK, RESCUE, Ladder, describe, ladder_of
+from ..solvers.policy import FALLBACK, Ladder, describe, ladder_of
 from .base import ADMISSIBLE, Limit, Method, Progress, Timings, Verdict
 from .force_state import STATE_SLACK, ForceStates
 from .friction_search import FrictionSearch
@@ -172,7 +172,8 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
             if len(self.runner.rejected) > n and not self._rejected_noted:
                 self._rejected_noted = True
                 first = self.runner.rejected[n]
-                by = (f"by {RESCUE}" if first.endswith(f"{RESCUE} answered it)") else
+                again_by = getattr(first, "again_by", None)
+                by = (f"by {again_by}" if again_by else
                       "at the next settings of its ladder" if self.solver == FALLBACK
                       else f"by {FALLBACK}")
                 self.notes.append(f"answers of {self.solver} that failed their check against "

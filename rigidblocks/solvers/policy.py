@@ -133,6 +133,19 @@ LP_ONLY = ("highs",)
 FALLBACK = "clarabel"
 #: the back end that takes a linear program on which FALLBACK failed
 RESCUE = "highs"
+
+
+class Rejection(str):
+    """An entry of :attr:`Runner.rejected`: the rejected answer's text, and the back end
+    that answered the problem again (``again_by``; None: the usual one, FALLBACK or
+    the next settings of the ladder). A plain string appended there reads as None."""
+
+    again_by: str | None
+
+    def __new__(cls, text: str, again_by: str | None = None) -> Rejection:
+        obj = super().__new__(cls, text)
+        obj.again_by = again_by
+        return obj
 #: user tolerances looser than this are noted in results (verdicts compare with 1e-9)
 LOOSE_TOL = 1e-9
 _DONE = (OPTIMAL, INFEASIBLE, UNBOUNDED)
@@ -514,7 +527,7 @@ class Runner:
             if res is None:
                 raise
             return res
-        self.rejected.append(f"the {what} problem ({rejected})")
+        self.rejected.append(Rejection(f"the {what} problem ({rejected})"))
         return replace(again, residuals={**again.residuals, "rejected": rejected})
 
     def _simplex_rescue(self, problem: ConicProblem, what: str, ladder: Ladder,
@@ -538,7 +551,7 @@ class Runner:
         if not again.verified or again.status == OPTIMAL:
             raise exc
         rejected = f"{exc.solver} ended with status {exc.status}; {RESCUE} answered it"
-        self.rejected.append(f"the {what} problem ({rejected})")
+        self.rejected.append(Rejection(f"the {what} problem ({rejected})", RESCUE))
         return replace(again, residuals={**again.residuals, "rejected": rejected})
 
     def _certified(self, problem: ConicProblem, what: str, res: SolverResult,
@@ -688,5 +701,5 @@ def describe(r: dict) -> str:
 __all__ = ["CERT_MARGIN", "CONFIRMATION", "CONFIRM_SETTINGS", "ESTIMATE", "FALLBACK",
            "FINER_SETTINGS", "FINER_VALUE", "LP_ONLY", "REFINE_SETTINGS", "REFINE_WITHIN",
            "RELAX_SETTINGS", "STATE", "TIGHT_SETTINGS", "VALUE", "VALUE_SETTINGS", "VERDICT",
-           "VERIFY_TOL", "Ladder", "Rung", "Runner", "check_solver", "describe",
+           "VERIFY_TOL", "Ladder", "Rejection", "Rung", "Runner", "check_solver", "describe",
            "ladder_of", "verified"]
