@@ -27,6 +27,12 @@ convex; the complementarity is written with one binary z_r per law row,
     nu_r <= V z_r,     s_r <= S_r (1 - z_r),
 
 and lambda >= 0 minimised by HiGHS's branch and bound (:func:`scipy.optimize.milp`).
+The normalisation F_live . u = 1 (as Ferris & Tin-Loi, Int. J. Mech. Sci. 43, 2001,
+write it) leaves out the mechanisms the dead load drives, on which the live load does
+no work or which it resists: a second program searches them, with F_dead . u = 1 and
+F_live . u <= 0 in its place (the flat arch with vertical joints slides down between
+its piers under its own weight, in the state of least thrust), and the answer is the
+least of the two (:func:`_combine`).
 The constants are stated bounds, not a property of the structure: S on every normal
 force (N_k + t_k <= S, whence |T_j| <= f_j sum N_k + c_j bounds the friction rows'
 slacks) and V on every opening and slip (per unit work of the live load). The value
