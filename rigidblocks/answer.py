@@ -461,8 +461,10 @@ class _Words:
                 reach = (f"the friction limit f = {f:.10g}" if fd[0] >= f * (1 - 1e-4)
                          else f"{fd[0]:.4g}")
                 # not "needs": another admissible state may do with less (f*)
+                # (`friction --flow non-associative` gives the state reached from X0's)
                 why.append(f"in {state} |T|/N reaches {reach}{among} (joint {a}-{b}); the "
-                           "least friction any state needs is f* (`rigidblocks friction`)")
+                           "least friction any state needs is f* (`rigidblocks friction`"
+                           + (" without --flow)" if na else ")"))
             elif fd is not None:
                 why.append(f"{state} uses no friction")
             if na and res.cause == BOUND_STANDS:
@@ -544,9 +546,10 @@ class _Words:
                 enough = "enough" if float(f) >= fs else "NOT enough"
             why.append(f"the scene's friction f = {float(f):.10g} is {enough}")
         if na:
-            why.append("without dilatancy a larger f need not carry more: f* is where the "
-                       "state reached from X0 carries the load, not a bound for every f "
-                       "above it (check a given f with `rigidblocks load --friction F`)")
+            why.append("without dilatancy a larger f need not carry more, and another state "
+                       "may need more: f* is where the state reached from X0 carries the "
+                       "load, not a bound for every f above it nor for every state (check "
+                       "a given f with `rigidblocks load --friction F --safe`)")
         names = [f"{a}-{b}" for a, b in res.governing_joints]
         verdict = "STANDS at friction f = f*" if na else "STANDS with friction f >= f*"
         return (verdict, number,

@@ -304,6 +304,24 @@ def test_a_failing_check_names_its_breaches(method):
     assert [k for k, _ in above.breaches] == [k for k, _ in assoc.breaches]
 
 
+def test_friction_without_dilatancy_says_that_other_states_may_need_more(capsys):
+    """The reference model with self-weight under lambda = 0.6: `friction` without
+    dilatancy gives f* = 0.15, where the state reached from X0 carries it; in another
+    state the model collapses at lambda = 0.15 at that friction (`load --safe`), and
+    the answer said only that a larger f need not carry more. `check`'s pointer to the
+    least friction any state needs is `friction` without --flow (with it, f* is the
+    state reached from X0's)."""
+    path = str(EXAMPLES / "reference_self_weight.json")
+    assert main(["friction", path, "--flow", NA, "--load-factor", "0.6"]) == 0
+    out = capsys.readouterr().out
+    assert "answer     f* = 0.15 " in out and "another state may need more" in out
+    assert main(["load", path, "--flow", NA, "--friction", "0.15", "--safe"]) == 0
+    assert "safe       lambda = 0.15: the smallest" in capsys.readouterr().out
+    assert main(["check", path, "--flow", NA, "--load-factor", "0.6",
+                 "--friction", "0.15"]) == 0
+    assert "(`rigidblocks friction` without --flow)" in capsys.readouterr().out
+
+
 def test_a_check_below_the_bound_stands_in_every_state(capsys):
     """The reference model with self-weight at lambda = 0.5, below its capacity bound
     0.6 (its safe multiplier, a closed form in test_na_bounds.py): the state reached from

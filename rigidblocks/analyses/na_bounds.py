@@ -118,7 +118,8 @@ UNSTABLE = "unstable"
 
 @dataclass(frozen=True, eq=False)
 class SafeMultiplier:
-    """The smallest non-associative collapse multiplier (see the module docstring).
+    """The smallest non-associative collapse multiplier at lambda >= 0 (see the module
+    docstring).
 
     ``status``: "optimal" (``value`` proven smallest within the bounds, and unchanged
     with the bounds doubled), "bound-dependent" (a smaller state was found with the
@@ -387,8 +388,9 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
                     double_check: bool = True, cut: bool = True,
                     pyramid: int | None = None,
                     collapse_at: float | None = None) -> SafeMultiplier:
-    """The smallest non-associative collapse multiplier over all states, as a
-    mixed-integer LP solved by HiGHS (see the module docstring).
+    """The smallest non-associative collapse multiplier over all states at lambda >= 0,
+    as a mixed-integer LP solved by HiGHS (see the module docstring); a collapse state
+    below 0 (under a reversed live load) is not sought.
 
     ``friction``, ``flow``: as for :func:`rigidblocks.analyses.max_load_multiplier`
     (``flow`` None: the scene's, with its joints' overrides; the associative joints
