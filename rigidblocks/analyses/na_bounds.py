@@ -385,8 +385,7 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
                     flow: str | None = None, max_joints: int = MAX_JOINTS,
                     force_bound: float | None = None, velocity_bound: float | None = None,
                     time_limit: float = 60.0, node_limit: int | None = None,
-                    double_check: bool = True, cut: bool = True,
-                    pyramid: int | None = None,
+                    double_check: bool = True, cut: bool = True, pyramid: int | None = None,
                     collapse_at: float | None = None) -> SafeMultiplier:
     """The smallest non-associative collapse multiplier over all states at lambda >= 0,
     as a mixed-integer LP solved by HiGHS (see the module docstring); a collapse state
