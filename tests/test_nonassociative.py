@@ -247,6 +247,9 @@ def test_the_inclined_corbel_arch_is_not_decided_by_a_bound_that_misses_states(f
     assoc = rb.max_load_multiplier(scene, friction=f, state=False)
     res = rb.max_load_multiplier(scene, friction=f, flow=NA)
     assert res.status == "undecided" and res.load_multiplier is None
+    # (it names the analyses that answer there: the least state, the seed's procedure)
+    assert any(n.startswith("`--safe` gives the least collapse multiplier") and
+               "`--method distortion`" in n for n in res.notes), res.notes
     lo, hi = res.load_multiplier_bounds
     assert lo is None and hi == pytest.approx(assoc.load_multiplier, rel=1e-7)
     safe = safe_multiplier(scene, friction=f, flow=NA)

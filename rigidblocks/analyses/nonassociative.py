@@ -1034,9 +1034,25 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
         na.notes.extend(bad)
         if proven:
             return _by_the_bounds(na, cv, f, up, bounds, trials, state)
+        na.notes.extend(_elsewhere(cv))
         return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
                                     settled), load_multiplier_bounds=bounds)
     return _x0_answer(na, cv, f, up, main, bounds, trials, state, mechanism)
+
+
+def _elsewhere(cv: ConvexMethod) -> list[str]:
+    """Where `load` is undecided from X0 with no lower bound, the analyses that answer
+    other questions on a 2D scene: the least multiplier over all states (`--safe`, up to
+    MAX_JOINTS joints) and the seed's procedure (the inclined corbel arch at f = 0.8:
+    0.0127927 and 0.0212987)."""
+    from .na_capacity import MAX_JOINTS
+
+    c = cv.contacts
+    if c.dimension != 2:
+        return []
+    safe = ("`--safe` gives the least collapse multiplier over all states, a lower end "
+            "for this answer; " if c.n_joints <= MAX_JOINTS else "")
+    return [f"{safe}`--method distortion` follows the seed's procedure from X0"]
 
 
 def _x0_answer(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
