@@ -672,6 +672,11 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
     if r is None or r.status == "unbounded":
         return ADMISSIBLE
     if not r.converged or _limit_checks(cv, f, r, (None, None)):
+        if _by_states(cv):  # (as `load` reads it there)
+            na.notes.append(f"the limit fixed point from X0 was not reached ({r.reason}): "
+                            f"{BY_STATES.split(': ', 1)[1]}, and at lambda = {lf:.10g} it "
+                            "stands")
+            return ADMISSIBLE
         na.notes.append("the limit fixed point from X0 (`load`'s answer) was not reached "
                         f"({r.reason}): whether loading from X0 reaches lambda = {lf:.10g} is "
                         "undecided")
@@ -769,7 +774,14 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
     lo, na.lower_by = _lower_bound(cv, na.marked, f, hi)
     bounds = (lo, math.inf if up.status == "unbounded" else hi)
     if isinstance(na, ConvexNonAssociative) and up.status in ("collapse", "unbounded"):
-        res = _load_by_limit(na, cv, f, up, bounds, state, mechanism)
+        by_states = None
+        if up.status == "collapse" and _by_states(cv):
+            def by_states() -> LoadResult:
+                na.limit_path = False
+                na.notes.append(BY_STATES)
+                return _load_by_bisection(na, cv, f, up, hi, lo, bounds, state, rtol,
+                                          mechanism)
+        res = _load_by_limit(na, cv, f, up, bounds, state, mechanism, by_states)
     else:
         res = _load_by_bisection(na, cv, f, up, hi, lo, bounds, state, rtol, mechanism)
     if res.load_multiplier_bounds is not None and res.load_multiplier_bounds[0] is not None:
@@ -977,10 +989,11 @@ def _limit_checks(cv: ConvexMethod, f: float, run: LimitRun,
 
 def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
                    bounds: tuple[float | None, float | None], state: bool,
-                   mechanism: str) -> LoadResult:
+                   mechanism: str, by_states: Any = None) -> LoadResult:
     """The non-associative collapse multiplier as the fixed point of the capped limit
     problem (:mod:`rigidblocks.analyses.na_limit`) from X0, with the answer from the
-    associative collapse state beside it."""
+    associative collapse state beside it; ``by_states()`` the answer where the run from
+    X0 stops and no bound decides (:func:`_by_states`), else undecided."""
     na.limit_path = "walk" if walks(cv) else True
     capped = CappedLimit(cv, na.marked, f)
     # afresh, as the friction's trials run (:func:`_limit_oracle`): the run from X0 at f
@@ -1034,25 +1047,42 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
         na.notes.extend(bad)
         if proven:
             return _by_the_bounds(na, cv, f, up, bounds, trials, state)
+        if by_states is not None:
+            return by_states()
         na.notes.extend(_elsewhere(cv))
         return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
                                     settled), load_multiplier_bounds=bounds)
     return _x0_answer(na, cv, f, up, main, bounds, trials, state, mechanism)
 
 
-def _elsewhere(cv: ConvexMethod) -> list[str]:
-    """Where `load` is undecided from X0 with no lower bound, the analyses that answer
-    other questions on a 2D scene: the least multiplier over all states (`--safe`, up to
-    MAX_JOINTS joints) and the seed's procedure (the inclined corbel arch at f = 0.8:
-    0.0127927 and 0.0212987)."""
+def _by_states(cv: ConvexMethod) -> bool:
+    """Where the limit iteration from X0 stops (its capped laws carry nothing after a
+    few steps) and no bound decides, are `load`, `check` and `friction` read off the
+    state reached from X0 at each load factor, as the distortion method reads the
+    seed's procedure? On 2D scenes of up to MAX_JOINTS joints, where those runs are
+    cheap. The inclined corbel arch at f = 0.77 and 0.8: 0.00186212 and 0.0127922,
+    where the least collapse state over all states (`--safe`) lies, 0.00186212 and
+    0.0127927; at 0.85 and 0.87: 0.0489 and 0.0567 (the distortion method 0.0490 and
+    0.0568)."""
     from .na_capacity import MAX_JOINTS
 
     c = cv.contacts
-    if c.dimension != 2:
-        return []
-    safe = ("`--safe` gives the least collapse multiplier over all states, a lower end "
-            "for this answer; " if c.n_joints <= MAX_JOINTS else "")
-    return [f"{safe}`--method distortion` follows the seed's procedure from X0"]
+    return c.dimension == 2 and c.n_joints <= MAX_JOINTS
+
+
+#: the note of an answer read off the states reached from X0 (:func:`_by_states`)
+BY_STATES = ("the limit run from X0 stops (its capped laws carry nothing after a few "
+             "steps): on this small scene the answer is read off the state reached from X0 "
+             "at each load factor, by bisection, as the distortion method reads the seed's "
+             "procedure")
+
+
+def _elsewhere(cv: ConvexMethod) -> list[str]:
+    """Where `load` is undecided from X0 with no lower bound on a 2D scene too large to
+    be read off the states reached from X0 (:func:`_by_states`): the seed's procedure,
+    which answers there by its own iteration."""
+    return ["`--method distortion` follows the seed's procedure from X0"] \
+        if cv.contacts.dimension == 2 else []
 
 
 def _x0_answer(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
@@ -1528,6 +1558,15 @@ def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
             by_bound = _trial_by_the_bound(na, cv, fv, lf, rec)
             if by_bound is not None:
                 return by_bound
+            if _by_states(cv):  # (as `load` reads it there)
+                direct = na.admissible(fv, lf)
+                rec["carries"] = direct.admissible
+                rec["by_states"] = True
+                return Trial(fv, direct.admissible, data=direct,
+                             why={True: "", False: "the state reached from X0 at this load "
+                                  "breaches the joint laws"}.get(
+                                      direct.admissible, "the state reached from X0 did not "
+                                      "settle"))
             # (a run whose capped laws carry nothing at a step proves nothing of the
             # structure: the inclined corbel arch's at its static f* for lambda = 0.063
             # counted as "does not carry", a verdict no state supports)
@@ -1685,6 +1724,9 @@ def _across_f_star(s: Any, lf: float, trials: list[dict[str, Any]]) -> str:
     carried = (f"the lower bound on every collapse state at lambda >= 0 is "
                f"{rec['by_bound']:.9g} > {lf:.10g}: it stands whatever state it is in"
                if "by_bound" in rec else
+               f"the state reached from X0 at lambda = {lf:.10g} stands (the limit run "
+               "from X0 stops there; read off that state, as `load` does)"
+               if rec.get("by_states") else
                f"the limit fixed point from X0 carries lambda = {at.value + lf:.9g} "
                f"{carried_text(at.value + lf, lf, rec['carry_tol'])}"
                if math.isfinite(at.value) else
@@ -1699,7 +1741,7 @@ def _flat_below(trials: list[dict[str, Any]], found: bool = True) -> list[str]:
     where another mechanism takes over (the 6 x 5 wall at load factor 0.590526: 0.578947
     from f = 0.6 to 266.2, then 0.77 from forces at the solver's resolution: with the
     ceiling of 10, none found)."""
-    short = [t for t in trials if t.get("carries") is False]
+    short = [t for t in trials if t.get("carries") is False and t["load_factor"] is not None]
     lams = [t["load_factor"] for t in short]
     if len(short) < 3 or max(lams) - min(lams) > 1e-6 * abs(max(lams)):
         return []
