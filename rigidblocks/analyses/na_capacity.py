@@ -114,13 +114,23 @@ def _least_normal(m: _Model, groups: np.ndarray, starts: np.ndarray, lo: float,
     return out
 
 
-def _max_load_lp(prob) -> float | None:
-    """lambda* of a linear maximum-load problem (:func:`build_max_load`, 2D or with
-    pyramids) by HiGHS's simplex: inf when unbounded, None when infeasible."""
+def _highs(prob, cost: np.ndarray, lam: float | None = None, dead: float = 1.0):
+    """HiGHS's simplex (scipy) over the rows of a linear maximum-load problem ``prob``
+    (:func:`build_max_load`, 2D or with pyramids): minimise ``cost``, lambda fixed at
+    ``lam`` where given, the dead load times ``dead``; scipy's result."""
     ne = prob.n_eq
     A = prob.A.tocsr()
-    res = linprog(prob.c, A_ub=A[ne:], b_ub=prob.b[ne:], A_eq=A[:ne], b_eq=prob.b[:ne],
-                  bounds=[(None, None)] * prob.n, method="highs")
+    bounds = [(None, None)] * prob.n
+    if lam is not None:
+        bounds[prob.cols["lambda"].start] = (lam, lam)
+    return linprog(cost, A_ub=A[ne:], b_ub=prob.b[ne:], A_eq=A[:ne], b_eq=dead * prob.b[:ne],
+                   bounds=bounds, method="highs")
+
+
+def _max_load_lp(prob) -> float | None:
+    """lambda* of a linear maximum-load problem by HiGHS's simplex (:func:`_highs`): inf
+    when unbounded, None when infeasible."""
+    res = _highs(prob, prob.c)
     if res.status == 3:
         return math.inf
     if res.status == 2:
@@ -134,14 +144,8 @@ def _max_load_lp(prob) -> float | None:
 def _carries_more_dead(prob, lam: float) -> bool:
     """Does the (capped) structure of the maximum-load problem ``prob`` have an
     admissible state under (1 + DEAD_MARGIN) x its dead load plus ``lam`` x its live
-    load (HiGHS's simplex)?"""
-    ne = prob.n_eq
-    A = prob.A.tocsr()
-    bounds = [(None, None)] * prob.n
-    j = prob.cols["lambda"].start
-    bounds[j] = (lam, lam)
-    res = linprog(np.zeros(prob.n), A_ub=A[ne:], b_ub=prob.b[ne:], A_eq=A[:ne],
-                  b_eq=(1.0 + DEAD_MARGIN) * prob.b[:ne], bounds=bounds, method="highs")
+    load (:func:`_highs`)?"""
+    res = _highs(prob, np.zeros(prob.n), lam, 1.0 + DEAD_MARGIN)
     if res.status not in (0, 2):
         raise SolverFailure(f"HiGHS: {res.message} (capped laws under more dead load)",
                             "highs", str(res.status))
