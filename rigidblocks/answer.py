@@ -59,6 +59,8 @@ NA_BELOW_LOAD = ("NOT ADMISSIBLE: loaded from X0 it collapses below this load (t
 #: the bounds line's words for the capacity bound (rigidblocks.analyses.na_capacity)
 CAPACITY_LOWER = ("lower: capacity bound, every collapse state at lambda >= 0 (Radenkovic's "
                   "second theorem with each joint's least normal force)")
+NO_SLIDING_LOWER = ("lower: associative, every collapse state (infinite friction: no joint "
+                    "without dilatancy slides, and the flow rule plays no part)")
 NA_BOUND_STANDS = ("ADMISSIBLE: no collapse state without dilatancy lies at or below this "
                    "load (a lower bound on every one carries it): it stands whatever state "
                    "it is in")
@@ -768,6 +770,11 @@ def flow_lines(res: Any) -> list[str]:
     done = "converged" if res.converged else "not converged"
     if res.status == "collapse" and not res.converged:
         done += " (the bounds meet: they give the answer)"
+    if starts and starts[0].get("status") == "unstable" and not starts[0].get("iterations"):
+        # no limit step from X0: the state it reaches breaches under the dead load (the
+        # flat arch with vertical joints at f = 0.6 read "(0 + 8), converged" beside
+        # the other start's infeasible run)
+        done = "decided under the dead load, before any limit step from X0"
     if starts:  # the limit iteration: its steps, summed over the starts
         steps = " + ".join(str(h.get("iterations", "?")) for h in starts)
         each = f" ({steps})" if len(starts) > 1 else ""
@@ -791,7 +798,8 @@ def flow_lines(res: Any) -> list[str]:
         hi = "-" if b[1] is None else fmt_safe(b[1], 6, True)
         what = ["rounded outward"] if b[0] is not None or b[1] is not None else []
         by = getattr(res, "lower_bound_by", None)
-        what.append(CAPACITY_LOWER if by == "capacity" else
+        what.append(CAPACITY_LOWER if by == "capacity" else NO_SLIDING_LOWER
+                    if by == "no sliding" else
                     "lower: the joints without dilatancy frictionless" if b[0] is not None
                     else "lower, -: none with the joints without dilatancy frictionless")
         what.append("upper: associative" if b[1] is not None else

@@ -982,3 +982,51 @@ def test_a_linear_program_clarabel_cannot_solve_is_answered_by_highs(capsys):
     assert res.status == "unstable"
     assert all("highs answered it" in r for r in res.rejected)
     assert any("were solved again by highs" in n for n in res.notes), res.notes
+
+
+def test_starts_within_the_checks_resolution_of_zero_give_the_same_answer():
+    """The inclined corbel arch at its static f* = 0.7651297008 (examples/
+    corbel_arch_inclined.json; the associative multiplier there is 9.5e-12): the runs
+    from X0 and from the associative collapse state end at 4.197021e-08 and
+    1.186472e-10, both within the checks' 1e-6 of the live load of the answer
+    lambda* = 0; the starts line read "the answers differ: [1.186472e-10,
+    4.197021e-08] (the answer is X0's)" beside it. Answers 1e-5 apart still differ."""
+    from rigidblocks.analyses.nonassociative import compare_starts
+
+    def history(a: float, b: float) -> list[dict]:
+        return [{"start": s, "load_factor": v, "status": "converged", "converged": True}
+                for s, v in (("X0", a), ("the associative collapse state", b))]
+
+    assert compare_starts(history(4.197021e-08, 1.186472e-10))[1] is None
+    assert compare_starts(history(0.4110464, 0.4110466))[1] is None
+    assert compare_starts(history(1e-5, 2e-5))[1] == (1e-5, 2e-5)
+    assert compare_starts(history(0.4110464, 0.4116458))[1] == (0.4110464, 0.4116458)
+
+
+def test_the_flow_line_of_a_dead_load_breach_says_no_run_converged(capsys):
+    """examples/flat_arch_vertical.json at f = 0.6, `load --flow non-associative`: the
+    state reached from X0 breaches the joint laws under the dead load (UNSTABLE, no
+    limit step from X0) and the run from the associative collapse state ends
+    infeasible; the flow line read "8 limit step(s) over 2 start(s) (0 + 8), converged"."""
+    code, out, _ = run(capsys, ["load", str(EXAMPLES / "flat_arch_vertical.json"),
+                                "--flow", "non-associative", "--friction", "0.6"])
+    assert code == 0 and "verdict    UNSTABLE" in out
+    flow = next(ln for ln in out.splitlines() if ln.startswith("flow"))
+    assert flow.endswith("(0 + 8), decided under the dead load, before any limit step "
+                         "from X0"), flow
+
+
+def test_at_infinite_friction_the_bounds_meet_at_the_associative_multiplier(capsys):
+    """examples/arch.json, `load --flow non-associative --friction infinite`: no joint
+    slides, so every collapse state's mechanism only hinges and opens (normality of the
+    no-tension law) and collapses at the associative multiplier 0.1497648 (the
+    kinematic theorem). The bounds line read "[-, 0.149765] (lower, -: none with the
+    joints without dilatancy frictionless)": the frictionless arch does not carry its
+    dead load, which says nothing at infinite friction."""
+    code, out, _ = run(capsys, ["load", str(EXAMPLES / "arch.json"), "--flow",
+                                "non-associative", "--friction", "infinite", "--json"])
+    assert code == 0
+    d = json.loads(out)
+    lo, hi = d["load_multiplier_bounds"]
+    assert d["lower_bound_by"] == "no sliding" and lo == hi
+    assert abs(d["load_multiplier"] - hi) <= 1e-9 * hi and abs(hi - 0.1497648) < 1e-6
