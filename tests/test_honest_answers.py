@@ -1030,3 +1030,24 @@ def test_at_infinite_friction_the_bounds_meet_at_the_associative_multiplier(caps
     lo, hi = d["load_multiplier_bounds"]
     assert d["lower_bound_by"] == "no sliding" and lo == hi
     assert abs(d["load_multiplier"] - hi) <= 1e-9 * hi and abs(hi - 0.1497648) < 1e-6
+
+
+def test_load_check_and_friction_read_a_fixed_point_at_the_associative_one_alike(
+        tmp_path, capsys):
+    """The reference model (examples/reference.json) with the joint left-top without
+    dilatancy: `load` reads the limit fixed point from X0, 1.199999975, as the
+    associative multiplier 1.2 (within the checks' 1e-6; the seed's closed form is
+    lambda = 2 f = 1.2 at f = 0.6) and prints lambda* = 1.2; `check` at 1.2 said NOT
+    ADMISSIBLE ("collapses at lambda = 1.199999 < 1.2") and `friction` at 1.2 gave
+    f* = 0.60006 ("f = 0.6 is NOT enough")."""
+    scene = json.loads((EXAMPLES / "reference.json").read_text())
+    scene["joints"] = [{"blocks": ["left", "top"], "flow": "non-associative"}]
+    path = tmp_path / "one_joint.json"
+    path.write_text(json.dumps(scene))
+    code, out, _ = run(capsys, ["load", str(path), "--json"])
+    assert code == 0 and abs(json.loads(out)["load_multiplier"] - 1.2) < 1e-9
+    code, out, _ = run(capsys, ["check", str(path), "--load-factor", "1.2"])
+    assert code == 0 and out.split("verdict    ")[1].startswith("ADMISSIBLE"), out
+    code, out, _ = run(capsys, ["friction", str(path), "--load-factor", "1.2", "--json"])
+    d = json.loads(out)
+    assert code == 0 and d["status"] == "stable" and d["friction_factor"] <= 0.6 + 1e-9, d

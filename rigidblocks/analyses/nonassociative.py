@@ -657,6 +657,45 @@ def _x0_limit_run(na: ConvexNonAssociative, cv: ConvexMethod, f: float
     return verdict, r
 
 
+#: a limit fixed point within this (relative, and of the live load below 1) of the
+#: associative multiplier, an upper bound on every state (Radenkovic), is it: the checks'
+#: resolution (:func:`_limit_checks`), coarser than a mechanism's states solved by an
+#: interior-point method (the reference model with one joint without dilatancy:
+#: 1.199999975 for 1.2)
+SAME_AS_ASSOCIATIVE = 1e-6
+
+
+def _at_associative(lam: float, hi: float | None) -> bool:
+    """Is the multiplier ``lam`` the associative one ``hi`` (:data:`SAME_AS_ASSOCIATIVE`)?"""
+    return hi is not None and math.isfinite(hi) and \
+        abs(lam - hi) <= SAME_AS_ASSOCIATIVE * max(abs(hi), 1.0)
+
+
+def _as_load_reads(na: NonAssociative, cv: ConvexMethod, f: float, r: LimitRun,
+                   lf: float) -> LimitRun:
+    """The limit run from X0 ``r`` as `load` reads its answer (:func:`_x0_answer`): where
+    it falls short of ``lf`` within :data:`SAME_AS_ASSOCIATIVE` and is the associative
+    multiplier to that accuracy, at the associative multiplier (noted). `load` printed
+    lambda* = 1.2 for the reference model with one joint without dilatancy (its fixed
+    point 1.199999975), and `check` at 1.2 said NOT ADMISSIBLE ("collapses at lambda =
+    1.199999 < 1.2"), `friction` at 1.2 "f = 0.6 is NOT enough"."""
+    if r.lam is None or r.carries(lf) or \
+            r.lam < lf - SAME_AS_ASSOCIATIVE * max(abs(lf), 1.0):
+        return r
+    seen = len(cv.notes)
+    try:
+        up = cv.load_limit(f, 1e-9)
+    finally:
+        del cv.notes[seen:]  # (the associative analysis' notes: not this answer's)
+    hi = max(float(up.value), 0.0) if up.status == "collapse" else None
+    if not _at_associative(r.lam, hi):
+        return r
+    na.notes.append(f"the limit fixed point from X0, {r.lam:.10g}, is the associative "
+                    f"multiplier {hi:.10g} to {SAME_AS_ASSOCIATIVE:g}, an upper bound on "
+                    "every state: it is read as that (as `load` reads it)")
+    return replace(r, lam=hi)
+
+
 def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
                     lf: float) -> str:
     """The check's verdict where the state reached from X0 at the load factor ``lf`` is
@@ -681,6 +720,7 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
                         f"({r.reason}): whether loading from X0 reaches lambda = {lf:.10g} is "
                         "undecided")
         return UNDECIDED
+    r = _as_load_reads(na, cv, f, r, lf)
     if r.carries(lf):
         na.notes.append(f"loaded from X0 it carries lambda = {fmt_safe(r.lam, 7, False)} "
                         f"{carried_text(r.lam, lf, r.carry_tol)} (`load`'s answer, the limit "
@@ -1121,7 +1161,7 @@ def _x0_answer(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
         return LoadResult(**_fields(na, "max_load_multiplier", "unstable", f, None, trials,
                                     True), load_multiplier_bounds=bounds)
     hi = bounds[1]
-    if hi is not None and math.isfinite(hi) and abs(lam - hi) <= 1e-6 * max(abs(hi), 1.0):
+    if _at_associative(lam, hi):
         # the associative multiplier is an upper bound on every state (Radenkovic): a
         # fixed point within the checks' 1e-6 of it (an interior-point value) is it
         na.notes.append(f"the non-associative multiplier equals the associative one (the "
@@ -1584,6 +1624,8 @@ def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
             # counted as "does not carry", a verdict no state supports)
             return Trial(fv, None, data=v, why=r.reason or r.status)
         # whether it carries lf, to the accuracy of its multiplier
+        r = _as_load_reads(na, cv, fv, r, lf)
+        rec["load_factor"] = r.lam
         rec["carries"] = r.carries(lf)
         if not rec["carries"]:  # (the theorem, as `check` judges it)
             by_bound = _trial_by_the_bound(na, cv, fv, lf, rec)
