@@ -451,3 +451,21 @@ def test_cli_safe_line_is_rounded_on_the_safe_side(capsys):
     starts = float(re.search(r"from the elastic state X0: lambda = ([0-9.e+-]+)", out)
                    .group(1))
     assert safe == starts <= lam and lam - safe < 1e-6 * lam  # seven figures
+
+
+def test_cli_safe_line_above_a_bisected_answer_says_where_it_lies():
+    """The inclined corbel arch at f = 0.8 without dilatancy (examples/
+    corbel_arch_inclined.json): `load` reads its answer off the states reached from X0
+    by bisection, lambda* = 0.0127922 in [0.01279220942, 0.0127926969], and `--safe`
+    proves 0.01279269 (inside that bracket). The safe line printed the proven least
+    above the answer with no word on it; a safe value above the whole bracket says the
+    answer is not a collapse state."""
+    from rigidblocks.cli.analyses import _safe_line
+
+    safe = {"status": "optimal", "value": 0.0127926900, "driven_by": "dead"}
+    line = _safe_line(safe, 0.01279220942, (0.01279220942, 0.0127926969))
+    assert "\nsafe       above the answer lambda* = 0.0127922, within its bracket " \
+        "[0.0127922, 0.0127927]: to the answer's accuracy they are one value" in line
+    line = _safe_line(dict(safe, value=0.013), 0.01279220942, (0.01279220942, 0.0127926969))
+    assert "above the answer lambda* = 0.0127922: the state reached from X0 breaches" in line
+    assert "BELOW" not in _safe_line(safe, 0.01279269, None).split("proven")[1]

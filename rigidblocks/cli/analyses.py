@@ -125,7 +125,8 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(report(scene, res, joints=args.joints == "-", verbose=args.verbose))
         if safe is not None:
-            print(_safe_line(safe, getattr(res, "load_multiplier", None)))
+            print(_safe_line(safe, getattr(res, "load_multiplier", None),
+                             getattr(res, "bracket", None)))
         if csv_path is not None:
             print(f"wrote {csv_path}")
     return EXIT.get(res.status, 0)
@@ -173,7 +174,10 @@ def _safe(scene: Any, args: argparse.Namespace, res: Any) -> dict[str, Any]:
             "driven_by": r.driven_by, "notes": list(r.notes)}
 
 
-def _safe_line(safe: dict[str, Any], answer: float | None) -> str:
+def _safe_line(safe: dict[str, Any], answer: float | None,
+               bracket: Any = None) -> str:
+    """The ``safe`` line: the safe multiplier ``safe`` (:func:`_safe`) beside the
+    answer ``answer`` and the answer's ``bracket`` (a bisection's, or None)."""
     from ..analyses.na_bounds import NONE_WITHIN_BOUNDS
 
     def num(v: Any, up: bool = False) -> str:
@@ -195,6 +199,17 @@ def _safe_line(safe: dict[str, Any], answer: float | None) -> str:
             line += (f"\nsafe       BELOW the answer lambda* = {num(answer)}, which is the "
                      "state reached from the elastic state X0: the joints have another "
                      f"state that collapses at {num(safe['value'])}")
+        elif answer is not None and safe["value"] > answer * (1.0 + 1e-6) + 1e-12:
+            # the answer is a bisection's lower end (the inclined corbel arch at f = 0.8:
+            # lambda* = 0.0127922 in [0.0127922, 0.0127927] beside the safe 0.01279269,
+            # which read as a proven least above the answer)
+            held = bracket is not None and safe["value"] <= bracket[1] * (1 + 1e-9) + 1e-12
+            line += (f"\nsafe       above the answer lambda* = {num(answer)}" +
+                     (f", within its bracket [{num(bracket[0])}, {num(bracket[1], True)}]: "
+                      "to the answer's accuracy they are one value" if held else
+                      ": the state reached from X0 breaches the joint laws at a load no "
+                      "collapse state reaches (the answer is the seed's procedure's, not a "
+                      "collapse state)"))
         return line
     if st == NONE_WITHIN_BOUNDS and safe.get("associative") is not None:
         # (it read "no collapse within the bounds: bracket [lo, -]" beside a collapse at
