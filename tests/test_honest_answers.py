@@ -1051,3 +1051,16 @@ def test_load_check_and_friction_read_a_fixed_point_at_the_associative_one_alike
     code, out, _ = run(capsys, ["friction", str(path), "--load-factor", "1.2", "--json"])
     d = json.loads(out)
     assert code == 0 and d["status"] == "stable" and d["friction_factor"] <= 0.6 + 1e-9, d
+
+
+def test_an_unstable_path_without_dilatancy_does_not_say_no_state_stands(capsys):
+    """examples/flat_arch_vertical.json, `path --flow non-associative` at its f = 0.6: the
+    state the distortion method reaches from X0 breaches the joint laws under the dead
+    load, while `check --load-factor 0` admits a state (associative lambda* = 0.2496);
+    the path said "the dead load alone has no admissible state"."""
+    path = str(EXAMPLES / "flat_arch_vertical.json")
+    code, out, _ = run(capsys, ["path", path, "--flow", "non-associative"])
+    assert code == 0 and "status     UNSTABLE" in out
+    assert "no admissible state" not in out and "breaches the joint laws" in out, out
+    code, out, _ = run(capsys, ["check", path, "--load-factor", "0"])
+    assert out.split("verdict    ")[1].startswith("ADMISSIBLE"), out

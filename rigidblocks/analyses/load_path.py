@@ -463,7 +463,14 @@ def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: An
 def _at_zero(p: _Path) -> Run:
     r = p.solve(0.0)
     if r.status == "inadmissible":  # no path: the word of max_load_multiplier
-        p.w.notes.append("the dead load alone has no admissible state")
+        # without dilatancy the iteration's state is one of many: others may stand (the
+        # flat arch with vertical joints at f = 0.6, which `check` admits at lambda = 0,
+        # read "the dead load alone has no admissible state")
+        p.w.notes.append("the state reached from the elastic state X0 under the dead load "
+                         "alone breaches the joint laws (without dilatancy: whether "
+                         "another state stands, `rigidblocks check --load-factor 0` without "
+                         "--flow says)" if p.marked.any()
+                         else "the dead load alone has no admissible state")
         raise _End("unstable", 0.0)
     return r
 
