@@ -512,8 +512,9 @@ class _Words:
             # the search stops at a finite ceiling: infinite friction (no sliding at
             # all) is another joint law, which may stand (a running-bond wall with
             # openings, whose state from X0 has joints with no normal force)
-            return (f"UNSTABLE: no friction up to {NA_FRICTION_CEILING:g} suffices without "
-                    "dilatancy (in the state reached from the elastic state X0)", "", "",
+            return (f"UNSTABLE: no friction tried up to {NA_FRICTION_CEILING:g} suffices "
+                    "without dilatancy (in the state reached from the elastic state X0)",
+                    "", "",
                     self.live_hint(res))
         if res.status != "stable":  # no state at any friction (either flow rule)
             own = np.flatnonzero(np.isfinite(np.asarray(res.contacts.override_friction,

@@ -671,7 +671,7 @@ def test_no_finite_friction_is_not_said_of_infinite_friction(tmp_path, capsys):
     assert main(["friction", str(f), "--flow", "non-associative", "--load-factor", "0",
                  "-v"]) == 0
     out = capsys.readouterr().out
-    assert ("verdict    UNSTABLE: no friction up to 10 suffices without dilatancy (in "
+    assert ("verdict    UNSTABLE: no friction tried up to 10 suffices without dilatancy (in "
             "the state reached from the elastic state X0)") in out
     assert "infinite" not in out and "at any finite friction" in out
     assert main(["check", str(f), "--flow", "non-associative", "--friction", "infinite",
@@ -933,7 +933,7 @@ def test_a_non_associative_friction_that_rests_on_numerically_zero_forces_is_non
     write_scene(build("wall", courses=4, blocks_per_course=4), f)
     code, out, _ = run(capsys, ["friction", str(f), "--flow", "non-associative",
                                 "--load-factor", "0.7"])
-    assert "verdict    UNSTABLE: no friction up to 10 suffices without dilatancy" in out
+    assert "verdict    UNSTABLE: no friction tried up to 10 suffices without dilatancy" in out
     for fr in ("1", "10"):
         code, out, _ = run(capsys, ["load", str(f), "--flow", "non-associative",
                                     "--friction", fr])
@@ -1064,3 +1064,68 @@ def test_an_unstable_path_without_dilatancy_does_not_say_no_state_stands(capsys)
     assert "no admissible state" not in out and "breaches the joint laws" in out, out
     code, out, _ = run(capsys, ["check", path, "--load-factor", "0"])
     assert out.split("verdict    ")[1].startswith("ADMISSIBLE"), out
+
+
+def test_no_friction_up_to_the_ceiling_is_said_once_the_ceiling_was_tried(tmp_path,
+                                                                          capsys):
+    """A 6 x 6 running-bond wall at f = 0.7 under 0.6 of its weight, `friction --flow
+    non-associative`: the limit fixed point from X0 carries 0.5789473 (11/19) at every
+    friction tried; the search doubled from the static f* 0.65755 to 5.26 and answered
+    "no friction up to 10 suffices" without trying 10. The ceiling is tried now, and
+    the verdict says the frictions were tried (lambda need not grow with f between
+    them)."""
+    from rigidblocks.io import write_scene
+
+    f = tmp_path / "wall.json"
+    write_scene(build("wall", courses=6, blocks_per_course=6, friction=0.7), f)
+    args = ["friction", str(f), "--flow", "non-associative", "--load-factor", "0.6"]
+    code, out, _ = run(capsys, [*args, "--json"])
+    d = json.loads(out)
+    assert d["status"] == "unstable"
+    tried = [h["friction"] for h in d["history"]]
+    assert max(tried) == 10.0 and all(abs(h["load_factor"] - 11 / 19) < 1e-9
+                                      for h in d["history"]), d["history"]
+    code, out, _ = run(capsys, args)
+    assert "verdict    UNSTABLE: no friction tried up to 10 suffices" in out
+
+
+def test_a_check_whose_state_does_not_settle_reads_the_collapse_from_x0(tmp_path, capsys):
+    """The 6 x 6 running-bond wall at f = 2 under 0.6 of its weight, `check --flow
+    non-associative`: the state reached from X0 at 0.6 does not settle within 300
+    solves, and the check said UNDECIDED, while `load` at f = 2 collapses from X0 at
+    0.5789473 (11/19) < 0.6, as the check itself says at f = 5.6 and 10."""
+    from rigidblocks.io import write_scene
+
+    f = tmp_path / "wall.json"
+    write_scene(build("wall", courses=6, blocks_per_course=6, friction=0.7), f)
+    code, out, _ = run(capsys, ["load", str(f), "--flow", "non-associative", "--friction",
+                                "2", "--json"])
+    assert abs(json.loads(out)["load_multiplier"] - 11 / 19) < 1e-9
+    code, out, _ = run(capsys, ["check", str(f), "--flow", "non-associative", "--friction",
+                                "2", "--load-factor", "0.6", "--json"])
+    d = json.loads(out)
+    assert code == 0 and d["status"] == "inadmissible" and d["breaches"] == [], d["status"]
+    assert any("collapses at lambda = 0.5789473 < 0.6" in n for n in d["notes"])
+
+
+def test_a_friction_at_the_brink_says_a_margin_above_it_does_not_stand(capsys):
+    """examples/corbel_arch_inclined.json under its dead load, `friction --flow
+    non-associative`: f* = 0.7651297008 is the static f*, where one state alone is
+    admissible; just above it, from 0.7652 to 0.76666, the state reached from X0
+    collapses below the dead load (`load --friction 0.7652`: UNSTABLE), and it stands
+    again from about 0.767 (`load --friction 0.767`: lambda* = 0.000718). The answer
+    said only that a larger f need not carry more."""
+    path = str(EXAMPLES / "corbel_arch_inclined.json")
+    code, out, _ = run(capsys, ["friction", path, "--flow", "non-associative"])
+    assert code == 0 and "answer     f* = 0.7651297008 " in out
+    m = re.search(r"just above it, at f = ([0-9.]+), the state reached from X0 does not "
+                  r"carry the load, and carries it again at f = ([0-9.]+) ", out)
+    assert m, out
+    low, high = float(m.group(1)), float(m.group(2))
+    assert 0.7652 < low < high < 0.770
+    code, out, _ = run(capsys, ["load", path, "--flow", "non-associative", "--friction",
+                                m.group(1)])
+    assert "verdict    UNSTABLE" in out
+    code, out, _ = run(capsys, ["load", path, "--flow", "non-associative", "--friction",
+                                m.group(2)])
+    assert "verdict    COLLAPSE" in out

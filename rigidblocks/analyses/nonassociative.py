@@ -611,6 +611,14 @@ def _check(na: NonAssociative, cv: ConvexMethod, f: float, lf: float, state: boo
         trial["limit_status"] = status
         if status != ADMISSIBLE:  # the state shown breaches nothing
             admissible, violation = (False if status == INADMISSIBLE else None), math.nan
+    elif status == UNDECIDED and isinstance(na, ConvexNonAssociative) and \
+            na.scene.has_live_load:
+        before = na.fp_iterations
+        status = _loaded_from_x0(na, cv, f, lf, direct=False)
+        trial["limit_steps"] = na.fp_iterations - before
+        trial["limit_status"] = status
+        if status == INADMISSIBLE:  # (the state shown did not settle: no breach of its)
+            admissible, violation = False, math.nan
     if isinstance(na, ConvexNonAssociative) and na.scene.has_live_load:
         # a theorem decides where the iterations from X0 do not stand, and says more
         # where they do: it stands in every state, not only in the one from X0 (the
@@ -631,7 +639,8 @@ def _check(na: NonAssociative, cv: ConvexMethod, f: float, lf: float, state: boo
             if status != ADMISSIBLE:
                 st = na.state(f, lf, shown)
             status, admissible, violation, na.cause = ADMISSIBLE, True, 0.0, BOUND_STANDS
-    breaches = na.breaches(f, v) if status == INADMISSIBLE else ()
+    breaches = na.breaches(f, v) if status == INADMISSIBLE and v.status == INADMISSIBLE \
+        else ()
     if breaches:
         # the state's own largest breach, as the joints list it (the capped relaxation's
         # measure, 0.0031 on the 3 x 3 wall at f = 0.8 and lambda = 0.76, read beside
@@ -697,7 +706,7 @@ def _as_load_reads(na: NonAssociative, cv: ConvexMethod, f: float, r: LimitRun,
 
 
 def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
-                    lf: float) -> str:
+                    lf: float, direct: bool = True) -> str:
     """The check's verdict where the state reached from X0 at the load factor ``lf`` is
     admissible: it stands where the limit iteration from X0 (`load`'s answer) carries
     ``lf`` too. The two ask different things of the same start (the state at ``lf``
@@ -705,11 +714,18 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
     dilatancy they may disagree: the Arpino gate at f = 0.6 stands in the first at
     lambda = 0.12 while the second collapses at 0.1187021, the smallest multiplier of
     any state (`load --safe`). The check then says that it does not stand, as `load`
-    and `friction` say."""
+    and `friction` say.
+
+    ``direct`` False: the state at ``lf`` reached directly did not settle; the verdict
+    is then INADMISSIBLE where the limit iteration collapses below ``lf``, else
+    UNDECIDED (the 6 x 6 wall at f = 2 and lambda = 0.6: no fixed point at 0.6 within
+    300 solves, where `load` collapses from X0 at 0.5789473 < 0.6)."""
     with cv.runner.afresh():
         _, r = _x0_limit_run(na, cv, f)
     if r is None or r.status == "unbounded":
-        return ADMISSIBLE
+        return ADMISSIBLE if direct else UNDECIDED
+    if not direct and (not r.converged or _limit_checks(cv, f, r, (None, None))):
+        return UNDECIDED
     if not r.converged or _limit_checks(cv, f, r, (None, None)):
         if _by_states(cv):  # (as `load` reads it there)
             na.notes.append(f"the limit fixed point from X0 was not reached ({r.reason}): "
@@ -721,6 +737,14 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
                         "undecided")
         return UNDECIDED
     r = _as_load_reads(na, cv, f, r, lf)
+    if not direct:
+        if r.carries(lf):
+            return UNDECIDED
+        na.notes.append(f"loaded from X0 it collapses at lambda = {fmt_safe(r.lam, 7, False)} "
+                        f"< {lf:.10g} (the limit fixed point from X0, `load`'s answer): it "
+                        f"does not stand at lambda = {lf:.10g}, although the state reached "
+                        "from X0 at this load directly did not settle")
+        return INADMISSIBLE
     if r.carries(lf):
         na.notes.append(f"loaded from X0 it carries lambda = {fmt_safe(r.lam, 7, False)} "
                         f"{carried_text(r.lam, lf, r.carry_tol)} (`load`'s answer, the limit "
@@ -1686,6 +1710,7 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
             na.notes.append(_across_f_star(s, lf, trials))
             return out("stable", t.x, t.data, fs, t.x, True)
         na.notes.append(_equals_static(fs, rtol))
+        na.notes.extend(_past_the_brink(s, oracle))
         return out("stable", fs, t.data, lim.lower if lim.lower is not None else fs, fs,
                    True)
     good = max(2.0 * fs, 1e-3)
@@ -1699,6 +1724,9 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
             good = own
         elif t.side is False:
             good = max(good, 2.0 * own)
+    # doubling up to the ceiling, which is tried too (the 6 x 6 wall at load factor 0.6
+    # stopped at 5.26 and answered "no friction up to 10")
+    good = min(good, max(NA_FRICTION_CEILING, fs))
     while not t.side:
         t = oracle(good)
         s.record(t)
@@ -1708,12 +1736,12 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
             return out(UNDECIDED, lower=s.bad, converged=False)
         if t.side:
             break
-        good *= 2.0
-        if good > NA_FRICTION_CEILING:
-            na.notes.extend([f"no friction up to {NA_FRICTION_CEILING:g} carries the load "
-                             "at the limit fixed point reached from X0",
+        if good >= NA_FRICTION_CEILING:
+            na.notes.extend([f"no friction tried up to {NA_FRICTION_CEILING:g} carries the "
+                             "load at the limit fixed point reached from X0",
                              *_flat_below(trials, found=False)])
             return out("unstable", converged=True)
+        good = min(2.0 * good, NA_FRICTION_CEILING)
     run(s, oracle, (undecided_band, narrow_enough),
         (beside_the_undecided, _across, _secant, midpoint))
     if not s.narrow():
@@ -1742,6 +1770,52 @@ def _at_the_static(s: Any, oracle: Any) -> Any:
         t = oracle(fs + 0.1 * (s.rtol * fs + s.atol))
         s.record(t)
     return t
+
+
+def _past_the_brink(s: Any, oracle: Any) -> list[str]:
+    """Where the non-associative f* is the static one (``s.good``), the brink at which
+    a single state is admissible, a trial just above it (the accuracy asked): where
+    that does not carry the load, the least friction above it that does (doubling the
+    step, then bisection to the same accuracy), in a note: frictions a margin above f*
+    do not carry it. The inclined corbel arch under its dead load: f* = 0.7651297008,
+    and from X0 it collapses below the dead load at 0.7652 to 0.76666, stands again
+    from about 0.767."""
+    from ..methods.engine import (
+        Search,
+        beside_the_undecided,
+        midpoint,
+        narrow_enough,
+        run,
+        undecided_band,
+    )
+
+    fs = s.good
+    step = s.rtol * fs + s.atol
+    t = oracle(fs + step)
+    if t.side is not False:
+        return []
+    above = Search(t.x, math.inf, s.rtol, s.atol, [t])
+    while above.good == math.inf:
+        x = fs + 2.0 * (above.bad - fs)
+        if x > NA_FRICTION_CEILING:
+            break
+        u = oracle(x)
+        if u.side is None:
+            break
+        above.record(u)
+    first = (f"f* = {fs:.10g} is the static f*, the brink at which a single state is "
+             f"admissible: just above it, at f = {t.x:.6g}, the state reached from X0 does "
+             "not carry the load")
+    if above.good == math.inf:
+        return [f"{first}, nor at any friction tried up to {above.bad:.6g}: a margin "
+                "above f* does not make it stand"]
+    run(above, oracle, (undecided_band, narrow_enough), (beside_the_undecided, midpoint))
+    if not above.narrow():
+        return [f"{first}; it carries it at f = {above.good:.6g}, and between the two "
+                "the runs decide nothing"]
+    return [f"{first}, and carries it again at f = {above.good:.6g} (the least above f* "
+            f"to the accuracy asked: between {above.lower:.6g} and {above.upper:.6g}): "
+            "a margin above f* smaller than that does not make it stand"]
 
 
 def _undecided_below(s: Any) -> list[str]:
