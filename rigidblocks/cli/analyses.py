@@ -302,7 +302,12 @@ def _accuracy(res) -> list[str]:
         where = ""
     near_zero = ""
     if where and res.accuracy > res.rtol:  # decided by an absolute floor near 0
-        near_zero = f"; decided by its width {res.bracket[1] - res.bracket[0]:.1e}, near 0"
+        # (the rule itself: "near 0" read as a claim about a multiplier of 0.0128)
+        from ..analyses.search import BRACKET_ATOL
+
+        near_zero = (f"; decided by its width {res.bracket[1] - res.bracket[0]:.1e} <= "
+                     f"{res.rtol:.0e} x {max(map(abs, res.bracket)):.3g} + {BRACKET_ATOL:g}, "
+                     "the absolute floor for answers near 0")
     return [f"accuracy   {res.accuracy:.1e} ({where}relative width; requested "
             f"{res.rtol:.0e}{near_zero})"]
 

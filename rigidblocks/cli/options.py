@@ -78,8 +78,10 @@ RTOL_DEFAULTS = {
     "friction": "2e-3, three significant figures (with either flow)",
     "load": "2e-3 (the convex path's one solve is at its tight tolerances whatever it "
             "is, and its duals tell how far lambda* may lie above its answer); with "
-            "--flow non-associative 1e-5 for the distortion method's bisection, while "
-            "the convex path's answer is a collapse state checked to 1e-7 (1e-5 with "
+            "--flow non-associative 1e-5 for a bisection (the distortion method's, and "
+            "the convex path's on small scenes where its limit run stops), with an "
+            "absolute floor of 1e-6 of the live load for answers near 0, while the convex "
+            "path's answer is otherwise a collapse state checked to 1e-7 (1e-5 with "
             "Coulomb's cones in 3D), no bracket",
     "thickness": "1e-4",
 }
