@@ -1129,3 +1129,18 @@ def test_a_friction_at_the_brink_says_a_margin_above_it_does_not_stand(capsys):
     code, out, _ = run(capsys, ["load", path, "--flow", "non-associative", "--friction",
                                 m.group(2)])
     assert "verdict    COLLAPSE" in out
+
+
+def test_a_distortion_answer_names_an_unstable_answer_of_the_default_method(capsys):
+    """examples/corbel_arch_inclined.json at f = 0.766 without dilatancy: the distortion
+    method's state from X0 collapses at lambda* = 0.000534, while the convex path's limit
+    run from X0 does not carry even the dead load (UNSTABLE). At f = 0.8 the answer
+    named the convex path's lower multiplier; here it said nothing of it."""
+    path = str(EXAMPLES / "corbel_arch_inclined.json")
+    args = ["load", path, "--flow", "non-associative", "--friction", "0.766"]
+    code, out, _ = run(capsys, args)
+    assert "verdict    UNSTABLE" in out
+    code, out, _ = run(capsys, [*args, "--method", "distortion"])
+    assert "verdict    COLLAPSE" in out
+    assert "the default method (the convex path: the same command without --method) " \
+        "finds it UNSTABLE from X0" in out, out
