@@ -770,7 +770,9 @@ def flow_lines(res: Any) -> list[str]:
     starts = start_entries(res.history)
     done = "converged" if res.converged else "not converged"
     if res.status == "collapse" and not res.converged:
-        done += " (the bounds meet: they give the answer)"
+        done += (" at one trial (the bracket it left meets the accuracy)"
+                 if getattr(res, "bracket", None) else
+                 " (the bounds meet: they give the answer)")
     if starts and starts[0].get("status") == "unstable" and not starts[0].get("iterations"):
         # no limit step from X0: the state it reaches breaches under the dead load (the
         # flat arch with vertical joints at f = 0.6 read "(0 + 8), converged" beside

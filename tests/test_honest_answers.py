@@ -1144,3 +1144,15 @@ def test_a_distortion_answer_names_an_unstable_answer_of_the_default_method(caps
     assert "verdict    COLLAPSE" in out
     assert "the default method (the convex path: the same command without --method) " \
         "finds it UNSTABLE from X0" in out, out
+
+
+def test_a_bisection_with_a_trial_that_did_not_settle_is_not_called_converged(capsys):
+    """examples/corbel_arch_inclined.json at f = 0.8 without dilatancy: `load` reads its
+    answer off the states reached from X0 by bisection, one of whose trials (at lambda =
+    0.0127925344) did not settle; the bracket it left, [0.01279220942, 0.0127926969],
+    meets the accuracy by its width, and the flow line said "converged"."""
+    code, out, _ = run(capsys, ["load", str(EXAMPLES / "corbel_arch_inclined.json"),
+                                "--flow", "non-associative", "--friction", "0.8"])
+    flow = next(ln for ln in out.splitlines() if ln.startswith("flow"))
+    assert code == 0 and flow.endswith(
+        "not converged at one trial (the bracket it left meets the accuracy)"), flow
