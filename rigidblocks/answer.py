@@ -68,8 +68,21 @@ NA_ADMISSIBLE = ("ADMISSIBLE: it stands in the state reached from the elastic st
                  "(every joint in compression and within friction; sliding without "
                  "dilatancy: another state may collapse at a lower load)")
 NA_ADMISSIBLE_WHY = ("without dilatancy an admissible state is no proof of safety: the "
-                     "smallest collapse multiplier over all states (`rigidblocks load "
-                     "--flow non-associative --safe`) may lie below this load factor")
+                     "smallest collapse multiplier over all states ({safe}) may lie below "
+                     "this load factor")
+
+
+def safe_command(res: Any, command: str) -> str:
+    """``command`` (a `load --safe` command line, in backticks) where `--safe` computes
+    the smallest collapse multiplier over all states on the result's scene, else what
+    it takes (the 8 x 8 wall, 180 joints: `check` and `friction` pointed to `--safe`,
+    which answered "not computed")."""
+    from .analyses.na_capacity import MAX_JOINTS
+
+    n = res.contacts.n_joints
+    return command if n <= MAX_JOINTS else (
+        f"`rigidblocks load --safe` computes it on scenes of up to {MAX_JOINTS} joints; "
+        f"this one has {n}")
 
 
 def without_dilatancy(result: Any) -> bool:
@@ -472,7 +485,9 @@ class _Words:
             if na and res.cause == BOUND_STANDS:
                 return NA_BOUND_STANDS, "", "", why
             if na:
-                return NA_ADMISSIBLE, "", "", [*why, NA_ADMISSIBLE_WHY]
+                return NA_ADMISSIBLE, "", "", [*why, NA_ADMISSIBLE_WHY.format(
+                    safe=safe_command(res, "`rigidblocks load --flow non-associative "
+                                           "--safe`"))]
             return ("ADMISSIBLE: it stands (an equilibrium state with every joint in "
                     "compression and within friction exists)", "", "", why)
         number = ""
@@ -551,8 +566,9 @@ class _Words:
         if na:
             why.append("without dilatancy a larger f need not carry more, and another state "
                        "may need more: f* is where the state reached from X0 carries the "
-                       "load, not a bound for every f above it nor for every state (check "
-                       "a given f with `rigidblocks load --friction F --safe`)")
+                       "load, not a bound for every f above it nor for every state ("
+                       + safe_command(res, "check a given f with `rigidblocks load "
+                                           "--friction F --safe`") + ")")
         names = [f"{a}-{b}" for a, b in res.governing_joints]
         verdict = "STANDS at friction f = f*" if na else "STANDS with friction f >= f*"
         return (verdict, number,
@@ -607,8 +623,9 @@ class _Words:
         if low is not None and low < lm - max(1e-6 * abs(lm), 1e-8):
             why.append(f"not a lower bound: collapse states of the same mechanism carry "
                        f"{self.lam} from {fmt_safe(low, 6, False)} (the answer is the "
-                       "state reached from X0; `--safe` gives the smallest over all "
-                       "states)")
+                       "state reached from X0; "
+                       + safe_command(res, "`--safe` gives the smallest over all states")
+                       + ")")
         lf = self.scene.load_factor
         if lf:
             ok = "carries" if lm >= lf else "does NOT carry"

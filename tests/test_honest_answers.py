@@ -1156,3 +1156,23 @@ def test_a_bisection_with_a_trial_that_did_not_settle_is_not_called_converged(ca
     flow = next(ln for ln in out.splitlines() if ln.startswith("flow"))
     assert code == 0 and flow.endswith(
         "not converged at one trial (the bracket it left meets the accuracy)"), flow
+
+
+def test_safe_is_pointed_to_only_where_it_runs(tmp_path, capsys):
+    """An 8 x 8 running-bond wall at f = 0.6 (180 joints) without dilatancy: `check` at
+    0.539 (it stands from X0) and `friction` pointed to `rigidblocks load ... --safe`,
+    which answers "not computed" beyond 50 joints; they now say so. The Arpino gate (32
+    joints) keeps the command."""
+    from rigidblocks.io import write_scene
+
+    f = tmp_path / "wall.json"
+    write_scene(build("wall", courses=8, blocks_per_course=8, friction=0.6), f)
+    code, out, _ = run(capsys, ["check", str(f), "--flow", "non-associative",
+                                "--load-factor", "0.5"])
+    assert code == 0 and "--safe`) may lie" not in out
+    assert "`rigidblocks load --safe` computes it on scenes of up to 50 joints; this one " \
+        "has 180" in out, out
+    code, out, _ = run(capsys, ["check", str(EXAMPLES / "arpino_gate.json"), "--flow",
+                                "non-associative", "--method", "distortion",
+                                "--load-factor", "0.12"])
+    assert "(`rigidblocks load --flow non-associative --safe`) may lie" in out, out
