@@ -23,9 +23,18 @@ def friction_governs(m: Method, f: float, load_factor: float, na: bool = False
         return None
     where = "under its dead load alone" if load_factor == 0 else "at this load"
     flow = " --flow non-associative" if na else ""
+    command = (f"`rigidblocks friction {m.scene.source or 'SCENE'} --load-factor "
+               f"{load_factor:g}{flow}`")
+    if na:
+        # infinite friction is another joint law, not the limit of large ones: without
+        # dilatancy a joint with no normal force carries no shear at any finite f (the
+        # 8 x 8 wall at 0.7 stands at infinite friction, and no f up to 10 carries it)
+        return (f"without sliding (infinite friction) it stands {where}, a joint law no "
+                f"finite friction reaches without dilatancy (a joint without compression "
+                f"carries shear there); {command} searches the least finite friction that "
+                "carries it (up to 10)")
     return (f"without sliding (infinite friction) it stands {where}: friction governs, not "
-            f"the geometry; `rigidblocks friction {m.scene.source or 'SCENE'} --load-factor "
-            f"{load_factor:g}{flow}` gives the least friction that carries it")
+            f"the geometry; {command} gives the least friction that carries it")
 
 
 def with_friction_governs(res: Any, m: Method, f: float, load_factor: float) -> Any:
