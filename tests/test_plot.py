@@ -431,3 +431,18 @@ def test_load_labels_lie_under_the_force_arrows_and_ids():
     assert labels and len(ids) == 2
     assert max(t.get_zorder() for t in labels) < min(forces.get_zorder(),
                                                      *(t.get_zorder() for t in ids))
+
+
+def test_a_state_that_stands_is_not_drawn_as_not_admissible():
+    """The Arpino gate (examples/arpino_gate.json) at f = 0.6 and lambda = 0.11871
+    without dilatancy: the state reached from X0 at this load is admissible (the state
+    shown) while the limit run from X0 collapses below it (NOT ADMISSIBLE). The thrust
+    line's legend read "least-violation state, NOT admissible", and the title showed
+    the terminal's command quotes (`load`'s)."""
+    sc = read_scene(EXAMPLES / "arpino_gate.json")
+    res = rb.check(sc, load_factor=0.11871, flow="non-associative")
+    assert res.status == "inadmissible" and res.cause == "direct_stands"
+    ax = rb.plot(sc, res)
+    labels = [ln.get_label() for ln in by_gid(ax, "rb-thrust")]
+    assert labels and not any("NOT admissible" in x for x in labels), labels
+    assert "load's answer" in ax.get_title() and "`" not in ax.get_title()

@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 
 from ..answer import NA_INADMISSIBLE, without_dilatancy
-from ..results import analysis_friction, joint_frictions, shear_use, unloaded
+from ..results import DIRECT_STANDS, analysis_friction, joint_frictions, shear_use, unloaded
 from ..scene.geometry import block_weights, scene_size
 from ..scene.model import Scene
 from .marks import (
@@ -170,6 +170,7 @@ def _title(scene: Scene, result: Any) -> str:
 
     name = scene.name or ""
     txt = answer_block(scene, result, symbols=True).title() if result is not None else ""
+    txt = txt.replace("`", "")  # (a terminal's command quotes, literal in a title)
     txt = "\n".join(textwrap.wrap(txt, 90, break_on_hyphens=False))
     return f"{name}\n{txt}" if (name and txt) else (name or txt)
 
@@ -260,7 +261,11 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
         val = st.demand
         label = "friction demand |T| / N"
     val = np.where(np.isfinite(val), val, 1e3)
-    not_admissible = getattr(result, "status", "") == "inadmissible"
+    # (not where the state shown stands and the limit run from X0 collapses below the
+    # load: the Arpino gate at f = 0.6 and 0.11871 read "least-violation state, NOT
+    # admissible" beside the text's "the state reached from X0 ... is admissible")
+    not_admissible = getattr(result, "status", "") == "inadmissible" and \
+        getattr(result, "cause", "") != DIRECT_STANDS
     heat = m > max_arrows
     Nj = np.abs(st.joint_normal)
     nmax = Nj.max(initial=0.0)
