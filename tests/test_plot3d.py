@@ -157,3 +157,17 @@ def test_3d_block_ids_sit_on_the_displaced_blocks_of_a_mechanism():
     for b in sc.blocks:
         still = np.allclose(at[b.id], polyhedron_volume_centroid(b)[1])
         assert still == (b.id not in moving), b.id
+
+
+def test_a_3d_picture_is_saved_without_a_layout_warning(tmp_path, recwarn):
+    """`rigidblocks plot` of a 4 x 4 wall3d in plane (its legend below the 3D Axes)
+    printed matplotlib's "constrained_layout not applied" warning, with this package's
+    file path, to the terminal; the picture is framed all the same."""
+    from rigidblocks.generators import build
+
+    scene = build("wall3d", courses=4, blocks_per_course=4, load_direction="in_plane")
+    path = tmp_path / "wall3d.json"
+    write_scene(scene, path)
+    assert main(["plot", str(path), "--analysis", "load", "-o", str(tmp_path / "w.png")]) == 0
+    assert (tmp_path / "w.png").stat().st_size > 10_000
+    assert not [w for w in recwarn if "constrained_layout" in str(w.message)]

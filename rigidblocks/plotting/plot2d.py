@@ -462,9 +462,15 @@ def _draw_mechanism(ax: Any, scene: Scene, result: Any, centroids: np.ndarray, s
 def save_figure(ax: Any, path: Any) -> None:
     """Save the Axes' figure (format from the file extension: png, svg, pdf); SVG text
     stays text (``svg.fonttype = 'none'``), so it can be searched and edited."""
+    import warnings
+
     import matplotlib
 
-    with matplotlib.rc_context({"svg.fonttype": "none"}):
+    with matplotlib.rc_context({"svg.fonttype": "none"}), warnings.catch_warnings():
+        # a 3D Axes with its legend below: matplotlib's layout engine gives up and says
+        # so with a warning naming this file, while the tight bounding box frames the
+        # picture all the same (`plot` of a wall3d printed it to the terminal)
+        warnings.filterwarnings("ignore", message="constrained_layout not applied")
         ax.figure.savefig(path, dpi=150, bbox_inches="tight")
 
 
