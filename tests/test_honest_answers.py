@@ -1183,3 +1183,17 @@ def test_safe_is_pointed_to_only_where_it_runs(tmp_path, capsys):
                                 "non-associative", "--method", "distortion",
                                 "--load-factor", "0.12"])
     assert "(`rigidblocks load --flow non-associative --safe`) may lie" in out, out
+
+
+def test_a_distortion_answer_at_the_associative_multiplier_has_its_accuracy(capsys):
+    """examples/arpino_gate.json, `load --flow non-associative --method distortion`: the
+    state reached from X0 stands at the associative multiplier, which is the answer
+    (0.122797); it had no accuracy line and a JSON bracket, rtol and accuracy of null,
+    where the associative multiplier itself is certified to 1.6e-7."""
+    args = ["load", str(EXAMPLES / "arpino_gate.json"), "--flow", "non-associative",
+            "--method", "distortion"]
+    code, out, _ = run(capsys, [*args, "--json"])
+    d = json.loads(out)
+    lo, hi = d["bracket"]
+    assert code == 0 and lo == d["load_multiplier"] < hi < lo * (1 + 1e-6)
+    assert d["accuracy"] is not None and d["accuracy"] < 1e-6

@@ -984,7 +984,11 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
                                 if top == hi else
                                 f"the non-associative multiplier is within {TOP_RTOL:g} "
                                 f"(relative) below the associative one, {hi:.9g}")
-                return result("collapse", top, v, True, (top, hi))
+                # at hi itself, the associative multiplier's own bracket: its state
+                # from X0 stands at hi, and no state lies above the associative upper
+                # end (the Arpino gate by the distortion method had no accuracy line)
+                up_end = up.upper if top == hi and up.upper is not None else hi
+                return result("collapse", top, v, True, (top, max(up_end, hi)))
         good, bad, best = 0.0, top, v0
     br = bisect(decide, bad, good, rtol)
     best_v = br.good_data or best
