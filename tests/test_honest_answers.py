@@ -1197,3 +1197,18 @@ def test_a_distortion_answer_at_the_associative_multiplier_has_its_accuracy(caps
     lo, hi = d["bracket"]
     assert code == 0 and lo == d["load_multiplier"] < hi < lo * (1 + 1e-6)
     assert d["accuracy"] is not None and d["accuracy"] < 1e-6
+
+
+def test_an_unstable_load_from_x0_names_the_joints_it_breaches(capsys):
+    """examples/flat_arch_vertical.json at f = 0.6 without dilatancy: the state reached
+    from X0 breaches the joint laws under the dead load, and `load` said only that,
+    where `check --load-factor 0` names the joints (v1-pier_l, 6.46 kN, first)."""
+    path = str(EXAMPLES / "flat_arch_vertical.json")
+    args = ["--flow", "non-associative", "--friction", "0.6"]
+    code, out, _ = run(capsys, ["check", path, *args, "--load-factor", "0"])
+    first = re.search(r"governing  breached at ([^ ]+) \(([0-9.]+) kN\)", out)
+    assert first, out
+    code, out, _ = run(capsys, ["load", path, *args])
+    assert "verdict    UNSTABLE" in out
+    assert (f"under the dead load alone breaches the joint laws (at {first.group(1)}, "
+            in out and f"; by up to {first.group(2)} kN): it does not stand" in out), out

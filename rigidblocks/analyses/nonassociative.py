@@ -1100,7 +1100,7 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
                             f"{LOWER_WORDS[na.lower_by]}: it stands under the dead load in "
                             "another state")
             return _by_the_bounds(na, cv, f, up, bounds, trials, state)
-        na.notes.append(f"{DEAD_LOAD_BREACH}: it does not stand" +
+        na.notes.append(f"{DEAD_LOAD_BREACH}{_breached_at(na, f)}: it does not stand" +
                         (f"; from the associative collapse state: lambda = "
                          f"{fmt_safe(runs[0].lam, 7, False)}"
                          if runs and runs[0].converged else ""))
@@ -1133,6 +1133,20 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
         return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
                                     settled), load_multiplier_bounds=bounds)
     return _x0_answer(na, cv, f, up, main, bounds, trials, state, mechanism)
+
+
+def _breached_at(na: NonAssociative, f: float, first: int = 5) -> str:
+    """Where the state reached from X0 under the dead load breaches the joint laws: the
+    joints, largest breach first (`load` said only that it breaches, on an 8 x 8 wall
+    with an opening, where `check --load-factor 0` names c5b4-c6b4 and more)."""
+    ranked = na.breaches(f, na.admissible(f, 0.0))
+    if not ranked:
+        return ""
+    ids, pairs = na.contacts.block_ids, na.contacts.pairs
+    names = [f"{ids[pairs[k, 0]]}-{ids[pairs[k, 1]]}" for k, _ in ranked[:first]]
+    more = f" and {len(ranked) - first} more" if len(ranked) > first else ""
+    unit = na.scene.force_unit or "force units"
+    return (f" (at {', '.join(names)}{more}; by up to {ranked[0][1]:.3g} {unit})")
 
 
 def _by_states(cv: ConvexMethod) -> bool:
