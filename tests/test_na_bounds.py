@@ -469,3 +469,15 @@ def test_cli_safe_line_above_a_bisected_answer_says_where_it_lies():
     line = _safe_line(dict(safe, value=0.013), 0.01279220942, (0.01279220942, 0.0127926969))
     assert "above the answer lambda* = 0.0127922: the state reached from X0 breaches" in line
     assert "BELOW" not in _safe_line(safe, 0.01279269, None).split("proven")[1]
+
+
+def test_highs_messages_are_not_repeated():
+    """`load --flow non-associative --safe` on a 4 x 4 wall with a short time limit read
+    "(Time limit reached. (HiGHS Status 13: Time limit reached), N nodes ...": scipy's
+    message with HiGHS's own words twice. Other messages are kept as they are."""
+    from rigidblocks.analyses.na_bounds import _message
+
+    assert _message("Time limit reached. (HiGHS Status 13: Time limit reached)") == \
+        "Time limit reached (HiGHS status 13)"
+    other = "Optimization terminated successfully. (HiGHS Status 7: Optimal)"
+    assert _message(other) == other

@@ -61,6 +61,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -257,6 +258,15 @@ def _quiet() -> Iterator[None]:
         os.close(null)
 
 
+def _message(text: str) -> str:
+    """scipy's message of a HiGHS solve without its repetition: "Time limit reached.
+    (HiGHS Status 13: Time limit reached)" read as two messages."""
+    m = re.fullmatch(r"\s*(.*?)\.?\s*\(HiGHS Status (\d+): (.*?)\)\s*", text)
+    if m and m.group(1).rstrip(".").lower() == m.group(3).rstrip(".").lower():
+        return f"{m.group(3).rstrip('.')} (HiGHS status {m.group(2)})"
+    return text
+
+
 def _solve_milp(m: _Model, Sr: np.ndarray, V: float, time_limit: float,
                 lam_lo: float = 0.0, node_limit: int | None = None,
                 family: str = LIVE) -> dict:
@@ -288,7 +298,7 @@ def _solve_milp(m: _Model, Sr: np.ndarray, V: float, time_limit: float,
     with _quiet():
         res = milp(cost, constraints=cons, integrality=integ, bounds=Bounds(lo, hi),
                    options=opts)
-    out = {"status": int(res.status), "message": str(res.message),
+    out = {"status": int(res.status), "message": _message(str(res.message)),
            "time": time.perf_counter() - t0,
            "nodes": int(getattr(res, "mip_node_count", 0) or 0),
            "dual": getattr(res, "mip_dual_bound", None),
