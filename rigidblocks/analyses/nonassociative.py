@@ -1816,27 +1816,30 @@ def _past_the_brink(s: Any, oracle: Any) -> list[str]:
     if t.side is not False:
         return []
     above = Search(t.x, math.inf, s.rtol, s.atol, [t])
+    stuck = None  # a friction whose run decided nothing, where the doubling stopped
     while above.good == math.inf:
         x = fs + 2.0 * (above.bad - fs)
         if x > NA_FRICTION_CEILING:
             break
         u = oracle(x)
         if u.side is None:
+            stuck = x
             break
         above.record(u)
     first = (f"f* = {fs:.10g} is the static f*, the brink at which a single state is "
              f"admissible: just above it, at f = {t.x:.6g}, the state reached from X0 does "
              "not carry the load")
     if above.good == math.inf:
-        return [f"{first}, nor at any friction tried up to {above.bad:.6g}: a margin "
-                "above f* does not make it stand"]
+        return [f"{first}, nor at any friction tried up to {above.bad:.6g}"
+                + (f" (at {stuck:.6g} the run decides nothing)" if stuck else "")
+                + ": a margin above f* need not make it stand"]
     run(above, oracle, (undecided_band, narrow_enough), (beside_the_undecided, midpoint))
     if not above.narrow():
         return [f"{first}; it carries it at f = {above.good:.6g}, and between the two "
                 "the runs decide nothing"]
-    return [f"{first}, and carries it again at f = {above.good:.6g} (the least above f* "
-            f"to the accuracy asked: between {above.lower:.6g} and {above.upper:.6g}): "
-            "a margin above f* smaller than that does not make it stand"]
+    return [f"{first}, and carries it again at f = {above.good:.6g} (from not carrying to "
+            f"carrying between {above.lower:.6g} and {above.upper:.6g}, to the accuracy "
+            "asked): a margin above f* need not make it stand"]
 
 
 def _undecided_below(s: Any) -> list[str]:
