@@ -1797,8 +1797,8 @@ def _past_the_brink(s: Any, oracle: Any) -> list[str]:
     """Where the non-associative f* is the static one (``s.good``), the brink at which
     a single state is admissible, a trial just above it (the accuracy asked): where
     that does not carry the load, the least friction above it that does (doubling the
-    step, then bisection to the same accuracy), in a note: frictions a margin above f*
-    do not carry it. The inclined corbel arch under its dead load: f* = 0.7651297008,
+    step, then bisection to the same accuracy), in a note: a margin above f* need not
+    carry it. The inclined corbel arch under its dead load: f* = 0.7651297008,
     and from X0 it collapses below the dead load at 0.7652 to 0.76666, stands again
     from about 0.767."""
     from ..methods.engine import (
