@@ -975,20 +975,9 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
             if bad > UNBOUNDED_AT:
                 return result("unbounded", converged=True)
     else:
-        # the associative multiplier first (an upper bound: where the state reached from
-        # the elastic state stands there, it is the answer), then just below it
-        for top in (hi, hi * (1.0 - TOP_RTOL)):
-            ok, v = decide(top)
-            if ok is True:
-                na.notes.append("the non-associative multiplier equals the associative one"
-                                if top == hi else
-                                f"the non-associative multiplier is within {TOP_RTOL:g} "
-                                f"(relative) below the associative one, {hi:.9g}")
-                # at hi itself, the associative multiplier's own bracket: its state
-                # from X0 stands at hi, and no state lies above the associative upper
-                # end (the Arpino gate by the distortion method had no accuracy line)
-                up_end = up.upper if top == hi and up.upper is not None else hi
-                return result("collapse", top, v, True, (top, max(up_end, hi)))
+        top, v, at = _at_the_top(na, decide, hi, up)
+        if at is not None:
+            return result("collapse", top, v, True, at)
         good, bad, best = 0.0, top, v0
     br = bisect(decide, bad, good, rtol)
     best_v = br.good_data or best
@@ -1010,6 +999,26 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
     # beside the inclined corbel arch's at f = 0.8, its bracket decided by its width)
     return result("collapse", br.good, best_v, br.undecided_at is None,
                   (br.lower, br.upper))
+
+
+def _at_the_top(na: NonAssociative, decide: Any, hi: float, up: Any
+                ) -> tuple[float, Any, tuple[float, float] | None]:
+    """The bisection's first trials: the associative multiplier ``hi`` (an upper bound:
+    where the state reached from X0 stands there, it is the answer), then just below
+    it. The last trial's load factor and verdict, and the answer's bracket where it
+    stood (None where not): at ``hi`` itself the associative multiplier's own, as no
+    state lies above its upper end (the Arpino gate by the distortion method had no
+    accuracy line)."""
+    for top in (hi, hi * (1.0 - TOP_RTOL)):
+        ok, v = decide(top)
+        if ok is True:
+            na.notes.append("the non-associative multiplier equals the associative one"
+                            if top == hi else
+                            f"the non-associative multiplier is within {TOP_RTOL:g} "
+                            f"(relative) below the associative one, {hi:.9g}")
+            up_end = up.upper if top == hi and up.upper is not None else hi
+            return top, v, (top, max(up_end, hi))
+    return top, v, None
 
 
 def _too_wide_note(br: Any, rtol: float) -> str:
