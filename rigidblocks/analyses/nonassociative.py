@@ -145,8 +145,8 @@ ABOVE_CEILING = ("at f = {f:g} the caps f N of normal forces that are numericall
 #: its head joints, without compression, carry no shear)
 INFINITE_NOTE = ("with infinite friction no joint slides (Heyman's law) and the flow rule "
                  "does not enter; that law lets a joint without compression carry shear, "
-                 "which no finite friction does without dilatancy: a large finite f can "
-                 f"give less (f = {NA_FRICTION_CEILING:g}, for one)")
+                 "which no finite friction does without dilatancy: a large finite f may "
+                 f"give less (compare --friction {NA_FRICTION_CEILING:g})")
 #: the reason of an undecided verdict for that reason (its beginning)
 UNRESOLVED_N = "the shear is carried on normal forces"
 #: undecided trials in a row after which the friction search stops bracketing upwards
@@ -699,9 +699,9 @@ def _as_load_reads(na: NonAssociative, cv: ConvexMethod, f: float, r: LimitRun,
     hi = max(float(up.value), 0.0) if up.status == "collapse" else None
     if not _at_associative(r.lam, hi):
         return r
-    na.notes.append(f"the limit fixed point from X0, {r.lam:.10g}, is the associative "
-                    f"multiplier {hi:.10g} to {SAME_AS_ASSOCIATIVE:g}, an upper bound on "
-                    "every state: it is read as that (as `load` reads it)")
+    na.notes.append(f"at f = {f:.10g} the limit fixed point from X0, {r.lam:.10g}, is the "
+                    f"associative multiplier {hi:.10g} to {SAME_AS_ASSOCIATIVE:g}, an upper "
+                    "bound on every state: it is read as that (as `load` reads it)")
     return replace(r, lam=hi)
 
 
@@ -1148,7 +1148,9 @@ def _breached_at(na: NonAssociative, f: float, first: int = 5) -> str:
     """Where the state reached from X0 under the dead load breaches the joint laws: the
     joints, largest breach first (`load` said only that it breaches, on an 8 x 8 wall
     with an opening, where `check --load-factor 0` names c5b4-c6b4 and more)."""
+    counted = na.fp_iterations  # (the state's run again: not limit steps of the answer)
     ranked = na.breaches(f, na.admissible(f, 0.0))
+    na.fp_iterations = counted
     if not ranked:
         return ""
     ids, pairs = na.contacts.block_ids, na.contacts.pairs
