@@ -104,7 +104,7 @@ from .na_limit import (
     certificate,
     reached_normals,
 )
-from .na_mechanism import limit_runs, walks
+from .na_mechanism import FIXED_TOL, limit_runs, walks
 from .notes import with_friction_governs
 from .search import BRACKET_ATOL, UNBOUNDED_AT, bisect
 
@@ -1316,12 +1316,12 @@ def compare_starts(history: Any) -> tuple[list[StartAnswer], tuple[float, float]
     same = max([SAME_ANSWER] + [float(h.get("carry_tol") or 0.0) for h in entries])
 
     def apart(lo: float, hi: float) -> bool:
-        # relative, and of the live load below 1, as the checks compare a multiplier
-        # with its bounds (:func:`_limit_checks`): the inclined corbel arch at its static
-        # f* = 0.7651297008, where the associative multiplier is 9.5e-12, read "the
-        # answers differ: [1.186472e-10, 4.197021e-08] (the answer is X0's)" beside the
-        # answer lambda* = 0 that both are within 1e-6 of
-        return hi - lo > same * max(abs(lo), abs(hi), 1.0)
+        # relative, and beyond the fixed points' own check (FIXED_TOL of the live load
+        # below 1): the inclined corbel arch at its static f* = 0.7651297008, where the
+        # associative multiplier is 9.5e-12, read "the answers differ: [1.186472e-10,
+        # 4.197021e-08] (the answer is X0's)" beside the answer lambda* = 0; the 20 x 15
+        # wall's 0.4374230 and 0.4374235 (1e-6 relative) differ
+        return hi - lo > max(same * max(abs(lo), abs(hi)), FIXED_TOL)
 
     out: list[StartAnswer] = []
     for k, h in enumerate(entries):
