@@ -77,6 +77,15 @@ from ..methods.convex import (
     ConvexMethod,
 )
 from ..methods.distortion import DistortionMethod
+from ..methods.engine import (
+    Search,
+    Trial,
+    beside_the_undecided,
+    midpoint,
+    narrow_enough,
+    run,
+    undecided_band,
+)
 from ..methods.relaxation import FRICTION_ATOL
 from ..problems.formulation import build_energy_qp, build_max_load, build_relaxation, flexibility
 from ..results import (
@@ -1634,8 +1643,6 @@ def _limit_oracle(na: ConvexNonAssociative, cv: ConvexMethod, lf: float,
     """The trial of :func:`_friction_by_limit` at a friction fv: the limit iteration from
     the start `load` takes at fv (the state reached from X0 under the dead load), which
     carries ``lf`` or not (None: undecided), its record appended to ``trials``."""
-    from ..methods.engine import Trial
-
     def oracle(fv: float) -> Trial:
         # each trial as `load` at fv would run it: not under what the solves before it
         # learnt about the solver's reach on their own problems
@@ -1698,8 +1705,6 @@ def _trial_by_the_bound(na: ConvexNonAssociative, cv: ConvexMethod, fv: float, l
     at ``fv`` (:func:`_bound_carries`), as `check` decides it: it carries ``lf`` (its
     state an admissible one, :func:`_bound_state`), its record ``rec`` saying so; None
     where the bound does not decide it."""
-    from ..methods.engine import Trial
-
     lower = _bound_carries(na, cv, fv, lf)
     st = _bound_state(cv, fv, lf) if lower is not None else None
     if st is None:
@@ -1719,15 +1724,6 @@ def _friction_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, lf: float, li
     halving. ``out`` builds the result (as :func:`min_friction_nonassociative` does)
     from the ``trials``, appended to here; the scene's own friction ``own`` is tried too
     where the search did not (whether it suffices is not read from f*)."""
-    from ..methods.engine import (
-        Search,
-        beside_the_undecided,
-        midpoint,
-        narrow_enough,
-        run,
-        undecided_band,
-    )
-
     na.limit_path = "walk" if walks(cv) else True
     fs = float(lim.value)
     oracle = _limit_oracle(na, cv, lf, trials)
@@ -1812,15 +1808,6 @@ def _past_the_brink(s: Any, oracle: Any) -> list[str]:
     carry it. The inclined corbel arch under its dead load: f* = 0.7651297008,
     and from X0 it collapses below the dead load at 0.7652 to 0.76666, stands again
     from about 0.767."""
-    from ..methods.engine import (
-        Search,
-        beside_the_undecided,
-        midpoint,
-        narrow_enough,
-        run,
-        undecided_band,
-    )
-
     fs = s.good
     step = s.rtol * fs + s.atol
     t = oracle(fs + step)
