@@ -27,7 +27,6 @@ from .results import (
     Result,
     fmt_bracket,
     fmt_safe,
-    max_demand,
 )
 from .scene.geometry import scene_weights
 from .scene.model import Scene, friction_value
@@ -463,7 +462,7 @@ class _Words:
             c = res.contacts
             plain = np.isnan(np.asarray(c.override_friction, dtype=float)) & \
                 (np.asarray(c.cohesion, dtype=float) == 0)
-            fd = max_demand(res.state, plain) if res.state is not None else None
+            fd = res.demand(plain)
             state = ("the state reached from the elastic state X0" if na and "elastic"
                      in getattr(res.state, "method", "elastic")
                      else "the state of least complementary energy")

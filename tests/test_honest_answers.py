@@ -360,6 +360,28 @@ def test_check_reports_the_friction_demand_of_its_state(capsys):
     assert d["notes"] == [] and d["bracket"] is None
 
 
+def test_the_json_friction_demand_of_an_admitted_state_is_not_above_f(tmp_path, capsys):
+    """The 8 x 8 running-bond wall at f = 0.6 and load factor 0.3 without dilatancy is
+    admitted (its text: "|T|/N reaches the friction limit f = 0.6"), and its JSON gave
+    friction_demand 0.6000396, above the f it was admitted at: a joint carrying little
+    of the largest force (0.0092 kN) over f by the verdict's tolerance. It reads f."""
+    path = str(tmp_path / "w88.json")
+    rb.write_scene(build("wall", courses=8, blocks_per_course=8, friction=0.6), path)
+    code, d, _ = run_json(capsys, ["check", path, "--flow", "non-associative",
+                                   "--load-factor", "0.3", "--json"])
+    assert code == 0 and d["admissible"] is True
+    assert d["friction_demand"] == pytest.approx(0.6, rel=1e-6)
+    assert d["friction_demand"] <= 0.6, d["friction_demand"]
+    res = rb.check(rb.read_scene(path), load_factor=0.3, flow="non-associative")
+    from rigidblocks.results import max_demand
+    assert max_demand(res.state)[0] > 0.6  # the round-off itself is still there
+    # the text names the joint the JSON names
+    code, out, _ = run(capsys, ["check", path, "--flow", "non-associative",
+                                "--load-factor", "0.3"])
+    a, b = d["friction_demand_joint"]
+    assert f"reaches the friction limit f = 0.6 (joint {a}-{b})" in out, out
+
+
 def test_joint_table_on_request(tmp_path, capsys):
     path = str(EXAMPLES / "reference.json")
     code, d, _ = run_json(capsys, ["check", path, "--friction", "0.6", "--joints", "--json"])
