@@ -758,7 +758,9 @@ def mechanism_text(res: Any) -> str:
         return kind + "no joint moves"
     order = m.ranking
     if len(order) <= FIRST:
-        return kind + "; ".join(f"{len(n)} {w} ({joint_list(n, len(n))})"
+        # a pair of blocks on several faces (a key in its groove) is one joint: "4
+        # sliding (c2b2-c3b3 (4 faces))" counted its faces
+        return kind + "; ".join(f"{len(set(n))} {w} ({joint_list(n, len(n))})"
                                 for w, n in groups)
     word = dict(MODE_WORDS)
     # the fastest FIRST joints, a pair's faces of one mode once (a key in its groove)
@@ -772,10 +774,14 @@ def mechanism_text(res: Any) -> str:
         faces[label] = faces.get(label, 0) + 1
         shown += 1
     fastest = [lab if n == 1 else f"{lab[:-1]}, {n} faces)" for lab, n in faces.items()]
-    return (kind + f"{len(order)} joints move: "
+    pairs = len({res.joint_name(k) for k in order})
+    moving = (f"{pairs} joints move" if pairs == len(order)
+              else f"{pairs} joints move, on {len(order)} faces")
+    return (kind + f"{moving}: "
             + ", ".join(f"{len(n)} {w}" for w, n in groups)
             + "; fastest: " + ", ".join(fastest)
-            + (f" and {len(order) - shown} more" if len(order) > shown else ""))
+            + (f" and {len(order) - shown} more" if len(order) > shown else "")
+            + (" faces" if len(order) > shown and pairs < len(order) else ""))
 
 
 def flow_lines(res: Any) -> list[str]:

@@ -120,3 +120,33 @@ def test_a_pair_of_keyed_blocks_is_named_once_with_its_faces(tmp_path, capsys):
                 if ln.startswith("governing"))
     assert "c0b0-c1b0 (sliding, 4 faces)" in line
     assert line.count("c0b0-c1b0") == 1
+
+
+def test_a_key_in_its_groove_is_counted_as_one_joint(tmp_path, capsys):
+    """Two blocks touching on several faces (a key in its groove: shoulders, the key's
+    top and its two sides) are one joint. The keyed wall loaded along its length at f =
+    0.2 without dilatancy slides on its keyed beds at lambda = 0.2 (the associative law
+    locks them: the key's two sides cannot both open); its answer read "16 joints move:
+    16 sliding" for 4 pairs of blocks, and with one unit free "1 sliding" read "4
+    sliding (c0b0-c1b0 (4 faces))"."""
+    import dataclasses
+
+    import numpy as np
+
+    wall = keyed_wall(courses=3, blocks_per_course=2, friction=0.2, base_friction=0.8,
+                      load_direction="in_plane")
+    one = keyed_wall(courses=2, blocks_per_course=1, friction=0.2, base_friction=0.8)
+    one = dataclasses.replace(one, live_body_force=np.array([-1.0, 0.0, 0.0]), blocks=tuple(
+        dataclasses.replace(b, support=b.support or b.id in ("c0b0", "c1b1"))
+        for b in one.blocks))
+    out = {}
+    for name, scene in (("wall", wall), ("one", one)):
+        path = tmp_path / f"{name}.json"
+        path.write_text(dumps_scene(scene))
+        main(["load", str(path), "--flow", "non-associative"])
+        out[name] = capsys.readouterr().out
+    assert "lambda* = 0.2," in out["wall"] and "lambda* = 0.2," in out["one"]
+    assert "governing  4 joints move, on 16 faces: 16 sliding; fastest: " in out["wall"], \
+        out["wall"]
+    assert "governing  1 sliding (c0b0-c1b0 (4 faces)); 1 opening (c1b0-c1b1)" in out["one"], \
+        out["one"]
