@@ -737,8 +737,7 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
         return UNDECIDED
     if not r.converged or _limit_checks(cv, f, r, (None, None)):
         if _by_states(cv):  # (as `load` reads it there)
-            na.notes.append(f"the limit fixed point from X0 was not reached ({r.reason}): "
-                            f"{BY_STATES.split(': ', 1)[1]}, and at lambda = {lf:.10g} it "
+            na.notes.append(f"{by_states_note(r.reason)}, and at lambda = {lf:.10g} it "
                             "stands")
             return ADMISSIBLE
         na.notes.append("the limit fixed point from X0 (`load`'s answer) was not reached "
@@ -849,9 +848,9 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
     if isinstance(na, ConvexNonAssociative) and up.status in ("collapse", "unbounded"):
         by_states = None
         if up.status == "collapse" and _by_states(cv):
-            def by_states() -> LoadResult:
+            def by_states(why: str) -> LoadResult:
                 na.limit_path = False
-                na.notes.append(BY_STATES)
+                na.notes.append(by_states_note(why))
                 return _load_by_bisection(na, cv, f, up, hi, lo, bounds, state, rtol,
                                           mechanism)
         res = _load_by_limit(na, cv, f, up, bounds, state, mechanism, by_states)
@@ -1090,7 +1089,7 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
                    mechanism: str, by_states: Any = None) -> LoadResult:
     """The non-associative collapse multiplier as the fixed point of the capped limit
     problem (:mod:`rigidblocks.analyses.na_limit`) from X0, with the answer from the
-    associative collapse state beside it; ``by_states()`` the answer where the run from
+    associative collapse state beside it; ``by_states(why)`` the answer where the run from
     X0 stops and no bound decides (:func:`_by_states`), else undecided."""
     na.limit_path = "walk" if walks(cv) else True
     capped = CappedLimit(cv, na.marked, f)
@@ -1142,11 +1141,12 @@ def _load_by_limit(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
         [f"from {main.start}: {main.reason}"] if not settled else \
         _limit_checks(cv, f, main, bounds, na.lower_by)
     if bad:
+        if by_states is not None and not proven:
+            return by_states(main.reason if main is not None and not settled
+                             else "; ".join(bad))
         na.notes.extend(bad)
         if proven:
             return _by_the_bounds(na, cv, f, up, bounds, trials, state)
-        if by_states is not None:
-            return by_states()
         na.notes.extend(_elsewhere(cv))
         return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None, trials,
                                     settled), load_multiplier_bounds=bounds)
@@ -1184,11 +1184,19 @@ def _by_states(cv: ConvexMethod) -> bool:
     return c.dimension == 2 and c.n_joints <= MAX_JOINTS
 
 
-#: the note of an answer read off the states reached from X0 (:func:`_by_states`)
-BY_STATES = ("the limit run from X0 stops (its capped laws carry nothing after a few "
-             "steps): on this small scene the answer is read off the state reached from X0 "
-             "at each load factor, by bisection, as the distortion method reads the seed's "
+#: the note of an answer read off the states reached from X0 (:func:`_by_states`),
+#: after why the limit fixed point from X0 was not reached
+BY_STATES = ("on this small scene the answer is read off the state reached from X0 at "
+             "each load factor, by bisection, as the distortion method reads the seed's "
              "procedure")
+
+
+def by_states_note(why: str) -> str:
+    """The note of an answer read off the states reached from X0, with ``why`` the
+    limit fixed point from X0 was not reached (the inclined corbel arch at f = 0.8 said
+    "from the elastic state X0: the capped laws carry not even the dead load" on a line
+    of its own, just above the positive answer those states give)."""
+    return f"the limit fixed point from X0 was not reached ({why}): {BY_STATES}"
 
 
 def _elsewhere(cv: ConvexMethod) -> list[str]:
