@@ -1034,6 +1034,28 @@ def test_starts_within_the_checks_resolution_of_zero_give_the_same_answer():
     assert compare_starts(history(0.4110464, 0.4116458))[1] == (0.4110464, 0.4116458)
 
 
+def test_the_collapse_at_the_brink_names_its_mechanism(capsys):
+    """The inclined corbel arch at its static f* = 0.7651297008 without dilatancy: `load`
+    says COLLAPSE at lambda* = 0 and gave no mechanism, with the note "with the normal
+    forces of the computed state as fixed shear capacities the multiplier would be
+    5.5e-07: no collapse mechanism is given": 5.5e-7 is 0 to the answers' absolute
+    floor (1e-6 of the live load), and that problem's mechanism is the collapse's (three
+    hinges and a slip, as the least state's at f = 0.8 in docs/safe-multiplier.md).
+    Where the state is not a collapse state of its caps (f = 0.8, read off the states
+    from X0: 0.0594714 against 0.0127922) the note says so, with both numbers."""
+    path = str(EXAMPLES / "corbel_arch_inclined.json")
+    code, out, _ = run(capsys, ["load", path, "--flow", "non-associative", "--friction",
+                                "0.7651297008"])
+    assert code == 0 and "answer     lambda* = 0," in out
+    assert "governing  3 hinging (" in out and "; 1 sliding (" in out, out
+    assert "multiplier would be" not in out and "no collapse mechanism" not in out
+    code, out, _ = run(capsys, ["load", path, "--flow", "non-associative", "--friction",
+                                "0.8"])
+    assert ("no collapse mechanism is given: the computed state is not a collapse state "
+            "of its own caps (with its normal forces as fixed shear capacities f N the "
+            "multiplier is 0.0594714, not 0.0127922)") in out, out
+
+
 def test_the_flow_line_of_a_dead_load_breach_says_no_run_converged(capsys):
     """examples/flat_arch_vertical.json at f = 0.6, `load --flow non-associative`: the
     state reached from X0 breaches the joint laws under the dead load (UNSTABLE, no
@@ -1225,10 +1247,21 @@ def test_a_distortion_answer_at_the_associative_multiplier_has_its_accuracy(caps
     assert d["accuracy"] is not None and d["accuracy"] < 1e-6
 
 
-def test_an_unstable_load_from_x0_names_the_joints_it_breaches(capsys):
+def test_an_unstable_load_from_x0_names_the_joints_it_breaches(capsys, monkeypatch):
     """examples/flat_arch_vertical.json at f = 0.6 without dilatancy: the state reached
     from X0 breaches the joint laws under the dead load, and `load` said only that,
-    where `check --load-factor 0` names the joints (v1-pier_l, 6.46 kN, first)."""
+    where `check --load-factor 0` names the joints (v1-pier_l, 6.46 kN, first). It
+    names them from that state, without running its fixed point again."""
+    from rigidblocks.analyses.nonassociative import ConvexNonAssociative
+
+    runs: list[float] = []
+    plain = ConvexNonAssociative.fixed_point
+
+    def counted(self, f, load_factor):
+        runs.append(load_factor)
+        return plain(self, f, load_factor)
+
+    monkeypatch.setattr(ConvexNonAssociative, "fixed_point", counted)
     path = str(EXAMPLES / "flat_arch_vertical.json")
     args = ["--flow", "non-associative", "--friction", "0.6"]
     code, out, _ = run(capsys, ["check", path, *args, "--load-factor", "0"])
@@ -1238,3 +1271,4 @@ def test_an_unstable_load_from_x0_names_the_joints_it_breaches(capsys):
     assert "verdict    UNSTABLE" in out
     assert (f"under the dead load alone breaches the joint laws (at {first.group(1)}, "
             in out and f"; by up to {first.group(2)} kN): it does not stand" in out), out
+    assert runs == [0.0, 0.0], runs  # one for `check`, one for `load`

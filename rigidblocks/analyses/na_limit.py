@@ -509,6 +509,7 @@ def reached_normals(na: Any, f: float) -> tuple[str, np.ndarray | None]:
     from ..methods import ADMISSIBLE, INADMISSIBLE
 
     r = na.fixed_point(f, 0.0)
+    na.dead_load = (f, r)
     if r.status == ADMISSIBLE:
         return "admissible", np.maximum(r.x[na.system.layout.normal], 0.0) / \
             na.cv.scaling.force

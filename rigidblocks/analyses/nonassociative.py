@@ -291,6 +291,10 @@ class NonAssociative(Method):
         #: the limit analyses answered by iterating the limit problem: True, or "walk"
         #: where they walked to a mechanism (2D)
         self.limit_path: bool | str = False
+        #: the last state reached from X0 under the dead load and its friction
+        #: (:func:`~rigidblocks.analyses.na_limit.reached_normals`): its breaches are
+        #: named from it, not from the same fixed point run again
+        self.dead_load: tuple[float, FixedPoint] | None = None
 
     @property
     def n_solves(self) -> int:
@@ -1157,9 +1161,13 @@ def _breached_at(na: NonAssociative, f: float, first: int = 5) -> str:
     """Where the state reached from X0 under the dead load breaches the joint laws: the
     joints, largest breach first (`load` said only that it breaches, on an 8 x 8 wall
     with an opening, where `check --load-factor 0` names c5b4-c6b4 and more)."""
-    counted = na.fp_iterations  # (the state's run again: not limit steps of the answer)
-    ranked = na.breaches(f, na.admissible(f, 0.0))
-    na.fp_iterations = counted
+    r = na.dead_load[1] if na.dead_load is not None and na.dead_load[0] == f else None
+    if r is None:
+        counted = na.fp_iterations  # (the state's run again: not limit steps of the answer)
+        ranked = na.breaches(f, na.admissible(f, 0.0))
+        na.fp_iterations = counted
+    else:
+        ranked = na.breaches(f, Verdict(r.status, r.violation, (), r))
     if not ranked:
         return ""
     ids, pairs = na.contacts.block_ids, na.contacts.pairs
@@ -1411,7 +1419,8 @@ def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: flo
     """The mechanism of the computed state: max lambda under the cohesion-only laws
     |T| <= f N* of its normal forces N* (one LP); its duals are block velocities whose
     marked joints slide without dilatancy. It is the collapse mechanism when that LP's
-    multiplier equals the computed one (to 1e-3): otherwise a note says so, and None.
+    multiplier equals the computed one (to 1e-3 and BRACKET_ATOL): otherwise a note says
+    so, and None.
 
     ``kind``: "vertex" picks one mechanism of that LP's optimal face (one that can be
     drawn, :func:`~rigidblocks.methods.vertex.vertex_dual`), "blend" keeps the
@@ -1430,10 +1439,13 @@ def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: flo
     if res.status != OPTIMAL:
         return None, ()
     lam_cap = float(res.z[prob.cols["lambda"]][0])
-    if abs(lam_cap - lam) > 1e-3 * max(abs(lam), 1e-9):
-        na.notes.append(f"with the normal forces of the computed state as fixed shear "
-                        f"capacities the multiplier would be {lam_cap:.6g}: no collapse "
-                        "mechanism is given")
+    # to 1e-3, or to the answers' absolute floor near 0 (the inclined corbel arch at its
+    # static f*, lambda* = 0: its state's caps give 5.5e-7, its collapse mechanism)
+    if abs(lam_cap - lam) > 1e-3 * abs(lam) + BRACKET_ATOL:
+        na.notes.append("no collapse mechanism is given: the computed state is not a "
+                        "collapse state of its own caps (with its normal forces as fixed "
+                        f"shear capacities f N the multiplier is {lam_cap:.6g}, not "
+                        f"{fmt_safe(lam, 6, False)})")
         return None, ()
     y_eq, got = cv.mechanism_duals(prob, res, lam_cap, kind, "the capped laws' multiplier")
     na.notes.extend(n for n in cv.notes if n.startswith("mechanism:") and n not in na.notes)
