@@ -469,6 +469,12 @@ def test_cli_safe_line_above_a_bisected_answer_says_where_it_lies():
     line = _safe_line(dict(safe, value=0.013), 0.01279220942, (0.01279220942, 0.0127926969))
     assert "above the answer lambda* = 0.0127922: the state reached from X0 breaches" in line
     assert "BELOW" not in _safe_line(safe, 0.01279269, None).split("proven")[1]
+    # a positive least multiplier whose mechanism the dead load drives: why not 0
+    assert ("; the dead load drives its mechanism (the live load does no work on it or "
+            "resists it): the live load's part is to change the normal forces, and with "
+            "them the friction f N the joints can give, until the dead load can move it"
+            ) in line
+    assert "collapses under the dead load alone" in _safe_line(dict(safe, value=0.0), 0.0)
 
 
 def test_highs_messages_are_not_repeated():

@@ -192,9 +192,15 @@ def _safe_line(safe: dict[str, Any], answer: float | None,
         line = (f"safe       lambda = {num(safe['value'])}: the smallest non-associative "
                 "collapse multiplier over all states (mixed-integer LP, proven)")
         if safe.get("driven_by") == "dead":
+            # why a multiplier above 0 then (the corbel arch at f = 0.8: 0.0128): the
+            # live load changes the normal forces, and so the friction f N they allow
             line += ("; the dead load drives its mechanism (the live load does no work on "
                      "it or resists it)" + (": some state collapses under the dead load "
-                                            "alone" if safe["value"] <= 0 else ""))
+                                            "alone" if safe["value"] <= 0 else
+                                            ": the live load's part is to change the "
+                                            "normal forces, and with them the friction "
+                                            "f N the joints can give, until the dead "
+                                            "load can move it"))
         if answer is not None and safe["value"] < answer * (1.0 - 1e-6):
             line += (f"\nsafe       BELOW the answer lambda* = {num(answer)}, which is the "
                      "state reached from the elastic state X0: the joints have another "
