@@ -445,4 +445,6 @@ def test_a_state_that_stands_is_not_drawn_as_not_admissible():
     ax = rb.plot(sc, res)
     labels = [ln.get_label() for ln in by_gid(ax, "rb-thrust")]
     assert labels and not any("NOT admissible" in x for x in labels), labels
+    # and it says the state drawn stands (beside the title's NOT ADMISSIBLE)
+    assert labels == ["thrust line (state reached from X0 at this load: it stands)"], labels
     assert "load's answer" in ax.get_title() and "`" not in ax.get_title()

@@ -264,8 +264,9 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
     # (not where the state shown stands and the limit run from X0 collapses below the
     # load: the Arpino gate at f = 0.6 and 0.11871 read "least-violation state, NOT
     # admissible" beside the text's "the state reached from X0 ... is admissible")
-    not_admissible = getattr(result, "status", "") == "inadmissible" and \
-        getattr(result, "cause", "") != DIRECT_STANDS
+    inadmissible = getattr(result, "status", "") == "inadmissible"
+    direct = inadmissible and getattr(result, "cause", "") == DIRECT_STANDS
+    not_admissible = inadmissible and not direct
     heat = m > max_arrows
     Nj = np.abs(st.joint_normal)
     nmax = Nj.max(initial=0.0)
@@ -306,7 +307,10 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
     # only through a chain of blocks (the reference model, whose central blocks have
     # three joints, drew a "thrust line" across its open middle joint)
     line = st.thrust_line
-    suffix = " (least-violation state, NOT admissible)" if not_admissible else ""
+    # the state drawn beside a NOT ADMISSIBLE verdict that stands says so (the legend
+    # said nothing of it beside the title's verdict)
+    suffix = (" (least-violation state, NOT admissible)" if not_admissible else
+              " (state reached from X0 at this load: it stands)" if direct else "")
     if st.thrust_chain:
         (tl,) = ax.plot(line[:, 0], line[:, 1], "-", color="tab:red", lw=1.5, zorder=4,
                         label="thrust line" + suffix)
