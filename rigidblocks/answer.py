@@ -63,12 +63,31 @@ NO_SLIDING_LOWER = ("lower: associative, every collapse state (infinite friction
 NA_BOUND_STANDS = ("ADMISSIBLE: no collapse state without dilatancy lies at or below this "
                    "load (a lower bound on every one carries it): it stands whatever state "
                    "it is in")
+#: what an admissible state keeps every joint within, where no joint is bonded
+#: (:func:`within_laws`)
+PLAIN_LAWS = "every joint in compression and within friction"
 NA_ADMISSIBLE = ("ADMISSIBLE: it stands in the state reached from the elastic state X0 "
-                 "(every joint in compression and within friction; sliding without "
-                 "dilatancy: another state may collapse at a lower load)")
+                 f"({PLAIN_LAWS}; sliding without dilatancy: another state may collapse "
+                 "at a lower load)")
 NA_ADMISSIBLE_WHY = ("without dilatancy an admissible state is no proof of safety: the "
                      "smallest collapse multiplier over all states ({safe}) may lie below "
                      "this load factor")
+
+
+def within_laws(contacts: Any) -> str:
+    """What an admissible state keeps every joint within: :data:`PLAIN_LAWS`, or with
+    bonded joints their tensile strength and cohesion too (examples/fig4a_bonded.json
+    at 1.1: "every joint in compression" above a joint table whose bond carries 10 N
+    of tension, all its strength)."""
+    if contacts is None:
+        return PLAIN_LAWS
+    tension = bool((np.asarray(contacts.tensile_strength, dtype=float) > 0).any())
+    cohesion = bool((np.asarray(contacts.cohesion, dtype=float) > 0).any())
+    if not (tension or cohesion):
+        return PLAIN_LAWS
+    return ("every joint " + ("in compression or within its tensile strength," if tension
+                              else "in compression")
+            + (" and within friction and cohesion" if cohesion else " and within friction"))
 
 
 def safe_command(res: Any, command: str) -> str:
@@ -389,14 +408,29 @@ class _Words:
 
     def short_case(self, result: Any) -> str:
         """The load case of check and friction in a few words (load: none, lambda is
-        its answer)."""
-        if getattr(result, "analysis", "") not in ("check", "min_friction") or \
-                not self.scene.has_live_load:
+        its answer), and what the answer was asked at: the friction (not of `friction`,
+        whose answer it is) and the flow rule without dilatancy (`load`'s picture of a
+        keyed wall read "COLLAPSE: lambda* = 0.6" without it and 0.8 with normality,
+        nothing in either title telling why)."""
+        a = getattr(result, "analysis", "")
+        if a not in ("check", "min_friction", "max_load_multiplier"):
             return ""
-        lf = getattr(result, "load_factor", None)
-        if not lf:
-            return f"under its {self.dead_word()} only (load factor 0)"
-        return f"under the dead load + {lf:.10g} {self.x} the live load"
+        parts = []
+        if a != "max_load_multiplier" and self.scene.has_live_load:
+            lf = getattr(result, "load_factor", None)
+            parts.append(f"under the dead load + {lf:.10g} {self.x} the live load" if lf
+                         else f"under its {self.dead_word()} only (load factor 0)")
+        f = getattr(result, "friction", None)
+        if a != "min_friction" and f is not None:
+            v = friction_value(f)
+            c = getattr(result, "contacts", None)
+            own = c is not None and bool(np.isfinite(np.asarray(
+                c.override_friction, dtype=float)).any())
+            parts.append(("at infinite friction" if math.isinf(v) else f"at f = {v:.6g}")
+                         + (" (some joints their own)" if own else ""))
+        if a != "check" and without_dilatancy(result):  # (check's verdicts say it)
+            parts.append("sliding without dilatancy")
+        return ", ".join(parts)
 
     def friction_text(self, f: Any) -> str:
         if f is None or isinstance(f, str) or math.isinf(float(f)):
@@ -408,11 +442,24 @@ class _Words:
         """The friction the joints of ``result`` have: the uniform one, or where every
         joint has its own (a scene's joint overrides), that, with the uniform f that
         applies to none (`load --friction 5` on such a scene echoed "at friction f = 5"
-        beside a multiplier that f had no part in)."""
+        beside a multiplier that f had no part in); where some have their own, which (a
+        keyed wall whose foundation joints have f = 0.8 slid there at lambda* = 0.8
+        beside "at friction f = 0.6", with no word of theirs)."""
         f = getattr(result, "friction", None)
         c = getattr(result, "contacts", None)
-        if c is None or not c.n_joints or np.isnan(c.override_friction).any():
+        if c is None or not c.n_joints:
             return self.friction_text(f)
+        over = np.asarray(c.override_friction, dtype=float)
+        own = np.flatnonzero(~np.isnan(over))
+        if not len(own):
+            return self.friction_text(f)
+        if len(own) < c.n_joints:
+            names = [f"{'-'.join(result.joint_name(k))} "
+                     + ("infinite" if math.isinf(over[k]) else f"f = {over[k]:g}")
+                     for k in own]
+            n = len(set(names))
+            return (f"{self.friction_text(f)}, {n} joint{'s' if n > 1 else ''} at a "
+                    f"friction of their own ({joint_list(names)})")
         v = friction_value(f) if f is not None else math.inf
         uniform = "infinite friction" if math.isinf(v) else f"f = {v:.10g}"
         return f"each joint's own friction (every joint has an override; {uniform} applies " \
@@ -484,11 +531,12 @@ class _Words:
             if na and res.cause == BOUND_STANDS:
                 return NA_BOUND_STANDS, "", "", why
             if na:
-                return NA_ADMISSIBLE, "", "", [*why, NA_ADMISSIBLE_WHY.format(
+                return NA_ADMISSIBLE.replace(PLAIN_LAWS, within_laws(c)), "", "", [
+                    *why, NA_ADMISSIBLE_WHY.format(
                     safe=safe_command(res, "`rigidblocks load --flow non-associative "
                                            "--safe`"))]
-            return ("ADMISSIBLE: it stands (an equilibrium state with every joint in "
-                    "compression and within friction exists)", "", "", why)
+            return (f"ADMISSIBLE: it stands (an equilibrium state with {within_laws(c)} "
+                    "exists)", "", "", why)
         number = ""
         if math.isfinite(res.violation):
             # the convex path's is the least over all states; the distortion
@@ -511,7 +559,7 @@ class _Words:
         # the static problem has none at all (no trial was made: no state stands under
         # either flow rule)
         verdict = (NA_INADMISSIBLE if na and res.history else "NOT ADMISSIBLE: no "
-                   "equilibrium state keeps every joint in compression and within friction")
+                   f"equilibrium state keeps {within_laws(res.contacts)}")
         if na and res.cause == DIRECT_STANDS:
             # two "states reached from X0": the one at this load stands, the limit
             # fixed point from X0 (`load`'s answer) collapses below it

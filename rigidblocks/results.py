@@ -175,6 +175,22 @@ def shear_use(result: Any) -> np.ndarray:
         return np.where(threshold > 0, T / threshold, np.nan)
 
 
+def tension_use(result: Any) -> np.ndarray:
+    """(m,) the share of its tensile strength each joint uses in the result's state: the
+    largest tension -N_k over its points' strengths t a_k; 0 where it carries none, NaN
+    where it has no tensile strength."""
+    c, st = result.contacts, result.state
+    t = np.asarray(c.tensile_strength, dtype=float)
+    pj = c.point_joint
+    with np.errstate(invalid="ignore", divide="ignore"):
+        use = np.maximum(-np.asarray(st.normal, dtype=float), 0.0) / \
+            (t[pj] * c.point_areas)
+    out = np.full(c.n_joints, np.nan)
+    held = t[pj] > 0
+    np.fmax.at(out, pj[held], use[held])
+    return out
+
+
 def force_state_words(result: Any) -> list[str]:
     """Each joint's state in the result's force state: "open" (no compression, see
     :func:`unloaded`), "in tension" (a bonded joint that carries tension), "hinging"

@@ -1272,3 +1272,40 @@ def test_an_unstable_load_from_x0_names_the_joints_it_breaches(capsys, monkeypat
     assert (f"under the dead load alone breaches the joint laws (at {first.group(1)}, "
             in out and f"; by up to {first.group(2)} kN): it does not stand" in out), out
     assert runs == [0.0, 0.0], runs  # one for `check`, one for `load`
+
+
+def test_the_verdict_of_a_bonded_scene_names_the_bond(capsys):
+    """examples/fig4a_bonded.json at load factor 1.1: `check` said "an equilibrium state
+    with every joint in compression and within friction exists" above a joint table
+    whose bond carries 10 N of tension (all its strength); and the note on bonded
+    joints quoted that example's own numbers ("collapses on its load path at lambda =
+    1, against 1.2") beside runs at other settings, where they are not this run's."""
+    path = str(EXAMPLES / "fig4a_bonded.json")
+    code, out, _ = run(capsys, ["check", path, "--load-factor", "1.1", "--joints"])
+    assert ("verdict    ADMISSIBLE: it stands (an equilibrium state with every joint in "
+            "compression or within its tensile strength, and within friction and "
+            "cohesion exists)") in out, out
+    assert "in tension" in out  # the table's bond
+    code, out, _ = run(capsys, ["load", path, "--friction", "0.3"])
+    assert "(an example, not this run: the bundled fig4a_bonded.json at its own " \
+        "friction 0.5 collapses on its load path at lambda = 1" in out, out
+    # a scene without bonds keeps the plain words
+    code, out, _ = run(capsys, ["check", str(EXAMPLES / "reference.json"), "--load-factor",
+                                "1.1"])
+    assert "every joint in compression and within friction exists" in out
+
+
+def test_the_question_names_the_joints_with_a_friction_of_their_own(tmp_path, capsys):
+    """A keyed wall loaded in plane whose foundation joints have f = 0.8 (the others the
+    scene's 0.6): `load` slides on the foundation at lambda* = 0.8 beside "at friction
+    f = 0.6 (30.96 deg)", with no word of the joints that carry their own friction."""
+    path = str(tmp_path / "kwi.json")
+    assert main(["example", "keyed_wall", "--courses", "3", "--blocks_per_course", "2",
+                 "--load_direction", "in_plane", "--base_friction", "0.8", "-o",
+                 path]) == 0
+    capsys.readouterr()
+    code, out, _ = run(capsys, ["load", path])
+    assert "answer     lambda* = 0.8," in out
+    assert ("at friction f = 0.6 (30.96 deg), 2 joints at a friction of their own "
+            "(foundation-c0b0 f = 0.8, foundation-c0b1 f = 0.8)") in out, out
+

@@ -448,3 +448,27 @@ def test_a_state_that_stands_is_not_drawn_as_not_admissible():
     # and it says the state drawn stands (beside the title's NOT ADMISSIBLE)
     assert labels == ["thrust line (state reached from X0 at this load: it stands)"], labels
     assert "load's answer" in ax.get_title() and "`" not in ax.get_title()
+
+
+def test_a_bond_at_its_tensile_strength_is_drawn_as_used():
+    """examples/fig4a_bonded.json at load factor 1.1: its bonded vertical joint carries
+    10 N of tension, its whole strength (400 N/m^2 x 0.025 m^2), and is the joint that
+    cracks first on the load path; the picture coloured it by its shear alone, dark
+    green (unused). It is coloured by the larger share of shear or tension used."""
+    sc = read_scene(EXAMPLES / "fig4a_bonded.json")
+    res = rb.check(sc, load_factor=1.1)
+    assert res.status == "admissible"
+    ax = rb.plot(sc, res)
+    (lc,) = by_gid(ax, "rb-joints")
+    k = next(i for i, p in enumerate(res.contacts.block_pairs_ids())
+             if set(p) == {"left", "right"})
+    assert res.state.joint_normal[k] == pytest.approx(-10.0, rel=1e-6)
+    assert lc.get_array()[k] == pytest.approx(1.0, rel=1e-6)
+    assert "strength used" in lc.get_label()
+    # and the title says what it was asked at (a picture of a keyed wall read
+    # "COLLAPSE: lambda* = 0.6" without dilatancy and 0.8 with, nothing telling why)
+    assert ax.get_title().rstrip().endswith("the live load, at f = 0.5"), ax.get_title()
+    na = rb.max_load_multiplier(read_scene(EXAMPLES / "reference.json"),
+                                flow="non-associative")
+    title = rb.plot(read_scene(EXAMPLES / "reference.json"), na).get_title()
+    assert title.replace("\n", " ").endswith("at f = 0.6, sliding without dilatancy"), title

@@ -175,9 +175,9 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
                        "strength or cohesion): this analysis counts the bond's strength "
                        "at every load, as plastic capacity; a bond that cracks on the way "
                        "up is lost, which can lower the collapse load: `rigidblocks path "
-                       f"{scene.source or 'SCENE'}` follows the cracks (the bundled "
-                       "example fig4a_bonded.json collapses on its load path at lambda = "
-                       "1, against 1.2 by `load`)")
+                       f"{scene.source or 'SCENE'}` follows the cracks (an example, not "
+                       "this run: the bundled fig4a_bonded.json at its own friction 0.5 "
+                       "collapses on its load path at lambda = 1, against 1.2 by `load`)")
     off = loads_off_their_blocks(scene)
     if off:
         unit = f" {scene.length_unit}" if scene.length_unit else ""

@@ -41,7 +41,14 @@ from typing import Any
 import numpy as np
 
 from ..answer import NA_INADMISSIBLE, without_dilatancy
-from ..results import DIRECT_STANDS, analysis_friction, joint_frictions, shear_use, unloaded
+from ..results import (
+    DIRECT_STANDS,
+    analysis_friction,
+    joint_frictions,
+    shear_use,
+    tension_use,
+    unloaded,
+)
 from ..scene.geometry import block_weights, scene_size
 from ..scene.model import Scene
 from .marks import (
@@ -251,7 +258,12 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
     seg = np.stack([c.points[c.joint_start[:-1]], c.points[c.joint_start[1:] - 1]], axis=1)
     f = analysis_friction(result)
     fj = joint_frictions(result)
-    if np.any(np.isfinite(fj) & (fj > 0)) or np.any(c.cohesion > 0):
+    if np.any(c.tensile_strength > 0):
+        # a bond at its whole tensile strength read as unused beside the shear alone
+        # (examples/fig4a_bonded.json at 1.1: its vertical joint, which cracks first)
+        val = np.fmax(shear_use(result), tension_use(result))
+        label = "strength used: shear |T|/(fN+ca) or tension -N/(ta)"
+    elif np.any(np.isfinite(fj) & (fj > 0)) or np.any(c.cohesion > 0):
         # each joint against its own threshold (its friction override, its cohesion)
         val = shear_use(result)
         own = np.any(fj != f) or np.any(c.cohesion > 0)
@@ -276,7 +288,9 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
 
     lc = LineCollection(seg, cmap=colormaps["RdYlGn_r"].with_extremes(bad=(0, 0, 0, 0)),
                         linewidths=widths, zorder=3,
-                        label="joint (colour: " + ("shear threshold used" if
+                        label="joint (colour: " + ("strength used" if
+                                                   label.startswith("strength") else
+                                                   "shear threshold used" if
                                                    label.startswith("shear") else
                                                    "friction demand") + ")")
     lc.set_array(np.where(is_open, np.nan, val))
