@@ -228,3 +228,23 @@ def test_a_joint_the_table_calls_open_does_not_slide():
     rows = res.joint_table()
     assert rows and not [r["joint"] for r in rows
                          if r["state"] == "open" and (r["mode"] or "").startswith("slide")]
+
+
+def test_a_mechanism_drawn_off_the_optimal_face_is_a_reason_not_a_solver_note():
+    """examples/corbel_dome.json (4 rings x 10 blocks) at f = 0.6: lambda* = 0.599985
+    (certified to 3e-10), and the mechanism drawn, the whole dome sliding on its slab,
+    balances at 0.6 exactly (its velocities' dead-load work over the live load's).
+    That was a --verbose note only, while the answer named the slab joints as governing
+    and said "other collapse mechanisms reach the same multiplier: the one drawn is one
+    of them"; `friction` at lambda* names interior joints."""
+    from rigidblocks.answer import answer_block
+    from rigidblocks.io import read_scene
+
+    sc = read_scene(EXAMPLES / "corbel_dome.json")
+    res = rb.max_load_multiplier(sc)
+    assert res.load_multiplier == pytest.approx(0.599985, abs=1e-6)
+    reasons = answer_block(sc, res).reasons
+    off = [r for r in reasons if r.startswith("the mechanism drawn (its joints the "
+                                              "governing ones) balances at lambda = 0.6, ")]
+    assert off and "not a collapse mechanism at lambda*" in off[0], reasons
+    assert not any(r.startswith("other collapse mechanisms reach") for r in reasons)

@@ -71,6 +71,7 @@ from ..methods import ADMISSIBLE, FAILURE, INADMISSIBLE, UNDECIDED, Method, Verd
 from ..methods.base import ranked_breaches
 from ..methods.convex import (
     ADMISSIBLE_TOL,
+    OFF_FACE_NOTE,
     OTHER_MECHANISMS,
     STATE_SLACK,
     VERDICT_RTOL,
@@ -1448,7 +1449,8 @@ def _collapse_mechanism(cv: ConvexMethod, na: NonAssociative, f: float, lam: flo
                         f"{fmt_safe(lam, 6, False)})")
         return None, ()
     y_eq, got = cv.mechanism_duals(prob, res, lam_cap, kind, "the capped laws' multiplier")
-    na.notes.extend(n for n in cv.notes if n.startswith("mechanism:") and n not in na.notes)
+    na.notes.extend(n for n in cv.notes if n.startswith(("mechanism:", OFF_FACE_NOTE))
+                    and n not in na.notes)
     mech = mechanism(cv.system, cv.scaling.row, y_eq, got,
                      res.z[prob.cols["x"]] * cv.scaling.force)
     sliding = tuple(k for k, md in enumerate(mech.modes) if md.startswith("slide"))

@@ -263,10 +263,16 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
             return res.y[eq], "blend"
         work_at = float(prob.b @ vd[0])
         if work_at > lam * (1 + OFF_FACE) + ADMISSIBLE_TOL:
-            self.notes.append(f"mechanism: the one drawn (an extreme point next to the "
-                              f"optimal face) balances at lambda = {work_at:.6g}, "
-                              f"{work_at / lam - 1:.1e} (relative) above {what}")
-        if _other_mechanisms(res.y[eq], vd[0][eq]):
+            # a reason, not a solver note: its joints need not be those at lambda* (the
+            # corbel dome: the whole dome sliding on its slab, at 0.6 against lambda* =
+            # 0.599985, printed as the governing joints beside "other collapse
+            # mechanisms reach the same multiplier: the one drawn is one of them")
+            self.notes.append(f"{OFF_FACE_NOTE} balances at lambda = {work_at:.6g}, "
+                              f"{work_at / lam - 1:.1e} (relative) above {what}: it is the "
+                              "nearest that can be drawn, not a collapse mechanism at "
+                              f"{what}, whose joints may be others (their blend: "
+                              "`rigidblocks load --mechanism blend`)")
+        elif _other_mechanisms(res.y[eq], vd[0][eq]):
             self.notes.append(OTHER_MECHANISMS)
         return vd[0][eq], vd[1]
 
@@ -289,6 +295,8 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
 
 
 #: the note where the mechanism drawn is one of several optimal ones
+#: the start of the reason given where the mechanism drawn is off the optimal face
+OFF_FACE_NOTE = "the mechanism drawn (its joints the governing ones)"
 OTHER_MECHANISMS = ("other collapse mechanisms reach the same multiplier: the one drawn is "
                     "one of them (their blend: `rigidblocks load --mechanism blend`)")
 #: the interior-point duals (the centre of the optimal face) and the vertex drawn are one
