@@ -1309,3 +1309,19 @@ def test_the_question_names_the_joints_with_a_friction_of_their_own(tmp_path, ca
     assert ("at friction f = 0.6 (30.96 deg), 2 joints at a friction of their own "
             "(foundation-c0b0 f = 0.8, foundation-c0b1 f = 0.8)") in out, out
 
+
+def test_a_path_collapse_at_zero_is_decided_by_the_absolute_floor(capsys):
+    """examples/reference.json at f = 0: `path` read UNDECIDED (exit 3), "admissible up to
+    lambda = 0, not decided at 9.53674316e-08", where `load` gives lambda* = 0: a bracket
+    within 1e-6 of the live load near 0 is decided, as `load`'s are. A collapse put at
+    the lower end of such a bracket has it in the JSON (examples/fig4a_bonded.json:
+    "bracket": null beside the note "the collapse lies in [1, 1.00000076]")."""
+    code, d, _ = run_json(capsys, ["path", str(EXAMPLES / "reference.json"), "--friction",
+                                   "0", "--json"])
+    assert code == 0 and d["status"] == "collapse" and d["collapse_load"] == 0.0, d
+    lo, hi = d["bracket"]
+    assert lo == 0.0 and 0.0 < hi <= 1e-6
+    code, d, _ = run_json(capsys, ["path", str(EXAMPLES / "fig4a_bonded.json"), "--json"])
+    assert code == 0 and d["status"] == "collapse" and d["collapse_load"] == 1.0
+    lo, hi = d["bracket"]
+    assert lo == 1.0 and 1.0 < hi < 1.0 + 1e-6

@@ -41,7 +41,7 @@ from ..methods.distortion import AT_THRESHOLD, LOADED
 from ..scene.model import Scene, friction_label, friction_value
 from ..solvers.distortion import TOL, Run
 from .nonassociative import _UNSETTLED, flow_mask
-from .search import bisect
+from .search import BRACKET_ATOL, bisect
 
 #: relative step below an event's bracket over which its margin is extrapolated
 EXTRAPOLATE = 1e-4
@@ -100,7 +100,8 @@ class PathResult:
     """A load path: status "collapse" (with ``collapse_load``), "unstable" (no admissible
     state under the dead load alone: no path), "standing" (admissible up
     to the last step), "undecided" (with ``bracket``: admissible at its lower end, not
-    decided at its upper end) or "failure" (reason in ``notes``)."""
+    decided at its upper end) or "failure" (reason in ``notes``). A collapse put at the
+    last admissible load below an undecided run has the ``bracket`` it lies in."""
 
     status: str
     sliding: str
@@ -271,16 +272,21 @@ class _Path:
         u = br.undecided_at
         if u is not None:
             why = f"at lambda = {u:.9g}: {self.solve(u).reason}"
-            if u - br.bad > LIMIT_RTOL * u:
+            # (and to the answers' absolute floor near 0: the reference model at f = 0
+            # read UNDECIDED, admissible at 0 and not decided at 9.5e-8, where `load`
+            # gives lambda* = 0)
+            if u - br.bad > LIMIT_RTOL * u + BRACKET_ATOL:
                 self.w.notes.append(why)
                 raise _End("undecided", br.bad, (br.bad, u))
             g = br.good_data
+            top = br.good if g is not None and g.status == "inadmissible" else u
             above = (f"; the first load found not admissible: {br.good:.9g}, so the "
                      f"collapse lies in [{br.bad:.9g}, {br.good:.9g}], at its lower end by "
-                     "the stall" if g is not None and g.status == "inadmissible" else "")
-            self.w.notes.append(f"the collapse load is located to {LIMIT_RTOL:g} (relative): "
+                     "the stall" if top != u else "")
+            self.w.notes.append(f"the collapse load is located to {LIMIT_RTOL:g} (relative, "
+                                f"and {BRACKET_ATOL:g} of the live load near 0): "
                                 f"admissible at {br.bad:.9g}, undecided {why}{above}")
-            raise self.collapse(br.bad, [], self.solve(br.bad))
+            raise self.collapse(br.bad, [], self.solve(br.bad), (br.bad, top))
         return br.bad, br.good, br.good_data
 
     def event(self, a: float, b: float, r: Run
@@ -358,7 +364,8 @@ class _Path:
         self.cohesion[joints] = 0.0
         return True
 
-    def collapse(self, lam: float, cause: list[int], last: Run | None) -> _End:
+    def collapse(self, lam: float, cause: list[int], last: Run | None,
+                 bracket: tuple[float, float] | None = None) -> _End:
         gov = list(cause) + [j for j in (self.at_threshold(last) if last else [])
                              if j not in cause]
         new = [j for j in gov if j not in self.seen]
@@ -366,7 +373,7 @@ class _Path:
             self.events.append(PathEvent("plastic", lam, tuple(self.names[j] for j in new)))
         gov += [j for j in (self.hinging(last) if last else []) if j not in gov]
         self.events.append(PathEvent("collapse", lam, tuple(self.names[j] for j in gov)))
-        return _End("collapse", lam)
+        return _End("collapse", lam, bracket)
 
     def cascade(self, lam: float, r: Run, last: Run | None,
                 cause: list[int] | None = None) -> Run:
