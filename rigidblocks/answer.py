@@ -56,8 +56,9 @@ NA_BELOW_LOAD = ("NOT ADMISSIBLE: loaded from X0 it collapses below this load (t
 #: X0 at lambda = 0.12 is admissible, while 0.1187021 is the smallest multiplier of any
 #: state, `load --safe`)
 #: the bounds line's words for the capacity bound (rigidblocks.analyses.na_capacity)
-CAPACITY_LOWER = ("lower: capacity bound, every collapse state at lambda >= 0 (Radenkovic's "
-                  "second theorem with each joint's least normal force)")
+#: (it read "every collapse state at lambda >= 0" as if the bound were 0)
+CAPACITY_LOWER = ("lower: capacity bound, no collapse state at lambda >= 0 lies below it "
+                  "(Radenkovic's second theorem with each joint's least normal force)")
 NO_SLIDING_LOWER = ("lower: associative, every collapse state (infinite friction: no joint "
                     "without dilatancy slides, and the flow rule plays no part)")
 NA_BOUND_STANDS = ("ADMISSIBLE: no collapse state without dilatancy lies at or below this "

@@ -750,7 +750,8 @@ def test_cli_names_the_starts_and_bounds(tmp_path, capsys):
     # multiplier (every collapse state at lambda >= 0 collapses there)
     assert main(["load", str(EXAMPLES / "segmental_arch.json"), "--flow", NA]) == 0
     assert "bounds     [0.287207, 0.287208]   (rounded outward; lower: capacity bound, " \
-        "every collapse state at lambda >= 0 (Radenkovic's second theorem with each " \
+        "no collapse state at lambda >= 0 lies below it (Radenkovic's second theorem " \
+        "with each " \
         "joint's least normal force); upper: associative)" in \
         capsys.readouterr().out.splitlines()
 
