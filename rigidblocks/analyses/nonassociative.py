@@ -1162,13 +1162,9 @@ def _breached_at(na: NonAssociative, f: float, first: int = 5) -> str:
     """Where the state reached from X0 under the dead load breaches the joint laws: the
     joints, largest breach first (`load` said only that it breaches, on an 8 x 8 wall
     with an opening, where `check --load-factor 0` names c5b4-c6b4 and more)."""
-    r = na.dead_load[1] if na.dead_load is not None and na.dead_load[0] == f else None
-    if r is None:
-        counted = na.fp_iterations  # (the state's run again: not limit steps of the answer)
-        ranked = na.breaches(f, na.admissible(f, 0.0))
-        na.fp_iterations = counted
-    else:
-        ranked = na.breaches(f, Verdict(r.status, r.violation, (), r))
+    f0, r = na.dead_load  # (the verdict this follows read it: `reached_normals`)
+    assert f0 == f
+    ranked = na.breaches(f, Verdict(r.status, r.violation, (), r))
     if not ranked:
         return ""
     ids, pairs = na.contacts.block_ids, na.contacts.pairs

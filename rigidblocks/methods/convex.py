@@ -294,9 +294,9 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
         return True
 
 
-#: the note where the mechanism drawn is one of several optimal ones
 #: the start of the reason given where the mechanism drawn is off the optimal face
 OFF_FACE_NOTE = "the mechanism drawn (its joints the governing ones)"
+#: the note where the mechanism drawn is one of several optimal ones
 OTHER_MECHANISMS = ("other collapse mechanisms reach the same multiplier: the one drawn is "
                     "one of them (their blend: `rigidblocks load --mechanism blend`)")
 #: the interior-point duals (the centre of the optimal face) and the vertex drawn are one

@@ -262,16 +262,19 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
         # a bond at its whole tensile strength read as unused beside the shear alone
         # (examples/fig4a_bonded.json at 1.1: its vertical joint, which cracks first)
         val = np.fmax(shear_use(result), tension_use(result))
-        label = "strength used: shear |T|/(fN+ca) or tension -N/(ta)"
+        word = "strength used"
+        label = f"{word}: shear |T|/(fN+ca) or tension -N/(ta)"
     elif np.any(np.isfinite(fj) & (fj > 0)) or np.any(c.cohesion > 0):
         # each joint against its own threshold (its friction override, its cohesion)
         val = shear_use(result)
         own = np.any(fj != f) or np.any(c.cohesion > 0)
-        label = ("shear threshold used |T| / (f N + c a), each joint's own f and c"
-                 if own else f"friction demand |T| / (f N), f = {f:.4g}")
+        word = "shear threshold used" if own else "friction demand"
+        label = (f"{word} |T| / (f N + c a), each joint's own f and c" if own
+                 else f"{word} |T| / (f N), f = {f:.4g}")
     else:
         val = st.demand
-        label = "friction demand |T| / N"
+        word = "friction demand"
+        label = f"{word} |T| / N"
     val = np.where(np.isfinite(val), val, 1e3)
     # (not where the state shown stands and the limit run from X0 collapses below the
     # load: the Arpino gate at f = 0.6 and 0.11871 read "least-violation state, NOT
@@ -288,11 +291,7 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
 
     lc = LineCollection(seg, cmap=colormaps["RdYlGn_r"].with_extremes(bad=(0, 0, 0, 0)),
                         linewidths=widths, zorder=3,
-                        label="joint (colour: " + ("strength used" if
-                                                   label.startswith("strength") else
-                                                   "shear threshold used" if
-                                                   label.startswith("shear") else
-                                                   "friction demand") + ")")
+                        label=f"joint (colour: {word})")
     lc.set_array(np.where(is_open, np.nan, val))
     lc.set_clim(0.0, 1.0)
     lc.set_gid("rb-joints")
