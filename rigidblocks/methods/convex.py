@@ -41,7 +41,7 @@ from .relaxation import (
     dual_work,
     near_threshold,
 )
-from .vertex import vertex_dual
+from .vertex import face_allowance, vertex_dual
 
 #: the default accuracy of f* and lambda* (``rtol``: a number only where its certified
 #: bracket is this narrow, relative): three significant figures, the tightest accuracy
@@ -49,7 +49,9 @@ from .vertex import vertex_dual
 #: 20,051-block wall at load factor 0.2 reaches 1.1e-3 at its solver's resolution)
 FRICTION_RTOL = 2e-3
 #: a mechanism drawn from an extreme point next to the optimal face that balances at a
-#: multiplier more than this (relative, plus ADMISSIBLE_TOL) above lambda* is said so
+#: multiplier more than this (relative, plus the restricted problem's own allowance,
+#: :func:`~rigidblocks.methods.vertex.face_allowance`, and ADMISSIBLE_TOL) above lambda*
+#: is said so
 OFF_FACE = 1e-6
 
 
@@ -262,7 +264,7 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
                               "be found)")
             return res.y[eq], "blend"
         work_at = float(prob.b @ vd[0])
-        if work_at > lam * (1 + OFF_FACE) + ADMISSIBLE_TOL:
+        if work_at > lam * (1 + OFF_FACE) + face_allowance(lam) + ADMISSIBLE_TOL:
             # a reason, not a solver note: its joints need not be those at lambda* (the
             # corbel dome: the whole dome sliding on its slab, at 0.6 against lambda* =
             # 0.599985, printed as the governing joints beside "other collapse

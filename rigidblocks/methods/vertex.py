@@ -42,6 +42,17 @@ DUAL_TOL = 1e-9
 #: slack of the LP's bound b^T y <= b^T y_ip (relative): the interior-point duals are
 #: optimal to about the solver's tolerance
 BOUND_TOL = 1e-7
+
+
+def face_allowance(bound: float) -> float:
+    """How far (absolute) above the optimum ``bound`` = b^T y_ip the objective of a dual
+    returned as on the optimal face may lie: the restricted problems' bound slack
+    (BOUND_TOL, relative, on at least 1). A mechanism that balances further above it is
+    not on the face (the 3D wall at f = 0.05 draws its bed-joint slide at 0.0500001,
+    within this allowance of lambda* = 0.05)."""
+    return BOUND_TOL * max(1.0, abs(bound))
+
+
 #: a dual whose objective (the multiplier of its mechanism) exceeds the optimum by more
 #: than this (relative) is refused; within it, the gap goes into the result's notes
 OPTIMAL_GAP = 1e-4
@@ -141,7 +152,7 @@ def _linear_vertex(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, At: sp.csc_
 
     w = np.concatenate([np.zeros(n_eq_k), np.ones(len(idx) - n_eq_k)])
     bounds = [(None, None)] * n_eq_k + [(0, None)] * (len(idx) - n_eq_k)
-    lp = dict(A_ub=prob.b[idx][None, :], b_ub=[bound + BOUND_TOL * max(1.0, abs(bound))],
+    lp = dict(A_ub=prob.b[idx][None, :], b_ub=[bound + face_allowance(bound)],
               A_eq=At, b_eq=rhs, bounds=bounds, options={"maxiter": LP_ITERATIONS})
     # where the active set taken at the interior point's tolerances leaves the
     # restricted problem without a solution (large walls), HiGHS' interior-point
@@ -205,7 +216,7 @@ def _cone_lp(prob: ConicProblem, idx: np.ndarray, n_eq_k: int, n_lin_k: int,
     w = np.concatenate([np.zeros(n_eq_k), np.ones(n_lin_k), *g_obj])
     b_row = np.concatenate([prob.b[idx[lin]], *g_b])
     bounds = [(None, None)] * n_eq_k + [(0, None)] * (n_lin_k + n_g)
-    out = linprog(w, A_ub=b_row[None, :], b_ub=[bound + BOUND_TOL * max(1.0, abs(bound))],
+    out = linprog(w, A_ub=b_row[None, :], b_ub=[bound + face_allowance(bound)],
                   A_eq=A_eq, b_eq=rhs, bounds=bounds, method="highs-ds",
                   options={"maxiter": LP_ITERATIONS})
     if out.status != 0:
