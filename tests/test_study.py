@@ -472,3 +472,25 @@ def test_min_thickness_friction_given_twice_is_a_spec_error():
                                          "a case parameter"):
         study.make_sweep("arch", grid={"voussoirs": [9, 11]}, parameters={"friction": 0.6},
                          analyses=["check", {"analysis": "min_thickness", "friction": 0.6}])
+
+
+def test_min_thickness_reads_the_scene_friction_as_check_does():
+    """Without a friction of its own, a sweep's min_thickness bisects at the scene's
+    friction (the arch generator's f = 0.6), as check in the same row reads it, and says
+    which in its column: the 15-voussoir arch at load factor 0.3 read 0.20599 (no
+    sliding) while check found 0.206 not admissible at f = 0.6."""
+    sw = study.make_sweep("arch", grid={"voussoirs": [15], "load_factor": [0.3]},
+                          analyses=["min_thickness"])
+    row = study.run(sw).frame.iloc[0]
+    assert row["min_thickness_status"] == "found" and row["min_thickness_friction"] == 0.6
+    for t, stands in ((row["min_thickness"], "admissible"),
+                      (row["min_thickness_lower"], "inadmissible")):
+        r = rb.check(build("arch", voussoirs=15, thickness=t), load_factor=0.3,
+                     state=False)
+        assert r.status == stands, (t, r.status)
+    no_sliding = study.make_sweep("arch", grid={"voussoirs": [15], "load_factor": [0.3]},
+                                  analyses=[{"analysis": "min_thickness",
+                                             "friction": "infinite"}])
+    row_inf = study.run(no_sliding).frame.iloc[0]
+    assert row_inf["min_thickness_friction"] == "infinite"
+    assert row_inf["min_thickness"] < row["min_thickness_lower"]

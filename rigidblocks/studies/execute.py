@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..errors import InputError
-from ..scene.model import Scene
+from ..scene.model import Scene, friction_label
 from .cases import RESERVED, SCENE_PARAMS
 
 #: analysis name -> options it accepts (given in the analysis entry, not per case)
@@ -26,7 +26,7 @@ ANSWERS: dict[str, tuple[str, ...]] = {
     "check": ("admissible", "violation"),
     "min_friction": ("friction_factor", "friction_angle_deg"),
     "max_load_multiplier": ("load_multiplier",),
-    "min_thickness": ("min_thickness", "min_thickness_lower"),
+    "min_thickness": ("min_thickness", "min_thickness_lower", "min_thickness_friction"),
 }
 
 
@@ -82,11 +82,14 @@ def answer(analysis: Analysis, job: _Job, params: Mapping[str, Any],
     if name == "min_thickness":
         from .thickness import min_thickness
 
+        opts = dict(analysis.options)
+        if "friction" not in opts and "friction" not in params:
+            opts["friction"] = None  # the scene's, as check and max_load_multiplier
         th = min_thickness(job.generator, method=method,  # type: ignore[arg-type]
-                           load_factor=load_factor or 0.0, **dict(analysis.options),
-                           **params)
+                           load_factor=load_factor or 0.0, **opts, **params)
         return {"min_thickness_status": th.status, "min_thickness": th.thickness,
-                "min_thickness_lower": th.lower}, th.solve_time
+                "min_thickness_lower": th.lower,
+                "min_thickness_friction": friction_label(th.friction)}, th.solve_time
     if name not in ANALYSES:
         raise InputError(f"unknown analysis {name!r} (choose from {', '.join(ANALYSES)})")
     from ..analyses import analysis as registered

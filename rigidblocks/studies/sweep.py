@@ -270,7 +270,8 @@ class StudyResult:
     analysis ``<analysis>_status`` and its answers: ``admissible``, ``violation``
     (check); ``friction_factor``, ``friction_angle_deg`` (min_friction);
     ``load_multiplier`` (max_load_multiplier); ``min_thickness``,
-    ``min_thickness_lower`` (min_thickness).
+    ``min_thickness_lower``, ``min_thickness_friction`` (min_thickness: the friction it
+    bisected at, the scene's unless its options give one).
     """
 
     frame: Any

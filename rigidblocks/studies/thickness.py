@@ -80,7 +80,9 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
             function returning a scene.
         param: the thickness parameter (``thickness`` is t / R for :func:`arch`).
         lo, hi: the initial bracket; ``hi`` must be admissible and ``lo`` not.
-        friction: friction coefficient for every joint (default: no sliding).
+        friction: friction coefficient for every joint without its own (default: no
+            sliding), or None: the scene's own (the generator's ``friction`` parameter,
+            as ``check`` reads it), which the result records.
         method: the method deciding admissibility (see :func:`rigidblocks.check`).
         load_factor: the multiple of the live load it must carry (a wall's lateral
             load; default 0, its dead load alone).
@@ -129,6 +131,8 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         spent += float(r.solve_time)
         return {"admissible": True, "inadmissible": False}.get(r.status), r.status
 
+    if friction is None:  # the scene's own, as the result shows it
+        friction = build(hi).effective_friction
     at_hi = admissible(hi)[0]
     if at_hi is not True:
         def thicker() -> str:
