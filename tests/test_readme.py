@@ -52,3 +52,29 @@ def test_readme_answer_block_is_what_load_prints(capsys):
     assert main(["load", str(ROOT / "examples" / "arch.json")]) == 0
     printed = capsys.readouterr().out.splitlines()
     assert printed[2:] == block
+
+
+def test_readme_non_associative_figures_claim(capsys):
+    """The README's sentence on the figures of a non-associative f*: the inclined corbel
+    arch (examples/corbel_arch_inclined.json) under its dead load stands at the printed
+    f* = 0.7651297008 and not at 0.7652 from X0 by the limit iteration, while the
+    distortion iteration reaches a state that stands at 0.7652 (it read "not at 0.76513",
+    where `check` stands since a multiplier within 1e-6 of the live load of 0 is 0)."""
+    from rigidblocks.cli.main import main
+
+    text = " ".join((ROOT / "README.md").read_text().split())
+    assert ("stands under its dead load at f* = 0.7651297008 but not at 0.7652, from X0 "
+            "by the limit iteration (the distortion iteration reaches a state that stands "
+            "there") in text
+    path = str(ROOT / "examples" / "corbel_arch_inclined.json")
+    args = ["check", path, "--load-factor", "0", "--flow", "non-associative"]
+    verdicts = {}
+    for f, method in (("0.7651297008", "clarabel"), ("0.7652", "clarabel"),
+                      ("0.7652", "distortion")):
+        assert main([*args, "--friction", f, "--method", method]) == 0
+        out = capsys.readouterr().out
+        verdicts[f, method] = next(ln for ln in out.splitlines()
+                                   if ln.startswith("verdict")).split()[1].rstrip(":")
+    assert verdicts == {("0.7651297008", "clarabel"): "ADMISSIBLE",
+                        ("0.7652", "clarabel"): "NOT",
+                        ("0.7652", "distortion"): "ADMISSIBLE"}
