@@ -494,3 +494,19 @@ def test_min_thickness_reads_the_scene_friction_as_check_does():
     row_inf = study.run(no_sliding).frame.iloc[0]
     assert row_inf["min_thickness_friction"] == "infinite"
     assert row_inf["min_thickness"] < row["min_thickness_lower"]
+
+
+def test_min_friction_and_load_rows_carry_their_accuracy():
+    """A sweep's f* is the upper end of a bracket 2e-3 wide (the default accuracy): the
+    row gives both ends (the 15-voussoir arch under self-weight: f* in [0.34625,
+    0.34660], no state at the lower end), and lambda* its accuracy reached; the rows
+    gave f* alone, with nothing to tell 0.3466 from 0.3463."""
+    sw = study.make_sweep("arch", grid={"voussoirs": [15], "load_factor": [0]},
+                          analyses=["min_friction", "max_load_multiplier"])
+    row = study.run(sw).frame.iloc[0]
+    lo, hi = row["friction_factor_lower"], row["friction_factor_upper"]
+    assert lo < hi == row["friction_factor"] and (hi - lo) / hi <= 2e-3
+    scene = build("arch", voussoirs=15)
+    assert rb.check(scene, friction=lo, load_factor=0, state=False).status == "inadmissible"
+    assert rb.check(scene, friction=hi, load_factor=0, state=False).status == "admissible"
+    assert 0 < row["load_multiplier_accuracy"] <= 2e-3

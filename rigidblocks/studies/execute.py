@@ -24,10 +24,16 @@ ANALYSES: dict[str, tuple[str, ...]] = {
 #: answer columns of each analysis (besides ``<analysis>_status``)
 ANSWERS: dict[str, tuple[str, ...]] = {
     "check": ("admissible", "violation"),
-    "min_friction": ("friction_factor", "friction_angle_deg"),
-    "max_load_multiplier": ("load_multiplier",),
+    "min_friction": ("friction_factor", "friction_angle_deg", "friction_factor_lower",
+                     "friction_factor_upper"),
+    "max_load_multiplier": ("load_multiplier", "load_multiplier_accuracy"),
     "min_thickness": ("min_thickness", "min_thickness_lower", "min_thickness_friction"),
 }
+#: the result's attribute behind an answer column, where it is not the column's name:
+#: the bracket of f* (its ends, also where the search could not decide), the relative
+#: accuracy lambda* reached (its bracket's width)
+ATTRIBUTE = {"friction_factor_lower": "lower", "friction_factor_upper": "upper",
+             "load_multiplier_accuracy": "accuracy"}
 
 
 @dataclass(frozen=True)
@@ -98,7 +104,7 @@ def answer(analysis: Analysis, job: _Job, params: Mapping[str, Any],
     r = registered(name).run(scene(), load_factor=load_factor, method=method, state=False,
                              **extra)
     row = {f"{name}_status": r.status}
-    row.update({k: getattr(r, k) for k in ANSWERS[name]})
+    row.update({k: getattr(r, ATTRIBUTE.get(k, k)) for k in ANSWERS[name]})
     return row, float(r.solve_time)
 
 

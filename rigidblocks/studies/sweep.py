@@ -268,8 +268,9 @@ class StudyResult:
     ("ok" or "failed"), ``error`` (the exception's type and message of a failed case),
     ``time`` (wall-clock seconds of the case), ``solve_time`` (solver seconds), then per
     analysis ``<analysis>_status`` and its answers: ``admissible``, ``violation``
-    (check); ``friction_factor``, ``friction_angle_deg`` (min_friction);
-    ``load_multiplier`` (max_load_multiplier); ``min_thickness``,
+    (check); ``friction_factor``, ``friction_angle_deg``, ``friction_factor_lower``,
+    ``friction_factor_upper`` (min_friction: f*'s bracket); ``load_multiplier``,
+    ``load_multiplier_accuracy`` (max_load_multiplier); ``min_thickness``,
     ``min_thickness_lower``, ``min_thickness_friction`` (min_thickness: the friction it
     bisected at, the scene's unless its options give one).
     """
