@@ -346,3 +346,25 @@ def test_a_non_associative_report_gives_its_flow_and_bounds(tmp_path, capsys):
     text = html.unescape(re.sub(r"<[^>]+>", " ", out.read_text()))
     assert f"bounds: {bounds}" in text and bounds.startswith("[0.6, 2.4]")
     assert "flow: non-associative: " in text
+
+
+def test_the_report_says_what_state_its_forces_are():
+    """The line on the forces shown names the state the result carries: after `load`
+    the collapse state at lambda* (it read "one admissible state" beside COLLAPSE), after
+    `friction` the state at f*, and beside a non-associative NOT ADMISSIBLE from the
+    limit fixed point the state reached from X0 that stands (the inclined corbel arch
+    at f = 0.7652 under its dead load: tests/test_honest_answers.py)."""
+    arch = read_scene(EXAMPLES / "arch.json")
+    load = rb.max_load_multiplier(arch)
+    assert content.forces_shown(load).startswith(
+        "Forces shown: one state at the collapse load \u03bb* (least complementary energy)")
+    na = rb.max_load_multiplier(arch, flow="non-associative")
+    assert "nor, without dilatancy, the multiplier" in content.forces_shown(na)
+    assert "one admissible state at f*" in content.forces_shown(rb.min_friction(arch))
+    assert "one admissible state (least" in content.forces_shown(
+        rb.check(arch, load_factor=0.1))
+    corbel = read_scene(EXAMPLES / "corbel_arch_inclined.json")
+    direct = rb.check(corbel, friction=0.7652, load_factor=0, flow="non-associative")
+    assert direct.status == "inadmissible"
+    assert "the state reached from X0 at this load" in content.forces_shown(direct)
+    assert content.forces_shown(rb.check(arch, load_factor=0.3, state=False)) is None

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..answer import MODE_WORDS, answer_block, flow_lines, live_load_text, without_dilatancy
 from ..plotting.marks import scene_weights
-from ..results import force_state_words
+from ..results import DIRECT_STANDS, force_state_words
 from ..scene.model import Scene
 
 #: statuses that answer the question, and how the answer reads (tone of the badge)
@@ -158,6 +158,35 @@ def answer(scene: Scene, result: Any) -> Answer:
         notes.append("stages: " + ", ".join(f"{k} {float(v):.3g} s"
                                             for k, v in timings.items()))
     return Answer(status, True, tone, block.title(), tuple(details), tuple(notes))
+
+
+def forces_shown(result: Any) -> str | None:
+    """What the force state drawn and tabled is, beside the verdict (None without one):
+    the collapse state at lambda* of `load` and the state at f* of `friction` are states
+    at a limit, and the state reached from X0 beside a NOT ADMISSIBLE that comes from
+    the limit fixed point is one that stands (a collapse state read "one admissible
+    state")."""
+    st = getattr(result, "state", None)
+    if st is None:
+        return None
+    how = getattr(st, "method", "")
+    analysis = getattr(result, "analysis", "")
+    if analysis == "max_load_multiplier" and getattr(result, "status", "") == "collapse":
+        return (f"Forces shown: one state at the collapse load \u03bb* ({how}); the "
+                "states at collapse are not unique" + (
+                    ", nor, without dilatancy, the multiplier." if without_dilatancy(result)
+                    else ", the multiplier is."))
+    if analysis == "min_friction" and getattr(result, "status", "") == "stable":
+        return (f"Forces shown: one admissible state at f* ({how}); the states at f* are "
+                "not unique.")
+    if getattr(result, "status", "") == "inadmissible":
+        if getattr(result, "cause", "") == DIRECT_STANDS:
+            return (f"Forces shown: the state reached from X0 at this load ({how}), which "
+                    "stands; the verdict is that of the limit fixed point from X0, which "
+                    "collapses below the load.")
+        return f"Forces shown: the state of least violation ({how}), NOT admissible."
+    return (f"Forces shown: one admissible state ({how}); statically admissible states "
+            "are not unique.")
 
 
 def joint_states(result: Any) -> list[str]:

@@ -214,11 +214,9 @@ def render(scene: Scene, result: Any = None, *, title: str | None = None) -> str
                          '</summary><ul class="notes">'
                          + "".join(f"<li>{_e(n)}</li>" for n in ans.notes)
                          + "</ul></details>")
-        st = getattr(result, "state", None)
-        if st is not None:
-            parts.append(f"<p class=\"rb-help\">Forces shown: one admissible state "
-                         f"({_e(getattr(st, 'method', ''))}); statically admissible states "
-                         "are not unique.</p>")
+        shown = content.forces_shown(result)
+        if shown is not None:
+            parts.append(f'<p class="rb-help">{_e(shown)}</p>')
         parts.append("</section>")
     parts.append("<section><h2>Picture</h2>")
     scripts = [f'<script type="application/json" id="rb-table-data">{_json(table)}</script>']
