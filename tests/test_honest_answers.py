@@ -149,6 +149,20 @@ def test_blocks_that_rest_on_a_floating_block_are_named_and_no_live_load_is_blam
     assert "block 'b2' touches no other block" in whys[0] and "--load-factor 0" not in out
 
 
+def test_a_block_on_a_corner_is_said_to_touch_at_a_point(tmp_path, capsys):
+    """A square standing on one corner (the catalogue's on_a_point) touches its support
+    at a point, which is no joint: it read "touches no other block ... raise the contact
+    tolerance", as if it were drawn apart; a block drawn apart still reads so."""
+    from rigidblocks.generators.catalogue import on_a_point
+
+    path = write(tmp_path, on_a_point())
+    code, out, _ = run(capsys, ["check", path])
+    assert code == 0 and "NOT ADMISSIBLE" in out
+    whys = [ln for ln in out.splitlines() if ln.startswith("why")]
+    assert "block 'B' touches block 'S' at a point only (a corner)" in whys[0], whys
+    assert "touches no other block" not in out
+
+
 def test_a_load_applied_off_its_block_is_named(tmp_path, capsys):
     """A horizontal load given at y = 12 on a 2 m block (a slip of the keyboard for
     y = 1.2) is applied there, and its lever of 12 m sets lambda* = (W + P) (b / 2) /

@@ -13,11 +13,11 @@ from typing import Any
 
 import numpy as np
 
-from ..contacts import detect_contacts
+from ..contacts import detect_contacts, point_touches
 from ..equilibrium import assemble
 from ..errors import InputError
 from ..scene.model import Scene
-from ..scene.validate import loads_off_their_blocks
+from ..scene.validate import DEFAULT_TOL, loads_off_their_blocks
 from ..solvers import SOLVERS
 from .base import (
     ADMISSIBLE,
@@ -112,6 +112,31 @@ def _weightless(scene: Scene, system: Any) -> list[str]:
                                              if not np.any(system.live) else "")]
 
 
+def _unheld(scene: Scene, contacts: Any, tol: float) -> list[str]:
+    """The notes on the blocks that nothing holds (:func:`unsupported_blocks`): one that
+    touches another at a point only (:func:`~rigidblocks.contacts.point_touches`), one
+    that touches nothing, and groups joined to no support."""
+    notes: list[str] = []
+    loose, adrift = unsupported_blocks(scene, contacts)
+    points = point_touches(scene, loose, tol)
+    for b, other in points.items():
+        notes.append(f"block '{b}' touches block '{other}' at a point only (a corner), "
+                     f"and a joint is an edge in common: {NOTHING_HOLDS} it; check the "
+                     "geometry")
+    loose = [b for b in loose if b not in points]
+    if loose:
+        one = len(loose) == 1
+        notes.append(f"{_names(loose)} touch{'es' if one else ''} no other block (no "
+                     f"joint within the contact tolerance): {NOTHING_HOLDS} "
+                     f"{'it' if one else 'them'}; check the geometry, or raise the "
+                     "contact tolerance for gaps from rounding")
+    if adrift:
+        notes.append(f"{_names(adrift)} {'is' if len(adrift) == 1 else 'are'} joined to "
+                     f"no support (their joints reach only free blocks): {NOTHING_HOLDS} "
+                     "them; check the geometry where they should meet a support")
+    return notes
+
+
 def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = None,
                 settings: dict | None = None, pyramid: int | None = None,
                 contact_tol: float | None = None, progress: Progress | None = None,
@@ -158,17 +183,7 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
         m = ConvexMethod(scene, system, timings, solver=solver or "clarabel",
                          settings=settings, pyramid=pyramid, progress=progress)
     m.notes.extend(_weightless(scene, system))
-    loose, adrift = unsupported_blocks(scene, contacts)
-    if loose:
-        one = len(loose) == 1
-        m.notes.append(f"{_names(loose)} touch{'es' if one else ''} no other block (no "
-                       f"joint within the contact tolerance): {NOTHING_HOLDS} "
-                       f"{'it' if one else 'them'}; check the geometry, or raise the "
-                       "contact tolerance for gaps from rounding")
-    if adrift:
-        m.notes.append(f"{_names(adrift)} {'is' if len(adrift) == 1 else 'are'} joined to "
-                       f"no support (their joints reach only free blocks): {NOTHING_HOLDS} "
-                       "them; check the geometry where they should meet a support")
+    m.notes.extend(_unheld(scene, contacts, kw.get("tol", DEFAULT_TOL)))
     bonded = int(np.count_nonzero((contacts.tensile_strength > 0) | (contacts.cohesion > 0)))
     if bonds_kept and bonded:
         m.notes.append(f"{bonded} joint{'s are' if bonded > 1 else ' is'} bonded (tensile "
