@@ -166,6 +166,14 @@ def answer_block(scene: Scene, result: Any, symbols: bool = False) -> AnswerBloc
                        case=w.short_case(result))
 
 
+def _joints_own_friction(contacts: Any) -> np.ndarray | None:
+    """Which joints have a friction of their own (a scene's joint override, finite or
+    infinite; NaN where the analysis's f applies); None without joints."""
+    if contacts is None or not contacts.n_joints:
+        return None
+    return ~np.isnan(np.asarray(contacts.override_friction, dtype=float))
+
+
 def live_load_text(scene: Scene, symbols: bool = False) -> str:
     """What lambda multiplies, in words, with its size in the scene's force unit."""
     return _Words(scene, symbols).live_text()
@@ -424,11 +432,11 @@ class _Words:
         f = getattr(result, "friction", None)
         if a != "min_friction" and f is not None:
             v = friction_value(f)
-            c = getattr(result, "contacts", None)
-            own = c is not None and bool(np.isfinite(np.asarray(
-                c.override_friction, dtype=float)).any())
-            parts.append(("at infinite friction" if math.isinf(v) else f"at f = {v:.6g}")
-                         + (" (some joints their own)" if own else ""))
+            own = _joints_own_friction(getattr(result, "contacts", None))
+            parts.append("at each joint's own friction" if own is not None and own.all()
+                         else ("at infinite friction" if math.isinf(v) else f"at f = {v:.6g}")
+                         + (" (some joints their own)" if own is not None and own.any()
+                            else ""))
         if a != "check" and without_dilatancy(result):  # (check's verdicts say it)
             parts.append("sliding without dilatancy")
         return ", ".join(parts)
@@ -448,10 +456,11 @@ class _Words:
         beside "at friction f = 0.6", with no word of theirs)."""
         f = getattr(result, "friction", None)
         c = getattr(result, "contacts", None)
-        if c is None or not c.n_joints:
+        mask = _joints_own_friction(c)
+        if mask is None:
             return self.friction_text(f)
         over = np.asarray(c.override_friction, dtype=float)
-        own = np.flatnonzero(~np.isnan(over))
+        own = np.flatnonzero(mask)
         if not len(own):
             return self.friction_text(f)
         if len(own) < c.n_joints:

@@ -1339,3 +1339,25 @@ def test_a_path_collapse_at_zero_is_decided_by_the_absolute_floor(capsys):
     assert code == 0 and d["status"] == "collapse" and d["collapse_load"] == 1.0
     lo, hi = d["bracket"]
     assert lo == 1.0 and 1.0 < hi < 1.0 + 1e-6
+
+
+def test_picture_titles_read_joints_of_infinite_friction_as_their_own():
+    """The short case of a title said "(some joints their own)" only where a joint's own
+    friction was finite: an override "infinite" (a keyed joint) was not counted, while
+    the question line named it; where every joint has its own, the title read the
+    uniform f that applies to none."""
+    from rigidblocks.answer import answer_block
+    from rigidblocks.scene.model import JointOverride
+
+    stack = make_scene([
+        {"id": "ground", "vertices": rect(-1, -0.5, 4, 0.5), "support": True},
+        {"id": "b1", "vertices": rect(0, 0, 1, 1)},
+        {"id": "b2", "vertices": rect(0, 1, 1, 1)},
+    ], unit_weight=20.0, friction=0.3, live_body_force=[0.1, 0])
+    one = stack.with_changes(joints=(JointOverride(("b1", "b2"), friction="infinite"),))
+    r = rb.check(one, load_factor=0.1)
+    assert answer_block(one, r).case.endswith("at f = 0.3 (some joints their own)")
+    both = one.with_changes(joints=(*one.joints,
+                                    JointOverride(("ground", "b1"), friction=0.5)))
+    r = rb.check(both, load_factor=0.1)
+    assert answer_block(both, r).case.endswith("at each joint's own friction")
