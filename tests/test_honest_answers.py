@@ -1335,6 +1335,11 @@ def test_a_path_collapse_at_zero_is_decided_by_the_absolute_floor(capsys):
     assert code == 0 and d["status"] == "collapse" and d["collapse_load"] == 0.0, d
     lo, hi = d["bracket"]
     assert lo == 0.0 and 0.0 < hi <= 1e-6
+    # the frictionless joints that carry a normal force are at their threshold of 0: the
+    # collapse names them (it named no joint: a threshold f N = 0 read as unloaded)
+    collapse = [e for e in d["events"] if e["kind"] == "collapse"]
+    assert {tuple(j) for j in collapse[0]["joints"]} == {
+        ("support", "left"), ("support", "right"), ("left", "top"), ("right", "top")}, d
     code, d, _ = run_json(capsys, ["path", str(EXAMPLES / "fig4a_bonded.json"), "--json"])
     assert code == 0 and d["status"] == "collapse" and d["collapse_load"] == 1.0
     lo, hi = d["bracket"]

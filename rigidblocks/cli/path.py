@@ -65,7 +65,10 @@ def _lines(scene, res, args: argparse.Namespace) -> list[str]:
              f"{res.friction}",
              f"status     {res.status.upper()}" + _status_tail(res, live, fu, direction)]
     if res.events:
-        lines.append(f"  {'lambda [-]':>14}  {'live [' + fu + ']':>12}  {'event':8s}  "
+        # a balanced live load (the reference model's two opposing pulls) has no
+        # resultant: its column is the sum of its sizes, as the status line says
+        head = ("live in all [" if direction.startswith("in all") else "live [") + fu + "]"
+        lines.append(f"  {'lambda [-]':>14}  {head:>12}  {'event':8s}  "
                      "joints (blocks a-b)")
     for e in res.events:
         joints = ", ".join(f"{a}-{b}" for a, b in e.joints) or "-"

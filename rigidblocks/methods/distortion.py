@@ -22,8 +22,9 @@ from .base import ADMISSIBLE, Method, Progress, Timings, Verdict, ranked_breache
 
 #: a joint is at its friction threshold where its shear is within this fraction of it
 AT_THRESHOLD = 1e-5
-#: joints whose threshold is below this fraction of the largest force (unloaded ones)
-#: are at no threshold
+#: joints whose threshold and normal force are both below this fraction of the largest
+#: force (unloaded ones) are at no threshold; a frictionless joint that carries a normal
+#: force is at its threshold of 0
 LOADED = 1e-6
 #: the refusal of a 3D scene, in words for the API and the command line alike
 NOT_3D = ("the distortion method is not supported for 3D scenes; use the convex path "
@@ -146,7 +147,10 @@ class DistortionMethod(Method):
         thr = np.where(fin, np.abs(laws.thresholds(v)), 0.0)
         gap = laws.rows(v)[:, 2:].max(axis=1)
         big = float(np.abs(v).max(initial=0.0))
-        hit = fin & (thr > LOADED * big) & (gap >= -rel * thr - floor)
+        # (loaded by its threshold or by its normal force: the reference model at f = 0
+        # collapsed at lambda = 0 on a path whose collapse named no joint)
+        loaded = (thr > LOADED * big) | (v[:, 0] + v[:, 1] > LOADED * big)
+        hit = fin & loaded & (gap >= -rel * thr - floor)
         return tuple(int(j) for j in np.flatnonzero(hit))
 
     def governing_friction(self, f: float, verdict: Verdict, rel: float = 0.0
