@@ -163,6 +163,38 @@ def test_a_block_on_a_corner_is_said_to_touch_at_a_point(tmp_path, capsys):
     assert "touches no other block" not in out
 
 
+BOX_FACES = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6],
+             [3, 0, 4, 7]]
+
+
+def box3d(x0, x1, y0, y1, z0, z1):
+    return [[x0, y0, z0], [x1, y0, z0], [x1, y1, z0], [x0, y1, z0],
+            [x0, y0, z1], [x1, y0, z1], [x1, y1, z1], [x0, y1, z1]]
+
+
+@pytest.mark.parametrize("where, box", [
+    ("edge", box3d(2, 3, 0, 1, 0, 1)), ("corner", box3d(2, 3, 2, 3, 0, 1)),
+    ("apart", box3d(0, 1, 0, 1, 0.5, 1.5))])
+def test_a_3d_block_on_an_edge_or_a_corner_is_said_to_touch(tmp_path, capsys, where, box):
+    """In 3D a joint is a face in common: a box whose base meets its support's top along
+    one edge only, or at one corner, read "touches no other block ... raise the contact
+    tolerance", as if it were drawn apart; one drawn 0.5 m apart still reads so."""
+    scene = {"format": "rigidblocks-scene", "version": 1, "dimension": 3,
+             "unit_weight": 20, "friction": 0.6,
+             "blocks": [{"id": "S", "vertices": box3d(0, 2, 0, 2, -1, 0),
+                         "faces": BOX_FACES, "support": True},
+                        {"id": "B", "vertices": box, "faces": BOX_FACES}]}
+    path = tmp_path / "s.json"
+    path.write_text(json.dumps(scene))
+    code, out, _ = run(capsys, ["check", str(path)])
+    assert code == 0 and "NOT ADMISSIBLE" in out
+    whys = [ln for ln in out.splitlines() if ln.startswith("why")]
+    touch = "block 'B' touches block 'S' at a point or along an edge only, and a joint " \
+        "is a face in common"
+    assert (touch in whys[0]) == (where != "apart"), whys
+    assert ("touches no other block" in whys[0]) == (where == "apart"), whys
+
+
 def test_a_load_applied_off_its_block_is_named(tmp_path, capsys):
     """A horizontal load given at y = 12 on a 2 m block (a slip of the keyboard for
     y = 1.2) is applied there, and its lever of 12 m sets lambda* = (W + P) (b / 2) /

@@ -33,19 +33,22 @@ def detect_contacts(scene: Scene, tol: float = DEFAULT_TOL) -> Contacts:
 
 
 def point_touches(scene: Scene, ids: list[str], tol: float = DEFAULT_TOL) -> dict[str, str]:
-    """Of the 2D blocks ``ids``, which have no joint, those that meet another block all
-    the same, at a point (a corner on an edge, within ``tol x scene size``): a joint is a
-    common edge, so such a block is held by nothing. Each such id maps to the other
-    block's id (the nearest); 3D scenes give none."""
-    if scene.dimension != 2 or not ids:
+    """Of the blocks ``ids``, which have no joint, those that meet another block all the
+    same, within ``tol x scene size``: at a point in 2D (a corner on an edge), at a
+    point or along an edge in 3D. A joint is a common edge (2D) or a face in common
+    (3D), so such a block is held by nothing. Each such id maps to the other block's id
+    (in 2D the nearest)."""
+    if not ids:
         return {}
-    import shapely
-
     from ..scene.model import scene_size
+
+    eps = tol * scene_size(scene)
+    if scene.dimension == 3:
+        return _touches_3d(scene, ids, eps)
+    import shapely
 
     polys = [shapely.Polygon(np.asarray(b.vertices, float)) for b in scene.blocks]
     tree = shapely.STRtree(polys)
-    eps = tol * scene_size(scene)
     index = {b.id: k for k, b in enumerate(scene.blocks)}
     out = {}
     for i in ids:
@@ -55,6 +58,23 @@ def point_touches(scene: Scene, ids: list[str], tol: float = DEFAULT_TOL) -> dic
         if near:
             j = min(near, key=lambda j: polys[k].distance(polys[j]))
             out[i] = scene.blocks[j].id
+    return out
+
+
+def _touches_3d(scene: Scene, ids: list[str], eps: float) -> dict[str, str]:
+    """:func:`point_touches` of 3D blocks: the first block (in scene order) within
+    ``eps`` of each (:func:`~rigidblocks.scene.polyhedra.blocks_meet`)."""
+    from ..scene.polyhedra import blocks_meet, candidate_pairs
+
+    want = {b.id for b in scene.blocks} & set(ids)
+    out: dict[str, str] = {}
+    for i, j in candidate_pairs(scene, eps):
+        a, b = scene.blocks[i].id, scene.blocks[j].id
+        if (a in want and a not in out) or (b in want and b not in out):
+            if blocks_meet(scene, int(i), int(j), -eps):
+                for x, y in ((a, b), (b, a)):
+                    if x in want:
+                        out.setdefault(x, y)
     return out
 
 

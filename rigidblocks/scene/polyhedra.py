@@ -34,6 +34,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -780,30 +781,45 @@ def check_overlaps_3d(scene: Scene) -> None:
 
     pairs = candidate_pairs(scene, 0.0)
     for i, j in pairs[~_faces_separate(scene, pairs, tol)]:
-        A, B = scene.blocks[i], scene.blocks[j]
-        sa, sb = shape(A), shape(B)
-        shift = sb.origin - sa.origin
-        if sa.convex and sb.convex:
-            hit = _convex_overlap(sa.local, block_planes(A)[0], edge_axes(i),
-                                  sb.local + shift, block_planes(B)[0], edge_axes(j), tol)
-        else:
-            hit = False
-            pa, pb = convex_pieces(A), convex_pieces(B)
-            lo_a, hi_a = _boxes(A, pa)
-            lo_b, hi_b = _boxes(B, pb)
-            lo_b, hi_b = lo_b + shift, hi_b + shift
-            # piece pairs whose bounding boxes overlap by more than the tolerance
-            near = ((lo_b[None, :, :] < hi_a[:, None, :] - tol)
-                    & (hi_b[None, :, :] > lo_a[:, None, :] + tol)).all(axis=2)
-            for a, b in zip(*np.nonzero(near), strict=True):
-                p, q = pa[a], pb[b]
-                if _convex_overlap(p.points, p.normals, lambda p=p: p.edges,
-                                   q.points + shift, q.normals, lambda q=q: q.edges, tol):
-                    hit = True
-                    break
-        if hit:
+        if blocks_meet(scene, int(i), int(j), tol, edge_axes):
+            A, B = scene.blocks[i], scene.blocks[j]
             raise InputError(f"blocks {A.id!r} and {B.id!r} overlap; blocks may touch but "
                              "not overlap", f"block {A.id!r}")
+
+
+def blocks_meet(scene: Scene, i: int, j: int, tol: float,
+                edge_axes: Callable[[int], Any] | None = None) -> bool:
+    """Do blocks i and j meet: with ``tol`` > 0, do their interiors overlap by more than
+    ``tol`` (along every separating axis); with ``tol`` < 0, do they come within
+    ``-tol`` of each other (touch, at a face, an edge or a point)? The separating-axis
+    test on the blocks where both are convex, else on every pair of their convex
+    pieces (:func:`convex_pieces`) whose bounding boxes meet so; coordinates relative to
+    block i's origin. ``edge_axes(k)`` gives a callable of block k's edge directions
+    (cached by the caller)."""
+    def axes_of(k: int) -> Callable[[], np.ndarray]:
+        if edge_axes is not None:
+            return edge_axes(k)
+        return lambda: np.array(_edge_dirs(scene.blocks[k])).reshape(-1, 3)
+
+    A, B = scene.blocks[i], scene.blocks[j]
+    sa, sb = shape(A), shape(B)
+    shift = sb.origin - sa.origin
+    if sa.convex and sb.convex:
+        return _convex_overlap(sa.local, block_planes(A)[0], axes_of(i),
+                               sb.local + shift, block_planes(B)[0], axes_of(j), tol)
+    pa, pb = convex_pieces(A), convex_pieces(B)
+    lo_a, hi_a = _boxes(A, pa)
+    lo_b, hi_b = _boxes(B, pb)
+    lo_b, hi_b = lo_b + shift, hi_b + shift
+    # piece pairs whose bounding boxes overlap by more than the tolerance
+    near = ((lo_b[None, :, :] < hi_a[:, None, :] - tol)
+            & (hi_b[None, :, :] > lo_a[:, None, :] + tol)).all(axis=2)
+    for a, b in zip(*np.nonzero(near), strict=True):
+        p, q = pa[a], pb[b]
+        if _convex_overlap(p.points, p.normals, lambda p=p: p.edges,
+                           q.points + shift, q.normals, lambda q=q: q.edges, tol):
+            return True
+    return False
 
 
 def _boxes(block: Block, pieces: list[Piece]) -> tuple[np.ndarray, np.ndarray]:
