@@ -127,6 +127,25 @@ def test_png_written_by_api_and_cli(tmp_path, capsys):
     assert "wrote" in capsys.readouterr().out
 
 
+def test_a_3d_check_that_fails_is_drawn_and_says_so(tmp_path, capsys):
+    """A 3D check without an admissible state is drawn with its verdict on the axes, as
+    in 2D (it ended in a traceback: 3D axes take that text as text2D); on the command
+    line too, a stack pushed at 5 times its weight."""
+    s = box_stack(boxes=2)
+    res = rb.check(s, load_factor=5.0)
+    assert res.status == "inadmissible"
+    ax = rb.plot(s, res)
+    (msg,) = [t for t in ax.texts if t.get_gid() == "rb-verdict"]
+    assert "NOT ADMISSIBLE" in msg.get_text()
+    path = tmp_path / "stack.json"
+    write_scene(s, path)
+    out = tmp_path / "check.png"
+    assert main(["plot", str(path), "--analysis", "check", "--load-factor", "5",
+                 "-o", str(out)]) == 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    plt.close("all")
+
+
 def test_a_3d_mechanism_names_the_blocks_at_rest_in_its_legend():
     """The box stack (examples/box_stack_3d.json) tips above its first box, which stays:
     the 3D legend now has the 2D picture's row for blocks at rest (it had none); the

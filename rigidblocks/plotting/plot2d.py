@@ -240,9 +240,11 @@ def _no_state(ax: Any, result: Any, unit: str = "") -> None:
     else:
         msg = f"NO VERDICT (status \u201c{status}\u201d): nothing is decided"
         colour = "0.3"
-    t = ax.text(0.5, 0.97, msg, transform=ax.transAxes, ha="center", va="top", fontsize=10,
-                color=colour, zorder=8,
-                bbox={"boxstyle": "round", "fc": "white", "ec": colour, "alpha": 0.9})
+    # on 3D axes, text in the axes' own frame is text2D
+    put = getattr(ax, "text2D", ax.text)
+    t = put(0.5, 0.97, msg, transform=ax.transAxes, ha="center", va="top", fontsize=10,
+            color=colour, zorder=8,
+            bbox={"boxstyle": "round", "fc": "white", "ec": colour, "alpha": 0.9})
     t.set_gid("rb-verdict")
 
 
