@@ -96,6 +96,27 @@ def test_executors_agree_case_by_case(dask_client):
 
 
 # -- failures ----------------------------------------------------------------------------
+def test_an_analysis_that_raises_leaves_the_others_answered():
+    """At f = 0.3 the 9-voussoir arch does not stand at min_thickness's upper bound
+    (thickness 1), which raises; the check after it was left empty as if the case had
+    failed as a whole. Now that analysis alone reads failed, the others are answered and
+    match direct calls."""
+    res = study.run("arch", cases=[{"voussoirs": 9}],
+                    parameters={"friction": 0.3, "load_factor": 0.0},
+                    analyses=["min_friction", "min_thickness", "check"], progress=False)
+    row = res.frame.iloc[0]
+    assert row["status"] == "failed" and row["min_thickness_status"] == "failed"
+    assert row["error"].startswith("min_thickness: InputError: min_thickness: arch is not "
+                                   "admissible at the upper bound"), row["error"]
+    assert pd.isna(row["min_thickness"])
+    scene = build("arch", voussoirs=9, friction=0.3)
+    direct = rb.check(scene, load_factor=0.0, state=False)
+    assert row["check_status"] == direct.status and \
+        bool(row["admissible"]) == (direct.status == "admissible")
+    f = rb.min_friction(scene, load_factor=0.0, state=False)
+    assert row["friction_factor"] == pytest.approx(f.friction_factor, rel=1e-9)
+
+
 def test_bad_cases_are_recorded_and_the_rest_correct():
     """Voussoir counts the generators reject (0, -2; an odd count for a pointed arch)
     fail with the generator's message; the other cases match direct calls."""

@@ -29,10 +29,21 @@ def run(args: argparse.Namespace) -> int:
                     scheduler=args.scheduler, batch_size=args.batch_size,
                     progress=not args.no_progress)
     print(f"cases     {res.n_cases} ({res.n_run} run, {res.n_skipped} done before)")
-    print(f"failures  {res.n_failed}")
+    print(f"failures  {res.n_failed}" + _first_failure(res.frame))
     print(f"time      {res.elapsed:.2f} s ({res.rate:.1f} cases/s, {res.executor})")
     print(f"output    {res.path}")
     return 0
+
+
+def _first_failure(frame) -> str:
+    """Where cases failed, the first one's error (the others are in the output's
+    ``error`` column)."""
+    failed = frame[frame["status"] == "failed"] if len(frame) else frame
+    if not len(failed):
+        return ""
+    row = failed.iloc[0]
+    return f" (the first, case {int(row['case'])}: {row['error']}; every one in the " \
+        "output's error column)"
 
 
 __all__ = ["add_args", "run"]

@@ -108,6 +108,14 @@ def answer(analysis: Analysis, job: _Job, params: Mapping[str, Any],
     return row, float(r.solve_time)
 
 
+class _NoScene(Exception):
+    """The case's scene could not be built (``cause``: why)."""
+
+    def __init__(self, cause: Exception):
+        super().__init__(str(cause))
+        self.cause = cause
+
+
 def run_case(job: _Job, params: Mapping[str, Any]) -> dict[str, Any]:
     """The answers of one case (never raises: an error is recorded in the row)."""
     row: dict[str, Any] = {"status": "ok", "error": None, "solve_time": 0.0}
@@ -122,17 +130,30 @@ def run_case(job: _Job, params: Mapping[str, Any]) -> dict[str, Any]:
 
     def scene() -> Scene:
         if not built:
-            built.append(_scene_of(job, gen_params))
+            try:
+                built.append(_scene_of(job, gen_params))
+            except Exception as err:
+                raise _NoScene(err) from err
         return built[0]
 
-    try:
-        for a in job.analyses:
+    errors = []
+    for a in job.analyses:
+        # each analysis on its own: one that raises leaves the others' answers; a scene
+        # that cannot be built fails the case
+        try:
             entries, solve_time = answer(a, job, gen_params, lf, scene, params.get("flow"))
-            row.update(entries)
-            row["solve_time"] += solve_time
-    except Exception as err:  # noqa: BLE001 - every failure is recorded, the study goes on
+        except _NoScene as err:
+            errors = [f"{type(err.cause).__name__}: {err.cause}"]
+            break
+        except Exception as err:  # noqa: BLE001 - every failure is recorded, the study goes on
+            row[f"{a.name}_status"] = "failed"
+            errors.append(f"{a.name}: {type(err).__name__}: {err}")
+            continue
+        row.update(entries)
+        row["solve_time"] += solve_time
+    if errors:
         row["status"] = "failed"
-        row["error"] = f"{type(err).__name__}: {err}"
+        row["error"] = "; ".join(errors)
     row["time"] = time.perf_counter() - t0
     return row
 
