@@ -531,3 +531,24 @@ def test_min_friction_and_load_rows_carry_their_accuracy():
     assert rb.check(scene, friction=lo, load_factor=0, state=False).status == "inadmissible"
     assert rb.check(scene, friction=hi, load_factor=0, state=False).status == "admissible"
     assert 0 < row["load_multiplier_accuracy"] <= 2e-3
+
+
+def test_non_associative_load_rows_carry_the_bounds_on_every_state():
+    """With flow non-associative a lambda* row gives the bounds on every collapse
+    multiplier that `load` prints on its bounds line (the 9-voussoir arch at f = 0.4:
+    [0.061316, 0.0613163]); it gave an empty accuracy and no bounds. With associative
+    flow the bounds are empty and the accuracy is given."""
+    sw = study.make_sweep("arch", grid={"voussoirs": [9], "friction": [0.4],
+                                        "flow": ["associative", "non-associative"]},
+                          analyses=["max_load_multiplier"])
+    df = study.run(sw).frame.set_index("flow")
+    na, assoc = df.loc["non-associative"], df.loc["associative"]
+    direct = rb.max_load_multiplier(build("arch", voussoirs=9, friction=0.4),
+                                    flow="non-associative", state=False)
+    lo, hi = direct.load_multiplier_bounds
+    assert (na["load_multiplier_lower"], na["load_multiplier_upper"]) == (lo, hi)
+    assert lo <= na["load_multiplier"] <= hi and 0 < lo
+    assert pd.isna(na["load_multiplier_accuracy"])
+    assert pd.isna(assoc["load_multiplier_lower"]) and pd.isna(assoc["load_multiplier_upper"])
+    assert 0 < assoc["load_multiplier_accuracy"] <= 2e-3
+    assert hi == pytest.approx(assoc["load_multiplier"], rel=2e-3)

@@ -26,14 +26,28 @@ ANSWERS: dict[str, tuple[str, ...]] = {
     "check": ("admissible", "violation"),
     "min_friction": ("friction_factor", "friction_angle_deg", "friction_factor_lower",
                      "friction_factor_upper"),
-    "max_load_multiplier": ("load_multiplier", "load_multiplier_accuracy"),
+    "max_load_multiplier": ("load_multiplier", "load_multiplier_accuracy",
+                            "load_multiplier_lower", "load_multiplier_upper"),
     "min_thickness": ("min_thickness", "min_thickness_lower", "min_thickness_friction"),
 }
 #: the result's attribute behind an answer column, where it is not the column's name:
 #: the bracket of f* (its ends, also where the search could not decide), the relative
-#: accuracy lambda* reached (its bracket's width)
-ATTRIBUTE = {"friction_factor_lower": "lower", "friction_factor_upper": "upper",
-             "load_multiplier_accuracy": "accuracy"}
+#: accuracy lambda* reached (its bracket's width), the bounds on every non-associative
+#: collapse multiplier (an end of ``load_multiplier_bounds``)
+ATTRIBUTE: dict[str, str | tuple[str, int]] = {
+    "friction_factor_lower": "lower", "friction_factor_upper": "upper",
+    "load_multiplier_accuracy": "accuracy",
+    "load_multiplier_lower": ("load_multiplier_bounds", 0),
+    "load_multiplier_upper": ("load_multiplier_bounds", 1)}
+
+
+def _column(result: Any, column: str) -> Any:
+    """The value of an answer column from an analysis result (:data:`ATTRIBUTE`)."""
+    at = ATTRIBUTE.get(column, column)
+    if isinstance(at, tuple):
+        pair = getattr(result, at[0], None)
+        return None if pair is None else pair[at[1]]
+    return getattr(result, at)
 
 
 @dataclass(frozen=True)
@@ -104,7 +118,7 @@ def answer(analysis: Analysis, job: _Job, params: Mapping[str, Any],
     r = registered(name).run(scene(), load_factor=load_factor, method=method, state=False,
                              **extra)
     row = {f"{name}_status": r.status}
-    row.update({k: getattr(r, ATTRIBUTE.get(k, k)) for k in ANSWERS[name]})
+    row.update({k: _column(r, k) for k in ANSWERS[name]})
     return row, float(r.solve_time)
 
 

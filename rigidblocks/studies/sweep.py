@@ -270,7 +270,9 @@ class StudyResult:
     analysis ``<analysis>_status`` and its answers: ``admissible``, ``violation``
     (check); ``friction_factor``, ``friction_angle_deg``, ``friction_factor_lower``,
     ``friction_factor_upper`` (min_friction: f*'s bracket); ``load_multiplier``,
-    ``load_multiplier_accuracy`` (max_load_multiplier); ``min_thickness``,
+    ``load_multiplier_accuracy``, ``load_multiplier_lower``, ``load_multiplier_upper``
+    (max_load_multiplier; the last two bound every non-associative collapse multiplier);
+    ``min_thickness``,
     ``min_thickness_lower``, ``min_thickness_friction`` (min_thickness: the friction it
     bisected at, the scene's unless its options give one).
     """
