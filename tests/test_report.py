@@ -356,8 +356,14 @@ def test_the_report_says_what_state_its_forces_are():
     at f = 0.7652 under its dead load: tests/test_honest_answers.py)."""
     arch = read_scene(EXAMPLES / "arch.json")
     load = rb.max_load_multiplier(arch)
+    # the picture draws the mechanism: the forces are the table's, whose state column
+    # holds the mechanism's modes (a joint at its friction limit that does not move reads
+    # "closed" there)
     assert content.forces_shown(load).startswith(
-        "Forces shown: one state at the collapse load \u03bb* (least complementary energy)")
+        "Forces in the joint table (the picture draws the collapse mechanism): one state "
+        "at the collapse load \u03bb* (least complementary energy)")
+    assert content.joint_table(load)["state_label"] == "in the mechanism"
+    assert content.joint_table(rb.check(arch, load_factor=0.1))["state_label"] == "state"
     na = rb.max_load_multiplier(arch, flow="non-associative")
     assert "nor, without dilatancy, the multiplier" in content.forces_shown(na)
     assert "one admissible state at f*" in content.forces_shown(rb.min_friction(arch))

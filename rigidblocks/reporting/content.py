@@ -172,7 +172,10 @@ def forces_shown(result: Any) -> str | None:
     how = getattr(st, "method", "")
     analysis = getattr(result, "analysis", "")
     if analysis == "max_load_multiplier" and getattr(result, "status", "") == "collapse":
-        return (f"Forces shown: one state at the collapse load \u03bb* ({how}); the "
+        # the picture draws the mechanism then: the forces are the table's
+        where = "Forces shown" if getattr(result, "mechanism", None) is None else \
+            "Forces in the joint table (the picture draws the collapse mechanism)"
+        return (f"{where}: one state at the collapse load \u03bb* ({how}); the "
                 "states at collapse are not unique" + (
                     ", nor, without dilatancy, the multiplier." if without_dilatancy(result)
                     else ", the multiplier is."))
@@ -223,6 +226,9 @@ def joint_table(result: Any) -> dict[str, Any]:
     rows = result.joint_table()
     out: dict[str, Any] = {"n": c.n_joints, "joint": names,
                            "state": joint_states(result),
+                           # after a collapse the column holds the mechanism's modes
+                           "state_label": "in the mechanism" if mech is not None and
+                           len(mech.modes) == c.n_joints else "state",
                            "governing": [k in gov for k in range(c.n_joints)],
                            "has_forces": bool(rows)}
     if not rows:

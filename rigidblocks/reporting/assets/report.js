@@ -29,7 +29,7 @@
     if (T.tensile_strength) cols.push({ key: "tensile_strength", label: "ft" + su, num: true,
       title: "the joint's tensile strength (stress)" });
   }
-  cols.push({ key: "state", label: "state", num: false,
+  cols.push({ key: "state", label: T.state_label || "state", num: false,
     title: "open, in tension, hinging, at friction limit or closed; after a collapse, " +
       "the mechanism's mode (hinge, slide, open)" });
   const order = [];
