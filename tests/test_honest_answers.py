@@ -173,7 +173,7 @@ def box3d(x0, x1, y0, y1, z0, z1):
 
 
 @pytest.mark.parametrize("where, box", [
-    ("edge", box3d(2, 3, 0, 1, 0, 1)), ("corner", box3d(2, 3, 2, 3, 0, 1)),
+    ("along an edge", box3d(2, 3, 0, 1, 0, 1)), ("at a point", box3d(2, 3, 2, 3, 0, 1)),
     ("apart", box3d(0, 1, 0, 1, 0.5, 1.5))])
 def test_a_3d_block_on_an_edge_or_a_corner_is_said_to_touch(tmp_path, capsys, where, box):
     """In 3D a joint is a face in common: a box whose base meets its support's top along
@@ -189,8 +189,7 @@ def test_a_3d_block_on_an_edge_or_a_corner_is_said_to_touch(tmp_path, capsys, wh
     code, out, _ = run(capsys, ["check", str(path)])
     assert code == 0 and "NOT ADMISSIBLE" in out
     whys = [ln for ln in out.splitlines() if ln.startswith("why")]
-    touch = "block 'B' touches block 'S' at a point or along an edge only, and a joint " \
-        "is a face in common"
+    touch = f"block 'B' touches block 'S' {where} only, and a joint is a face in common"
     assert (touch in whys[0]) == (where != "apart"), whys
     assert ("touches no other block" in whys[0]) == (where == "apart"), whys
 

@@ -32,12 +32,14 @@ def detect_contacts(scene: Scene, tol: float = DEFAULT_TOL) -> Contacts:
     return cache[tol]
 
 
-def point_touches(scene: Scene, ids: list[str], tol: float = DEFAULT_TOL) -> dict[str, str]:
+def point_touches(scene: Scene, ids: list[str], tol: float = DEFAULT_TOL
+                  ) -> dict[str, tuple[str, str]]:
     """Of the blocks ``ids``, which have no joint, those that meet another block all the
     same, within ``tol x scene size``: at a point in 2D (a corner on an edge), at a
     point or along an edge in 3D. A joint is a common edge (2D) or a face in common
     (3D), so such a block is held by nothing. Each such id maps to the other block's id
-    (in 2D the nearest)."""
+    (in 2D the nearest) and where they meet ("at a point only (a corner)", "at a
+    point only", "along an edge only")."""
     if not ids:
         return {}
     from ..scene.model import scene_size
@@ -57,24 +59,31 @@ def point_touches(scene: Scene, ids: list[str], tol: float = DEFAULT_TOL) -> dic
                 if j != k]
         if near:
             j = min(near, key=lambda j: polys[k].distance(polys[j]))
-            out[i] = scene.blocks[j].id
+            out[i] = (scene.blocks[j].id, "at a point only (a corner)")
     return out
 
 
-def _touches_3d(scene: Scene, ids: list[str], eps: float) -> dict[str, str]:
+def _touches_3d(scene: Scene, ids: list[str], eps: float) -> dict[str, tuple[str, str]]:
     """:func:`point_touches` of 3D blocks: the first block (in scene order) within
-    ``eps`` of each (:func:`~rigidblocks.scene.polyhedra.blocks_meet`)."""
-    from ..scene.polyhedra import blocks_meet, candidate_pairs
+    ``eps`` of each (:func:`~rigidblocks.scene.polyhedra.blocks_meet`), met along an
+    edge where two or more corners of either lie within ``eps`` of the other, else at a
+    point."""
+    from ..scene.polyhedra import blocks_meet, candidate_pairs, distance_from
 
     want = {b.id for b in scene.blocks} & set(ids)
-    out: dict[str, str] = {}
+    out: dict[str, tuple[str, str]] = {}
     for i, j in candidate_pairs(scene, eps):
-        a, b = scene.blocks[i].id, scene.blocks[j].id
-        if (a in want and a not in out) or (b in want and b not in out):
-            if blocks_meet(scene, int(i), int(j), -eps):
-                for x, y in ((a, b), (b, a)):
-                    if x in want:
-                        out.setdefault(x, y)
+        A, B = scene.blocks[i], scene.blocks[j]
+        if not ({A.id, B.id} & (want - set(out))) or \
+                not blocks_meet(scene, int(i), int(j), -eps):
+            continue
+        corners = [p for X, Y in ((A, B), (B, A)) for p in np.asarray(X.points, float)
+                   if distance_from(Y, p) <= eps]
+        apart = max((float(np.linalg.norm(p - corners[0])) for p in corners), default=0.0)
+        where = "along an edge only" if apart > eps else "at a point only"
+        for x, y in ((A.id, B.id), (B.id, A.id)):
+            if x in want:
+                out.setdefault(x, (y, where))
     return out
 
 

@@ -119,9 +119,8 @@ def _unheld(scene: Scene, contacts: Any, tol: float) -> list[str]:
     notes: list[str] = []
     loose, adrift = unsupported_blocks(scene, contacts)
     points = point_touches(scene, loose, tol)
-    where, common = ("at a point only (a corner)", "an edge in common") \
-        if scene.dimension == 2 else ("at a point or along an edge only", "a face in common")
-    for b, other in points.items():
+    common = "an edge in common" if scene.dimension == 2 else "a face in common"
+    for b, (other, where) in points.items():
         notes.append(f"block '{b}' touches block '{other}' {where}, and a joint is "
                      f"{common}: {NOTHING_HOLDS} it; check the geometry")
     loose = [b for b in loose if b not in points]
