@@ -543,6 +543,12 @@ def test_corbel_dome_decided_by_its_cone_steps():
     res = rb.max_load_multiplier(scene, flow=NA, state=False)
     assert res.status == "collapse"
     assert res.load_multiplier == runs[0].lam <= res.load_multiplier_bounds[1]
+    # the notes on a mechanism are on the one shown, the answer's: the associative
+    # bound's ("on the associative multiplier lambda_a ...: the mechanism drawn ... is not
+    # a collapse mechanism at lambda_a") stood beside it, of a mechanism not drawn
+    drawn = [n for n in res.notes if "the mechanism drawn" in n]
+    assert len(drawn) == 1 and drawn[0].startswith("the mechanism drawn") and \
+        "the capped laws' multiplier" in drawn[0], drawn
 
 
 def test_corbel_dome_friction_trials_run_as_load_does():

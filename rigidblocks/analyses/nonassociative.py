@@ -216,9 +216,11 @@ def _bound_notes(na: NonAssociative, cv: ConvexMethod, seen: int, symbol: str,
     the convex path; merged once on the distortion path). The rest (tolerances, the
     dead load) are the run's and stay as they are."""
     prefix, name = wording
-    # the bound's mechanism is not the one shown: whether it is one of several is moot
+    # the bound's mechanism is not the one shown: whether it is one of several, or off
+    # its optimal face, is moot (the corbel dome's answer read "the mechanism drawn ...
+    # is not a collapse mechanism at lambda_a" beside its own mechanism)
     for k in reversed(range(seen, len(cv.notes))):
-        if cv.notes[k] == OTHER_MECHANISMS:
+        if cv.notes[k] == OTHER_MECHANISMS or cv.notes[k].startswith(OFF_FACE_NOTE):
             del cv.notes[k]
     for k in range(seen, len(cv.notes)):
         if symbol in cv.notes[k]:
