@@ -146,6 +146,20 @@ def test_a_3d_check_that_fails_is_drawn_and_says_so(tmp_path, capsys):
     plt.close("all")
 
 
+def test_a_mechanism_off_its_optimal_face_is_said_so_in_the_title():
+    """The corbel dome's mechanism drawn balances at 0.6, above lambda* = 0.599985 (see
+    test_mechanism3d.py): the answer says it is no collapse mechanism, and the picture's
+    title, which read COLLAPSE alone above it, says so too; a mechanism on its face
+    (the box stack's) is not so marked."""
+    sc = read_scene(EXAMPLES / "corbel_dome.json")
+    ax = rb.plot(sc, rb.max_load_multiplier(sc))
+    assert "the mechanism drawn is the nearest that can be drawn, not a collapse " \
+        "mechanism" in ax.get_title().replace("\n", " ")
+    s = box_stack(boxes=2)
+    assert "nearest that can be drawn" not in rb.plot(s, rb.max_load_multiplier(s)).get_title()
+    plt.close("all")
+
+
 def test_a_3d_mechanism_names_the_blocks_at_rest_in_its_legend():
     """The box stack (examples/box_stack_3d.json) tips above its first box, which stays:
     the 3D legend now has the 2D picture's row for blocks at rest (it had none); the

@@ -170,13 +170,21 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
 def _title(scene: Scene, result: Any) -> str:
     """The scene's name and the answer's verdict and number
     (:meth:`rigidblocks.answer.AnswerBlock.title`, as the CLI and the report say it),
-    wrapped to lines of at most 90 characters."""
+    and where the mechanism drawn is off the optimal face, that it is no collapse
+    mechanism; wrapped to lines of at most 90 characters."""
     import textwrap
 
     from ..answer import answer_block
+    from ..methods.convex import OFF_FACE_NOTE
 
     name = scene.name or ""
-    txt = answer_block(scene, result, symbols=True).title() if result is not None else ""
+    block = answer_block(scene, result, symbols=True) if result is not None else None
+    txt = block.title() if block is not None else ""
+    if block is not None and getattr(result, "mechanism", None) is not None and \
+            any(r.startswith(OFF_FACE_NOTE) for r in block.reasons):
+        # as the answer's reasons say: the picture is not of a collapse mechanism
+        txt += "; the mechanism drawn is the nearest that can be drawn, not a collapse " \
+            "mechanism at this multiplier"
     txt = txt.replace("`", "")  # (a terminal's command quotes, literal in a title)
     txt = "\n".join(textwrap.wrap(txt, 90, break_on_hyphens=False))
     return f"{name}\n{txt}" if (name and txt) else (name or txt)
