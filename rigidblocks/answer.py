@@ -842,6 +842,20 @@ def mechanism_text(res: Any) -> str:
             + (" faces" if len(order) > shown and pairs < len(order) else ""))
 
 
+def method_text(res: Any) -> str | None:
+    """What the distortion method's answer is (None for the convex path's, the default):
+    the seed's iteration, its procedure with the seed's joint law, a cross-check of the
+    convex path with associative friction."""
+    if getattr(res, "solver", None) != "distortion":
+        return None
+    what = ("the seed's procedure (joints that slide without dilatancy)"
+            if without_dilatancy(res) else
+            "with associative friction a cross-check of the default convex path "
+            "(`--method clarabel`)")
+    return ("distortion: the seed's iterative impressed-distortion solver (its Eq. 1-4), "
+            f"from the elastic state X0; {what}")
+
+
 def flow_lines(res: Any) -> list[str]:
     """The non-associative analysis in labelled lines: its iterations ("flow"), its
     bounds and the answers from each start (a terminal's and a report's)."""
@@ -895,4 +909,5 @@ def flow_lines(res: Any) -> list[str]:
 
 __all__ = ["NA_BELOW_LOAD", "NA_INADMISSIBLE", "AnswerBlock", "answer_block", "block_reach",
            "bodies_text", "flow_lines", "joint_list", "live_load_size", "live_load_text",
-           "mechanism_groups", "mechanism_text", "rigid_bodies", "split_notes", "without_dilatancy"]
+           "mechanism_groups", "mechanism_text", "method_text", "rigid_bodies", "split_notes",
+           "without_dilatancy"]

@@ -529,3 +529,30 @@ def test_energy_scaled_by_a_reference_state_keeps_the_minimiser():
         qp = solve(prob, "clarabel", tol_gap_abs=1e-12, tol_gap_rel=1e-12, tol_feas=1e-12)
         xq = qp.z[prob.cols["x"]]
         assert np.abs(run.x - xq).max() <= 1e-8 * np.abs(xq).max()
+
+
+def test_the_answer_says_it_is_the_distortion_methods(capsys):
+    """`--method distortion` printed its answer (lambda* = 1.19921 on the reference model,
+    beside the convex path's 1.2) with nothing saying which method it was or what it
+    is; a `method` line now says so: a cross-check of the convex path with associative
+    friction, the seed's procedure without dilatancy; the report's details too. The
+    convex path's answer has no such line."""
+    from rigidblocks.cli.main import main
+    from rigidblocks.io import read_scene
+    from rigidblocks.reporting import content
+
+    ref = str(EXAMPLES / "reference.json")
+    assert main(["load", ref, "--method", "distortion"]) == 0
+    out = capsys.readouterr().out
+    (line,) = [ln for ln in out.splitlines() if ln.startswith("method ")]
+    assert "the seed's iterative impressed-distortion solver" in line
+    assert "a cross-check of the default convex path" in line
+    assert main(["check", ref, "--method", "distortion", "--flow", "non-associative"]) == 0
+    out = capsys.readouterr().out
+    assert "method     distortion: the seed's iterative impressed-distortion solver (its " \
+        "Eq. 1-4), from the elastic state X0; the seed's procedure" in out
+    assert main(["load", ref]) == 0
+    assert "\nmethod " not in capsys.readouterr().out
+    res = rb.max_load_multiplier(read_scene(ref), method="distortion")
+    details = content.answer(read_scene(ref), res).details
+    assert any(d.startswith("method: distortion: the seed's") for d in details)

@@ -14,7 +14,7 @@ from ..analyses.nonassociative import (
     SPREAD_NOTE,
     is_nonassociative,
 )
-from ..answer import answer_block, flow_lines
+from ..answer import answer_block, flow_lines, method_text
 from ..errors import InputError
 from ..io import read_scene
 from ..methods import METHODS, Progress
@@ -284,6 +284,8 @@ def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
         block = replace(block, reasons=tuple(r for r in block.reasons
                                              if not r.startswith(SPREAD_NOTE)))
     lines += block.lines(verbose)
+    method = method_text(res)
+    lines += [f"method     {method}"] if method else []
     lines += _accuracy(res)
     lines += flow
     if joints:

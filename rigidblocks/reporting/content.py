@@ -15,7 +15,14 @@ from typing import Any
 
 import numpy as np
 
-from ..answer import MODE_WORDS, answer_block, flow_lines, live_load_text, without_dilatancy
+from ..answer import (
+    MODE_WORDS,
+    answer_block,
+    flow_lines,
+    live_load_text,
+    method_text,
+    without_dilatancy,
+)
 from ..plotting.marks import scene_weights
 from ..results import DIRECT_STANDS, force_state_words
 from ..scene.model import Scene
@@ -141,6 +148,8 @@ def answer(scene: Scene, result: Any) -> Answer:
         return Answer(status or "unknown", False, "none", block.title(),
                       block.reasons + block.notes)
     details = [f"governing joints: {block.governing}"] if block.governing else []
+    method = method_text(result)
+    details += [f"method: {method}"] if method else []
     details += block.reasons
     if without_dilatancy(result):  # its iterations and bounds, as the terminal's lines
         # (the answers from each start are among the reasons already)
