@@ -289,6 +289,24 @@ def test_import_without_unit_weight_warns_and_every_analysis_says_so(tmp_path, c
     assert not any("weigh nothing" in n for n in rb.check(sc2, load_factor=0).notes)
 
 
+def test_import_of_weighing_blocks_without_a_depth_warns(tmp_path, capsys):
+    """Blocks given a unit weight and no depth are 1 length unit deep (a drawing in mm:
+    1 mm, its self-weight 0.066 kN where the wall weighs hundreds): import-dxf said
+    nothing of it; with a depth, or without a unit weight (no weight to scale), no such
+    warning."""
+    path = quirky_drawing(tmp_path / "q.dxf")
+    out = str(tmp_path / "q.json")
+    base = ["import-dxf", str(path), "-o", out, "--length-unit", "mm", "--friction", "0.6"]
+    assert main(base + ["--unit-weight", "25e-9"]) == 0
+    assert "imported without a depth: the blocks are 1 mm deep out of plane" in \
+        capsys.readouterr().err
+    assert main(base + ["--unit-weight", "25e-9", "--depth", "300"]) == 0
+    assert "without a depth" not in capsys.readouterr().err
+    assert read_scene(out).depth == 300
+    assert main(base) == 0
+    assert "without a depth" not in capsys.readouterr().err
+
+
 def test_a_weightless_scene_without_loads_has_no_forces_and_needs_no_friction(tmp_path):
     """A weightless drawing with no load carries nothing: its state has no forces and
     needs no friction, and the note says that nothing loads it (the round-off of the

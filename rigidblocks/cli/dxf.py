@@ -91,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
                               layers=_layers(args.layers))
         write_scene(scene, args.output)
         print(rep.summary())
-        from ..io.dxf import NO_FRICTION_NOTE, NO_UNIT_WEIGHT_NOTE
+        from ..io.dxf import NO_DEPTH_NOTE, NO_FRICTION_NOTE, NO_UNIT_WEIGHT_NOTE
 
         if rep.unit_conflict:
             print(f"rigidblocks: warning: {rep.unit_conflict}", file=sys.stderr)
@@ -101,6 +101,10 @@ def run(args: argparse.Namespace) -> int:
                   f"{rep.declared_unit}")
         if scene.unit_weight is None:
             print(f"rigidblocks: warning: {NO_UNIT_WEIGHT_NOTE}", file=sys.stderr)
+        elif scene.depth is None:
+            unit = scene.length_unit or "length unit"
+            print(f"rigidblocks: warning: {NO_DEPTH_NOTE.format(unit=unit)}",
+                  file=sys.stderr)
         if scene.friction is None:
             print(f"rigidblocks: warning: {NO_FRICTION_NOTE}", file=sys.stderr)
         print(f"wrote {args.output}")

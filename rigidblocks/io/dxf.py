@@ -76,6 +76,11 @@ _CHUNK = 240  # characters per string tag
 NO_FRICTION_NOTE = ("imported without a friction: the joints have infinite friction (no "
                     "sliding) unless an analysis gives one (give it, e.g. import-dxf "
                     "--friction 0.6)")
+#: import-dxf's warning where blocks that weigh are given no depth (the weights and the
+#: loads' reach scale with it; a multiplier of their own weights does not)
+NO_DEPTH_NOTE = ("imported without a depth: the blocks are 1 {unit} deep out of plane, "
+                 "their weights per {unit} of wall (give the depth, e.g. import-dxf "
+                 "--depth 300 for 300 {unit})")
 #: the note a scene read without a unit weight carries
 NO_UNIT_WEIGHT_NOTE = ("imported from a drawing without a unit weight: the blocks weigh "
                        "nothing, only the loads act (give the unit weight, e.g. "
