@@ -21,6 +21,7 @@ import rigidblocks as rb
 from rigidblocks.cli.main import main
 from rigidblocks.errors import InputError
 from rigidblocks.io import read_scene, write_scene
+from rigidblocks.scene.geometry import signed_area
 
 LACT3 = SHARED / "data" / "lact3"
 E = 1e-12  # CAD round-off
@@ -66,7 +67,10 @@ def test_quirky_drawing_is_repaired_and_reported(tmp_path):
     assert len(a & b) == 2
     assert "4 blocks" in rep.summary() and "snapped" in rep.summary()
     assert "(1 support: b1)" in rep.summary() and rep.reoriented >= 1
-    assert f"turned {rep.reoriented} clockwise outlines counter-clockwise" in rep.summary()
+    # kept as drawn (it read "turned ... counter-clockwise", and the scene file kept them
+    # clockwise all the same)
+    assert f"{rep.reoriented} outlines drawn clockwise (kept so" in rep.summary()
+    assert sum(signed_area(np.asarray(b.vertices)) < 0 for b in sc.blocks) == rep.reoriented
     # A + B tip together about the toe (1, 0): lambda* = b / h = 1 / 3
     res = rb.max_load_multiplier(sc)
     assert res.load_multiplier == pytest.approx(1 / 3, rel=1e-6)

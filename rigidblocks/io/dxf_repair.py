@@ -84,8 +84,9 @@ class DxfReport:
                 f"{self.edges_snapped} T-junction vertices (largest move {self.max_move:.3g}, "
                 f"tolerance {self.tol:.3g}); closed {len(self.closed_by_snap)} polylines by "
                 f"snapping ({len(self.retraced)} retracing); dropped "
-                f"{self.duplicates_dropped} repeated vertices; turned {self.reoriented} "
-                f"clockwise outlines counter-clockwise; skipped {skipped}")
+                f"{self.duplicates_dropped} repeated vertices; {self.reoriented} outlines "
+                f"drawn clockwise (kept so: a scene takes either orientation); skipped "
+                f"{skipped}")
 
 
 @dataclass
