@@ -207,6 +207,14 @@ def test_no_support_block(tmp_path):
     expect_error(write_doc(tmp_path, doc), "no support block", '"support"')
 
 
+def test_no_blocks_at_all(tmp_path):
+    """An empty blocks list says so (it read "no support block")."""
+    doc = base_doc()
+    doc["blocks"] = []
+    doc["loads"] = []
+    expect_error(write_doc(tmp_path, doc), "no blocks", '"blocks" list is empty')
+
+
 def test_no_free_block(tmp_path):
     doc = base_doc()
     for b in doc["blocks"]:

@@ -136,6 +136,8 @@ def _check_ids_and_loads(scene: Scene) -> None:
         if b.id in seen:
             raise InputError("duplicate block id", f"block {b.id!r}")
         seen.add(b.id)
+    if not scene.blocks:
+        raise InputError("no blocks: the scene's \"blocks\" list is empty", "blocks")
     if not any(b.support for b in scene.blocks):
         raise InputError("no support block: mark at least one block with \"support\": true")
     if all(b.support for b in scene.blocks):
