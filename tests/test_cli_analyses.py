@@ -261,6 +261,11 @@ def test_example_help_shows_the_generator_parameters(capsys):
     assert main(["example", "wall", "--help"]) == 0
     out = capsys.readouterr().out
     assert out.startswith("usage: rigidblocks example wall") and "--courses" in out
+    # and `example --help` names the generators (it said "see --list")
+    with pytest.raises(SystemExit):
+        main(["example", "--help"])
+    out = " ".join(capsys.readouterr().out.split())
+    assert "generators: reference, flat_arch, arch," in out and "keyed_wall" in out
 
 
 def test_output_piped_into_head_ends_quietly(tmp_path):

@@ -18,6 +18,10 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("-o", "--output", help="scene file to write (default: standard output)")
     p.add_argument("params", nargs=argparse.REMAINDER,
                    help="--PARAM VALUE pairs of the generator")
+    from ..generators import GENERATORS
+
+    p.epilog = ("generators: " + ", ".join(GENERATORS) + " (their parameters: "
+                "rigidblocks example --list, or rigidblocks example NAME --help)")
 
 
 def parse_params(gen, tokens: list[str], typed: dict[str, str] | None = None,
