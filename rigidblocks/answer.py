@@ -533,7 +533,9 @@ class _Words:
                          else f"{fd[0]:.4g}")
                 # not "needs": another admissible state may do with less (f*)
                 # (`friction --flow non-associative` gives the state reached from X0's)
-                why.append(f"in {state} |T|/N reaches {reach}{among} (joint {a}-{b}); the "
+                # (the corbel dome read as on the edge of sliding beside its f* = 0)
+                why.append(f"in {state} |T|/N reaches {reach}{among} (joint {a}-{b}): not a "
+                           "margin against sliding, as other states may need less; the "
                            "least friction any state needs is f* (`rigidblocks friction`"
                            + (" without --flow)" if na else ")"))
             elif fd is not None:

@@ -1397,3 +1397,17 @@ def test_picture_titles_read_joints_of_infinite_friction_as_their_own():
                                     JointOverride(("ground", "b1"), friction=0.5)))
     r = rb.check(both, load_factor=0.1)
     assert answer_block(both, r).case.endswith("at each joint's own friction")
+
+
+def test_a_state_at_the_friction_limit_is_not_read_as_a_margin(capsys):
+    """The flat arch with vertical joints stands at f = 0.6, and its state of least
+    complementary energy is at the friction limit at one joint, while f* = 0.47: the
+    line read as if the arch were on the edge of sliding; it says now that it is not a
+    margin, other states needing less."""
+    code, out, _ = run(capsys, ["check", str(EXAMPLES / "flat_arch_vertical.json")])
+    assert code == 0 and "ADMISSIBLE" in out
+    assert "reaches the friction limit f = 0.6 (joint v1-pier_l): not a margin against " \
+        "sliding, as other states may need less; the least friction any state needs is " \
+        "f*" in out, out
+    assert rb.min_friction(rb.read_scene(EXAMPLES / "flat_arch_vertical.json"),
+                           state=False).friction_factor < 0.5
