@@ -148,7 +148,8 @@ def test_parametric_study(tmp_path):
     ts = [t for _, t in sorted(pairs)]
     assert all(0.05 < t < 0.1075 * 1.005 for t in ts)
     assert dict(pairs)[15] > 0.97 * 0.1075
-    assert re.search(r"n = 3: InputError: .*already admissible at the lower bound", text)
+    assert re.search(r"n = 3: min_thickness: InputError: .*already admissible at the lower "
+                     r"bound", text)
     assert text.count("failures 0") == 2 and text.count("failures 1") == 1
 
 
