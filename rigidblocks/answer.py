@@ -844,6 +844,28 @@ def mechanism_text(res: Any) -> str:
             + (" faces" if len(order) > shown and pairs < len(order) else ""))
 
 
+def accuracy_text(res: Any) -> str | None:
+    """The accuracy reached (the bracket's relative width) against the one requested
+    (None where the result has none): a terminal's accuracy line, a report's note."""
+    accuracy, rtol = getattr(res, "accuracy", None), getattr(res, "rtol", None)
+    if accuracy is None or rtol is None:
+        return None
+    bracket = getattr(res, "bracket", None)
+    if bracket is not None and getattr(res, "decided", False):
+        where = f"bracket [{bracket[0]:.10g}, {bracket[1]:.10g}], "
+    else:
+        where = ""
+    near_zero = ""
+    if where and accuracy > rtol:  # decided by an absolute floor near 0
+        # (the rule itself: "near 0" read as a claim about a multiplier of 0.0128)
+        from .analyses.search import BRACKET_ATOL
+
+        near_zero = (f"; decided by its width {bracket[1] - bracket[0]:.1e} <= "
+                     f"{rtol:.0e} x {max(map(abs, bracket)):.3g} + {BRACKET_ATOL:g}, "
+                     "the absolute floor for answers near 0")
+    return f"{accuracy:.1e} ({where}relative width; requested {rtol:.0e}{near_zero})"
+
+
 def method_text(res: Any) -> str | None:
     """What the distortion method's answer is (None for the convex path's, the default):
     the seed's iteration, its procedure with the seed's joint law, a cross-check of the
@@ -909,7 +931,8 @@ def flow_lines(res: Any) -> list[str]:
     return out
 
 
-__all__ = ["NA_BELOW_LOAD", "NA_INADMISSIBLE", "AnswerBlock", "answer_block", "block_reach",
+__all__ = ["NA_BELOW_LOAD", "NA_INADMISSIBLE", "AnswerBlock", "accuracy_text", "answer_block",
+           "block_reach",
            "bodies_text", "flow_lines", "joint_list", "live_load_size", "live_load_text",
            "mechanism_groups", "mechanism_text", "method_text", "rigid_bodies", "split_notes",
            "without_dilatancy"]

@@ -374,3 +374,21 @@ def test_the_report_says_what_state_its_forces_are():
     assert direct.status == "inadmissible"
     assert "the state reached from X0 at this load" in content.forces_shown(direct)
     assert content.forces_shown(rb.check(arch, load_factor=0.3, state=False)) is None
+
+
+def test_the_report_gives_the_accuracy_and_its_commands_as_code(tmp_path, capsys):
+    """The report's notes give the accuracy line the terminal prints (the distortion
+    method's lambda* = 1.19921 on the reference model, against the convex path's 1.2,
+    stood there without its bracket [1.19921875, 1.201171875]); the terminal's
+    backticks around a command are code, not literal."""
+    out = tmp_path / "ref.html"
+    ref = str(EXAMPLES / "reference.json")
+    assert main(["report", ref, "--analysis", "load", "--method", "distortion",
+                 "-o", str(out)]) == 0
+    page = out.read_text(encoding="utf-8")
+    assert "accuracy 1.6e-03 (bracket [1.19921875, 1.201171875], relative width" in page
+    assert "<code>--method clarabel</code>" in page
+    assert "`" not in re.sub(r"<script.*?</script>", "", page, flags=re.S)
+    capsys.readouterr()
+    assert main(["load", ref, "--method", "distortion"]) == 0
+    assert "accuracy   1.6e-03 (bracket [1.19921875, 1.201171875]" in capsys.readouterr().out

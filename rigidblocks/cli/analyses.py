@@ -14,7 +14,7 @@ from ..analyses.nonassociative import (
     SPREAD_NOTE,
     is_nonassociative,
 )
-from ..answer import answer_block, flow_lines, method_text
+from ..answer import accuracy_text, answer_block, flow_lines, method_text
 from ..errors import InputError
 from ..io import read_scene
 from ..methods import METHODS, Progress
@@ -286,7 +286,8 @@ def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
     lines += block.lines(verbose)
     method = method_text(res)
     lines += [f"method     {method}"] if method else []
-    lines += _accuracy(res)
+    accuracy = accuracy_text(res)
+    lines += [f"accuracy   {accuracy}"] if accuracy else []
     lines += flow
     if joints:
         lines += _table(res, scene)
@@ -298,26 +299,6 @@ def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
 
 def _count(n: int, word: str) -> str:
     return f"{n} {word}" + ("" if n == 1 else "s")
-
-
-def _accuracy(res) -> list[str]:
-    """The accuracy reached (the bracket's relative width) against the one requested."""
-    if res.accuracy is None or res.rtol is None:
-        return []
-    if res.bracket is not None and res.decided:
-        where = f"bracket [{res.bracket[0]:.10g}, {res.bracket[1]:.10g}], "
-    else:
-        where = ""
-    near_zero = ""
-    if where and res.accuracy > res.rtol:  # decided by an absolute floor near 0
-        # (the rule itself: "near 0" read as a claim about a multiplier of 0.0128)
-        from ..analyses.search import BRACKET_ATOL
-
-        near_zero = (f"; decided by its width {res.bracket[1] - res.bracket[0]:.1e} <= "
-                     f"{res.rtol:.0e} x {max(map(abs, res.bracket)):.3g} + {BRACKET_ATOL:g}, "
-                     "the absolute floor for answers near 0")
-    return [f"accuracy   {res.accuracy:.1e} ({where}relative width; requested "
-            f"{res.rtol:.0e}{near_zero})"]
 
 
 def _table(res, scene) -> list[str]:

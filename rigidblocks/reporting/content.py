@@ -17,6 +17,7 @@ import numpy as np
 
 from ..answer import (
     MODE_WORDS,
+    accuracy_text,
     answer_block,
     flow_lines,
     live_load_text,
@@ -156,6 +157,8 @@ def answer(scene: Scene, result: Any) -> Answer:
         details += [f"{ln[:10].strip()}: {ln[11:].strip()}" for ln in flow_lines(result)
                     if not ln.startswith("starts")]
     notes = list(block.notes)
+    accuracy = accuracy_text(result)
+    notes += [f"accuracy {accuracy}"] if accuracy else []
     solver = getattr(result, "solver", None)
     if solver:
         t = getattr(result, "solve_time", None)

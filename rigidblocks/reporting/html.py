@@ -93,6 +93,11 @@ def _e(s: Any) -> str:
     return html.escape(str(s), quote=True)
 
 
+def _words(s: Any) -> str:
+    """Escaped text whose `quoted` commands (the terminal's backticks) are code."""
+    return re.sub(r"`([^`]+)`", r"<code>\1</code>", _e(s))
+
+
 def svg_picture(scene: Scene, result: Any = None, **kwargs: Any) -> str:
     """The 2D picture (:func:`rigidblocks.plotting.plot`) as an inline <svg> element,
     text kept as text."""
@@ -126,11 +131,11 @@ def svg_picture(scene: Scene, result: Any = None, **kwargs: Any) -> str:
 
 def _answer_html(ans: content.Answer) -> str:
     badge = ans.status if ans.verdict else "no verdict"
-    items = "".join(f"<li>{_e(d)}</li>" for d in ans.details)
+    items = "".join(f"<li>{_words(d)}</li>" for d in ans.details)
     return (f'<div class="answer {ans.tone}" id="rb-answer" data-status="{_e(ans.status)}" '
             f'data-verdict="{"yes" if ans.verdict else "no"}">'
             f'<span class="badge">{_e(badge)}</span>'
-            f'<span class="headline">{_e(ans.headline)}</span>'
+            f'<span class="headline">{_words(ans.headline)}</span>'
             + (f"<ul>{items}</ul>" if items else "") + "</div>")
 
 
@@ -212,7 +217,7 @@ def render(scene: Scene, result: Any = None, *, title: str | None = None) -> str
         if ans.notes:  # the solver's and the accuracy's (the CLI's --verbose)
             parts.append('<details class="notes"><summary>Solver and accuracy notes'
                          '</summary><ul class="notes">'
-                         + "".join(f"<li>{_e(n)}</li>" for n in ans.notes)
+                         + "".join(f"<li>{_words(n)}</li>" for n in ans.notes)
                          + "</ul></details>")
         shown = content.forces_shown(result)
         if shown is not None:
