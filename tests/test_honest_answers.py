@@ -1411,3 +1411,33 @@ def test_a_state_at_the_friction_limit_is_not_read_as_a_margin(capsys):
         "f*" in out, out
     assert rb.min_friction(rb.read_scene(EXAMPLES / "flat_arch_vertical.json"),
                            state=False).friction_factor < 0.5
+
+
+def test_a_3d_group_joined_to_no_support_has_no_equilibrium(tmp_path, capsys):
+    """A box on its support's edge with another on it: the pair is joined to no
+    support, so its weight has no equilibrium, whatever the joint laws (its joint
+    forces cancel in its resultant). In 3D the relaxation's cone program was not
+    certified infeasible: `check` ended "solver failure ... InsufficientProgress" (exit
+    1), `load` and `friction` undecided; now as in 2D: NOT ADMISSIBLE, UNSTABLE,
+    UNSTABLE, each saying why and where the box meets its support. Weightless, the
+    same pair stands (no load, no force)."""
+    blocks = [{"id": "base", "vertices": box3d(0, 2, 0, 2, -1, 0), "faces": BOX_FACES,
+               "support": True},
+              {"id": "top", "vertices": box3d(2, 3, 0, 1, 0, 1), "faces": BOX_FACES},
+              {"id": "cap", "vertices": box3d(2, 3, 0, 1, 1, 2), "faces": BOX_FACES}]
+    scene = {"format": "rigidblocks-scene", "version": 1, "dimension": 3,
+             "unit_weight": 20, "friction": 0.6, "live_body_force": [1, 0, 0],
+             "blocks": blocks}
+    path = tmp_path / "s.json"
+    path.write_text(json.dumps(scene))
+    for argv, verdict in ((["check"], "NOT ADMISSIBLE"), (["load"], "UNSTABLE"),
+                          (["friction"], "UNSTABLE")):
+        code, out, _ = run(capsys, [*argv, str(path)])
+        assert code == 0 and f"verdict    {verdict}" in out, out
+        assert "the equilibrium equations have no solution with these joints" in out, out
+        assert "block 'top' touches block 'base' along an edge only" in out, out
+    scene["unit_weight"] = 0
+    del scene["live_body_force"]
+    path.write_text(json.dumps(scene))
+    code, out, _ = run(capsys, ["check", str(path)])
+    assert code == 0 and "verdict    ADMISSIBLE" in out, out

@@ -7,6 +7,25 @@ from dataclasses import dataclass
 import numpy as np
 
 
+def block_groups(n_blocks: int, pairs: np.ndarray) -> np.ndarray:
+    """(n_blocks,) each block's group of blocks joined to one another (by ``pairs``, the
+    joints' block index pairs): the smallest index of the group, spread along the
+    joints and by pointer jumping (numpy alone: `check` imports no more than it
+    uses)."""
+    pairs = np.asarray(pairs, dtype=int).reshape(-1, 2)
+    comp = np.arange(n_blocks)
+    while len(pairs):
+        low = np.minimum(comp[pairs[:, 0]], comp[pairs[:, 1]])
+        new = comp.copy()
+        np.minimum.at(new, pairs[:, 0], low)
+        np.minimum.at(new, pairs[:, 1], low)
+        new = new[new]
+        if np.array_equal(new, comp):
+            break
+        comp = new
+    return comp
+
+
 @dataclass(frozen=True, eq=False)
 class Contacts:
     """Every joint of a scene, as flat arrays (dimension-generic).

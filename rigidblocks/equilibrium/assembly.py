@@ -16,6 +16,7 @@ components per contact point.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
@@ -92,6 +93,37 @@ class EquilibriumSystem:
     def free_blocks(self) -> np.ndarray:
         """Scene indices of the free blocks, in row order."""
         return np.flatnonzero(self.block_rows >= 0)
+
+    @cached_property
+    def _adrift(self) -> tuple[np.ndarray, np.ndarray]:
+        """The force rows (k, d) of the free blocks joined to no support, and each one's
+        group (k,)."""
+        from ..contacts.model import block_groups
+
+        comp = block_groups(len(self.block_rows), self.contacts.pairs)
+        held = np.isin(comp, comp[self.block_rows < 0])
+        adrift = np.flatnonzero((self.block_rows >= 0) & ~held)
+        d = self.centroids.shape[1]  # force rows first in each block's rows
+        return self.block_rows[adrift][:, None] + np.arange(d), comp[adrift]
+
+    def unheld_load(self, load_factor: float) -> float:
+        """The largest resultant force of the loads (dead + ``load_factor`` x live) on a
+        group of free blocks joined to one another and to no support, relative to the
+        largest block load: above round-off, no equilibrium state exists (the group's
+        joint forces cancel in its resultant), whatever the joint laws."""
+        rows, group = self._adrift
+        if not len(rows):
+            return 0.0
+        load = (self.dead + load_factor * self.live)[rows]  # (k, d)
+        force = self.block_rows[self.block_rows >= 0][:, None] + \
+            np.arange(self.centroids.shape[1])
+        scale = max(float(np.abs(self.dead[force]).max(initial=0.0)),
+                    abs(load_factor) * float(np.abs(self.live[force]).max(initial=0.0)),
+                    1e-300)
+        _, which = np.unique(group, return_inverse=True)
+        sums = np.zeros((int(which.max()) + 1, load.shape[1]))
+        np.add.at(sums, which, load)
+        return float(np.linalg.norm(sums, axis=1).max()) / scale
 
     def rows_of(self, block: int) -> slice:
         r = int(self.block_rows[block])

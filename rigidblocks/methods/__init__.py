@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from ..contacts import detect_contacts, point_touches
+from ..contacts.model import block_groups
 from ..equilibrium import assemble
 from ..errors import InputError
 from ..scene.model import Scene
@@ -71,18 +72,7 @@ def unsupported_blocks(scene: Scene, contacts: object) -> tuple[list[str], list[
     n = len(scene.blocks)
     pairs = np.asarray(contacts.pairs, dtype=int).reshape(-1, 2)  # type: ignore[attr-defined]
     touched = np.bincount(pairs.ravel(), minlength=n)
-    # each block's group: the smallest index joined to it, spread along the joints and
-    # by pointer jumping (numpy alone: `check` imports no more than it uses)
-    comp = np.arange(n)
-    while len(pairs):
-        low = np.minimum(comp[pairs[:, 0]], comp[pairs[:, 1]])
-        new = comp.copy()
-        np.minimum.at(new, pairs[:, 0], low)
-        np.minimum.at(new, pairs[:, 1], low)
-        new = new[new]
-        if np.array_equal(new, comp):
-            break
-        comp = new
+    comp = block_groups(n, pairs)
     held = set(comp[np.asarray(scene.support_mask, dtype=bool)].tolist())
     alone, adrift = [], []
     for k, (b, sup) in enumerate(zip(scene.blocks, scene.support_mask, strict=True)):
@@ -123,6 +113,13 @@ def _unheld(scene: Scene, contacts: Any, tol: float) -> list[str]:
     for b, (other, where) in points.items():
         notes.append(f"block '{b}' touches block '{other}' {where}, and a joint is "
                      f"{common}: {NOTHING_HOLDS} it; check the geometry")
+    # a group joined to no support may meet one where it has no joint (a box on its
+    # support's edge, another on it)
+    ids = contacts.block_ids
+    joined = {frozenset((ids[a], ids[b])) for a, b in contacts.pairs}
+    for b, (other, where) in point_touches(scene, adrift, tol, joined).items():
+        notes.append(f"block '{b}' touches block '{other}' {where}, and a joint is "
+                     f"{common}: no joint there")
     loose = [b for b in loose if b not in points]
     if loose:
         one = len(loose) == 1

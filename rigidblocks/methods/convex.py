@@ -34,7 +34,9 @@ from .relaxation import (
     ADMISSIBLE_TOL,
     FRICTION_ATOL,
     NEAR_ADMISSIBLE_TOL,
+    NO_EQUILIBRIUM,
     SPREAD_MARGIN,
+    UNHELD_TOL,
     VERDICT_RTOL,
     Relaxation,
     Verdicts,
@@ -198,6 +200,9 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
         ``mechanism_kind``: "vertex" (default) picks one mechanism of the optimal face
         (:func:`~rigidblocks.methods.vertex.vertex_dual`); "blend" keeps the
         interior-point duals (the centre of the face)."""
+        if self.system.unheld_load(0.0) > UNHELD_TOL:  # (as :meth:`relaxation` reads it)
+            self.notes.append(f"the dead load alone is not admissible: {NO_EQUILIBRIUM}")
+            return Limit("unstable")
         prob, jr, res = self.max_load(f)
         if res.verified is False:
             self.notes.append(f"the {res.solver} answer to the maximum-load problem "

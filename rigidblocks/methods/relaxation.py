@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..problems.formulation import build_relaxation, joint_violations
-from ..solvers import OPTIMAL, SolverResult
+from ..solvers import INFEASIBLE, OPTIMAL, SolverResult
 from ..solvers.policy import CONFIRMATION, VERDICT, VERIFY_TOL, describe
 from .base import ADMISSIBLE, INADMISSIBLE, UNDECIDED, Verdict, ranked_breaches
 
@@ -76,6 +76,11 @@ FORCES_SPAN = "forces span"
 #: blocks they act on is noted: the limit is an ill-conditioned infimum (the forces grow
 #: without bound as the limit is approached), not a value with moderate forces
 FORCE_WARN = 1e4
+#: the resultant (relative to the largest block load) of the loads on a group of blocks
+#: joined to no support above which the equilibrium equations have no solution
+#: (:meth:`~rigidblocks.equilibrium.EquilibriumSystem.unheld_load`)
+UNHELD_TOL = 1e-9
+UNHELD_RAW = "a group of blocks joined to no support carries a resultant load"
 #: the note of a relaxation whose equilibrium equations have no solution
 NO_EQUILIBRIUM = ("the equilibrium equations have no solution with these joints (the "
                   "scene is a mechanism)")
@@ -186,6 +191,13 @@ class Verdicts:
         computed here) or its dual bound, which carries its dual residual, is above
         the threshold."""
         prob, jr = self.relaxation_problem(f, load_factor)
+        if self.system.unheld_load(load_factor) > UNHELD_TOL:
+            # a group joined to no support carries a resultant: no equilibrium, without a
+            # solve (Clarabel did not certify it in 3D: a box on its support's edge, a
+            # box on it, read "solver failure ... InsufficientProgress")
+            return Relaxation(None, 0.0, SolverResult(INFEASIBLE, None, None, math.nan,
+                                                      "equilibrium", UNHELD_RAW), jr, prob,
+                              ADMISSIBLE_TOL, f)
         rx = self._read(prob, jr, self.solve(prob, "relaxation", VERDICT), f,
                         self_certified)
         return self._confirmed(rx) if confirm else rx
