@@ -57,7 +57,7 @@ def test_an_upper_bound_that_slides_asks_for_friction_not_thickness(tmp_path, ca
     assert main(["thickness", "arch", "--friction", "0.3"]) == 2
     err = capsys.readouterr().err
     assert "(it needs f >= 0.309 there): a thicker one may need a smaller f (raise the "\
-        "upper bound: hi, --hi) or as large (give a larger f: friction, --friction)" in err, err
+        "upper bound: hi, --hi) or as large (give a larger f: --friction)" in err, err
     path = tmp_path / "arch.json"
     assert main(["example", "arch", "--thickness", "1", "--friction", "0.3", "-o",
                  str(path)]) == 0

@@ -187,7 +187,7 @@ def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction
             return (f"{head} with f = {friction_label(friction)}, although it stands "
                     f"there without sliding (it needs {f} there): a thicker one may need "
                     "a smaller f (raise the upper bound: hi, --hi) or as large (give a "
-                    "larger f: friction, --friction)")
+                    "larger f: friction)")
     return head + thicker()
 
 
