@@ -33,8 +33,11 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
         p.add_argument("--layers", default=None, metavar="L1,L2",
                        help="read only these layers (default: every layer but the analysis "
                        "layers export-dxf writes)")
-        p.add_argument("--unit-weight", type=finite_float, default=None, help="unit weight")
-        p.add_argument("--depth", type=finite_float, default=None, help="out-of-plane depth")
+        p.add_argument("--unit-weight", type=finite_float, default=None,
+                       help="unit weight, force per cubed length unit (a drawing in mm "
+                            "with forces in kN: 25e-9 for 25 kN/m^3)")
+        p.add_argument("--depth", type=finite_float, default=None,
+                       help="out-of-plane depth, in the length unit (default 1)")
         p.add_argument("--friction", default=None, help='friction f or "infinite"')
         p.add_argument("--length-unit", default=None,
                        help="e.g. mm (default: the unit the drawing declares, $INSUNITS)")
