@@ -119,6 +119,9 @@ def run(args: argparse.Namespace) -> int:
     safe = _safe(scene, args, res) if getattr(args, "safe", False) else None
     if args.json:
         doc = res.to_dict(joints=args.joints == "-")
+        # the terminal's "why" lines: its notes' reasons and what the answer reads off
+        # the result (a check's friction at its limit was in neither)
+        doc["why"] = list(answer_block(scene, res).reasons)
         if safe is not None:
             doc["safe_multiplier"] = safe
         print(json.dumps(_jsonable(doc)))
