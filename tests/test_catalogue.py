@@ -64,8 +64,16 @@ def answered_itself(result, solver: str) -> None:
     """Every answer of a convex-path result came from ``solver`` itself: none failed its
     check and was solved again by Clarabel, and no other back end answered but for the
     force state, a QP, which the policy hands from an LP-only back end (HiGHS) to
-    Clarabel: not a rejection."""
+    Clarabel: not a rejection. A result without a solve is one whose equilibrium
+    equations have no solution, read off its loads (a block or group joined to no
+    support that carries a resultant): no back end's answer, and it says so."""
     assert not result.rejected, result.rejected
+    if not result.answered_by:
+        from rigidblocks.methods.relaxation import NO_EQUILIBRIUM
+
+        assert result.n_solves == 0 and any(NO_EQUILIBRIUM in n for n in result.notes), \
+            result.notes
+        return
     others = set(result.answered_by) - {solver}
     if solver in policy.LP_ONLY and result.state is not None:
         others -= {policy.FALLBACK}  # the force state's QP, beyond the back end

@@ -1446,3 +1446,17 @@ def test_a_3d_group_joined_to_no_support_has_no_equilibrium(tmp_path, capsys):
     path.write_text(json.dumps(scene))
     code, out, _ = run(capsys, ["check", str(path)])
     assert code == 0 and "verdict    ADMISSIBLE" in out, out
+
+
+def test_no_state_at_all_says_so_without_the_x0_caveat(tmp_path, capsys):
+    """The 9-voussoir arch at f = 0.3 has no admissible state under its dead load (its
+    static f* is 0.3336): without dilatancy `load` and `check` said "the answer is the
+    one reached from the elastic state X0 ... other states, and so other answers, may
+    exist" beside it, while no state stands at all: no other state gives another
+    answer."""
+    path = str(tmp_path / "a9.json")
+    rb.write_scene(build("arch", voussoirs=9, friction=0.3), path)
+    for argv in (["load", path], ["check", path, "--load-factor", "0"]):
+        code, out, _ = run(capsys, [*argv, "--flow", "non-associative"])
+        assert code == 0 and "static problem" in out, out
+        assert "other states, and so other answers, may exist" not in out, out

@@ -563,7 +563,9 @@ def _fields(na: NonAssociative, analysis: str, status: str, friction: Any,
             ) -> dict[str, Any]:
     path = getattr(na, "limit_path", False)
     first = WALK_NOTE if path == "walk" else LIMIT_NOTE if path else STATE_NOTE
-    notes = [first] * (na.cause != BOUND_STANDS) + \
+    # (not where a bound decides, nor where no state stands at all: no other state
+    # can give another answer)
+    notes = [first] * (na.cause not in (BOUND_STANDS, STATIC_UNSTABLE)) + \
         [n for n in na.notes if n not in (STATE_NOTE, LIMIT_NOTE, WALK_NOTE)]
     return dict(analysis=analysis, status=status, friction=friction_label(friction),
                 load_factor=load_factor, contacts=na.contacts, solver=na.solver,
@@ -604,9 +606,10 @@ def _check(na: NonAssociative, cv: ConvexMethod, f: float, lf: float, state: boo
     """:func:`check_nonassociative` with its methods open."""
     _above_ceiling(na, f)
     static = cv.admissible(f, lf)
-    if static.status != ADMISSIBLE:
+    if static.status == INADMISSIBLE:  # (undecided: the states from X0 may decide)
         na.notes.append("no admissible state exists at all (the associative, static "
                         "problem has none): inadmissible under either flow rule")
+        na.cause = STATIC_UNSTABLE
         return CheckResult(**_fields(na, "check", INADMISSIBLE, f, lf, (), True),
                            admissible=False, violation=static.violation,
                            breaches=cv.breaches(f, static))
@@ -963,6 +966,7 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
 
     if up.status == "unstable":
         na.notes.append("the dead load alone has no admissible state (static problem)")
+        na.cause = STATIC_UNSTABLE
         return result("unstable", converged=True)
 
     def decide(lam: float) -> tuple[bool | None, Verdict]:
