@@ -207,7 +207,13 @@ def force_state_words(result: Any) -> list[str]:
     # a joint without friction or cohesion is at its limit whatever it carries (the
     # reference model at f = 0 read "closed" at the joints its mechanism slides)
     none = (joint_frictions(result) == 0) & (np.asarray(c.cohesion, dtype=float) == 0)
-    limit = (shear_use(result) >= 1 - AT_LIMIT) | none
+    # a distortion bisection's state is at an end of its bracket: its joints at the
+    # limit to the bracket's width, as its governing line names them (the reference
+    # model's four, |T|/N = 0.5996 at f = 0.6, read "closed" beside that line)
+    tol = AT_LIMIT
+    if getattr(result, "solver", None) == "distortion" and getattr(result, "bracket", None):
+        tol = max(tol, float(getattr(result, "accuracy", None) or 0.0))
+    limit = (shear_use(result) >= 1 - tol) | none
     out = []
     for k in range(c.n_joints):
         if open_[k]:

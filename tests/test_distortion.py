@@ -556,3 +556,22 @@ def test_the_answer_says_it_is_the_distortion_methods(capsys):
     res = rb.max_load_multiplier(read_scene(ref), method="distortion")
     details = content.answer(read_scene(ref), res).details
     assert any(d.startswith("method: distortion: the seed's") for d in details)
+
+
+def test_a_bisection_states_joints_at_the_limit_to_its_accuracy():
+    """The distortion method's lambda* on the reference model is a bracket [1.19921875,
+    1.201171875] whose state, at its lower end, has |T|/N = 0.5996 at f = 0.6 on the
+    four joints its governing line names "at their friction limit, to lambda*'s
+    accuracy"; its table read "closed" there. Now "at friction limit", as the line; the
+    convex path's exact state reads so too."""
+    from rigidblocks.io import read_scene
+
+    ref = read_scene(EXAMPLES / "reference.json")
+    res = rb.max_load_multiplier(ref, method="distortion")
+    rows = {"-".join(r["joint"]): r for r in res.joint_table()}
+    for j in ("support-left", "support-right", "left-top", "right-top"):
+        assert 0.599 < rows[j]["demand"] < 0.6 and rows[j]["state"] == "at friction limit"
+    assert rows["left-right"]["state"] == "open"
+    convex = {"-".join(r["joint"]): r["state"] for r in rb.max_load_multiplier(ref)
+              .joint_table()}
+    assert convex["support-left"] == "at friction limit"
