@@ -82,8 +82,9 @@ class DxfReport:
                 f"{'support' if ns == 1 else 'supports'}: "
                 f"{', '.join(self.supports)}); snapped {self.vertices_snapped} corners and "
                 f"{self.edges_snapped} T-junction vertices (largest move {self.max_move:.3g}, "
-                f"tolerance {self.tol:.3g}); closed {len(self.closed_by_snap)} polylines by "
-                f"snapping ({len(self.retraced)} retracing); dropped "
+                f"tolerance {self.tol:.3g}, in the drawing's units); closed "
+                f"{len(self.closed_by_snap)} polylines by snapping ({len(self.retraced)} "
+                f"retracing); dropped "
                 f"{self.duplicates_dropped} repeated vertices; {self.reoriented} outlines "
                 f"drawn clockwise (kept so: a scene takes either orientation); skipped "
                 f"{skipped}")
