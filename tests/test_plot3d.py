@@ -137,6 +137,10 @@ def test_a_3d_check_that_fails_is_drawn_and_says_so(tmp_path, capsys):
     ax = rb.plot(s, res)
     (msg,) = [t for t in ax.texts if t.get_gid() == "rb-verdict"]
     assert "NOT ADMISSIBLE" in msg.get_text()
+    # in the title's words (it read "no equilibrium state within the joint laws exists")
+    first = msg.get_text().splitlines()[0]
+    assert first == "NOT ADMISSIBLE: no equilibrium state keeps every joint in compression " \
+        "and within friction" and first in ax.get_title().replace("\n", " ")
     path = tmp_path / "stack.json"
     write_scene(s, path)
     out = tmp_path / "check.png"

@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from ..answer import NA_INADMISSIBLE, without_dilatancy
+from ..answer import NA_INADMISSIBLE, within_laws, without_dilatancy
 from ..results import (
     DIRECT_STANDS,
     analysis_friction,
@@ -234,8 +234,9 @@ def _no_state(ax: Any, result: Any, unit: str = "") -> None:
     if status == "inadmissible":
         v = getattr(result, "violation", None)
         na = without_dilatancy(result)
-        msg = (NA_INADMISSIBLE if na
-               else "NOT ADMISSIBLE: no equilibrium state within the joint laws exists")
+        # the verdict's own words (the title's): the box said it otherwise
+        msg = (NA_INADMISSIBLE if na else "NOT ADMISSIBLE: no equilibrium state keeps "
+               + within_laws(getattr(result, "contacts", None)))
         if v is not None and math.isfinite(float(v)):
             # the state from X0's own breach, or the smallest over every state (as the
             # text answer says it)
