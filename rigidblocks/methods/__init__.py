@@ -113,13 +113,15 @@ def _unheld(scene: Scene, contacts: Any, tol: float) -> list[str]:
     for b, (other, where) in points.items():
         notes.append(f"block '{b}' touches block '{other}' {where}, and a joint is "
                      f"{common}: {NOTHING_HOLDS} it; check the geometry")
-    # a group joined to no support may meet one where it has no joint (a box on its
-    # support's edge, another on it)
-    ids = contacts.block_ids
-    joined = {frozenset((ids[a], ids[b])) for a, b in contacts.pairs}
-    for b, (other, where) in point_touches(scene, adrift, tol, joined).items():
-        notes.append(f"block '{b}' touches block '{other}' {where}, and a joint is "
-                     f"{common}: no joint there")
+    if adrift:
+        # a group joined to no support may meet one where it has no joint (a box on its
+        # support's edge, another on it); the joined pairs only where there is one to
+        # read them (every analysis opens here)
+        ids = contacts.block_ids
+        joined = {frozenset((ids[a], ids[b])) for a, b in contacts.pairs}
+        for b, (other, where) in point_touches(scene, adrift, tol, joined).items():
+            notes.append(f"block '{b}' touches block '{other}' {where}, and a joint is "
+                         f"{common}: no joint there")
     loose = [b for b in loose if b not in points]
     if loose:
         one = len(loose) == 1
