@@ -362,9 +362,10 @@ def test_import_reads_the_drawings_length_unit_and_warns_where_another_is_given(
     out = tmp_path / "mm.json"
     assert main(["import-dxf", str(path), "-o", str(out), "--force-unit", "kN"]) == 0
     said = capsys.readouterr()
-    assert ("lengths in mm, as the drawing declares ($INSUNITS): give the unit weight "
-            "per mm^3 and the depth in mm") in said.out
+    assert ("lengths in mm, as the drawing declares ($INSUNITS; it spans 4000 x 3000 mm "
+            "(4 x 3 m)): give the unit weight per mm^3 and the depth in mm") in said.out
     assert "warning: the drawing declares" not in said.err
+    assert "across" not in said.err  # blocks of 1 m and 4 m: masonry sizes
     sc = read_scene(out)
     assert (sc.units.length, sc.units.force) == ("mm", "kN")
     assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", "m"]) == 0
@@ -374,6 +375,23 @@ def test_import_reads_the_drawings_length_unit_and_warns_where_another_is_given(
     assert read_scene(out).units.length == "m"
     assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", "mm"]) == 0
     assert "declares" not in capsys.readouterr().err
+
+
+def test_import_doubts_a_declared_unit_that_makes_blocks_metres_across(tmp_path, capsys):
+    """LACT3's wall.dxf is drawn in millimetres (its README) and declares inches
+    ($INSUNITS 1): read as declared, its blocks were 250 in (6.35 m) across and the
+    import said only "lengths in in, as the drawing declares"; it now gives the
+    drawing's span in metres and warns of blocks no masonry has."""
+    path = require_shared(LACT3 / "wall.dxf")
+    out = tmp_path / "w.json"
+    assert main(["import-dxf", str(path), "-o", str(out)]) == 0
+    said = capsys.readouterr()
+    assert "lengths in in, as the drawing declares ($INSUNITS; it spans 2521 x 1650 in " \
+           "(64.03 x 41.91 m))" in said.out
+    assert ("warning: the blocks are 250 in across (the median), 6.35 m: if the drawing "
+            "is in another unit, give it with --length-unit (e.g. mm)") in said.err
+    assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", "mm"]) == 0
+    assert "across" not in capsys.readouterr().err  # 250 mm blocks
 
 
 def test_export_of_a_3d_scene_is_refused_before_its_analysis(tmp_path, capsys, monkeypatch):

@@ -94,14 +94,23 @@ def run(args: argparse.Namespace) -> int:
                               layers=_layers(args.layers))
         write_scene(scene, args.output)
         print(rep.summary())
-        from ..io.dxf import NO_DEPTH_NOTE, NO_FRICTION_NOTE, NO_UNIT_WEIGHT_NOTE
+        from ..io.dxf import (
+            NO_DEPTH_NOTE,
+            NO_FRICTION_NOTE,
+            NO_UNIT_WEIGHT_NOTE,
+            span_text,
+            unit_doubt,
+        )
 
         if rep.unit_conflict:
             print(f"rigidblocks: warning: {rep.unit_conflict}", file=sys.stderr)
         elif rep.declared_unit and not args.length_unit:
-            print(f"lengths in {rep.declared_unit}, as the drawing declares ($INSUNITS): "
-                  f"give the unit weight per {rep.declared_unit}^3 and the depth in "
-                  f"{rep.declared_unit}")
+            print(f"lengths in {rep.declared_unit}, as the drawing declares ($INSUNITS; "
+                  f"it spans {span_text(scene)}): give the unit weight per "
+                  f"{rep.declared_unit}^3 and the depth in {rep.declared_unit}")
+        doubt = unit_doubt(scene)
+        if doubt:
+            print(f"rigidblocks: warning: {doubt}", file=sys.stderr)
         if scene.unit_weight is None:
             print(f"rigidblocks: warning: {NO_UNIT_WEIGHT_NOTE}", file=sys.stderr)
         elif scene.depth is None:

@@ -53,7 +53,7 @@ from ..answer import answer_block
 from ..errors import InputError
 from ..results import joint_force_vectors, lower_block_forces, unloaded
 from ..scene.geometry import signed_area
-from ..scene.model import Scene, Units, make_block
+from ..scene.model import Scene, Units, block_boxes, make_block
 from .dxf_repair import DxfReport, Outline, line_loops, repair
 
 log = logging.getLogger(__name__)
@@ -164,6 +164,41 @@ def _metadata(doc: Any, src: str) -> dict | None:
 
 #: the length units of the DXF header's $INSUNITS codes (AutoCAD's; 0: unitless)
 INSUNITS = {1: "in", 2: "ft", 4: "mm", 5: "cm", 6: "m", 7: "km", 10: "yd", 14: "dm"}
+#: ... in metres
+METRES = {"in": 0.0254, "ft": 0.3048, "mm": 1e-3, "cm": 1e-2, "m": 1.0, "km": 1e3,
+          "yd": 0.9144, "dm": 0.1}
+#: the sizes of masonry blocks, in metres, outside which a drawing's unit is doubted
+#: (:func:`unit_doubt`): bricks and stones from a few centimetres to a few metres
+BLOCK_SIZES = (0.02, 3.0)
+
+
+def span_text(scene: Scene) -> str:
+    """The scene's width and height in its length unit, and in metres where that unit
+    is known: "1247 x 447.7 in (31.66 x 11.37 m)"."""
+    lo, hi = block_boxes(scene)
+    w, h = (hi.max(axis=0) - lo.min(axis=0))[:2]
+    unit = scene.length_unit
+    metres = METRES.get(unit.strip().lower())
+    inm = f" ({w * metres:.4g} x {h * metres:.4g} m)" if metres not in (None, 1.0) else ""
+    return f"{w:.4g} x {h:.4g} {unit}{inm}"
+
+
+def unit_doubt(scene: Scene) -> str:
+    """Where the blocks' median size (their bounding boxes' largest side) in the
+    scene's length unit is no masonry block's size in metres (``BLOCK_SIZES``), what to
+    check, else "": a drawing in millimetres whose header declares inches (as some do)
+    has blocks metres across, and weighs 25.4^3 times as much per unit weight."""
+    metres = METRES.get(scene.length_unit.strip().lower())
+    if metres is None or not scene.blocks:
+        return ""
+    lo, hi = block_boxes(scene)
+    size = float(np.median((hi - lo).max(axis=1)))
+    low, high = BLOCK_SIZES
+    if low <= size * metres <= high:
+        return ""
+    return (f"the blocks are {size:.4g} {scene.length_unit} across (the median), "
+            f"{size * metres:.3g} m: if the drawing is in another unit, give it with "
+            "--length-unit (e.g. mm)")
 
 
 def _declared_units(doc: Any, units: tuple[str, str] | str | None, rep: DxfReport,
