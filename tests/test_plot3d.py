@@ -136,11 +136,14 @@ def test_a_3d_check_that_fails_is_drawn_and_says_so(tmp_path, capsys):
     assert res.status == "inadmissible"
     ax = rb.plot(s, res)
     (msg,) = [t for t in ax.texts if t.get_gid() == "rb-verdict"]
-    assert "NOT ADMISSIBLE" in msg.get_text()
-    # in the title's words (it read "no equilibrium state within the joint laws exists")
-    first = msg.get_text().splitlines()[0]
-    assert first == "NOT ADMISSIBLE: no equilibrium state keeps every joint in compression " \
-        "and within friction" and first in ax.get_title().replace("\n", " ")
+    assert msg.get_text().splitlines() == [
+        "NOT ADMISSIBLE: no force state to draw",
+        "in red: the joints breached in the state of least breach (up to 22 kN)"]
+    # the joints breached, at their centres, each with its breach
+    marks = [a for a in ax.collections if a.get_gid() == "rb-breached"]
+    labels = [t.get_text().strip() for t in ax.texts if t.get_gid() == "rb-breached"]
+    assert len(marks) == 1 and len(marks[0].get_offsets()) == len(res.breaches) == 2
+    assert labels == [f"{v:.3g} kN" for _, v in res.breaches]
     path = tmp_path / "stack.json"
     write_scene(s, path)
     out = tmp_path / "check.png"

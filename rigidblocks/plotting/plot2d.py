@@ -29,7 +29,8 @@ normal force); arrows shorter than a twentieth of the largest are left out.
 Every artist carries a ``gid`` (``"rb-blocks"``, ``"rb-supports"``, ``"rb-joints"``,
 ``"rb-forces"``, ``"rb-thrust"``, ``"rb-governing"``, ``"rb-displaced"``,
 ``"rb-hinges"``, ``"rb-sliding"``, ``"rb-open"``, ``"rb-force-key"``, ``"rb-loads"``,
-``"rb-open-joints"``, ``"rb-hinging"``, ``"rb-legend"``, ``"rb-verdict"``) so that
+``"rb-open-joints"``, ``"rb-hinging"``, ``"rb-legend"``, ``"rb-verdict"``,
+``"rb-breached"``) so that
 programs can find it.
 """
 
@@ -40,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from ..answer import NA_INADMISSIBLE, within_laws, without_dilatancy
+from ..answer import without_dilatancy
 from ..results import (
     DIRECT_STANDS,
     analysis_friction,
@@ -150,7 +151,9 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
         lo, hi = _draw_forces(ax, scene, result, size, max_arrows, force_scale, colorbar,
                               LineCollection, lo, hi, extra)
     elif result is not None and getattr(result, "status", None) is not None:
-        _no_state(ax, result, scene.force_unit)
+        box = _no_state(ax, result, scene.force_unit)
+        # room above the drawing for the box (it hid the reference model's load value)
+        hi = hi + np.array([0.0, box * (hi - lo)[1] / (1.0 - box)])
     if ids:  # on the blocks as drawn (displaced in a mechanism)
         fs = 8 if len(polys) < 60 else 5
         for b, c in zip(scene.blocks, label_at, strict=True):
@@ -228,20 +231,19 @@ def _draw_loads(ax: Any, scene: Scene, lo: np.ndarray, hi: np.ndarray,
     return lo, hi
 
 
-def _no_state(ax: Any, result: Any, unit: str = "") -> None:
-    """A result without a force state: say why on the axes, not just in the title."""
+def _no_state(ax: Any, result: Any, unit: str = "") -> float:
+    """A result without a force state: say why on the axes, not just in the title; a
+    NOT ADMISSIBLE check draws the joints its breaches name (:func:`_draw_breaches`)."""
     status = getattr(result, "status", "")
     if status == "inadmissible":
-        v = getattr(result, "violation", None)
-        na = without_dilatancy(result)
-        # the verdict's own words (the title's): the box said it otherwise
-        msg = (NA_INADMISSIBLE if na else "NOT ADMISSIBLE: no equilibrium state keeps "
-               + within_laws(getattr(result, "contacts", None)))
-        if v is not None and math.isfinite(float(v)):
-            # the state from X0's own breach, or the smallest over every state (as the
-            # text answer says it)
-            msg += (f"\n({'its' if na else 'smallest'} breach of the joint laws "
-                    f"{float(v):.3g} {unit})").replace(" )", ")")
+        # the verdict is the title's; the box says what is drawn (it gave the title's
+        # verdict again, over a picture of the blocks alone)
+        msg = "NOT ADMISSIBLE: no force state to draw"
+        most = _draw_breaches(ax, result, unit)
+        if most:
+            whose = ("the state reached from X0" if without_dilatancy(result)
+                     else "the state of least breach")
+            msg += f"\nin red: the joints breached in {whose} (up to {most})"
         colour = "tab:red"
     elif status in VERDICTS:
         msg = f"{status.upper()}: no force state to draw"
@@ -255,6 +257,44 @@ def _no_state(ax: Any, result: Any, unit: str = "") -> None:
             color=colour, zorder=8,
             bbox={"boxstyle": "round", "fc": "white", "ec": colour, "alpha": 0.9})
     t.set_gid("rb-verdict")
+    return 0.06 * (msg.count("\n") + 1)  # the box's height, about, of the axes' height
+
+
+#: breached joints labelled with their breach, the largest first, at most
+BREACH_LABELS = 12
+BREACH_COLOUR = "tab:red"
+
+
+def _draw_breaches(ax: Any, result: Any, unit: str) -> str:
+    """The joints a NOT ADMISSIBLE check's state breaches (``result.breaches``, the
+    largest first): in 2D their segments, in 3D their centres, red, the first
+    ``BREACH_LABELS`` labelled with their breach; the largest breach with its unit, ""
+    where none is named."""
+    br = tuple(getattr(result, "breaches", ()) or ())
+    c = getattr(result, "contacts", None)
+    if not br or c is None:
+        return ""
+    ks = np.array([k for k, _ in br], dtype=int)
+    first, last = c.points[c.joint_start[ks]], c.points[c.joint_start[ks + 1] - 1]
+    label = "breached joint (its breach)"
+    if c.dimension == 2:
+        from matplotlib.collections import LineCollection
+
+        art = LineCollection(np.stack([first, last], axis=1), colors=BREACH_COLOUR,
+                             linewidths=4, zorder=5, label=label)
+        ax.add_collection(art)
+        at = 0.5 * (first + last)
+    else:
+        at = np.array([c.points[c.joint_start[k]:c.joint_start[k + 1]].mean(axis=0)
+                       for k in ks])
+        art = ax.scatter(*at.T, s=40, c=BREACH_COLOUR, marker="X", zorder=5, label=label)
+    art.set_gid("rb-breached")
+    for (_, v), p in zip(br[:BREACH_LABELS], at[:BREACH_LABELS], strict=True):
+        t = ax.text(*p, f" {v:.3g} {unit}".rstrip(), color=BREACH_COLOUR, fontsize=8,
+                    zorder=6, bbox={"boxstyle": "round,pad=0.15", "fc": "white",
+                                    "ec": "none", "alpha": 0.7})
+        t.set_gid("rb-breached")
+    return f"{max(v for _, v in br):.3g} {unit}".rstrip()
 
 
 def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: int,
