@@ -599,7 +599,7 @@ def headline(result: Any, symbols: bool = False) -> str:
     if a == "check":
         verdict = {"admissible": "admissible", "inadmissible": "NOT ADMISSIBLE"}.get(
             status, status)
-        return f"{verdict} at f = {_friction_text(result.friction, deg, inf)}, {lam} = {lf:g}"
+        return f"{verdict} at f = {_friction_text(result.friction, deg, inf)}, {lam} = {lf:.10g}"
     return f"{a.replace('_', ' ')}: {status}"
 
 

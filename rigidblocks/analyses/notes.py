@@ -24,7 +24,7 @@ def friction_governs(m: Method, f: float, load_factor: float, na: bool = False
     where = "under its dead load alone" if load_factor == 0 else "at this load"
     flow = " --flow non-associative" if na else ""
     command = (f"`rigidblocks friction {m.scene.source or 'SCENE'} --load-factor "
-               f"{load_factor:g}{flow}`")
+               f"{load_factor:.10g}{flow}`")
     if na:
         # infinite friction is another joint law, not the limit of large ones: without
         # dilatancy a joint with no normal force carries no shear at any finite f (the

@@ -82,7 +82,7 @@ def run(args: argparse.Namespace) -> int:
         print(f"generator  {res.generator} ({extra})")
         lf = args.load_factor
         print(f"friction   {res.friction}   load factor " + (
-            f"{lf:g} (the dead load plus {lf:g} x the live load)" if lf else
+            f"{lf:.10g} (the dead load plus {lf:.10g} x the live load)" if lf else
             "0 (dead load only)"))
         print(f"method     {method}" + (f" (back end {backend})" if backend else ""))
         print(f"minimised  {shown}: {what}")

@@ -163,10 +163,10 @@ class LoadSearch:
             return None
         if not search.narrow(WIDE):
             self.notes.append(
-                f"f* from lambda*(f) = {lf:g} (the maximum-load LP): f* is bracketed in "
+                f"f* from lambda*(f) = {lf:.10g} (the maximum-load LP): f* is bracketed in "
                 f"[{lo:.10g}, {hi:.10g}] (relative width {(hi - lo) / hi:.1e}), where "
                 f"lambda* is within {SPREAD_MARGIN:g} times what its duals' residual "
-                f"could account for of {lf:g}; the bracket is wider than "
+                f"could account for of {lf:.10g}; the bracket is wider than "
                 f"{max(search.rtol, WIDE):g} (relative): no number is given")
             return Limit("undecided", None, lo, hi)
         prob, jr, res = upper.data.at
@@ -187,11 +187,11 @@ class LoadSearch:
         if lower is not None and lower.data.by_value:
             self.notes.append(
                 f"f* is certified from above: at f = {hi:.10g} a state carries the load "
-                f"factor {lf:g} (f* from lambda*(f) = {lf:g}, the largest load "
+                f"factor {lf:.10g} (f* from lambda*(f) = {lf:.10g}, the largest load "
                 f"multiplier at friction f). Below, f* is bracketed in "
                 f"{fmt_bracket(lo, hi)} (relative width {(hi - lo) / hi:.1e}) by lambda*'s "
                 f"value at "
-                f"the lower end ({lower.value + lf:.10g}: below {lf:g} by more than "
+                f"the lower end ({lower.value + lf:.10g}: below {lf:.10g} by more than "
                 f"{SPREAD_MARGIN:g} times the solver's resolution there), not by a "
                 "certified bound")
         governing = self._governing(at_lo[2], at_lo[1], at_lo[0]) if at_lo else ()

@@ -126,7 +126,7 @@ def check_load_factor(scene: Scene, load_factor: float) -> None:
     with np.errstate(all="ignore"):
         top = max(live, default=0.0) * float(load_factor)
     if _too_large(top):
-        raise InputError(_beyond(f"the load factor {load_factor:g} times the largest live "
+        raise InputError(_beyond(f"the load factor {load_factor:.10g} times the largest live "
                                  "load", top, "give a smaller load factor"), "load factor")
 
 
