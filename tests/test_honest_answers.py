@@ -1460,3 +1460,15 @@ def test_no_state_at_all_says_so_without_the_x0_caveat(tmp_path, capsys):
         code, out, _ = run(capsys, [*argv, "--flow", "non-associative"])
         assert code == 0 and "static problem" in out, out
         assert "other states, and so other answers, may exist" not in out, out
+
+
+def test_a_suggested_command_keeps_the_load_factor_given(capsys):
+    """README: "a load factor you give is printed as given". The check of the flat arch
+    with vertical joints at load factor 0.2495975 (just above its collapse multiplier
+    0.2495974) suggested `rigidblocks friction ... --load-factor 0.249597`, another
+    question, below the collapse multiplier."""
+    path = str(EXAMPLES / "flat_arch_vertical.json")
+    assert main(["check", path, "--load-factor", "0.2495975"]) == 0
+    out = capsys.readouterr().out
+    assert f"`rigidblocks friction {path} --load-factor 0.2495975` gives" in out
+    assert "0.249597`" not in out
