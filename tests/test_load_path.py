@@ -273,3 +273,20 @@ def test_a_wall_slides_on_its_foundation_at_f_with_its_head_joints_plastic_from_
     n = len(joints(first))
     assert any(f"{n} joint{'s carry' if n > 1 else ' carries'} no force under the dead "
                "load" in note for note in p.notes), p.notes
+
+
+def test_path_json_gives_the_terminals_why_lines(capsys):
+    """`path --json` had `notes` but no `why`, which docs/scene-format.md gives every
+    command's JSON: the flat arch with vertical joints without dilatancy is UNSTABLE
+    from X0, and the JSON did not say that it is the state reached from X0 that
+    breaches, whether or not another state stands."""
+    f = str(EXAMPLES / "flat_arch_vertical.json")
+    args = ["path", f, "--flow", "non-associative"]
+    assert main(args) == 0
+    why = [ln[len("why        "):] for ln in capsys.readouterr().out.splitlines()
+           if ln.startswith("why ")]
+    assert main([*args, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["status"] == "unstable" and d["why"] == why
+    assert d["why"][0].startswith("the state reached from the elastic state X0 under the "
+                                  "dead load alone breaches the joint laws")

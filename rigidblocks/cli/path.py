@@ -45,7 +45,11 @@ def run(args: argparse.Namespace) -> int:
         sliding=args.sliding, flow=args.flow, progress=progress), progress,
         show=not args.json and sys.stderr.isatty())
     if args.json:
-        print(json.dumps(_jsonable(res.to_dict())))
+        from ..answer import split_notes
+
+        # the terminal's "why" lines, as every analysis's JSON has them
+        doc = {**res.to_dict(), "why": list(split_notes(res.notes)[0])}
+        print(json.dumps(_jsonable(doc)))
         return EXIT.get(res.status, 0)
     print("\n".join(_lines(scene, res, args)))
     return EXIT.get(res.status, 0)
