@@ -230,7 +230,8 @@ def _own_friction(res: Any, f: Any) -> str:
         if st in ("infeasible", "unbounded", "unstable"):
             ok = st == "unbounded"
             there = {"unbounded": "there no multiple of the live load makes it collapse",
-                     "infeasible": "there the capped laws carry not even the dead load",
+                     "infeasible": ("there a step's shear caps, f N of the last state's normal "
+                                    "forces, carry not even the dead load"),
                      "unstable": "there the state reached from X0 under the dead load "
                                  "alone breaches the joint laws"}[st]
         elif st != "converged" or lam is None:

@@ -17,7 +17,7 @@ import pytest
 from conftest import EXAMPLES, down, make_scene, pinched, rect
 
 import rigidblocks as rb
-from rigidblocks.analyses.nonassociative import flow_mask, is_nonassociative
+from rigidblocks.analyses.nonassociative import BY_STATES, flow_mask, is_nonassociative
 from rigidblocks.cli.main import main
 from rigidblocks.contacts import detect_contacts
 from rigidblocks.errors import InputError
@@ -229,6 +229,23 @@ def test_a_block_lifted_off_its_base(dim):
     assert res.load_multiplier == pytest.approx(1.0, rel=1e-6)
 
 
+def test_a_check_read_off_the_states_from_x0_does_not_read_as_failing(capsys):
+    """The inclined corbel arch at f = 0.77 under its self-weight, without dilatancy:
+    ADMISSIBLE, beside a why line that read "the limit fixed point from X0 was not
+    reached (the capped laws carry not even the dead load): ... and at lambda = 0 it
+    stands", words an engineer reads as the arch not carrying its own weight. The line
+    now says that a step's caps carried nothing and that the state reached from X0
+    stands."""
+    path = str(EXAMPLES / "corbel_arch_inclined.json")
+    assert main(["check", path, "--load-factor", "0", "--friction", "0.77", "--flow",
+                 "non-associative"]) == 0
+    out = capsys.readouterr().out
+    assert "verdict    ADMISSIBLE" in out and "capped laws" not in out
+    assert ("why        no limit fixed point from X0 was found (a step's shear caps, f N of "
+            "the last state's normal forces, carry not even the dead load): " + BY_STATES +
+            ", and at lambda = 0 the state reached from X0 stands") in out
+
+
 @pytest.mark.parametrize("f", [0.8, 0.85])
 def test_the_inclined_corbel_arch_is_not_decided_by_a_bound_that_misses_states(f):
     """The seed's inclined corbel arch (Fig. 7c) above its static f* = 0.7651: the limit
@@ -244,7 +261,6 @@ def test_the_inclined_corbel_arch_is_not_decided_by_a_bound_that_misses_states(f
     (`--safe`), at 0.85 it lies above it, near the distortion method's 0.0490; `check`
     stands below the bracket and not above it, and says nothing of every state."""
     from rigidblocks.analyses.na_bounds import safe_multiplier
-    from rigidblocks.analyses.nonassociative import BY_STATES
 
     scene = read_scene(EXAMPLES / "corbel_arch_inclined.json")
     assoc = rb.max_load_multiplier(scene, friction=f, state=False)
@@ -253,8 +269,11 @@ def test_the_inclined_corbel_arch_is_not_decided_by_a_bound_that_misses_states(f
     # why the limit fixed point was not reached is said in that note, not on a line of
     # its own before it ("from the elastic state X0: the capped laws carry not even the
     # dead load" read as the answer's reason beside a positive answer)
-    assert any(n.startswith("the limit fixed point from X0 was not reached (the capped "
-                            "laws carry not even the dead load): " + BY_STATES)
+    # (in words that do not read as the structure's: "the capped laws carry not even the
+    # dead load" stood beside ADMISSIBLE at f = 0.77)
+    assert any(n.startswith("no limit fixed point from X0 was found (a step's shear caps, "
+                            "f N of the last state's normal forces, carry not even the dead "
+                            "load): " + BY_STATES)
                for n in res.notes), res.notes
     assert not any(n.startswith("from the elastic state X0:") for n in res.notes)
     lo, hi = res.load_multiplier_bounds

@@ -363,7 +363,10 @@ class CappedLimit:
             b = self.rhs(N)
             st, lam, z = self.solver.maximise(b)
             if st != OPTIMAL:
-                why = {"infeasible": "the capped laws carry not even the dead load",
+                # (in words not read as the structure's: "the capped laws carry not
+                # even the dead load" stood beside ADMISSIBLE)
+                why = {"infeasible": "a step's shear caps, f N of the last state's normal "
+                                     "forces, carry not even the dead load",
                        "unbounded": "no multiplier makes the capped problem collapse"}
                 failed = f"the solver failed ({st})"
                 return (st if st in why else "undecided"), why.get(st, failed)

@@ -747,10 +747,10 @@ def _loaded_from_x0(na: ConvexNonAssociative, cv: ConvexMethod, f: float,
         return UNDECIDED
     if not r.converged or _limit_checks(cv, f, r, (None, None)):
         if _by_states(cv):  # (as `load` reads it there)
-            na.notes.append(f"{by_states_note(r.reason)}, and at lambda = {lf:.10g} it "
-                            "stands")
+            na.notes.append(f"{by_states_note(r.reason)}, and at lambda = {lf:.10g} the "
+                            "state reached from X0 stands")
             return ADMISSIBLE
-        na.notes.append("the limit fixed point from X0 (`load`'s answer) was not reached "
+        na.notes.append("no limit fixed point from X0 (`load`'s answer) was found "
                         f"({r.reason}): whether loading from X0 reaches lambda = {lf:.10g} is "
                         "undecided")
         return UNDECIDED
@@ -1196,7 +1196,7 @@ def _by_states(cv: ConvexMethod) -> bool:
 
 
 #: the note of an answer read off the states reached from X0 (:func:`_by_states`),
-#: after why the limit fixed point from X0 was not reached
+#: after why no limit fixed point from X0 was found
 BY_STATES = ("on this small scene the answer is read off the state reached from X0 at "
              "each load factor, by bisection, as the distortion method reads the seed's "
              "procedure")
@@ -1204,10 +1204,10 @@ BY_STATES = ("on this small scene the answer is read off the state reached from 
 
 def by_states_note(why: str) -> str:
     """The note of an answer read off the states reached from X0, with ``why`` the
-    limit fixed point from X0 was not reached (the inclined corbel arch at f = 0.8 said
+    no limit fixed point from X0 was found (the inclined corbel arch at f = 0.8 said
     "from the elastic state X0: the capped laws carry not even the dead load" on a line
     of its own, just above the positive answer those states give)."""
-    return f"the limit fixed point from X0 was not reached ({why}): {BY_STATES}"
+    return f"no limit fixed point from X0 was found ({why}): {BY_STATES}"
 
 
 def _elsewhere(cv: ConvexMethod) -> list[str]:
