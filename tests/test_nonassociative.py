@@ -1044,3 +1044,22 @@ def test_the_seeds_procedure_standing_above_the_convex_answer_says_so():
                for n in r.notes)
     r = rb.check(sc, load_factor=0.1, method="distortion", flow="non-associative")
     assert r.status == "admissible" and not any("default method" in n for n in r.notes)
+
+
+def test_a_distortion_failure_without_dilatancy_is_a_failure(tmp_path, capsys):
+    """A block that touches nothing (weightless, so the convex path answers the rest)
+    makes the distortion method's A C^-1 A^T singular: with associative friction `load`
+    said FAILURE (exit 1), without dilatancy UNDECIDED (exit 3), which tells a script to
+    refine a search that cannot succeed. Every analysis now says FAILURE, exit 1, with
+    the reason."""
+    d = json.loads((EXAMPLES / "fig4a_bonded.json").read_text())
+    d["blocks"].append({"id": "float", "vertices": [[1, 1], [2, 1], [2, 2], [1, 2]]})
+    path = tmp_path / "floating.json"
+    path.write_text(json.dumps(d))
+    for analysis in ("load", "friction", "check"):
+        code = main([analysis, str(path), "--flow", "non-associative", "--method",
+                     "distortion"])
+        out = capsys.readouterr().out
+        assert code == 1, (analysis, out)
+        assert "verdict    NO VERDICT: FAILURE" in out
+        assert "A C^-1 A^T is singular or ill-conditioned" in out

@@ -979,14 +979,18 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
     ok0, v0 = decide(0.0)
     if ok0 is not True:
         na.explain(v0)
-        return result("unstable" if ok0 is False else UNDECIDED, converged=ok0 is False)
+        # a method that fails is a failure (exit 1), not an undecided search (a block
+        # that touches nothing made the distortion method's matrix singular: UNDECIDED)
+        return result("unstable" if ok0 is False else
+                      FAILURE if v0.status == FAILURE else UNDECIDED, converged=ok0 is False)
     if hi is None:  # associative unbounded: bracket by doubling
         good, bad, best = 0.0, 1.0, v0
         while True:
             ok, v = decide(bad)
             if ok is None:
                 na.explain(v)
-                return result(UNDECIDED, converged=False)
+                return result(FAILURE if v.status == FAILURE else UNDECIDED,
+                              converged=False)
             if ok is False:
                 break
             good, best = bad, v
@@ -1631,6 +1635,9 @@ def _friction_by_verdicts(na: NonAssociative, lf: float, lim: Any, rtol: float, 
             # breaches the laws by what every trial below did at every f: the same state
             bad = good
             breach.append((good, v.violation))
+        elif v.status == FAILURE:
+            na.explain(v)
+            return out(FAILURE, lower=bad, converged=False)
         else:
             unsettled.append(good)
             why = v.notes[0] if v.notes else "the iteration did not settle"
