@@ -9,12 +9,14 @@ from __future__ import annotations
 
 import copy
 import json
+import math
 from pathlib import Path
 
 import numpy as np
 import pytest
 from conftest import EXAMPLES, make_scene, rect
 
+import rigidblocks as rb
 from rigidblocks.cli.main import main
 from rigidblocks.contacts import detect_contacts
 from rigidblocks.equilibrium import assemble
@@ -405,3 +407,67 @@ def test_a_bad_vertex_index_of_a_face_is_named(tmp_path, bad, k):
 def test_a_face_that_is_not_a_list_of_three_indices_is_named(tmp_path, face):
     faces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], face, [2, 3, 7, 6], [3, 0, 4, 7]]
     expect_error(write_doc(tmp_path, _cube_doc(faces)), "block 'cube'", '"faces"[3]')
+
+
+def _in_code(**changes):
+    """A block 1 x 2 on a base, built in code as the Python API's users do."""
+    from rigidblocks import make_block
+
+    base = make_block("base", [[-1, -1], [4, -1], [4, 0], [-1, 0]], support=True)
+    b = make_block("B", [[0, 0], [1, 0], [1, 2], [0, 2]])
+    d = dict(dimension=2, blocks=(base, b), unit_weight=20.0, friction=0.8,
+             live_body_force=(1.0, 0.0))
+    return rb.Scene(**{**d, **changes})
+
+
+@pytest.mark.parametrize("changes,said", [
+    ({"blocks": "overlap"}, "block 'B': blocks 'B' and 'C' overlap"),
+    ({"blocks": "twice"}, "block 'B': duplicate block id"),
+    ({"unit_weight": -1}, "unit_weight: must be a number >= 0, got -1"),
+    ({"unit_weight": math.nan}, "unit_weight: must be a number >= 0, got nan"),
+    ({"live_body_force": (1, 0, 0)}, "live_body_force: must be 2 numbers in a 2D scene"),
+    ({"flow": "x"}, 'flow: flow must be "associative" or "non-associative", got \'x\''),
+    ({"friction": "0.3"}, 'friction: friction must be a number >= 0 or "infinite"'),
+    ({"dimension": 4}, "dimension: must be 2 or 3, got 4"),
+    ({"loads": (rb.Load("Z", (0.0, -1.0)),)}, "load #0: unknown block 'Z'"),
+    ({"blocks": ()}, 'blocks: no blocks: the scene\'s "blocks" list is empty'),
+])
+def test_a_scene_built_in_code_is_checked_as_a_files_is(changes, said):
+    """The analyses took a scene built in code as given: two overlapping blocks
+    collapsed at 0.5 and stood at load factor 0, a block given twice was analysed with
+    its joint twice, a unit weight of -1 or NaN, a 2D scene's 3D live body force or a
+    flow "x" gave answers, and an unknown block, no blocks or dimension 4 ended in
+    tracebacks (KeyError, ValueError) where a scene file's reader names the fault in one
+    line. Every analysis now checks its scene as the reader does."""
+    from rigidblocks import make_block
+
+    if changes.get("blocks") == "overlap":
+        base, b = _in_code().blocks
+        changes = {"blocks": (base, b, make_block("C", [[0.5, 0], [1.5, 0], [1.5, 2],
+                                                        [0.5, 2]]))}
+    elif changes.get("blocks") == "twice":
+        base, b = _in_code().blocks
+        changes = {"blocks": (base, b, b)}
+    scene = _in_code(**changes)
+    for analysis in (rb.check, rb.min_friction, rb.max_load_multiplier, rb.load_path):
+        with pytest.raises(InputError) as err:
+            analysis(scene)
+        assert said in str(err.value), (analysis.__name__, str(err.value))
+    assert rb.max_load_multiplier(_in_code()).load_multiplier == pytest.approx(0.5)
+
+
+@pytest.mark.parametrize("given", ["examples/arch.json", {}])
+def test_an_analysis_of_what_is_not_a_scene_says_so(given):
+    """`rb.check("examples/arch.json")` ended in AttributeError ('str' object has no
+    attribute 'effective_flow')."""
+    with pytest.raises(InputError, match=r"expected a Scene \(rigidblocks.read_scene\(path\), "
+                       rf"or Scene\(...\) in code\), got {type(given).__name__}"):
+        rb.check(given)
+
+
+def test_a_load_factor_is_a_number_not_its_spelling():
+    """`rb.check(scene, load_factor="0.6")` ran as 0.6 and `load_factor=True` as 1,
+    where the type hint says float and a scene file refuses "0.5"."""
+    for given in ("0.6", True):
+        with pytest.raises(InputError, match="load factor must be an int or float"):
+            rb.check(_in_code(), load_factor=given)

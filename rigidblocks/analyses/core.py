@@ -29,7 +29,7 @@ from ..results import (
     within,
 )
 from ..scene.model import Scene, friction_label, friction_value
-from ..scene.validate import check_load_factor
+from ..scene.validate import check_load_factor, validate_scene
 from .nonassociative import (
     NA_RTOL,
     check_nonassociative,
@@ -79,7 +79,7 @@ def _load_factor(scene: Scene, value: Any) -> float:
     if value is None:
         lf = scene.effective_load_factor
     else:
-        lf = finite_number(value, "load factor")
+        lf = finite_number(value, "load factor", strict=True)
         if lf < 0:
             raise InputError(f"load factor must be >= 0, got {value!r}")
     check_load_factor(scene, lf)
@@ -262,6 +262,7 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
         admissible iff R <= 1e-9 of the largest force of the relaxation's state (see
         :mod:`rigidblocks.methods.convex`).
     """
+    validate_scene(scene)  # a scene built in code, checked as a file's is
     if is_nonassociative(scene, flow):
         lf = _load_factor(scene, load_factor)
         res = check_nonassociative(scene, friction, lf, method, flow=flow, state=state,
@@ -320,6 +321,7 @@ def min_friction(scene: Scene, load_factor: float | None = None,
         methods: bracketing and bisection on their verdicts to ``rtol`` (at least 1e-9:
         a verdict is only as sharp as its violation tolerance).
     """
+    validate_scene(scene)  # a scene built in code, checked as a file's is
     lf = _load_factor(scene, load_factor)
     na = is_nonassociative(scene, flow)
     rtol = requested_rtol(rtol, FRICTION_RTOL)
@@ -420,6 +422,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         its joints ranked by relative velocity; "blend" the interior-point duals (a mix
         of every optimal mechanism where there are several).
     """
+    validate_scene(scene)  # a scene built in code, checked as a file's is
     if mechanism not in ("vertex", "blend"):
         raise InputError(f'mechanism must be "vertex" or "blend", got {mechanism!r}')
     if not scene.has_live_load:

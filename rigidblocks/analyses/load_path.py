@@ -39,6 +39,7 @@ from ..errors import InputError
 from ..methods import Progress, open_method
 from ..methods.distortion import AT_THRESHOLD, LOADED
 from ..scene.model import Scene, friction_label, friction_value
+from ..scene.validate import validate_scene
 from ..solvers.distortion import TOL, Run
 from .nonassociative import _UNSETTLED, flow_mask
 from .search import BRACKET_ATOL, bisect
@@ -442,6 +443,7 @@ def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: An
     the step and its runs (:class:`~rigidblocks.methods.Progress`), for a progress
     line.
     """
+    validate_scene(scene)  # a scene built in code, checked as a file's is
     f = _check_args(scene, steps, max_load, friction, method, sliding)
     p = _Path(scene, f, flow, sliding, refine, tol, progress)
     status, collapse, bracket = "standing", None, None

@@ -18,7 +18,7 @@ from ..contacts.model import block_groups
 from ..equilibrium import assemble
 from ..errors import InputError
 from ..scene.model import Scene
-from ..scene.validate import DEFAULT_TOL, loads_off_their_blocks
+from ..scene.validate import DEFAULT_TOL, loads_off_their_blocks, validate_scene
 from ..solvers import SOLVERS
 from .base import (
     ADMISSIBLE,
@@ -150,6 +150,9 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
     limit analyses, noted where the scene has such joints); False for the load path,
     where a crack loses it.
     """
+    # a scene built in code is checked as a scene file is (a file's scene again: 35 ms
+    # for the 4,936 blocks of a 70 x 70 wall)
+    validate_scene(scene)
     name, solver = method_name(method, solver)
     if name == "distortion":
         given = [k for k, v in (("solver", solver), ("pyramid", pyramid),

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..errors import InputError
 from .geometry import flat_polygons, polygon_areas_centroids, polygon_diagonals, scene_size
-from .model import Scene
+from .model import Block, Scene, flow_value, friction_value
 
 #: relative tolerance for geometric coincidence (times the scene's size)
 DEFAULT_TOL = 1e-7
@@ -35,6 +35,7 @@ def validate_scene(scene: Scene, tol: float = DEFAULT_TOL) -> None:
     supports, simple polygons or closed polyhedra, no overlaps). That joint overrides
     name touching blocks is checked where the joints are found
     (:func:`rigidblocks.contacts.detect_contacts`)."""
+    _check_fields(scene)
     _check_ids_and_loads(scene)
     check_representable(scene)
     if scene.dimension == 2:
@@ -44,6 +45,84 @@ def validate_scene(scene: Scene, tol: float = DEFAULT_TOL) -> None:
         from .polyhedra import validate_polyhedra
 
         validate_polyhedra(scene)
+
+
+def _real(v: object) -> bool:
+    """A number (not a boolean, not a string)."""
+    return isinstance(v, int | float | np.integer | np.floating) and not isinstance(v, bool)
+
+
+def _check_fields(scene: Scene) -> None:
+    """The values a scene file's reader checks (:mod:`rigidblocks.io.scene_file`), for
+    a scene built in code (``Scene``, ``make_block``): a dimension of 2 or 3, the blocks
+    Blocks with points of that dimension, vectors of that dimension, numbers where
+    numbers go, a friction and a flow that are theirs. (A scene built in code with a
+    2D live body force of three components, a flow "x" or a unit weight of -1 was
+    analysed as given.)"""
+    if not isinstance(scene, Scene):
+        raise InputError(f"expected a Scene (rigidblocks.read_scene(path), or Scene(...) "
+                         f"in code), got {type(scene).__name__}")
+    dim = scene.dimension
+    if not (_real(dim) and dim in (2, 3)):
+        raise InputError(f"must be 2 or 3, got {dim!r}", "dimension")
+    for b in scene.blocks:
+        if not isinstance(b, Block):
+            raise InputError(f"expected a Block (make_block(...)), got {type(b).__name__}",
+                             "blocks")
+        if any(len(v) != dim or not all(_real(c) for c in v) for v in b.vertices):
+            raise InputError(f"every vertex must be {dim} numbers in a {dim}D scene",
+                             f"block {b.id!r}")
+        if b.unit_weight is not None and not (_real(b.unit_weight) and b.unit_weight >= 0):
+            raise InputError(f"its unit_weight must be a number >= 0, got "
+                             f"{b.unit_weight!r}", f"block {b.id!r}")
+    for key, low, strict in (("unit_weight", 0.0, False), ("depth", 0.0, True),
+                             ("load_factor", 0.0, False)):
+        v = getattr(scene, key)
+        if v is not None and not (_real(v) and (v > low if strict else v >= low)):
+            raise InputError(f"must be a number {'>' if strict else '>='} {low:g}, got "
+                             f"{v!r}", key)
+    if scene.live_body_force is not None and (
+            len(scene.live_body_force) != dim
+            or not all(_real(c) for c in scene.live_body_force)):
+        raise InputError(f"must be {dim} numbers in a {dim}D scene, got "
+                         f"{scene.live_body_force!r}", "live_body_force")
+    if scene.friction is not None:
+        _typed_friction(scene.friction, "friction")
+    if scene.flow is not None:
+        _located(flow_value, scene.flow, "flow")
+    for i, ld in enumerate(scene.loads):
+        if len(ld.force) != dim or not all(_real(c) for c in ld.force):
+            raise InputError(f"force must be {dim} numbers", f"load #{i}")
+        if ld.point is not None and (len(ld.point) != dim
+                                     or not all(_real(c) for c in ld.point)):
+            raise InputError(f"point must be {dim} numbers", f"load #{i}")
+    for j in scene.joints:
+        where = f"joint {j.blocks[0]!r}-{j.blocks[1]!r}"
+        if j.friction is not None:
+            _typed_friction(j.friction, where)
+        if j.flow is not None:
+            _located(flow_value, j.flow, where)
+        for key in ("cohesion", "tensile_strength"):
+            v = getattr(j, key)
+            if v is not None and not (_real(v) and v >= 0):
+                raise InputError(f"{key} must be a number >= 0, got {v!r}", where)
+
+
+def _typed_friction(f: object, where: str) -> None:
+    """A friction as a scene holds it: a number, or "infinite" (a string with a number
+    in it is an argument's spelling, not a scene's)."""
+    if isinstance(f, bool) or (isinstance(f, str)
+                               and f.strip().lower() not in ("infinite", "inf")):
+        raise InputError(f'friction must be a number >= 0 or "infinite", got {f!r}', where)
+    _located(friction_value, f, where)
+
+
+def _located(check: object, value: object, where: str) -> None:
+    """``check(value)``, its InputError said at ``where``."""
+    try:
+        check(value)  # type: ignore[operator]
+    except InputError as err:
+        raise err.located(where) from None
 
 
 def _too_large(value: float) -> bool:
