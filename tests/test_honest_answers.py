@@ -1472,3 +1472,33 @@ def test_a_suggested_command_keeps_the_load_factor_given(capsys):
     out = capsys.readouterr().out
     assert f"`rigidblocks friction {path} --load-factor 0.2495975` gives" in out
     assert "0.249597`" not in out
+
+
+def test_the_tilt_angle_is_given_only_where_a_tilt_loads_it_the_same_way():
+    """A 1 x 2 block (40 kN) on its base: the tilt line is atan(lambda*) where its
+    self-weight is all its dead load and its joint purely frictional (slides at f =
+    0.4: 21.8 deg, the tilting table's atan(f)). With 40 kN more on its top (a dead
+    point load the live body force does not multiply) lambda* = 0.8 read "38.66 deg: the
+    ground tilted by this angle loads it the same way", where tilted it slides at
+    atan(0.4); with a cohesion of 10 kN/m^2 at f = 0.1 it read 19.29 deg, where tilted
+    it slides at 20.11 deg (40 sin t = 0.1 x 40 cos t + 10, its joint 1 m long). Those
+    give no tilt angle now."""
+    from rigidblocks.answer import answer_block
+
+    blocks = [{"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+              {"id": "B", "vertices": rect(0, 0, 1, 2)}]
+    top = dict(unit_weight=20.0, live_body_force=[1, 0])
+    plain = rb.max_load_multiplier(make_scene(blocks, friction=0.4, **top))
+    assert plain.load_multiplier == pytest.approx(0.4)
+    assert plain.tilt_angle_deg == pytest.approx(math.degrees(math.atan(0.4)))
+    dead = rb.max_load_multiplier(make_scene(
+        blocks, friction=0.4, loads=[{"block": "B", "force": [0, -40], "point": [0.5, 2]}],
+        **top))
+    assert dead.load_multiplier == pytest.approx(0.8) and dead.tilt_angle_deg is None
+    bonded = rb.max_load_multiplier(make_scene(
+        blocks, friction=0.1, joints=[{"blocks": ["base", "B"], "cohesion": 10.0}], **top))
+    assert bonded.load_multiplier == pytest.approx(0.35) and bonded.tilt_angle_deg is None
+    assert "tilt angle" not in "\n".join(answer_block(
+        make_scene(blocks, friction=0.1, joints=[{"blocks": ["base", "B"],
+                                                 "cohesion": 10.0}], **top),
+        bonded).reasons)

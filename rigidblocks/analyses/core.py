@@ -134,10 +134,17 @@ def _round_off_of_zero(lam: float, accuracy: float | None) -> float:
 
 def tilt_angle_deg(scene: Scene, load_multiplier: float | None) -> float | None:
     """atan(lambda* |a|) in degrees where the live load is a horizontal body force a
-    (in g) and nothing else: the tilt of the ground that loads the structure the same
-    way (a tilting-table test). None otherwise."""
+    (in g) and nothing else, the dead load the self-weight alone and the joints purely
+    frictional: the tilt of the ground that loads the structure the same way (a
+    tilting-table test: the weight turned by theta is cos(theta) times the weight plus
+    tan(theta) times it sideways, and only a law without a strength of its own scales
+    with it). None otherwise: a dead point load is not turned with the weight, and a
+    cohesion or a tensile strength does not shrink with cos(theta) (a block with a
+    cohesion of 10 read 19.29 deg, where tilted it slides at 20.11 deg)."""
     a = scene.live_body_force
-    if load_multiplier is None or a is None or any(ld.is_live for ld in scene.loads):
+    if load_multiplier is None or a is None or scene.loads:
+        return None
+    if any(j.cohesion or j.tensile_strength for j in scene.joints):
         return None
     if abs(a[-1]) > 0:  # a vertical component: not a tilt
         return None
