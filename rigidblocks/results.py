@@ -700,6 +700,17 @@ class LoadResult(Result):
     #: lambda >= 0)
     lower_bound_by: str | None = None
 
+    @property
+    def governing_joints(self) -> list[tuple[str, str]]:
+        """The joints the "governing" line names: the mechanism's moving joints by mode,
+        fastest first (the sliding ones alone were named: none for the segmental arch's
+        four hinges); a method without a mechanism, those at their friction limit in its
+        state."""
+        m = self.mechanism
+        named = self.governing if m is None else \
+            [k for mode, _ in MODE_WORDS for k in m.ranking if m.modes[k] == mode]
+        return [self.joint_name(k) for k in named]
+
     def _answer(self) -> dict[str, Any]:
         out = {"load_multiplier": self.load_multiplier,
                "friction": friction_label(self.friction),
@@ -708,14 +719,8 @@ class LoadResult(Result):
             b = self.load_multiplier_bounds
             out["load_multiplier_bounds"] = None if b is None else list(b)
             out["lower_bound_by"] = self.lower_bound_by
-        # the joints the "governing" line names, as friction's JSON gives them: the
-        # mechanism's moving joints by mode, fastest first (it gave the sliding ones
-        # alone: [] for the segmental arch's four hinges); a method without a mechanism,
-        # those at their friction limit in its state
+        out["governing_joints"] = [list(p) for p in self.governing_joints]
         m = self.mechanism
-        named = self.governing if m is None else \
-            [k for mode, _ in MODE_WORDS for k in m.ranking if m.modes[k] == mode]
-        out["governing_joints"] = [list(self.joint_name(k)) for k in named]
         if m is not None:
             order = m.ranking
             out["mechanism"] = {

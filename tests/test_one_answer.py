@@ -407,3 +407,18 @@ def test_other_mechanisms_are_said_once_and_where_the_vertex_is_off_the_face(tmp
     assert capsys.readouterr().out.count("other collapse mechanisms") == 1
     assert main(["load", ref, "--flow", "non-associative", "--mechanism", "blend"]) == 0
     assert "other collapse mechanisms" not in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("name", ["segmental_arch.json", "arch.json", "reference.json"])
+def test_the_governing_joints_attribute_is_what_the_json_names(name):
+    """`LoadResult.governing_joints` gave the sliding joints alone: [] for the segmental
+    arch's four hinges, where its JSON and the terminal's governing line name them."""
+    from rigidblocks import max_load_multiplier
+
+    res = max_load_multiplier(read_scene(EXAMPLES / name))
+    named = [list(p) for p in res.governing_joints]
+    assert named and named == res.to_dict()["governing_joints"]
+    from rigidblocks.answer import MODE_WORDS
+
+    moving = {mode for mode, _ in MODE_WORDS}
+    assert len(named) == sum(mode in moving for mode in res.mechanism.modes)
