@@ -330,6 +330,25 @@ class Mechanism:
         return tuple(sorted(moving, key=lambda k: -float(self.rates[k])))
 
 
+def check_result(scene: Any, result: Any) -> None:
+    """:class:`InputError` where ``result`` is not the result of an analysis
+    (``check``, ``min_friction``, ``max_load_multiplier``) of ``scene``: a picture or a
+    report of another object said "NO VERDICT: status unknown", and of another scene's
+    result ended in "zip() argument 3 is shorter than arguments 1-2"."""
+    from .errors import InputError
+
+    if result is None:
+        return
+    if not isinstance(result, Result):
+        raise InputError("result: expected the result of check, min_friction or "
+                         f"max_load_multiplier, got {type(result).__name__}")
+    ids = tuple(b.id for b in scene.blocks)
+    if tuple(result.contacts.block_ids) != ids:
+        raise InputError(f"result: the result of a {result.analysis} of another scene "
+                         f"({len(result.contacts.block_ids)} blocks, not this scene's "
+                         f"{len(ids)}, or other ids): analyse this scene again")
+
+
 @dataclass(frozen=True, eq=False)
 class Result:
     """Common part of every analysis result.

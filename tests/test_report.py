@@ -392,3 +392,30 @@ def test_the_report_gives_the_accuracy_and_its_commands_as_code(tmp_path, capsys
     capsys.readouterr()
     assert main(["load", ref, "--method", "distortion"]) == 0
     assert "accuracy   1.6e-03 (bracket [1.19921875, 1.201171875]" in capsys.readouterr().out
+
+
+def test_a_report_of_a_result_it_cannot_show_says_so():
+    """`rb.report(scene, check_result, analysis="load")` gave the check's page without a
+    word; `rb.report(scene, "hello")` a page saying "NO VERDICT: status unknown (the
+    analysis could not decide ...)"; `rb.plot` of another scene's result ended in
+    "zip() argument 3 is shorter than arguments 1-2"; an option the analysis does not
+    take was named as the command line's (--load-factor) to a Python caller."""
+    from rigidblocks.errors import InputError
+
+    scene = rb.read_scene(EXAMPLES / "reference.json")
+    res = rb.check(scene, load_factor=0.2)
+    with pytest.raises(InputError, match="analysis='load' with the result of a check: "
+                       "give one or the other"):
+        rb.report(scene, res, analysis="load")
+    with pytest.raises(InputError, match="result: expected the result of check, "
+                       "min_friction or max_load_multiplier, got str"):
+        rb.report(scene, "hello")
+    other = rb.read_scene(EXAMPLES / "arch.json")
+    for show in (rb.report, rb.plot):
+        with pytest.raises(InputError, match="result: the result of a check of another "
+                           "scene"):
+            show(other, res)
+    with pytest.raises(InputError, match=r"the load analysis takes no load_factor "
+                       r"\(--load-factor\)"):
+        rb.report(scene, analysis="load", load_factor=0.2)
+    assert "ADMISSIBLE" in rb.report(scene, res, analysis="check")

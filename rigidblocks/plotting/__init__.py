@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ..results import check_result
 from ..scene.model import Scene
 from .plot2d import MAX_ARROWS, displaced_polygons, save_figure
 from .plot2d import plot as plot2d
@@ -20,6 +21,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, **kwargs: Any) -> Any
     ``displacement_scale``, ``title``, ``colorbar``) are those of
     :func:`rigidblocks.plotting.plot2d.plot`; returns the matplotlib Axes.
     """
+    check_result(scene, result)
     if scene.dimension == 3:
         from .plot3d import plot as plot3d
 

@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
+from ..results import check_result
 from ..scene.model import Scene
 
 
@@ -55,19 +56,25 @@ class Report(str):
         return p
 
 
+def _registered(name: str) -> Any:
+    """The analysis registered under ``name`` (:func:`rigidblocks.analyses.analysis`)."""
+    from ..analyses import analysis
+
+    return analysis(name)
+
+
 def run_analysis(scene: Scene, analysis: str, **options: Any) -> Any:
     """Run ``analysis`` ("check", "friction" or "load", or the function names) with a
     force state; every option (friction, load_factor, method, solver, ...) goes to the
     analysis function as it is, so an option the analyses add later needs no change
     here. Options an analysis does not take are an error that names them."""
-    from ..analyses import analysis as registered
-
-    info = registered(analysis)
+    info = _registered(analysis)
     opts = {k: v for k, v in options.items() if v is not None}
     for key in ("friction", "load_factor"):
         if key in opts and key not in info.takes:
-            raise InputError(f"the {info.command} analysis takes no "
-                             f"--{key.replace('_', '-')}")
+            # (the API's keyword and the command line's option: it named the option)
+            raise InputError(f"the {info.command} analysis takes no {key} "
+                             f"(--{key.replace('_', '-')})")
     return info.function(scene, **opts)
 
 
@@ -100,6 +107,13 @@ def report(scene: Scene | str | Path, result: Any = None, *, analysis: str | Non
     elif options:
         raise InputError("analysis options (" + ", ".join(sorted(options)) + ") need "
                          "analysis=... and no result")
+    else:
+        check_result(scene, result)
+        if analysis is not None and result is not None \
+                and _registered(analysis).name != result.analysis:
+            # (a check's result with analysis="load" gave the check's page, no word)
+            raise InputError(f"analysis={analysis!r} with the result of a "
+                             f"{result.analysis}: give one or the other")
     page = Report(render(scene, result, title=title))
     if path is not None:
         page.save(path)
