@@ -194,3 +194,21 @@ def test_notebook_runs_in_full(name, tmp_path):
     """Each notebook at its full sizes, as a user runs it: no cell fails (the small mode
     of the default run must not hide a failure of the full one)."""
     text_of(execute(name, tmp_path, small=False))
+
+
+@pytest.mark.parametrize("name", ["01_quick_start.ipynb", "02_seed_examples.ipynb",
+                                  "04_methods_compared.ipynb"])
+def test_a_notebook_run_outside_the_checkout_says_where_to_run_it(name, tmp_path,
+                                                                  monkeypatch):
+    """A notebook copied out of the checkout and run there stopped in its first cell on
+    a bare StopIteration (its search for the repository's folders found none)."""
+    nb = json.loads((Path(__file__).resolve().parents[1] / "notebooks" / name).read_text())
+    (cell,) = [c for c in nb["cells"] if c["cell_type"] == "code"
+               and "ROOT = next(" in "".join(c["source"])]
+    code = "\n".join(ln for ln in "".join(cell["source"]).splitlines()
+                     if not ln.lstrip().startswith("%"))
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(FileNotFoundError, match="run this notebook inside the rigidblocks "
+                       "checkout: it reads its (examples|benchmarks)/ folder, found in no "
+                       "folder above"):
+        exec(compile(code, name, "exec"), {})
