@@ -239,3 +239,17 @@ def test_an_upper_bound_near_the_thickest_the_family_builds_is_not_told_to_rise(
     err = capsys.readouterr().err
     assert "cannot be built at thickness=2.85" in err and "raise the upper bound" not in err
     assert "or a smaller load factor" in err
+
+
+def test_an_unknown_parameter_is_named_before_any_bound():
+    """`min_thickness("arch", voussoirs=15, bogus=3)` said "arch cannot be built at
+    thickness=1 (...); give a smaller upper bound (hi, --hi)", advice no bound mends; a
+    misspelt ``param`` the same. Both name the parameter and the family's parameters."""
+    for kw, bad in ((dict(voussoirs=15, bogus=3), "bogus"),
+                    (dict(param="thick", voussoirs=15), "thick")):
+        with pytest.raises(InputError) as err:
+            min_thickness("arch", **kw)
+        msg = str(err.value)
+        assert msg.startswith(f"min_thickness: arch: unknown parameter {bad!r} "
+                              "(parameters: arc_points, depth, friction,")
+        assert "upper bound" not in msg
