@@ -221,7 +221,7 @@ def test_legend_and_labels_keep_off_the_axes(tmp_path):
     lb = leg.get_window_extent(r)
     assert not lb.overlaps(ax.get_window_extent(r))
     assert not lb.overlaps(ax.xaxis.label.get_window_extent(r))
-    labels = [t.get_text() for t in leg.get_texts()]
+    labels = [t.get_text().replace("\n", " ") for t in leg.get_texts()]  # (wrapped)
     for want in ("thrust line", "governing joint", "joint force on its lower (or outer) "
                  "block", "dead load"):
         assert any(want in t for t in labels), (want, labels)
@@ -503,3 +503,22 @@ def test_a_bond_at_its_tensile_strength_is_drawn_as_used():
                                 flow="non-associative")
     title = rb.plot(read_scene(EXAMPLES / "reference.json"), na).get_title()
     assert title.replace("\n", " ").endswith("at f = 0.6, sliding without dilatancy"), title
+
+
+def test_a_picture_saved_as_it_is_holds_its_title_and_legend(tmp_path):
+    """`rb.plot(...)` then `ax.figure.savefig(...)` without bbox_inches: the legend's
+    row of three ran past both edges of the 8 in figure ("ck", "pport", "joint force on
+    its lower (or outer) block (key arrow 20 force units, be"). Long labels now wrap,
+    and the title and the legend lie within the figure."""
+    sc = make_scene([{"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+                     {"id": "B", "vertices": rect(0, 0, 1, 2)}],
+                    unit_weight=20.0, friction=0.4, live_body_force=[1, 0])
+    ax = rb.plot(sc, rb.check(sc, load_factor=0.2))
+    fig = ax.figure
+    fig.savefig(tmp_path / "p.png")
+    r = fig.canvas.get_renderer()
+    page = fig.bbox
+    for art in (*fig.legends, ax.title):
+        box = art.get_window_extent(r)
+        assert page.x0 <= box.x0 and box.x1 <= page.x1 and box.y1 <= page.y1, art
+    plt.close(fig)

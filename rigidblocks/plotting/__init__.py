@@ -19,7 +19,10 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, **kwargs: Any) -> Any
 
     Keyword arguments (``ids``, ``max_arrows``, ``force_scale``,
     ``displacement_scale``, ``title``, ``colorbar``) are those of
-    :func:`rigidblocks.plotting.plot2d.plot`; returns the matplotlib Axes.
+    :func:`rigidblocks.plotting.plot2d.plot`; returns the matplotlib Axes. Its own
+    figure (``ax`` None) holds the title and the legend; in a figure of one's own,
+    give it ``layout="constrained"`` or save it with ``bbox_inches="tight"``, as
+    :func:`~rigidblocks.plotting.plot2d.save_figure` does, for the legend below it.
     """
     check_result(scene, result)
     if scene.dimension == 3:

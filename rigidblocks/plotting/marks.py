@@ -13,6 +13,8 @@ import numpy as np
 from ..scene.geometry import scene_size, scene_weights
 from ..scene.model import Scene
 
+#: the legend's font size
+LEGEND_POINTS = 8.0
 DEAD_COLOUR = "#333333"
 LIVE_COLOUR = "#c2185b"
 MOVING_COLOUR = "#e39a5b"
@@ -209,6 +211,8 @@ def new_axes(dimension: int, n_blocks: int) -> Any:
 def place_legend(ax: Any, extra: list[Any] | None = None) -> Any:
     """One legend entry per mark, below the figure when it has constrained layout (never
     over the axes or their labels), otherwise below the axes."""
+    import textwrap
+
     from matplotlib.layout_engine import ConstrainedLayoutEngine
 
     handles, labels = ax.get_legend_handles_labels()
@@ -218,7 +222,13 @@ def place_legend(ax: Any, extra: list[Any] | None = None) -> Any:
     if not handles:
         return None
     fig = ax.figure
+    # columns as wide as the figure holds, long labels on two lines or more (a row of
+    # three ran past an 8 in figure's edges: "joint force on its lower (or outer)
+    # block (key arrow 20 force units, be")
     ncol = min(len(handles), 3)
+    chars = int(float(fig.get_size_inches()[0]) * 72 / (0.6 * LEGEND_POINTS) / ncol) - 6
+    labels = ["\n".join(textwrap.wrap(t, max(chars, 20), break_on_hyphens=False)) or t
+              for t in labels]
     # the figure's own axes, colour bars aside: more than one is a user's figure, where
     # one figure legend per plot would overlap the others (and each plot removed them)
     alone = len([a for a in fig.axes if not hasattr(a, "_colorbar")]) == 1
@@ -226,11 +236,13 @@ def place_legend(ax: Any, extra: list[Any] | None = None) -> Any:
         for old in list(fig.legends):
             if old.get_gid() == "rb-legend":  # a plot's before (not the user's)
                 old.remove()
-        leg = fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=8)
+        leg = fig.legend(handles, labels, loc="outside lower center", ncol=ncol,
+                         fontsize=LEGEND_POINTS)
     else:  # below its own axes: a colour bar takes their right (notebook 01's overlapped)
         # (its gap in points, under the tick labels and the x label whatever the height)
         leg = ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0),
-                        ncol=ncol if alone else 1, borderaxespad=4.5, fontsize=8)
+                        ncol=ncol if alone else 1, borderaxespad=4.5,
+                        fontsize=LEGEND_POINTS)
     leg.set_gid("rb-legend")
     return leg
 

@@ -80,6 +80,8 @@ MANY_MARKS = 40
 #: the largest mechanism displacement, as a fraction of the scene's size
 DISPLACEMENT_FRACTION = 0.1
 
+#: the title's font size (matplotlib's default for axes titles: "large", 12 points)
+TITLE_POINTS = 12.0
 FREE_COLOUR = "#d9c7a7"
 SUPPORT_COLOUR = "#7f7f7f"
 #: statuses that are verdicts; any other (undecided, failure, ...) is titled as none
@@ -138,7 +140,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     allpts = np.concatenate(polys)
     lo, hi = allpts.min(axis=0), allpts.max(axis=0)
 
-    title_text = _title(scene, result)
+    title_text = _title(scene, result, ax)
     state = getattr(result, "state", None)
     extra: list[Any] = []
     if loads:
@@ -170,7 +172,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     return ax
 
 
-def _title(scene: Scene, result: Any) -> str:
+def _title(scene: Scene, result: Any, ax: Any = None) -> str:
     """The scene's name and the answer's verdict and number
     (:meth:`rigidblocks.answer.AnswerBlock.title`, as the CLI and the report say it),
     and where the mechanism drawn is off the optimal face, that it is no collapse
@@ -189,7 +191,13 @@ def _title(scene: Scene, result: Any) -> str:
         txt += "; the mechanism drawn is the nearest that can be drawn, not a collapse " \
             "mechanism at this multiplier"
     txt = txt.replace("`", "")  # (a terminal's command quotes, literal in a title)
-    txt = "\n".join(textwrap.wrap(txt, 90, break_on_hyphens=False))
+    # as wide as the figure takes at the title's size (a 5 x 4 in figure of one's own
+    # cut it at both sides; about 0.55 em a character)
+    width = 90
+    if ax is not None:
+        inches = float(ax.figure.get_size_inches()[0])
+        width = max(30, min(90, int(inches * 72 / (0.6 * TITLE_POINTS))))
+    txt = "\n".join(textwrap.wrap(txt, width, break_on_hyphens=False))
     return f"{name}\n{txt}" if (name and txt) else (name or txt)
 
 

@@ -210,7 +210,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     unit = scene.length_unit
     for name, setter in (("x", ax.set_xlabel), ("y", ax.set_ylabel), ("z", ax.set_zlabel)):
         setter(f"{name} [{unit}]" if unit else name)
-    ax.set_title(title if title is not None else _title(scene, result))
+    ax.set_title(title if title is not None else _title(scene, result, ax))
     return ax
 
 
