@@ -220,7 +220,7 @@ def test_numbers_given_by_the_user_are_checked_by_one_helper():
     from rigidblocks.generators.walls import running_bond_wall
 
     scene = rb.read_scene(Path(__file__).parents[1] / "examples" / "reference.json")
-    for value, words in (("x", "load factor must be a number, got 'x'"),
+    for value, words in (("x", "load factor must be an int or float, got 'x'"),
                          (float("inf"), "load factor must be a finite number, got inf")):
         with pytest.raises(InputError, match=words):
             rb.check(scene, load_factor=value)
