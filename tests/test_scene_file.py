@@ -431,6 +431,15 @@ def _in_code(**changes):
     ({"dimension": 4}, "dimension: must be 2 or 3, got 4"),
     ({"loads": (rb.Load("Z", (0.0, -1.0)),)}, "load #0: unknown block 'Z'"),
     ({"blocks": ()}, 'blocks: no blocks: the scene\'s "blocks" list is empty'),
+    # (live="false" was live, lambda* 2.67 for 2.0; support="no" made a support; a 2D
+    # scene's 3D moment ended in a numpy broadcast error)
+    ({"loads": (rb.Load("B", (0.0, -10.0), live="false"),)},
+     "load #0: live must be True, False or None, got 'false'"),
+    ({"blocks": "support no"}, "block 'B': support must be True or False, got 'no'"),
+    ({"loads": (rb.Load("B", (1.0, 0.0), moment=(0, 0, 1)),)},
+     "load #0: moment must be a number in a 2D scene, got (0, 0, 1)"),
+    ({"joints": (rb.JointOverride("Bbase"),)},
+     "joints: a joint override names two block ids, got 'Bbase'"),
 ])
 def test_a_scene_built_in_code_is_checked_as_a_files_is(changes, said):
     """The analyses took a scene built in code as given: two overlapping blocks
@@ -448,6 +457,9 @@ def test_a_scene_built_in_code_is_checked_as_a_files_is(changes, said):
     elif changes.get("blocks") == "twice":
         base, b = _in_code().blocks
         changes = {"blocks": (base, b, b)}
+    elif changes.get("blocks") == "support no":
+        base, b = _in_code().blocks
+        changes = {"blocks": (base, make_block("B", b.vertices, support="no"))}
     scene = _in_code(**changes)
     for analysis in (rb.check, rb.min_friction, rb.max_load_multiplier, rb.load_path):
         with pytest.raises(InputError) as err:
@@ -471,3 +483,13 @@ def test_a_load_factor_is_a_number_not_its_spelling():
     for given in ("0.6", True):
         with pytest.raises(InputError, match="load factor must be an int or float"):
             rb.check(_in_code(), load_factor=given)
+
+
+def test_make_block_refuses_points_of_unequal_length():
+    """A point of three numbers among 2D ones ended in numpy's "setting an array
+    element with a sequence"."""
+    from rigidblocks import make_block
+
+    with pytest.raises(InputError, match="block 'B': vertices must be a list of points "
+                       "of equal length, each of numbers"):
+        make_block("B", [[0, 0], [1, 0, 0], [1, 2], [0, 2]])

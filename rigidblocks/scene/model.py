@@ -248,8 +248,16 @@ class Scene:
 def make_block(block_id: str, vertices: Sequence[Sequence[float]], *, support: bool = False,
                unit_weight: float | None = None,
                faces: Sequence[Sequence[int]] | None = None) -> Block:
-    """Convenience constructor that accepts lists or arrays."""
-    verts = tuple(tuple(float(c) for c in v) for v in np.asarray(vertices, dtype=float))
+    """Convenience constructor that accepts lists or arrays of numbers."""
+    try:
+        pts = np.asarray(vertices, dtype=float)
+    except (TypeError, ValueError):  # (numpy's "setting an array element with a sequence")
+        raise InputError("vertices must be a list of points of equal length, each of "
+                         "numbers", f"block {block_id!r}") from None
+    if pts.ndim != 2:
+        raise InputError("vertices must be a list of points of equal length, each of "
+                         "numbers", f"block {block_id!r}")
+    verts = tuple(tuple(float(c) for c in v) for v in pts)
     fcs = None if faces is None else tuple(tuple(int(i) for i in f) for f in faces)
     return Block(block_id, verts, fcs, support, unit_weight)
 

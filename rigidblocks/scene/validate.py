@@ -17,7 +17,7 @@ import numpy as np
 
 from ..errors import InputError
 from .geometry import flat_polygons, polygon_areas_centroids, polygon_diagonals, scene_size
-from .model import Block, Scene, flow_value, friction_value
+from .model import Block, Load, Scene, flow_value, friction_value
 
 #: relative tolerance for geometric coincidence (times the scene's size)
 DEFAULT_TOL = 1e-7
@@ -69,6 +69,12 @@ def _check_fields(scene: Scene) -> None:
         if not isinstance(b, Block):
             raise InputError(f"expected a Block (make_block(...)), got {type(b).__name__}",
                              "blocks")
+        if not isinstance(b.id, str):
+            raise InputError(f"a block's id is a string, got {b.id!r}", "blocks")
+        if not isinstance(b.support, bool):
+            # (support="no" made a support, as any non-empty string is true)
+            raise InputError(f"support must be True or False, got {b.support!r}",
+                             f"block {b.id!r}")
         if any(len(v) != dim or not all(_real(c) for c in v) for v in b.vertices):
             raise InputError(f"every vertex must be {dim} numbers in a {dim}D scene",
                              f"block {b.id!r}")
@@ -91,12 +97,12 @@ def _check_fields(scene: Scene) -> None:
     if scene.flow is not None:
         _located(flow_value, scene.flow, "flow")
     for i, ld in enumerate(scene.loads):
-        if len(ld.force) != dim or not all(_real(c) for c in ld.force):
-            raise InputError(f"force must be {dim} numbers", f"load #{i}")
-        if ld.point is not None and (len(ld.point) != dim
-                                     or not all(_real(c) for c in ld.point)):
-            raise InputError(f"point must be {dim} numbers", f"load #{i}")
+        _check_load(ld, dim, f"load #{i}")
     for j in scene.joints:
+        if not (isinstance(j.blocks, tuple | list) and len(j.blocks) == 2
+                and all(isinstance(x, str) for x in j.blocks)):
+            raise InputError(f"a joint override names two block ids, got {j.blocks!r}",
+                             "joints")
         where = f"joint {j.blocks[0]!r}-{j.blocks[1]!r}"
         if j.friction is not None:
             _typed_friction(j.friction, where)
@@ -106,6 +112,30 @@ def _check_fields(scene: Scene) -> None:
             v = getattr(j, key)
             if v is not None and not (_real(v) and v >= 0):
                 raise InputError(f"{key} must be a number >= 0, got {v!r}", where)
+
+
+def _check_load(ld: object, dim: int, where: str) -> None:
+    """A load as a scene file's reader takes it: a force and a point of the scene's
+    dimension, a moment a number (2D) or 3 numbers (3D), ``live`` True, False or None
+    (live="false" was live: a non-empty string is true)."""
+    if not isinstance(ld, Load):
+        raise InputError(f"expected a Load, got {type(ld).__name__}", where)
+    if not isinstance(ld.block, str):
+        raise InputError(f"block is a block's id, got {ld.block!r}", where)
+    if ld.live is not None and not isinstance(ld.live, bool):
+        raise InputError(f"live must be True, False or None, got {ld.live!r}", where)
+    for key in ("force", "point"):
+        v = getattr(ld, key)
+        if (v is not None or key == "force") and not (
+                isinstance(v, tuple | list | np.ndarray) and len(v) == dim
+                and all(_real(c) for c in v)):
+            raise InputError(f"{key} must be {dim} numbers, got {v!r}", where)
+    m = ld.moment
+    if m is not None and not (_real(m) if dim == 2 else (
+            isinstance(m, tuple | list | np.ndarray) and len(m) == 3
+            and all(_real(c) for c in m))):
+        raise InputError(f"moment must be {'a number' if dim == 2 else '3 numbers'} in a "
+                         f"{dim}D scene, got {m!r}", where)
 
 
 def _typed_friction(f: object, where: str) -> None:
