@@ -342,11 +342,19 @@ def check_result(scene: Any, result: Any) -> None:
     if not isinstance(result, Result):
         raise InputError("result: expected the result of check, min_friction or "
                          f"max_load_multiplier, got {type(result).__name__}")
+    from .scene.model import geometry_key
+
     ids = tuple(b.id for b in scene.blocks)
-    if tuple(result.contacts.block_ids) != ids:
+    other = result.geometry is not None and result.geometry != geometry_key(scene)
+    theirs = tuple(result.contacts.block_ids)
+    if theirs != ids or other:
+        # (a block 3 x 1 drawn with the result of one 1 x 2 of the same id: hinging at
+        # 0.5 at its middle, where it slides at 0.6)
+        how = ("its blocks' ids are this scene's, their corners are not" if theirs == ids
+               else f"{len(theirs)} blocks, this scene has {len(ids)}"
+               if len(theirs) != len(ids) else "other block ids")
         raise InputError(f"result: the result of a {result.analysis} of another scene "
-                         f"({len(result.contacts.block_ids)} blocks, not this scene's "
-                         f"{len(ids)}, or other ids): analyse this scene again")
+                         f"({how}): analyse this scene again")
 
 
 @dataclass(frozen=True, eq=False)
@@ -397,6 +405,9 @@ class Result:
     #: problem and were solved again by another (the notes say so too)
     answered_by: tuple[str, ...] = ()
     rejected: tuple[str, ...] = ()
+    #: the analysed scene's blocks (:func:`~rigidblocks.scene.model.geometry_key`), for
+    #: the pictures and reports to tell another scene's result (None: not recorded)
+    geometry: str | None = field(default=None, repr=False, compare=False)
     #: why a non-associative status is what it is, where its notes give it in words and
     #: the answer's verdict depends on it: BELOW_DEAD_LOAD ("unstable" `load`: the limit
     #: fixed point from X0 is below 0), DIRECT_STANDS ("inadmissible" `check`: the state

@@ -415,6 +415,18 @@ def test_a_report_of_a_result_it_cannot_show_says_so():
         with pytest.raises(InputError, match="result: the result of a check of another "
                            "scene"):
             show(other, res)
+    # the same ids, another block: a 3 x 1 block drawn with the result of a 1 x 2 one
+    # (hinging at its middle at 0.5, where it slides at 0.6)
+    one = make_scene([{"id": "base", "vertices": rect(-5, -1, 10, 1), "support": True},
+                      {"id": "B", "vertices": rect(0, 0, 1, 2)}],
+                     unit_weight=20.0, friction=0.6, live_body_force=[1, 0])
+    wide = make_scene([{"id": "base", "vertices": rect(-5, -1, 10, 1), "support": True},
+                       {"id": "B", "vertices": rect(0, 0, 3, 1)}],
+                      unit_weight=20.0, friction=0.6, live_body_force=[1, 0])
+    for show in (rb.report, rb.plot):
+        with pytest.raises(InputError, match=r"another scene \(its blocks' ids are this "
+                           r"scene's, their corners are not\)"):
+            show(wide, rb.max_load_multiplier(one))
     with pytest.raises(InputError, match=r"the load analysis takes no load_factor "
                        r"\(--load-factor\)"):
         rb.report(scene, analysis="load", load_factor=0.2)

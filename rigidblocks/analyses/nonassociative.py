@@ -102,7 +102,14 @@ from ..results import (
     fmt_safe,
     relative_width,
 )
-from ..scene.model import NON_ASSOCIATIVE, Scene, flow_value, friction_label, friction_value
+from ..scene.model import (
+    NON_ASSOCIATIVE,
+    Scene,
+    flow_value,
+    friction_label,
+    friction_value,
+    geometry_key,
+)
 from ..solvers import OPTIMAL
 from .na_limit import (
     CARRY_TOL,
@@ -570,6 +577,7 @@ def _fields(na: NonAssociative, analysis: str, status: str, friction: Any,
     return dict(analysis=analysis, status=status, friction=friction_label(friction),
                 load_factor=load_factor, contacts=na.contacts, solver=na.solver,
                 n_solves=na.n_solves, solve_time=na.solve_time, iterations=na.iterations,
+                geometry=geometry_key(na.scene),
                 units=(na.scene.length_unit, na.scene.force_unit), notes=tuple(notes),
                 timings=dict(na.timings.wall), cpu_timings=dict(na.timings.cpu),
                 flow=NON_ASSOCIATIVE, converged=converged, history=history,

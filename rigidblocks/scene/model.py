@@ -262,6 +262,18 @@ def make_block(block_id: str, vertices: Sequence[Sequence[float]], *, support: b
     return Block(block_id, verts, fcs, support, unit_weight)
 
 
+def geometry_key(scene: Scene) -> str:
+    """A digest of the scene's blocks (ids, supports, corners): equal for the same
+    blocks, and different where a block was moved, reshaped or renamed."""
+    import hashlib
+
+    h = hashlib.sha1(str(scene.dimension).encode())
+    for b in scene.blocks:
+        h.update(f"{b.id}\0{b.support}\0".encode())
+        h.update(np.asarray(b.vertices, dtype=float).tobytes())
+    return h.hexdigest()
+
+
 def block_boxes(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
     """(n, d) lowest and highest corners of every block's bounding box, in one pass."""
     starts = np.cumsum([0] + [len(b.vertices) for b in scene.blocks[:-1]])
