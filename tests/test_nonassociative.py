@@ -1063,3 +1063,18 @@ def test_a_distortion_failure_without_dilatancy_is_a_failure(tmp_path, capsys):
         assert code == 1, (analysis, out)
         assert "verdict    NO VERDICT: FAILURE" in out
         assert "A C^-1 A^T is singular or ill-conditioned" in out
+
+
+@pytest.mark.parametrize("name", ["arch.json", "reference_self_weight.json"])
+def test_the_json_why_is_the_terminals_why_lines(name, capsys):
+    """docs/scene-format.md: `why` is the terminal's why lines. Without dilatancy the
+    JSON had one more, the starts' spread ("non-associative collapse states: from the
+    elastic state X0: ..."), which the terminal gives on its starts line alone."""
+    path = str(EXAMPLES / name)
+    args = ["load", path, "--flow", "non-associative"]
+    assert main(args) == 0
+    out = capsys.readouterr().out.splitlines()
+    why = [ln[len("why        "):] for ln in out if ln.startswith("why ")]
+    assert any(ln.startswith("starts ") for ln in out)
+    assert main([*args, "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["why"] == why

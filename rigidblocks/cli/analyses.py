@@ -121,7 +121,9 @@ def run(args: argparse.Namespace) -> int:
         doc = res.to_dict(joints=args.joints == "-")
         # the terminal's "why" lines: its notes' reasons and what the answer reads off
         # the result (a check's friction at its limit was in neither)
-        doc["why"] = list(answer_block(scene, res).reasons)
+        # (the starts' spread, which the terminal gives on its starts line, was a why
+        # entry too)
+        doc["why"] = list(_answer(scene, res)[0].reasons)
         if safe is not None:
             doc["safe_multiplier"] = safe
         print(json.dumps(_jsonable(doc)))
@@ -273,6 +275,17 @@ def _jsonable(v: Any) -> Any:
     return v
 
 
+def _answer(scene, res) -> tuple[Any, list[str]]:
+    """The answer block the terminal prints and its flow lines: the spread of the
+    starts said once, on its own line, not among the why lines too."""
+    block = answer_block(scene, res)
+    flow = flow_lines(res) if res.flow != "associative" else []
+    if any(line.startswith("starts ") for line in flow):  # the spread note, once
+        block = replace(block, reasons=tuple(r for r in block.reasons
+                                             if not r.startswith(SPREAD_NOTE)))
+    return block, flow
+
+
 def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
     """The answer in words (:func:`rigidblocks.answer.answer_block`, as the HTML report
     and the pictures give it); ``joints``: with the joint table; ``verbose``: with the
@@ -281,11 +294,7 @@ def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
     lines = [f"scene      {scene.name or scene.source}",
              f"blocks     {len(scene.blocks)} ({supports}), "
              f"joints {res.contacts.n_joints}"]
-    block = answer_block(scene, res)
-    flow = flow_lines(res) if res.flow != "associative" else []
-    if any(line.startswith("starts ") for line in flow):  # the spread note, once
-        block = replace(block, reasons=tuple(r for r in block.reasons
-                                             if not r.startswith(SPREAD_NOTE)))
+    block, flow = _answer(scene, res)
     lines += block.lines(verbose)
     method = method_text(res)
     lines += [f"method     {method}"] if method else []
