@@ -1921,7 +1921,7 @@ def _across_f_star(s: Any, lf: float, trials: list[dict[str, Any]]) -> str:
                if math.isfinite(at.value) else
                "loaded from X0 it does not collapse: no multiplier of the live load makes "
                "the capped problem collapse")
-    return f"at f = {s.good!r} {carried}; at f = {s.bad!r} {short}"
+    return f"at f = {s.good:.10g} {carried}; at f = {s.bad:.10g} {short}"
 
 
 def _flat_below(trials: list[dict[str, Any]], found: bool = True) -> list[str]:
