@@ -201,12 +201,15 @@ def test_notebook_runs_in_full(name, tmp_path):
 def test_a_notebook_run_outside_the_checkout_says_where_to_run_it(name, tmp_path,
                                                                   monkeypatch):
     """A notebook copied out of the checkout and run there stopped in its first cell on
-    a bare StopIteration (its search for the repository's folders found none)."""
+    a bare StopIteration (its search for the repository's folders found none); below a
+    folder with an empty examples/ it took that folder for the checkout."""
     nb = json.loads((Path(__file__).resolve().parents[1] / "notebooks" / name).read_text())
     (cell,) = [c for c in nb["cells"] if c["cell_type"] == "code"
                and "ROOT = next(" in "".join(c["source"])]
     code = "\n".join(ln for ln in "".join(cell["source"]).splitlines()
                      if not ln.lstrip().startswith("%"))
+    (tmp_path / "examples").mkdir()
+    (tmp_path / "benchmarks").mkdir()
     monkeypatch.chdir(tmp_path)
     with pytest.raises(FileNotFoundError, match="run this notebook inside the rigidblocks "
                        "checkout: it reads its (examples|benchmarks)/ folder, found in no "
