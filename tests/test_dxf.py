@@ -390,8 +390,21 @@ def test_import_doubts_a_declared_unit_that_makes_blocks_metres_across(tmp_path,
            "(64.03 x 41.91 m))" in said.out
     assert ("warning: the blocks are 250 in across (the median), 6.35 m: if the drawing "
             "is in another unit, give it with --length-unit (e.g. mm)") in said.err
-    assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", "mm"]) == 0
-    assert "across" not in capsys.readouterr().err  # 250 mm blocks
+    assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", "mm",
+                 "--unit-weight", "25e-9"]) == 0
+    said = capsys.readouterr()
+    assert "across" not in said.err  # 250 mm blocks
+    # the span in the unit given too (it was said only for a declared one), and a depth
+    # example in that unit (it read "--depth 300 for 300 m" in metres)
+    assert "lengths in mm, as given (the drawing spans 2521 x 1650 mm (2.521 x 1.65 m))" \
+        in said.out
+    assert "e.g. import-dxf --depth 300 for 300 mm)" in said.err
+    assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", "m",
+                 "--unit-weight", "25"]) == 0
+    err = capsys.readouterr().err
+    assert "e.g. import-dxf --depth 0.3 for 0.3 m)" in err
+    # blocks of 250 m said once in metres (it read "250 m across (the median), 250 m")
+    assert "the blocks are 250 m across (the median): if the drawing" in err
 
 
 def test_export_of_a_3d_scene_is_refused_before_its_analysis(tmp_path, capsys, monkeypatch):

@@ -95,28 +95,29 @@ def run(args: argparse.Namespace) -> int:
         write_scene(scene, args.output)
         print(rep.summary())
         from ..io.dxf import (
-            NO_DEPTH_NOTE,
             NO_FRICTION_NOTE,
             NO_UNIT_WEIGHT_NOTE,
+            depth_note,
             span_text,
             unit_doubt,
         )
 
         if rep.unit_conflict:
             print(f"rigidblocks: warning: {rep.unit_conflict}", file=sys.stderr)
-        elif rep.declared_unit and not args.length_unit:
+        if rep.declared_unit and not args.length_unit:
             print(f"lengths in {rep.declared_unit}, as the drawing declares ($INSUNITS; "
                   f"it spans {span_text(scene)}): give the unit weight per "
                   f"{rep.declared_unit}^3 and the depth in {rep.declared_unit}")
+        elif args.length_unit:  # (the span was said only for a declared unit)
+            print(f"lengths in {scene.length_unit}, as given (the drawing spans "
+                  f"{span_text(scene)})")
         doubt = unit_doubt(scene)
         if doubt:
             print(f"rigidblocks: warning: {doubt}", file=sys.stderr)
         if scene.unit_weight is None:
             print(f"rigidblocks: warning: {NO_UNIT_WEIGHT_NOTE}", file=sys.stderr)
         elif scene.depth is None:
-            unit = scene.length_unit or "length unit"
-            print(f"rigidblocks: warning: {NO_DEPTH_NOTE.format(unit=unit)}",
-                  file=sys.stderr)
+            print(f"rigidblocks: warning: {depth_note(scene)}", file=sys.stderr)
         if scene.friction is None:
             print(f"rigidblocks: warning: {NO_FRICTION_NOTE}", file=sys.stderr)
         print(f"wrote {args.output}")

@@ -44,6 +44,7 @@ from __future__ import annotations
 
 import json
 import logging
+import math
 import os
 from typing import Any
 
@@ -80,7 +81,20 @@ NO_FRICTION_NOTE = ("imported without a friction: the joints have infinite frict
 #: loads' reach scale with it; a multiplier of their own weights does not)
 NO_DEPTH_NOTE = ("imported without a depth: the blocks are 1 {unit} deep out of plane, "
                  "their weights per {unit} of wall (give the depth, e.g. import-dxf "
-                 "--depth 300 for 300 {unit})")
+                 "--depth {example} for {example} {unit})")
+
+
+def depth_note(scene: Scene) -> str:
+    """NO_DEPTH_NOTE in the scene's length unit, its example a wall 0.3 m deep in that
+    unit (it read "--depth 300 for 300 m" for a drawing in metres)."""
+    unit = scene.length_unit or "length unit"
+    metres = METRES.get(unit.strip().lower())
+    if metres:  # two figures: 300 mm, 30 cm, 0.3 m, 12 in, 0.98 ft
+        x = 0.3 / metres
+        example = f"{round(x, 1 - math.floor(math.log10(x))):g}"
+    else:
+        example = "300"
+    return NO_DEPTH_NOTE.format(unit=unit, example=example)
 #: the note a scene read without a unit weight carries
 NO_UNIT_WEIGHT_NOTE = ("imported from a drawing without a unit weight: the blocks weigh "
                        "nothing, only the loads act (give the unit weight, e.g. "
@@ -196,9 +210,10 @@ def unit_doubt(scene: Scene) -> str:
     low, high = BLOCK_SIZES
     if low <= size * metres <= high:
         return ""
-    return (f"the blocks are {size:.4g} {scene.length_unit} across (the median), "
-            f"{size * metres:.3g} m: if the drawing is in another unit, give it with "
-            "--length-unit (e.g. mm)")
+    # (in metres too where the unit is another: "250 m across (the median), 250 m")
+    inm = f", {size * metres:.3g} m" if metres != 1.0 else ""
+    return (f"the blocks are {size:.4g} {scene.length_unit} across (the median){inm}: if "
+            "the drawing is in another unit, give it with --length-unit (e.g. mm)")
 
 
 def _declared_units(doc: Any, units: tuple[str, str] | str | None, rep: DxfReport,
