@@ -431,3 +431,14 @@ def test_a_report_of_a_result_it_cannot_show_says_so():
                        r"\(--load-factor\)"):
         rb.report(scene, analysis="load", load_factor=0.2)
     assert "ADMISSIBLE" in rb.report(scene, res, analysis="check")
+
+
+def test_the_joint_table_of_a_check_that_fails_names_its_breaches():
+    """The reference model at f = 0.3, NOT ADMISSIBLE, each joint breached by 5 N (the
+    answer's governing line and the picture name them): the report's table read "-" for
+    every joint, none highlighted, under "governing joints are highlighted"."""
+    scene = rb.read_scene(EXAMPLES / "reference.json")
+    res = rb.check(scene, friction=0.3)
+    table = content.joint_table(res)
+    assert table["state_label"] == "in the state of least breach"
+    assert table["state"] == ["breached by 5 N"] * 5 and all(table["governing"])

@@ -236,11 +236,21 @@ def joint_table(result: Any) -> dict[str, Any]:
         moving = {mode for mode, _ in MODE_WORDS}
         gov |= {k for k, mode in enumerate(mech.modes) if mode in moving}
     rows = result.joint_table()
-    out: dict[str, Any] = {"n": c.n_joints, "joint": names,
-                           "state": joint_states(result),
-                           # after a collapse the column holds the mechanism's modes
-                           "state_label": "in the mechanism" if mech is not None and
-                           len(mech.modes) == c.n_joints else "state",
+    states = joint_states(result)
+    label = ("in the mechanism" if mech is not None and len(mech.modes) == c.n_joints
+             else "state")  # after a collapse the column holds the mechanism's modes
+    breaches = tuple(getattr(result, "breaches", ()) or ())
+    if breaches and not rows:
+        # a NOT ADMISSIBLE check: the joints its answer names as breached, as its
+        # picture marks them (the table read "-" for every joint, none highlighted)
+        unit = (getattr(result, "units", ("", "")) or ("", ""))[1]
+        for k, v in breaches:
+            states[int(k)] = f"breached by {v:.3g} {unit}".rstrip()
+        gov |= {int(k) for k, _ in breaches}
+        label = ("in the state reached from X0" if without_dilatancy(result)
+                 else "in the state of least breach")
+    out: dict[str, Any] = {"n": c.n_joints, "joint": names, "state": states,
+                           "state_label": label,
                            "governing": [k in gov for k in range(c.n_joints)],
                            "has_forces": bool(rows)}
     if not rows:
