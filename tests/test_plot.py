@@ -522,3 +522,17 @@ def test_a_picture_saved_as_it_is_holds_its_title_and_legend(tmp_path):
         box = art.get_window_extent(r)
         assert page.x0 <= box.x0 and box.x1 <= page.x1 and box.y1 <= page.y1, art
     plt.close(fig)
+
+
+def test_a_title_keeps_its_equations_on_one_line():
+    """A title wrapped inside "at f = 0.6" ("... horizontal, at f" / "= 0.6")."""
+    sc = make_scene([{"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+                     {"id": "B", "vertices": rect(0, 0, 1, 2)}],
+                    unit_weight=20.0, friction=0.6, live_body_force=[1, 0])
+    res = rb.max_load_multiplier(sc)
+    for size in (4.0, 5.0, 6.0, 7.0, 8.0):
+        fig = plt.figure(figsize=(size, 4))
+        title = rb.plot(sc, res, ax=fig.add_subplot()).get_title()
+        lines = title.splitlines()
+        assert not any(ln.startswith("= ") or ln.endswith(" =") for ln in lines), title
+        plt.close(fig)

@@ -197,7 +197,9 @@ def _title(scene: Scene, result: Any, ax: Any = None) -> str:
     if ax is not None:
         inches = float(ax.figure.get_size_inches()[0])
         width = max(30, min(90, int(inches * 72 / (0.6 * TITLE_POINTS))))
-    txt = "\n".join(textwrap.wrap(txt, width, break_on_hyphens=False))
+    # an equation on one line ("at f" / "= 0.6" read apart)
+    glued = txt.replace(" = ", "\0=\0")
+    txt = "\n".join(textwrap.wrap(glued, width, break_on_hyphens=False)).replace("\0", " ")
     return f"{name}\n{txt}" if (name and txt) else (name or txt)
 
 
