@@ -442,3 +442,33 @@ def test_the_joint_table_of_a_check_that_fails_names_its_breaches():
     table = content.joint_table(res)
     assert table["state_label"] == "in the state of least breach"
     assert table["state"] == ["breached by 5 N"] * 5 and all(table["governing"])
+
+
+def test_the_3d_view_of_a_check_that_fails_marks_its_breaches():
+    """examples/box_stack_3d.json at load factor 2, NOT ADMISSIBLE, its four joints
+    breached (the answer and the PNG name them): the interactive view marked none, and
+    its legend read "joint resultant" over a view with no forces."""
+    from rigidblocks.reporting.view3d import view_data
+
+    scene = rb.read_scene(EXAMPLES / "box_stack_3d.json")
+    res = rb.check(scene, load_factor=2.0)
+    assert res.status == "inadmissible" and len(res.breaches) == 4
+    data = view_data(scene, res)
+    assert "breached" in data["joints"] and "forces" not in data["joints"]
+    page = rb.report(scene, res)
+    assert "breached joint (its breach in the table)" in page
+    assert "joint resultant" not in page
+    ok = rb.report(scene, rb.check(scene, load_factor=0.0))
+    assert "joint resultant" in ok and "breached joint" not in ok
+
+
+@needs_chromium
+def test_3d_report_of_a_check_that_fails_runs_in_chromium(tmp_path):
+    """The view with its breached joints marked runs without errors, its self-test
+    too."""
+    html = tmp_path / "fails.html"
+    rb.report(EXAMPLES / "box_stack_3d.json", analysis="check", load_factor=2.0, path=html)
+    st = page_state(html)
+    assert st.errors == () and st.data.get("viewer-ready") == "1"
+    ctl = page_state(html, fragment="rb-selftest")
+    assert ctl.errors == () and ctl.data.get("selftest") == "done"

@@ -139,11 +139,14 @@ def _answer_html(ans: content.Answer) -> str:
             + (f"<ul>{items}</ul>" if items else "") + "</div>")
 
 
-def _view3d_html(mechanism: bool, moving: list[tuple[str, str]] | None = None) -> str:
+def _view3d_html(mechanism: bool, moving: list[tuple[str, str]] | None = None,
+                 forces: bool = True, breached: bool = False) -> str:
     """The 3D view's canvas, legend and layer switches; ``moving``: the legend's rows of
     the moving blocks' colours (:func:`rigidblocks.plotting.marks.mechanism_colours`).
     Without a mechanism (a check) its legend rows, layer, slider and play button are left
-    out: a check's report showed "moving block (mechanism)" and a mechanism to play."""
+    out: a check's report showed "moving block (mechanism)" and a mechanism to play.
+    ``forces``: the view draws joint resultants; ``breached``: it marks the joints a
+    NOT ADMISSIBLE check breaches (its legend read "joint resultant" over none)."""
     rows = (moving or [("#e39a5b", "moving block (mechanism)")]) if mechanism else []
     legend = (
         '<div class="rb-legend">'
@@ -157,7 +160,10 @@ def _view3d_html(mechanism: bool, moving: list[tuple[str, str]] | None = None) -
          'resultant</div>'
          '<div><span class="ln" style="border-color:#ff8c00"></span>opening joint</div>'
          if mechanism else
-         '<div><span class="ln" style="border-color:#1f77b4"></span>joint resultant</div>')
+         '<div><span class="ln" style="border-color:#1f77b4"></span>joint resultant</div>'
+         if forces else "")
+        + ('<div><span class="sw" style="background:#d62728;border-radius:50%"></span>'
+           'breached joint (its breach in the table)</div>' if breached else "")
         + '<div><span class="ln" style="border-color:#333"></span>dead load</div>'
         '<div><span class="ln" style="border-color:#c2185b"></span>live load '
         '(\N{MULTIPLICATION SIGN} \N{GREEK SMALL LETTER LAMDA})</div></div>')
@@ -231,8 +237,10 @@ def render(scene: Scene, result: Any = None, *, title: str | None = None) -> str
         from .view3d import view_data
 
         data = view_data(scene, result)
+        joints = data.get("joints", {})
         parts.append(_view3d_html(getattr(result, "mechanism", None) is not None,
-                                  data.get("mechanism", {}).get("legend")))
+                                  data.get("mechanism", {}).get("legend"),
+                                  forces="forces" in joints, breached="breached" in joints))
         scripts += [
             f'<script type="application/json" id="rb-view-data">{_json(data)}</script>',
             f"<script>{three_script()}</script>",

@@ -112,6 +112,9 @@ def _joints(scene: Scene, result: Any) -> dict[str, Any]:
                         for k in range(3)], axis=1) / counts[:, None]
     out: dict[str, Any] = {"n": c.n_joints, "pairs": u32(c.pairs), "centres": f32(centres),
                            "points": f32(c.points), "start": u32(c.joint_start)}
+    breaches = tuple(getattr(result, "breaches", ()) or ())
+    if breaches:  # a NOT ADMISSIBLE check: the joints it breaches, as its picture marks
+        out["breached"] = u32([int(k) for k, _ in breaches])
     st = getattr(result, "state", None)
     if st is not None:
         vec = joint_force_vectors_3d(c, st)

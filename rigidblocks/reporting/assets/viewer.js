@@ -172,6 +172,19 @@
       jointDots.renderOrder = 4;
       jointDots.frustumCulled = false;
       layers.joints.add(jointDots);
+      if (J.breached) {  // a check that fails: the joints it breaches, red
+        const idx = decode(J.breached, Uint32Array), cen = decode(J.centres, Float32Array);
+        const pos = new Float32Array(3 * idx.length);
+        for (let i = 0; i < idx.length; i++)
+          for (let k = 0; k < 3; k++) pos[3 * i + k] = cen[3 * idx[i] + k];
+        const bg = new THREE.BufferGeometry();
+        bg.setAttribute("position", new THREE.BufferAttribute(pos, 3));
+        const breached = new THREE.Points(bg, new THREE.PointsMaterial({ color: 0xd62728,
+          size: 10, sizeAttenuation: false, depthTest: false }));
+        breached.renderOrder = 5;
+        breached.frustumCulled = false;
+        layers.joints.add(breached);
+      }
       if (J.forces) {
         const at = decode(J.forces.at, Float32Array), vec = decode(J.forces.vec, Float32Array);
         const m = at.length / 3;
