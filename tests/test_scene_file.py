@@ -483,6 +483,11 @@ def test_a_load_factor_is_a_number_not_its_spelling():
     for given in ("0.6", True):
         with pytest.raises(InputError, match="load factor must be an int or float"):
             rb.check(_in_code(), load_factor=given)
+    # a friction may be spelt (the command line gives "0.3" or "infinite"), not a bool
+    with pytest.raises(InputError, match='friction must be a number >= 0 or "infinite", '
+                       "got True"):
+        rb.check(_in_code(), friction=True)
+    assert rb.check(_in_code(), friction="0.3", load_factor=0.2).status == "admissible"
 
 
 def test_make_block_refuses_points_of_unequal_length():

@@ -53,6 +53,8 @@ def friction_value(f: object, bounded: bool = True) -> float:
     The one converter from user input (API arguments, CLI options, scene values) to the
     number the analyses use; :func:`friction_label` goes back.
     """
+    if isinstance(f, bool):  # (True ran as f = 1)
+        raise InputError(f'friction must be a number >= 0 or "infinite", got {f!r}')
     if isinstance(f, str):
         if f.strip().lower() in (INFINITE, "inf"):
             return math.inf
