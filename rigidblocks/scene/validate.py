@@ -141,8 +141,7 @@ def _check_load(ld: object, dim: int, where: str) -> None:
 def _typed_friction(f: object, where: str) -> None:
     """A friction as a scene holds it: a number, or "infinite" (a string with a number
     in it is an argument's spelling, not a scene's)."""
-    if isinstance(f, bool) or (isinstance(f, str)
-                               and f.strip().lower() not in ("infinite", "inf")):
+    if isinstance(f, str) and f.strip().lower() not in ("infinite", "inf"):
         raise InputError(f'friction must be a number >= 0 or "infinite", got {f!r}', where)
     _located(friction_value, f, where)
 
