@@ -187,3 +187,22 @@ def test_the_same_floor_without_dilatancy():
     r = rb.min_friction(rb.read_scene(path), state=False, rtol=1e-9, solver="highs",
                         flow="non-associative")
     assert r.status == "stable" and abs(r.friction_factor - 0.5) <= 1e-9
+
+
+def test_without_dilatancy_a_number_holds_to_the_accuracy_asked_too(capsys):
+    """examples/wall.json at --rtol 1e-9: `load` (bracket 2.3e-9 relative) and `load
+    --method distortion` (1.2e-6) are UNDECIDED, while `--flow non-associative --method
+    distortion` gave lambda* = 0.6, the associative multiplier, from that multiplier's
+    own bracket, 3.8e-9 wide ("decided by its width 2.3e-09 <= 1e-09 x 0.6 + 1e-06, the
+    absolute floor for answers near 0"). Now UNDECIDED with that bracket, exit 3; at the
+    default accuracy 0.6, as before."""
+    path = str(EXAMPLES / "wall.json")
+    na = ["--flow", "non-associative", "--method", "distortion"]
+    assert main(["load", path, "--rtol", "1e-9"]) == 3
+    capsys.readouterr()
+    assert main(["load", path, *na, "--rtol", "1e-9"]) == 3
+    out = capsys.readouterr().out
+    assert "NO VERDICT: UNDECIDED" in out and "lambda* in [0.5999999997, 0.600000002]" in out
+    assert "absolute floor" not in out
+    assert main(["load", path, *na]) == 0
+    assert "lambda* = 0.6," in capsys.readouterr().out

@@ -101,6 +101,7 @@ from ..results import (
     fmt_bracket,
     fmt_safe,
     relative_width,
+    within,
 )
 from ..scene.model import (
     NON_ASSOCIATIVE,
@@ -1007,6 +1008,16 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
                 return result("unbounded", converged=True)
     else:
         top, v, at = _at_the_top(na, decide, hi, up)
+        if at is not None and not within(*at, rtol, BRACKET_ATOL):
+            # the associative multiplier's own bracket, as wide as the associative answer
+            # (UNDECIDED there): the 4 x 4 wall at --rtol 1e-9 gave 0.6 from a bracket
+            # 3.8e-9 wide, "decided by ... the absolute floor for answers near 0"
+            na.notes.append(f"lambda* is bracketed in {fmt_bracket(*at)}, the associative "
+                            f"multiplier's bracket: accuracy {relative_width(*at):.1e} "
+                            f"reached, {rtol:.1e} requested (rtol): no number is given")
+            return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None,
+                                        tuple(trials), True),
+                              load_multiplier_bounds=bounds, bracket=at)
         if at is not None:
             return result("collapse", top, v, True, at)
         good, bad, best = 0.0, top, v0
