@@ -34,7 +34,14 @@ def validate_scene(scene: Scene, tol: float = DEFAULT_TOL) -> None:
     """Raise :class:`InputError` if the scene is not a valid structure (ids, loads,
     supports, simple polygons or closed polyhedra, no overlaps). That joint overrides
     name touching blocks is checked where the joints are found
-    (:func:`rigidblocks.contacts.detect_contacts`)."""
+    (:func:`rigidblocks.contacts.detect_contacts`).
+
+    A scene is immutable: one that passed at the default tolerance is not checked again
+    (a scene file's was checked by its reader, then by the analysis, then by each method
+    it opened)."""
+    default = tol == DEFAULT_TOL and isinstance(scene, Scene)
+    if default and scene.__dict__.get(_VALID):
+        return
     _check_fields(scene)
     _check_ids_and_loads(scene)
     check_representable(scene)
@@ -45,6 +52,12 @@ def validate_scene(scene: Scene, tol: float = DEFAULT_TOL) -> None:
         from .polyhedra import validate_polyhedra
 
         validate_polyhedra(scene)
+    if default:
+        scene.__dict__[_VALID] = True
+
+
+#: the mark of a scene that passed :func:`validate_scene` at the default tolerance
+_VALID = "_rigidblocks_valid"
 
 
 def _real(v: object) -> bool:
