@@ -32,9 +32,7 @@ def eccentricities(c: Contacts, st: Any) -> np.ndarray:
     centroid (NaN where the joint carries no normal force)."""
     if c.dimension == 2:
         return np.asarray(st.eccentricity, dtype=float)
-    counts = np.diff(c.joint_start)
-    cen = np.stack([np.bincount(c.point_joint, c.points[:, k], minlength=c.n_joints)
-                    for k in range(3)], axis=1) / counts[:, None]
+    cen = c.joint_centres
     tp = np.asarray(st.thrust_points, dtype=float)
     with np.errstate(invalid="ignore"):
         return np.where(np.asarray(st.joint_normal) > 0, np.linalg.norm(tp - cen, axis=1),

@@ -79,6 +79,15 @@ class Contacts:
         return np.repeat(np.arange(self.n_joints), np.diff(self.joint_start))
 
     @property
+    def joint_centres(self) -> np.ndarray:
+        """(m, d) the mean of each joint's contact points (in 3D the corners of its
+        contact polygon)."""
+        counts = np.diff(self.joint_start)
+        return np.stack([np.bincount(self.point_joint, self.points[:, k],
+                                     minlength=self.n_joints)
+                         for k in range(self.points.shape[1])], axis=1) / counts[:, None]
+
+    @property
     def point_areas(self) -> np.ndarray:
         """(P,) each point's share of its joint's area (equal shares)."""
         counts = np.diff(self.joint_start)

@@ -295,8 +295,7 @@ def _draw_breaches(ax: Any, result: Any, unit: str) -> str:
         ax.add_collection(art)
         at = 0.5 * (first + last)
     else:
-        at = np.array([c.points[c.joint_start[k]:c.joint_start[k + 1]].mean(axis=0)
-                       for k in ks])
+        at = c.joint_centres[ks]
         art = ax.scatter(*at.T, s=40, c=BREACH_COLOUR, marker="X", zorder=5, label=label)
     art.set_gid("rb-breached")
     for (_, v), p in zip(br[:BREACH_LABELS], at[:BREACH_LABELS], strict=True):

@@ -234,17 +234,11 @@ def joint_force_vectors_3d(contacts: Any, state: Any) -> np.ndarray:
     return vec
 
 
-def _joint_centres(c: Any) -> np.ndarray:
-    counts = np.diff(c.joint_start)
-    return np.stack([np.bincount(c.point_joint, c.points[:, k], minlength=c.n_joints)
-                     for k in range(3)], axis=1) / counts[:, None]
-
-
 def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: int,
                  force_scale: float | None) -> None:
     c = result.contacts
     st = result.state
-    centres = _joint_centres(c)
+    centres = c.joint_centres
     pts = np.where(np.all(np.isfinite(st.thrust_points), axis=1)[:, None]
                    & (st.joint_normal[:, None] > 0), st.thrust_points, centres)
     gov = np.asarray(getattr(result, "governing", ()), dtype=int)

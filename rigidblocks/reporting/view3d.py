@@ -107,9 +107,7 @@ def _loads(scene: Scene, live: bool = True) -> list[dict[str, Any]]:
 
 def _joints(scene: Scene, result: Any) -> dict[str, Any]:
     c = result.contacts
-    counts = np.diff(c.joint_start)
-    centres = np.stack([np.bincount(c.point_joint, c.points[:, k], minlength=c.n_joints)
-                        for k in range(3)], axis=1) / counts[:, None]
+    centres = c.joint_centres
     out: dict[str, Any] = {"n": c.n_joints, "pairs": u32(c.pairs), "centres": f32(centres),
                            "points": f32(c.points), "start": u32(c.joint_start)}
     breaches = tuple(getattr(result, "breaches", ()) or ())
