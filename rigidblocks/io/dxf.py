@@ -83,18 +83,6 @@ NO_DEPTH_NOTE = ("imported without a depth: the blocks are 1 {unit} deep out of 
                  "their weights per {unit} of wall (give the depth, e.g. import-dxf "
                  "--depth {example} for {example} {unit})")
 
-
-def depth_note(scene: Scene) -> str:
-    """NO_DEPTH_NOTE in the scene's length unit, its example a wall 0.3 m deep in that
-    unit (it read "--depth 300 for 300 m" for a drawing in metres)."""
-    unit = scene.length_unit or "length unit"
-    metres = METRES.get(unit.strip().lower())
-    if metres:  # two figures: 300 mm, 30 cm, 0.3 m, 12 in, 0.98 ft
-        x = 0.3 / metres
-        example = f"{round(x, 1 - math.floor(math.log10(x))):g}"
-    else:
-        example = "300"
-    return NO_DEPTH_NOTE.format(unit=unit, example=example)
 #: the note a scene read without a unit weight carries
 NO_UNIT_WEIGHT_NOTE = ("imported from a drawing without a unit weight: the blocks weigh "
                        "nothing, only the loads act (give the unit weight, e.g. "
@@ -186,13 +174,18 @@ METRES = {"in": 0.0254, "ft": 0.3048, "mm": 1e-3, "cm": 1e-2, "m": 1.0, "km": 1e
 BLOCK_SIZES = (0.02, 3.0)
 
 
+def _metres(scene: Scene) -> float | None:
+    """The scene's length unit in metres (None where it is not one of ``METRES``)."""
+    return METRES.get(scene.length_unit.strip().lower())
+
+
 def span_text(scene: Scene) -> str:
     """The scene's width and height in its length unit, and in metres where that unit
     is known: "1247 x 447.7 in (31.66 x 11.37 m)"."""
     lo, hi = block_boxes(scene)
     w, h = (hi.max(axis=0) - lo.min(axis=0))[:2]
     unit = scene.length_unit
-    metres = METRES.get(unit.strip().lower())
+    metres = _metres(scene)
     inm = f" ({w * metres:.4g} x {h * metres:.4g} m)" if metres not in (None, 1.0) else ""
     return f"{w:.4g} x {h:.4g} {unit}{inm}"
 
@@ -202,7 +195,7 @@ def unit_doubt(scene: Scene) -> str:
     scene's length unit is no masonry block's size in metres (``BLOCK_SIZES``), what to
     check, else "": a drawing in millimetres whose header declares inches (as some do)
     has blocks metres across, and weighs 25.4^3 times as much per unit weight."""
-    metres = METRES.get(scene.length_unit.strip().lower())
+    metres = _metres(scene)
     if metres is None or not scene.blocks:
         return ""
     lo, hi = block_boxes(scene)
@@ -214,6 +207,18 @@ def unit_doubt(scene: Scene) -> str:
     inm = f", {size * metres:.3g} m" if metres != 1.0 else ""
     return (f"the blocks are {size:.4g} {scene.length_unit} across (the median){inm}: if "
             "the drawing is in another unit, give it with --length-unit (e.g. mm)")
+
+
+def depth_note(scene: Scene) -> str:
+    """NO_DEPTH_NOTE in the scene's length unit, its example a wall 0.3 m deep in that
+    unit (it read "--depth 300 for 300 m" for a drawing in metres)."""
+    metres = _metres(scene)
+    if metres:  # two figures: 300 mm, 30 cm, 0.3 m, 12 in, 0.98 ft
+        x = 0.3 / metres
+        example = f"{round(x, 1 - math.floor(math.log10(x))):g}"
+    else:
+        example = "300"
+    return NO_DEPTH_NOTE.format(unit=scene.length_unit or "length unit", example=example)
 
 
 def _declared_units(doc: Any, units: tuple[str, str] | str | None, rep: DxfReport,

@@ -150,8 +150,8 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
     limit analyses, noted where the scene has such joints); False for the load path,
     where a crack loses it.
     """
-    # a scene built in code is checked as a scene file is (a file's scene again: 35 ms
-    # for the 4,936 blocks of a 70 x 70 wall)
+    # a scene built in code is checked as a scene file is (once: validate_scene marks
+    # a scene that passed)
     validate_scene(scene)
     name, solver = method_name(method, solver)
     if name == "distortion":
