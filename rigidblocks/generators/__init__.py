@@ -57,12 +57,16 @@ class Generator:
         return tuple(Param(p.name, p.default, helps.get(p.name, ""))
                      for p in sig.parameters.values())
 
-    def __call__(self, **params: Any) -> Scene:
+    def check_params(self, names: Any) -> None:
+        """InputError naming the first of ``names`` that is not a parameter."""
         known = {p.name for p in self.params}
-        bad = sorted(set(params) - known)
+        bad = sorted(set(names) - known)
         if bad:
             raise InputError(f"{self.name}: unknown parameter {bad[0]!r} (parameters: "
                              f"{', '.join(sorted(known))})")
+
+    def __call__(self, **params: Any) -> Scene:
+        self.check_params(params)
         return self.function(**params)
 
 

@@ -106,15 +106,14 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
     if param in params:
         raise InputError(f"min_thickness: {param!r} is the bisected parameter; do not "
                          "give it")
-    known = getattr(gen, "params", None)  # a registered generator's: said before a build
-    if known is not None:
-        names = {p.name for p in known}
-        bad = sorted(set(params) - names) or ([param] if param not in names else [])
-        if bad:
-            # (it said "cannot be built at thickness=1 ...; give a smaller upper bound",
-            # which no upper bound mends)
-            raise InputError(f"min_thickness: {name}: unknown parameter {bad[0]!r} "
-                             f"(parameters: {', '.join(sorted(names))})")
+    check_params = getattr(gen, "check_params", None)  # a registered generator's
+    if check_params is not None:
+        # before a build (it said "cannot be built at thickness=1 ...; give a smaller
+        # upper bound", which no upper bound mends)
+        try:
+            check_params([*params, param])
+        except InputError as err:
+            raise InputError(f"min_thickness: {err.detail}") from None
     if not (math.isfinite(load_factor) and load_factor >= 0):
         raise InputError(f"min_thickness: load_factor must be >= 0, got {load_factor!r}")
     n = 0
