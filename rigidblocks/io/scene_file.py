@@ -27,6 +27,7 @@ from ..scene.model import (
     Units,
     friction_value,
 )
+from ..scene.validate import is_number
 
 FORMAT = "rigidblocks-scene"
 VERSION = 1
@@ -48,12 +49,8 @@ NESTING_LIMIT = 32
 
 
 # -- small strict parsers -------------------------------------------------------------
-def _is_number(v: Any) -> bool:
-    return isinstance(v, int | float) and not isinstance(v, bool)
-
-
 def _number(v: Any, where: str, *, minimum: float | None = None, positive: bool = False):
-    if not _is_number(v):
+    if not is_number(v):
         raise InputError(f"expected a number, got {json.dumps(v)}", where)
     if not math.isfinite(v):
         raise InputError(f"expected a finite number, got {v}", where)

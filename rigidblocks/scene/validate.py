@@ -60,8 +60,8 @@ def validate_scene(scene: Scene, tol: float = DEFAULT_TOL) -> None:
 _VALID = "_rigidblocks_valid"
 
 
-def _real(v: object) -> bool:
-    """A number (not a boolean, not a string)."""
+def is_number(v: object) -> bool:
+    """A number (not a boolean, not a string): the scene file's values and a Scene's."""
     return isinstance(v, int | float | np.integer | np.floating) and not isinstance(v, bool)
 
 
@@ -76,7 +76,7 @@ def _check_fields(scene: Scene) -> None:
         raise InputError(f"expected a Scene (rigidblocks.read_scene(path), or Scene(...) "
                          f"in code), got {type(scene).__name__}")
     dim = scene.dimension
-    if not (_real(dim) and dim in (2, 3)):
+    if not (is_number(dim) and dim in (2, 3)):
         raise InputError(f"must be 2 or 3, got {dim!r}", "dimension")
     for b in scene.blocks:
         if not isinstance(b, Block):
@@ -88,21 +88,21 @@ def _check_fields(scene: Scene) -> None:
             # (support="no" made a support, as any non-empty string is true)
             raise InputError(f"support must be True or False, got {b.support!r}",
                              f"block {b.id!r}")
-        if any(len(v) != dim or not all(_real(c) for c in v) for v in b.vertices):
+        if any(len(v) != dim or not all(is_number(c) for c in v) for v in b.vertices):
             raise InputError(f"every vertex must be {dim} numbers in a {dim}D scene",
                              f"block {b.id!r}")
-        if b.unit_weight is not None and not (_real(b.unit_weight) and b.unit_weight >= 0):
+        if b.unit_weight is not None and not (is_number(b.unit_weight) and b.unit_weight >= 0):
             raise InputError(f"its unit_weight must be a number >= 0, got "
                              f"{b.unit_weight!r}", f"block {b.id!r}")
     for key, low, strict in (("unit_weight", 0.0, False), ("depth", 0.0, True),
                              ("load_factor", 0.0, False)):
         v = getattr(scene, key)
-        if v is not None and not (_real(v) and (v > low if strict else v >= low)):
+        if v is not None and not (is_number(v) and (v > low if strict else v >= low)):
             raise InputError(f"must be a number {'>' if strict else '>='} {low:g}, got "
                              f"{v!r}", key)
     if scene.live_body_force is not None and (
             len(scene.live_body_force) != dim
-            or not all(_real(c) for c in scene.live_body_force)):
+            or not all(is_number(c) for c in scene.live_body_force)):
         raise InputError(f"must be {dim} numbers in a {dim}D scene, got "
                          f"{scene.live_body_force!r}", "live_body_force")
     if scene.friction is not None:
@@ -123,7 +123,7 @@ def _check_fields(scene: Scene) -> None:
             _located(flow_value, j.flow, where)
         for key in ("cohesion", "tensile_strength"):
             v = getattr(j, key)
-            if v is not None and not (_real(v) and v >= 0):
+            if v is not None and not (is_number(v) and v >= 0):
                 raise InputError(f"{key} must be a number >= 0, got {v!r}", where)
 
 
@@ -141,12 +141,12 @@ def _check_load(ld: object, dim: int, where: str) -> None:
         v = getattr(ld, key)
         if (v is not None or key == "force") and not (
                 isinstance(v, tuple | list | np.ndarray) and len(v) == dim
-                and all(_real(c) for c in v)):
+                and all(is_number(c) for c in v)):
             raise InputError(f"{key} must be {dim} numbers, got {v!r}", where)
     m = ld.moment
-    if m is not None and not (_real(m) if dim == 2 else (
+    if m is not None and not (is_number(m) if dim == 2 else (
             isinstance(m, tuple | list | np.ndarray) and len(m) == 3
-            and all(_real(c) for c in m))):
+            and all(is_number(c) for c in m))):
         raise InputError(f"moment must be {'a number' if dim == 2 else '3 numbers'} in a "
                          f"{dim}D scene, got {m!r}", where)
 
