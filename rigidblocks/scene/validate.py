@@ -88,7 +88,7 @@ def _check_fields(scene: Scene) -> None:
             # (support="no" made a support, as any non-empty string is true)
             raise InputError(f"support must be True or False, got {b.support!r}",
                              f"block {b.id!r}")
-        if any(len(v) != dim or not all(is_number(c) for c in v) for v in b.vertices):
+        if not all(_numbers(v, dim) for v in b.vertices):
             raise InputError(f"every vertex must be {dim} numbers in a {dim}D scene",
                              f"block {b.id!r}")
         if b.unit_weight is not None and not (is_number(b.unit_weight) and b.unit_weight >= 0):
@@ -100,9 +100,7 @@ def _check_fields(scene: Scene) -> None:
         if v is not None and not (is_number(v) and (v > low if strict else v >= low)):
             raise InputError(f"must be a number {'>' if strict else '>='} {low:g}, got "
                              f"{v!r}", key)
-    if scene.live_body_force is not None and (
-            len(scene.live_body_force) != dim
-            or not all(is_number(c) for c in scene.live_body_force)):
+    if scene.live_body_force is not None and not _numbers(scene.live_body_force, dim):
         raise InputError(f"must be {dim} numbers in a {dim}D scene, got "
                          f"{scene.live_body_force!r}", "live_body_force")
     if scene.friction is not None:
@@ -127,6 +125,12 @@ def _check_fields(scene: Scene) -> None:
                 raise InputError(f"{key} must be a number >= 0, got {v!r}", where)
 
 
+def _numbers(v: object, n: int) -> bool:
+    """A sequence of ``n`` numbers (a point, a vector)."""
+    return isinstance(v, tuple | list | np.ndarray) and len(v) == n and \
+        all(is_number(c) for c in v)
+
+
 def _check_load(ld: object, dim: int, where: str) -> None:
     """A load as a scene file's reader takes it: a force and a point of the scene's
     dimension, a moment a number (2D) or 3 numbers (3D), ``live`` True, False or None
@@ -139,14 +143,10 @@ def _check_load(ld: object, dim: int, where: str) -> None:
         raise InputError(f"live must be True, False or None, got {ld.live!r}", where)
     for key in ("force", "point"):
         v = getattr(ld, key)
-        if (v is not None or key == "force") and not (
-                isinstance(v, tuple | list | np.ndarray) and len(v) == dim
-                and all(is_number(c) for c in v)):
+        if (v is not None or key == "force") and not _numbers(v, dim):
             raise InputError(f"{key} must be {dim} numbers, got {v!r}", where)
     m = ld.moment
-    if m is not None and not (is_number(m) if dim == 2 else (
-            isinstance(m, tuple | list | np.ndarray) and len(m) == 3
-            and all(is_number(c) for c in m))):
+    if m is not None and not (is_number(m) if dim == 2 else _numbers(m, 3)):
         raise InputError(f"moment must be {'a number' if dim == 2 else '3 numbers'} in a "
                          f"{dim}D scene, got {m!r}", where)
 
