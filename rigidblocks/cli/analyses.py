@@ -120,9 +120,8 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         doc = res.to_dict(joints=args.joints == "-")
         # the terminal's "why" lines: its notes' reasons and what the answer reads off
-        # the result (a check's friction at its limit was in neither)
-        # (the starts' spread, which the terminal gives on its starts line, was a why
-        # entry too)
+        # the result (a check's friction at its limit was in neither), not the starts'
+        # spread, which the terminal gives on its starts line
         doc["why"] = list(_answer(scene, res)[0].reasons)
         if safe is not None:
             doc["safe_multiplier"] = safe
