@@ -26,7 +26,7 @@ from rigidblocks.methods.engine import WIDE, Search, Trial, run
 from rigidblocks.methods.friction_search import GOVERNING_SHARE, trial_of
 from rigidblocks.methods.relaxation import SPREAD_MARGIN, Relaxation
 from rigidblocks.scene.model import Load
-from rigidblocks.solvers import policy
+from rigidblocks.solvers import clarabel_backend, policy
 from rigidblocks.solvers.base import SolverResult, normalised
 from rigidblocks.solvers.clarabel_backend import (
     STALL_WINDOW,
@@ -304,6 +304,26 @@ def test_a_stalled_clarabel_solve_answers_at_the_next_solves_tolerances():
     assert res.status == "failure" and res.next_met and res.iterations == 40
     assert "AlmostSolved" in res.raw_status
     assert policy.verified(prob, replace(res, status="optimal")).verified
+
+
+def test_a_ctrl_c_inside_the_stall_callback_interrupts_the_solve(monkeypatch):
+    """A Ctrl-C that lands in the termination callback (here raised by its distance
+    test at the third iteration) reaches the caller as KeyboardInterrupt: raised inside
+    Clarabel's call it printed a traceback, was dropped, and the solve answered."""
+    m = open_method(running_bond_wall(4, 4))
+    prob, _ = m.relaxation_problem(1.0, 1.0)
+    calls = []
+
+    def distance(info, tol):
+        calls.append(info.iterations)
+        if len(calls) == 3:
+            raise KeyboardInterrupt
+        return 1.0
+
+    monkeypatch.setattr(clarabel_backend, "_distance", distance)
+    with pytest.raises(KeyboardInterrupt):
+        solve_clarabel(prob, after={})
+    assert len(calls) == 3
 
 
 @pytest.mark.parametrize("status, iterations, asks", [

@@ -81,23 +81,31 @@ def _tolerances(settings) -> tuple[float, float, float]:
 class _Stall:
     """Termination callback: stop once the distance to the solve's own tolerances has
     not halved in :data:`STALL_WINDOW` iterations and the iterate meets the next
-    solve's tolerances (``stopped``)."""
+    solve's tolerances (``stopped``).
+
+    A Ctrl-C that lands in the callback stops the solve (``interrupted``) for the caller
+    to raise again: raised inside it, Clarabel printed its traceback, dropped it and
+    iterated on, and the interrupted analysis answered."""
 
     def __init__(self, own: tuple[float, float, float], after: tuple[float, float, float]):
         self.own, self.after = own, after
         self.best, self.best_at = math.inf, 0
-        self.stopped = False
+        self.stopped = self.interrupted = False
 
     def meets(self, info) -> bool:
         """Whether the iterate meets the next solve's tolerances."""
         return _distance(info, self.after) < 1.0
 
     def __call__(self, info) -> bool:
-        d = _distance(info, self.own)
-        if d <= 0.5 * self.best:
-            self.best, self.best_at = d, info.iterations
-        self.stopped = info.iterations - self.best_at >= STALL_WINDOW and self.meets(info)
-        return self.stopped
+        try:
+            d = _distance(info, self.own)
+            if d <= 0.5 * self.best:
+                self.best, self.best_at = d, info.iterations
+            self.stopped = (info.iterations - self.best_at >= STALL_WINDOW
+                            and self.meets(info))
+        except KeyboardInterrupt:
+            self.interrupted = True
+        return self.stopped or self.interrupted
 
 
 class _Listed:
@@ -151,6 +159,8 @@ def solve_clarabel(problem: ConicProblem, after: dict | None = None,
         stall = _Stall(_tolerances(own), _tolerances(nxt))
         solver.set_termination_callback(stall)
     sol = solver.solve()
+    if stall is not None and stall.interrupted:
+        raise KeyboardInterrupt
     elapsed = time.perf_counter() - t0
     raw = str(sol.status).split(".")[-1]
     status = _STATUS.get(raw, FAILURE)
