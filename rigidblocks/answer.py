@@ -862,9 +862,8 @@ def accuracy_text(res: Any) -> str | None:
         from .analyses.search import BRACKET_ATOL
 
         near_zero = (f"; decided by its width {bracket[1] - bracket[0]:.1e} <= "
-                     f"{rtol:.0e} x {max(map(abs, bracket)):.3g} + {BRACKET_ATOL:g}, "
-                     "the absolute floor for answers near 0")
-    return f"{accuracy:.1e} ({where}relative width; requested {rtol:.0e}{near_zero})"
+                     f"{BRACKET_ATOL:g}, the absolute floor for answers within it of 0")
+    return f"{accuracy:.1e} ({where}relative width; requested {rtol:.2g}{near_zero})"
 
 
 def method_text(res: Any) -> str | None:

@@ -1090,7 +1090,8 @@ def test_the_collapse_at_the_brink_names_its_mechanism(capsys):
     floor (1e-6 of the live load), and that problem's mechanism is the collapse's (three
     hinges and a slip, as the least state's at f = 0.8 in docs/safe-multiplier.md).
     Where the state is not a collapse state of its caps (f = 0.8, read off the states
-    from X0: 0.0594714 against 0.0127922) the note says so, with both numbers."""
+    from X0: 0.0594714 against 0.0127922, at --rtol 4e-5, its bracket's accuracy: at the
+    default 1e-5 it is undecided) the note says so, with both numbers."""
     path = str(EXAMPLES / "corbel_arch_inclined.json")
     code, out, _ = run(capsys, ["load", path, "--flow", "non-associative", "--friction",
                                 "0.7651297008"])
@@ -1098,7 +1099,7 @@ def test_the_collapse_at_the_brink_names_its_mechanism(capsys):
     assert "governing  3 hinging (" in out and "; 1 sliding (" in out, out
     assert "multiplier would be" not in out and "no collapse mechanism" not in out
     code, out, _ = run(capsys, ["load", path, "--flow", "non-associative", "--friction",
-                                "0.8"])
+                                "0.8", "--rtol", "4e-5"])
     assert ("no collapse mechanism is given: the computed state is not a collapse state "
             "of its own caps (with its normal forces as fixed shear capacities f N the "
             "multiplier is 0.0594714, not 0.0127922)") in out, out
@@ -1252,13 +1253,24 @@ def test_a_distortion_answer_names_an_unstable_answer_of_the_default_method(caps
 def test_a_bisection_with_a_trial_that_did_not_settle_is_not_called_converged(capsys):
     """examples/corbel_arch_inclined.json at f = 0.8 without dilatancy: `load` reads its
     answer off the states reached from X0 by bisection, one of whose trials (at lambda =
-    0.0127925344) did not settle; the bracket it left, [0.01279220942, 0.0127926969],
-    meets the accuracy by its width, and the flow line said "converged"."""
-    code, out, _ = run(capsys, ["load", str(EXAMPLES / "corbel_arch_inclined.json"),
-                                "--flow", "non-associative", "--friction", "0.8"])
+    0.0127925344) did not settle; the flow line said "converged". The bracket it left,
+    [0.01279220942, 0.0127926969], is 3.8e-5 wide relative to its ends, for 1e-5 asked:
+    it was decided by an absolute floor of 1e-6 that the associative searches count only
+    within 1e-6 of 0 (results.within); now UNDECIDED, exit 3, as theirs would be. At
+    --rtol 4e-5 the bisection stops at that bracket before the trial that does not
+    settle: a number, "requested 4e-05" (3.9e-5 was printed as 4e-05)."""
+    args = ["load", str(EXAMPLES / "corbel_arch_inclined.json"), "--flow",
+            "non-associative", "--friction", "0.8"]
+    code, out, _ = run(capsys, args)
     flow = next(ln for ln in out.splitlines() if ln.startswith("flow"))
-    assert code == 0 and flow.endswith(
-        "not converged at one trial (the bracket it left meets the accuracy)"), flow
+    assert code == 3 and "UNDECIDED" in out and flow.endswith("not converged"), out
+    assert "answer     lambda* in [0.01279220942, 0.0127926969]" in out, out
+    assert "accuracy 3.8e-05 reached, 1.0e-05 requested" in out, out
+    for rtol in ("4e-5", "3.9e-5"):
+        code, out, _ = run(capsys, args + ["--rtol", rtol])
+        assert code == 0 and "COLLAPSE" in out and (
+            "accuracy   3.8e-05 (bracket [0.01279220942, 0.0127926969], relative width; "
+            f"requested {float(rtol):.2g})") in out, out
 
 
 def test_safe_is_pointed_to_only_where_it_runs(tmp_path, capsys):

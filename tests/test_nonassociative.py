@@ -259,12 +259,14 @@ def test_the_inclined_corbel_arch_is_not_decided_by_a_bound_that_misses_states(f
     state reached from X0 at each load factor (as the distortion method, the seed's
     procedure, does): at f = 0.8 its bracket holds the least state over all states
     (`--safe`), at 0.85 it lies above it, near the distortion method's 0.0490; `check`
-    stands below the bracket and not above it, and says nothing of every state."""
+    stands below the bracket and not above it, and says nothing of every state. (At
+    the default accuracy, 1e-5, both are undecided: a trial inside the brackets, 3.8e-5
+    and 2.0e-5 wide, does not settle; test_honest_answers.py holds that.)"""
     from rigidblocks.analyses.na_bounds import safe_multiplier
 
     scene = read_scene(EXAMPLES / "corbel_arch_inclined.json")
     assoc = rb.max_load_multiplier(scene, friction=f, state=False)
-    res = rb.max_load_multiplier(scene, friction=f, flow=NA)
+    res = rb.max_load_multiplier(scene, friction=f, flow=NA, rtol=1e-4)
     assert res.status == "collapse" and any(BY_STATES in n for n in res.notes)
     # why the limit fixed point was not reached is said in that note, not on a line of
     # its own before it ("from the elastic state X0: the capped laws carry not even the
@@ -285,7 +287,7 @@ def test_the_inclined_corbel_arch_is_not_decided_by_a_bound_that_misses_states(f
     if f == 0.8:
         assert below <= safe.value
     seed = rb.max_load_multiplier(scene, friction=f, flow=NA, method="distortion",
-                                  state=False)
+                                  state=False, rtol=1e-4)
     assert safe.value <= seed.load_multiplier <= hi * (1 + 1e-7)
     # (beside the bracket, not at it: within 0.1 % below it the state reached from X0
     # does not settle in 300 solves at f = 0.8)

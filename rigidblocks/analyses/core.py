@@ -89,8 +89,9 @@ def _load_factor(scene: Scene, value: Any) -> float:
 
 def certified(m: Method, lim: Limit, rtol: float, what: str, atol: float = 0.0) -> Limit:
     """The honesty rule of every limit: a number only where its certified bracket holds
-    it to the requested accuracy (no wider than ``rtol`` times its larger end plus
-    ``atol``: :func:`~rigidblocks.results.within`, as the searches stop;
+    it to the requested accuracy (no wider than ``rtol`` times its larger end, or than
+    ``atol`` within ``atol`` of 0: :func:`~rigidblocks.results.within`, as the searches
+    stop;
     a limit with a :attr:`~rigidblocks.methods.Limit.resolution` of its own, that no
     larger than ``rtol``); otherwise "undecided" with the bracket and the accuracy it
     reached, said in the notes. The methods' searches aim at ``rtol`` but may end short
