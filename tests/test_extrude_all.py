@@ -190,3 +190,40 @@ def test_extrusion_keeps_the_scene_keys():
     assert rb.check(wall, state=False).status == rb.check(e, state=False).status == "admissible"
     na = extrude(replace(wall, flow="non-associative", load_factor=0.5))
     assert (na.flow, na.load_factor) == ("non-associative", 0.5)
+
+
+def test_a_tensile_strength_without_cohesion_is_a_bending_capacity_in_2d_only(
+        tmp_path, capsys):
+    """A 1 x 2 block, 1.5 deep (unit weight 20: W = 60), bonded to its base by a tensile
+    strength of 20 (no cohesion), f = 5, under a horizontal body force: in 2D the shear row
+    |T| <= f (N1 + N2) lets the heel pull while the toe pushes, and it tips at
+    (b + sigma_t d b^2 / W) / h = (1 + 20 x 1.5 / 60) / 2 = 0.75 (moments about the toe:
+    lambda W h/2 = W b/2 + sigma_t d b x b/2). Extruded, each contact point has its own
+    cone, |T_k| <= f N_k, which closes where N_k < 0: it tips at b/h = 0.5, on the safe
+    side, with a note saying why (it was said nowhere, and `extrude` promised the 2D
+    lambda*); at infinite friction (no cone) both give 0.75."""
+    from conftest import make_scene, rect
+
+    from rigidblocks.cli.main import main
+    from rigidblocks.io import write_scene
+    from rigidblocks.methods.convex import TENSION_3D_NOTE
+
+    plane = make_scene([{"id": "base", "vertices": rect(-2, -1, 5, 1), "support": True},
+                        {"id": "B", "vertices": rect(0, 0, 1, 2)}],
+                       unit_weight=20, depth=1.5, friction=5, live_body_force=[1, 0],
+                       joints=[{"blocks": ["B", "base"], "tensile_strength": 20}])
+    solid = extrude(plane)
+    two = rb.max_load_multiplier(plane, state=False)
+    three = rb.max_load_multiplier(solid, state=False)
+    assert two.load_multiplier == pytest.approx(0.75, rel=1e-6)
+    assert three.load_multiplier == pytest.approx(0.5, rel=1e-6)
+    assert TENSION_3D_NOTE in three.notes and TENSION_3D_NOTE not in two.notes
+    for scene in (plane, solid):
+        res = rb.max_load_multiplier(scene, friction="infinite", state=False)
+        assert res.load_multiplier == pytest.approx(0.75, rel=1e-6)
+    path = tmp_path / "plane.json"
+    write_scene(plane, path)
+    assert main(["extrude", str(path), "-o", str(tmp_path / "solid.json")]) == 0
+    out = capsys.readouterr().out
+    assert "f* and lambda* are the 2D scene's with the joints' tensile strength counted " \
+        "as in 2D only at infinite friction" in out, out

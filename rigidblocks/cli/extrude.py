@@ -35,6 +35,10 @@ def run(args: argparse.Namespace) -> int:
                 f"and the joints' strengths scale with the depth ({ratio:g} times the "
                 f"scene's {scene.effective_depth:g}{unit}): f* and lambda* are not the 2D "
                 f"scene's unless the loads are scaled by {ratio:g} too")
+    if any(j.tensile_strength for j in scene.joints):
+        same += (" with the joints' tensile strength counted as in 2D only at infinite "
+                 "friction (3D cones per contact point: a tensile strength without "
+                 "cohesion gives no bending capacity there, docs/methods.md)")
     print(f"wrote {args.output}: {len(solid.blocks)} prisms {depth:g}{unit} deep (the 2D "
           f"plane x-y is the vertical plane x-z; {same})")
     return 0

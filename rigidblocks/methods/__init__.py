@@ -188,13 +188,17 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
     m.notes.extend(_unheld(scene, contacts, kw.get("tol", DEFAULT_TOL)))
     bonded = int(np.count_nonzero((contacts.tensile_strength > 0) | (contacts.cohesion > 0)))
     if bonds_kept and bonded:
+        # (the load path is a 2D command: a 3D scene's note pointed to it)
+        follow = (f"`rigidblocks path {scene.source or 'SCENE'}` follows the cracks"
+                  if scene.dimension == 2 else "the load path that follows the cracks "
+                  "(`rigidblocks path`) is computed for 2D scenes only")
         m.notes.append(f"{bonded} joint{'s are' if bonded > 1 else ' is'} bonded (tensile "
                        "strength or cohesion): this analysis counts the bond's strength "
                        "at every load, as plastic capacity; a bond that cracks on the way "
-                       "up is lost, which can lower the collapse load: `rigidblocks path "
-                       f"{scene.source or 'SCENE'}` follows the cracks (an example, not "
-                       "this run: the bundled fig4a_bonded.json at its own friction 0.5 "
-                       "collapses on its load path at lambda = 1, against 1.2 by `load`)")
+                       f"up is lost, which can lower the collapse load: {follow} (an "
+                       "example, not this run: the bundled fig4a_bonded.json at its own "
+                       "friction 0.5 collapses on its load path at lambda = 1, against 1.2 "
+                       "by `load`)")
     off = loads_off_their_blocks(scene)
     if off:
         unit = f" {scene.length_unit}" if scene.length_unit else ""

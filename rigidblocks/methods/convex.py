@@ -93,6 +93,10 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
             self.pyramid = int(pyramid)
             self.notes.append(f"friction cones linearised as inscribed {int(pyramid)}-facet "
                               "pyramids (an approximation: not the Coulomb cone)")
+        c = system.contacts
+        if scene.dimension == 3 and np.any((c.tensile_strength > 0)
+                                           & ~np.isposinf(c.override_friction)):
+            self.notes.append(TENSION_3D_NOTE)  # (not where a joint's own f is infinite)
         loose = self.runner.loose_settings()
         if loose:
             self.notes.append(f"solver tolerances looser than 1e-9 ({', '.join(loose)}): "
@@ -303,6 +307,16 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
 
 #: the start of the reason given where the mechanism drawn is off the optimal face
 OFF_FACE_NOTE = "the mechanism drawn (its joints the governing ones)"
+#: the note of a 3D scene with a tensile strength: each contact point has its own Coulomb
+#: cone, so a point pulls only as far as its cohesion keeps the cone open, where in 2D the
+#: shear row sums the joint's points (a 1 x 1.5 x 2 box bonded by a tensile strength of
+#: 20 at f = 5: lambda* = 0.5 in 3D, 0.75 in 2D, docs/methods.md)
+TENSION_3D_NOTE = ("in 3D each contact point has its own Coulomb cone, |T_k| <= f N_k + "
+                   "c a_k, so a point pulls at most c a_k / f however large the tensile "
+                   "strength: without cohesion a tensile strength gives a joint no bending "
+                   "capacity here, where in 2D it does (there |T| <= f (N1 + N2) + c a over "
+                   "the joint): with finite friction the answers may lie below the 2D "
+                   "scene's (on the safe side)")
 #: the note where the mechanism drawn is one of several optimal ones
 OTHER_MECHANISMS = ("other collapse mechanisms reach the same multiplier: the one drawn is "
                     "one of them (their blend: `rigidblocks load --mechanism blend`)")
