@@ -295,6 +295,35 @@ def test_single_box_3d_with_a_pyramid(f, value):
     assert res.capacity_bound == 0.0
 
 
+def test_the_pinched_block_in_3d_turns_about_an_edge_at_0():
+    """The pinched block in 3D (the 2D one extruded 1 deep, f = 0.8): its safe value is
+    0, not the 2D f, and that is right. In 3D the pinch may run along one vertical edge
+    of the block alone, the base pushing up there with W + L and the lintel down with L:
+    the weight's overturning moment is then held by the couple of the shears at the
+    edge's two ends, 2 |T| = W sqrt(2) / 2 for the unit cube's centre half a diagonal
+    from the edge, within f (N_base + N_lintel) for a large enough L. Every other contact
+    point is unloaded, so the block turns about that vertical edge with no slip where a
+    force acts: no dissipation, and the live load's work lambda times a positive rate
+    balances it at lambda = 0. In 2D no such state exists (a turn about one point moves
+    the other face's point). (A new user's trial read 0 as a defect: "any slip dissipates
+    f N > 0".)"""
+    from rigidblocks.methods import open_method
+    from rigidblocks.scene.extrude import extrude
+
+    scene = extrude(pinched(0.8, flow=NA))
+    res = safe_multiplier(scene)
+    assert res.status == "optimal" and res.value == 0.0 and res.driven_by == "live"
+    # the state: two loaded points, one on each face, on one vertical line
+    n = np.asarray(res.state.normal)
+    loaded = np.flatnonzero(n > 1e-6 * n.max())
+    assert len(loaded) == 2
+    pts = open_method(scene).contacts.points[loaded]
+    assert np.allclose(pts[0, :2], pts[1, :2]) and pts[0, 2] != pts[1, 2]
+    # the mechanism: a turn about the vertical axis (no rotation about x or y, no rise)
+    u = res.mechanism.velocities[1]
+    assert abs(u[2]) < 1e-9 and abs(u[3]) < 1e-9 and abs(u[4]) < 1e-9 and abs(u[5]) > 0
+
+
 # -- refusals -------------------------------------------------------------------------------
 @pytest.mark.parametrize("f", [0.7652, 0.8])
 def test_the_dead_load_drives_collapse_states_of_the_inclined_corbel_arch(f):
