@@ -561,9 +561,13 @@ class _Words:
             # what it measures: a 20 kN block leaning beyond its base, under its weight
             # again sideways, "breached" by 70 kN read as a misprint (about its toe the
             # loads turn 35 kNm, held by 70 kN of tension at its heel 0.5 m away)
+            # (in 3D each contact point's law is relaxed by it: a box short of friction
+            # by 0.6 read 0.15, a quarter, beside its joint)
+            of = "a contact" if self.scene.dimension == 2 else \
+                "one contact point; a joint's, summed over its points, is named with it"
             number = (f"{whose} breach of the joint laws {self.force(res.violation)} (the "
-                      "most tension, or shear beyond friction, it asks of a contact; 0 "
-                      "would stand)")
+                      f"most tension, or shear beyond friction, it asks of {of}; 0 would "
+                      "stand)")
         names = [f"{a}-{b} ({fmt(v, 3)} {self.fu})" for a, b, v in
                  ((*res.joint_name(k), v) for k, v in res.breaches)]
         why += self.live_hint(res)

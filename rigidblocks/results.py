@@ -645,7 +645,8 @@ class CheckResult(Result):
     could not tell (``admissible`` is then None). ``violation`` is the smallest
     achievable violation of the joint laws (force units; 0 when admissible).
     ``breaches``: where the joint laws are breached in that least-violation state,
-    (joint, breach in force units), largest first.
+    (joint, breach in force units: the joint's, summed over its contact points where
+    their laws are per point), largest first.
     ``friction_demand`` (a property): the largest |T|/N of the force state and
     its joint; under non-associative sliding the state is the one reached from X0.
     """

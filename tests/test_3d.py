@@ -196,3 +196,27 @@ def test_min_friction_where_the_relaxation_below_f_star_is_degenerate():
     # its certified end 0.99999994 is admissible to the verdict's threshold (1e-9 of the
     # largest force), 5.6e-8 below f* = 1: that threshold, not the search, sets this
     assert r.lower <= 1.0 <= r.upper * (1 + 1e-7)
+
+
+@pytest.mark.parametrize("sides", [4, 8, 32])
+def test_a_joints_breach_is_its_points_summed(sides):
+    """A regular prism (circumradius 1, height 2) on a slab at f = 0.29 under 0.3 of its
+    weight sideways: it is short of friction by (0.3 - 0.29) W, whatever its polygon.
+    Each contact point's law is relaxed by the same amount, so the smallest breach, per
+    point, is that over the number of points; the joint's breach, named beside it, was
+    the largest point's (0.200, 0.141, 0.039 for 4, 8, 32 sides, the deficit 0.8, 1.13,
+    1.25), and is now their sum, the deficit."""
+    from rigidblocks.generators.solids import make_scene3d, prism, solid
+
+    ang = 2 * np.pi * np.arange(sides) / sides
+    ring = [(float(np.cos(a)), float(np.sin(a))) for a in ang]
+    scene = make_scene3d("prism", [
+        solid("base", box(-2, -2, -1, 4, 4, 1), support=True),
+        solid("P", prism([(x, y, 0.0) for x, y in ring], [(x, y, 2.0) for x, y in ring]))],
+        unit_weight=20.0, friction=0.29)
+    res = rb.check(scene, load_factor=0.3)
+    weight = 20.0 * 2 * 0.5 * sides * np.sin(2 * np.pi / sides)
+    assert res.status == "inadmissible" and len(res.breaches) == 1
+    (_, breach), = res.breaches
+    assert breach == pytest.approx(0.01 * weight, rel=1e-4)
+    assert res.violation == pytest.approx(0.01 * weight / sides, rel=1e-4)

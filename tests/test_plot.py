@@ -256,8 +256,9 @@ def test_inadmissible_check_says_so(block_on_base):
 
 
 def test_an_inadmissible_check_draws_its_breached_joints_clear_of_the_loads():
-    """The reference model at f = 0.3 (NOT ADMISSIBLE, each of its five joints breached
-    by 5 N, as the terminal's governing line names them): the picture drew the blocks
+    """The reference model at f = 0.3 (NOT ADMISSIBLE, its five joints breached by 5 N
+    of tension or shear beyond friction at a contact, the vertical joint at both of its
+    points: 10 N there, as the terminal's governing line names them): the picture drew the blocks
     alone under a box that gave the title's verdict again and hid the point load's
     value (100 N). The breached joints are drawn, each with its breach, and the box says
     what is drawn, clear of the loads' values."""
@@ -268,7 +269,7 @@ def test_an_inadmissible_check_draws_its_breached_joints_clear_of_the_loads():
     (msg,) = [t for t in ax.texts if t.get_gid() == "rb-verdict"]
     assert msg.get_text().splitlines() == [
         "NOT ADMISSIBLE: no force state to draw",
-        "in red: the joints breached in the state of least breach (up to 5 N)"]
+        "in red: the joints breached in the state of least breach (up to 10 N)"]
     (lines,) = [a for a in ax.collections if a.get_gid() == "rb-breached"]
     c = res.contacts
     want = {tuple(np.round(np.r_[c.points[c.joint_start[k]],
@@ -276,7 +277,7 @@ def test_an_inadmissible_check_draws_its_breached_joints_clear_of_the_loads():
             for k, _ in res.breaches}
     assert {tuple(np.round(np.ravel(s), 9)) for s in lines.get_segments()} == want
     assert [t.get_text().strip() for t in ax.texts if t.get_gid() == "rb-breached"] == \
-        ["5 N"] * 5
+        ["10 N"] + ["5 N"] * 4
     fig = ax.figure
     fig.canvas.draw()
     box = msg.get_bbox_patch().get_window_extent()

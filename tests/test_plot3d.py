@@ -130,7 +130,8 @@ def test_png_written_by_api_and_cli(tmp_path, capsys):
 def test_a_3d_check_that_fails_is_drawn_and_says_so(tmp_path, capsys):
     """A 3D check without an admissible state is drawn with its verdict on the axes, as
     in 2D (it ended in a traceback: 3D axes take that text as text2D); on the command
-    line too, a stack pushed at 5 times its weight."""
+    line too, a stack pushed at 5 times its weight. A joint's breach is its points'
+    summed: 22 kN at each of the four corners, 88 kN (the largest point's was given)."""
     s = box_stack(boxes=2)
     res = rb.check(s, load_factor=5.0)
     assert res.status == "inadmissible"
@@ -138,7 +139,7 @@ def test_a_3d_check_that_fails_is_drawn_and_says_so(tmp_path, capsys):
     (msg,) = [t for t in ax.texts if t.get_gid() == "rb-verdict"]
     assert msg.get_text().splitlines() == [
         "NOT ADMISSIBLE: no force state to draw",
-        "in red: the joints breached in the state of least breach (up to 22 kN)"]
+        "in red: the joints breached in the state of least breach (up to 88 kN)"]
     # the joints breached, at their centres, each with its breach
     marks = [a for a in ax.collections if a.get_gid() == "rb-breached"]
     labels = [t.get_text().strip() for t in ax.texts if t.get_gid() == "rb-breached"]

@@ -84,27 +84,29 @@ def _load_scale(system: EquilibriumSystem) -> float:
 
 def joint_breaches(system: EquilibriumSystem, x: np.ndarray, f_joint: np.ndarray,
                    ) -> np.ndarray:
-    """(m,) how far each joint's forces in the state ``x`` (force units) breach its laws:
-    the largest of the tension beyond the tensile strength at a point and the shear
-    beyond f N + c a (per joint in 2D, per point in 3D); 0 where the laws hold."""
+    """(m,) how far each joint's forces in the state ``x`` (force units) breach its laws,
+    as a force: the tension beyond the tensile strength summed over the joint's contact
+    points, or the shear beyond f N + c a (per joint in 2D), whichever is larger; in 3D
+    (and with one shear per point) the sum over the points of each point's larger breach.
+    0 where the laws hold. (The largest point's breach was given: a box short of friction
+    by 0.6 read 0.15 on its four corners, less on a finer polygon.)"""
     c = system.contacts
     lay = system.layout
     pj = c.point_joint
     m = c.n_joints
     N = x[lay.normal]
     cap = c.tensile_strength[pj] * c.point_areas
-    out = np.zeros(m)
-    np.maximum.at(out, pj, np.maximum(-(N + cap), 0.0))
+    point = np.maximum(-(N + cap), 0.0)
     fin = np.isfinite(f_joint)
     fj = np.where(fin, f_joint, 0.0)
     if c.dimension == 2 and lay.shear == "joint":
         Nj = np.bincount(pj, N, minlength=m)
         over = np.abs(x[lay.tangential]) - fj * Nj - c.cohesion * c.areas
-        out = np.maximum(out, np.where(fin, over, 0.0))
+        out = np.maximum(np.bincount(pj, point, minlength=m), np.where(fin, over, 0.0))
     else:
         T = x[lay.tangential].reshape(len(N), -1)
         over = np.linalg.norm(T, axis=1) - fj[pj] * N - c.cohesion[pj] * c.point_areas
-        np.maximum.at(out, pj, np.where(fin[pj], over, 0.0))
+        out = np.bincount(pj, np.maximum(point, np.where(fin[pj], over, 0.0)), minlength=m)
     return np.maximum(out, 0.0)
 
 
