@@ -498,3 +498,30 @@ def test_make_block_refuses_points_of_unequal_length():
     with pytest.raises(InputError, match="block 'B': vertices must be a list of points "
                        "of equal length, each of numbers"):
         make_block("B", [[0, 0], [1, 0, 0], [1, 2], [0, 2]])
+
+
+@pytest.mark.parametrize("faces,nan,said", [
+    (None, False, "block 'B': missing \"faces\" (required for 3D blocks)"),
+    ((), False, "block 'B': \"faces\" must be a list of at least 4 faces"),
+    ("range", False, "block 'B': \"faces\"[0] must list at least 3 vertex indices in 0..7"),
+    ("box", True, "block 'B': expected finite coordinates, got nan"),
+])
+def test_a_3d_block_built_in_code_is_checked_as_a_files_is(faces, nan, said):
+    """A 3D block made in code without faces ended in numpy's "need at least one array
+    to concatenate", a face index out of range in an IndexError, and a NaN coordinate
+    was "beyond 1e+150 ... give the scene in other units"; the scene file's reader names
+    each in one line, as the analyses now do."""
+    from rigidblocks import make_block
+    from rigidblocks.generators.solids import box
+
+    v, f = box(0, 0, 0, 1, 1, 1)
+    if nan:
+        v = [[math.nan, 0.0, 0.0], *v[1:]]
+    given = {"box": f, "range": [[0, 3, 2, 99], *f[1:]]}.get(faces, faces)
+    bv, bf = box(-1, -1, -1, 3, 3, 1)
+    scene = rb.Scene(dimension=3, blocks=(make_block("base", bv, support=True, faces=bf),
+                                          make_block("B", v, faces=given)),
+                     unit_weight=1.0, friction=0.5, live_body_force=(1.0, 0.0, 0.0))
+    with pytest.raises(InputError) as err:
+        rb.max_load_multiplier(scene)
+    assert said in str(err.value), str(err.value)

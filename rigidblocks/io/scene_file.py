@@ -27,7 +27,7 @@ from ..scene.model import (
     Units,
     friction_value,
 )
-from ..scene.validate import is_number
+from ..scene.validate import check_faces, is_number
 
 FORMAT = "rigidblocks-scene"
 VERSION = 1
@@ -239,19 +239,10 @@ def _plain_faces(faces: list, nv: int) -> bool:
 
 
 def _parse_faces(faces: Any, nv: int, where: str) -> tuple[tuple[int, ...], ...]:
-    if not isinstance(faces, list) or len(faces) < 4:
-        raise InputError('"faces" must be a list of at least 4 faces', where)
-    if _plain_faces(faces, nv):
+    if isinstance(faces, list) and len(faces) >= 4 and _plain_faces(faces, nv):
         return tuple(map(tuple, faces))
-    out = []  # the slow path finds and names the bad face
-    for k, f in enumerate(faces):
-        ok = isinstance(f, list) and len(f) >= 3 and all(
-            isinstance(i, int) and not isinstance(i, bool) and 0 <= i < nv for i in f)
-        if not ok:
-            raise InputError(f'"faces"[{k}] must list at least 3 vertex indices in 0..{nv - 1}',
-                             where)
-        out.append(tuple(f))
-    return tuple(out)
+    check_faces(faces, nv, where)  # names the bad face
+    return tuple(map(tuple, faces))
 
 
 def _parse_load(ld: Any, i: int, dim: int) -> Load:

@@ -91,6 +91,17 @@ def _check_fields(scene: Scene) -> None:
         if not all(_numbers(v, dim) for v in b.vertices):
             raise InputError(f"every vertex must be {dim} numbers in a {dim}D scene",
                              f"block {b.id!r}")
+        bad = next((c for v in b.vertices for c in v if not math.isfinite(c)), None)
+        if bad is not None:
+            # (a NaN was "beyond 1e+150 ... give the scene in other units")
+            raise InputError(f"expected finite coordinates, got {bad}", f"block {b.id!r}")
+        if dim == 2 and b.faces is not None:
+            raise InputError('"faces" is for 3D blocks only', f"block {b.id!r}")
+        if dim == 3:
+            if b.faces is None:
+                raise InputError('missing "faces" (required for 3D blocks)',
+                                 f"block {b.id!r}")
+            check_faces(b.faces, len(b.vertices), f"block {b.id!r}")
         if b.unit_weight is not None and not (is_number(b.unit_weight) and b.unit_weight >= 0):
             raise InputError(f"its unit_weight must be a number >= 0, got "
                              f"{b.unit_weight!r}", f"block {b.id!r}")
@@ -123,6 +134,20 @@ def _check_fields(scene: Scene) -> None:
             v = getattr(j, key)
             if v is not None and not (is_number(v) and v >= 0):
                 raise InputError(f"{key} must be a number >= 0, got {v!r}", where)
+
+
+def check_faces(faces: object, nv: int, where: str) -> None:
+    """A 3D block's faces as the scene format has them: at least 4, each at least 3
+    vertex indices in 0..nv-1 (a scene built in code with none ended in a numpy error,
+    with an index out of range in an IndexError)."""
+    if not isinstance(faces, list | tuple) or len(faces) < 4:
+        raise InputError('"faces" must be a list of at least 4 faces', where)
+    for k, f in enumerate(faces):
+        if not (isinstance(f, list | tuple) and len(f) >= 3 and all(
+                isinstance(i, int | np.integer) and not isinstance(i, bool) and 0 <= i < nv
+                for i in f)):
+            raise InputError(f'"faces"[{k}] must list at least 3 vertex indices in '
+                             f"0..{nv - 1}", where)
 
 
 def _numbers(v: object, n: int) -> bool:
