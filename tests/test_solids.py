@@ -335,3 +335,13 @@ def test_written_faces_are_counter_clockwise_seen_from_outside(name, text):
         assert convex == 1
     elif not name.startswith("extrude"):
         assert convex == len(blocks)
+
+
+@pytest.mark.parametrize("azimuth, direction", [(90, (0.0, 1.0, 0.0)), (180, (-1.0, 0.0, 0.0)),
+                                                (270, (0.0, -1.0, 0.0))])
+def test_a_box_stacks_load_direction_has_no_rounding_noise(azimuth, direction):
+    """box_stack at load_azimuth 90 wrote (6.12323399574e-17, 1, 0) into the scene and
+    the answer read "weight x (6.12323e-17, 1, 0)"."""
+    from rigidblocks.generators.solids import box_stack
+
+    assert box_stack(load_azimuth=azimuth).live_body_force == direction

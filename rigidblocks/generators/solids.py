@@ -212,7 +212,9 @@ def box_stack(boxes: int = 4, width: float = 1.0, length: float = 1.0,
     blocks = [solid("slab", box(lo_x, lo_y, -h, hi_x - lo_x, hi_y - lo_y, h), support=True)]
     for k, (cx, cy) in enumerate(centres):
         blocks.append(solid(f"box{k}", box(cx - b / 2, cy - a / 2, k * h, b, a, h)))
-    lbf = (_r(math.cos(az)), _r(math.sin(az)), 0.0)
+    # (to 1e-12 absolute, a unit vector's resolution: at 90 deg cos read 6.12323e-17 in
+    # the scene and in the answer's "weight x (6.12323e-17, 1, 0)")
+    lbf = (_r(round(math.cos(az), 12)), _r(round(math.sin(az), 12)), 0.0)
     return make_scene3d(f"stack of {n} boxes {b:g} x {a:g} x {h:g} m", blocks,
                         unit_weight=uw, friction=fr, live_body_force=lbf)
 
