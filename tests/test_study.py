@@ -552,3 +552,49 @@ def test_non_associative_load_rows_carry_the_bounds_on_every_state():
     assert pd.isna(assoc["load_multiplier_lower"]) and pd.isna(assoc["load_multiplier_upper"])
     assert 0 < assoc["load_multiplier_accuracy"] <= 2e-3
     assert hi == pytest.approx(assoc["load_multiplier"], rel=2e-3)
+
+
+def test_a_sweeps_summary_counts_its_outcomes_and_its_exit_says_them(tmp_path, capsys,
+                                                                     monkeypatch):
+    """A sweep whose every case was undecided printed "failures 0" and exited 0, as one
+    whose every case failed did (its failures counted, still 0): a script could not tell
+    either from a sweep that answered. The summary counts each analysis's outcomes and
+    the undecided cases, and the exit status is an analysis command's: 1 where a case
+    failed, 3 where one is undecided. An undecided lambda* keeps its bracket in the
+    lower and upper columns (they were empty, the number too: the distortion method on
+    LACT3's Portal gave lambda* in [0.5127, 0.5195] alone, a sweep nothing)."""
+    from dataclasses import replace
+
+    from rigidblocks.analyses import registry
+
+    doc = {**BASE, "generator": "wall", "grid": {"courses": [3]},
+           "parameters": {"blocks_per_course": 3}, "analyses": ["max_load_multiplier"]}
+    spec = write(tmp_path, doc)
+    assert main(["sweep", str(spec), "-o", str(tmp_path / "a.csv"), "--workers", "1",
+                 "--no-progress"]) == 0
+    out = capsys.readouterr().out
+    assert "outcomes  max_load_multiplier: collapse 1" in out and "undecided" not in out
+    assert "cases/s" in out or "s per case" in out
+    # the method's own result, undecided with its bracket
+    info = registry.analysis("max_load_multiplier")
+
+    def undecided(scene, **kw):
+        r = info.function(scene, **kw)
+        return replace(r, status="undecided", load_multiplier=None,
+                       bracket=(0.5, 0.625))
+
+    monkeypatch.setitem(registry.ANALYSES, "max_load_multiplier",
+                        replace(info, function=undecided))
+    assert main(["sweep", str(spec), "-o", str(tmp_path / "u.csv"), "--workers", "1",
+                 "--no-progress"]) == 3
+    out = capsys.readouterr().out
+    assert "outcomes  max_load_multiplier: undecided 1" in out and "failures  0" in out
+    assert "undecided 1 case(s) with an analysis that could not decide" in out
+    row = pd.read_csv(tmp_path / "u.csv").iloc[0]
+    assert pd.isna(row["load_multiplier"])
+    assert (row["load_multiplier_lower"], row["load_multiplier_upper"]) == (0.5, 0.625)
+    # every case failed (the generator refuses 0 courses)
+    bad = write(tmp_path, {**doc, "grid": {"courses": [0]}}, "bad.json")
+    assert main(["sweep", str(bad), "-o", str(tmp_path / "f.csv"), "--workers", "1",
+                 "--no-progress"]) == 1
+    assert "failures  1 (the first, case 0:" in capsys.readouterr().out

@@ -22,6 +22,7 @@ def run(args: argparse.Namespace) -> int:
 
     require("study", "sweep")
     from ..studies.spec import read_spec
+    from ..studies.sweep import rate_text
     from ..studies.sweep import run as run_sweep
 
     sweep = read_spec(args.spec)
@@ -29,10 +30,17 @@ def run(args: argparse.Namespace) -> int:
                     scheduler=args.scheduler, batch_size=args.batch_size,
                     progress=not args.no_progress)
     print(f"cases     {res.n_cases} ({res.n_run} run, {res.n_skipped} done before)")
+    for name, counts in res.outcomes.items():
+        print(f"{'outcomes' if name == next(iter(res.outcomes)) else '':10s}{name}: "
+              + ", ".join(f"{k} {v}" for k, v in counts.items()))
     print(f"failures  {res.n_failed}" + _first_failure(res.frame))
-    print(f"time      {res.elapsed:.2f} s ({res.rate:.1f} cases/s, {res.executor})")
+    if res.n_undecided:
+        print(f"undecided {res.n_undecided} case(s) with an analysis that could not decide: "
+              "no number, its bracket in its lower and upper columns where it has one")
+    print(f"time      {res.elapsed:.2f} s ({rate_text(res.rate)}, {res.executor})")
     print(f"output    {res.path}")
-    return 0
+    # as an analysis's command: 1 where a case failed, 3 where one is undecided
+    return 1 if res.n_failed else 3 if res.n_undecided else 0
 
 
 def _first_failure(frame) -> str:

@@ -33,19 +33,23 @@ ANSWERS: dict[str, tuple[str, ...]] = {
 #: the result's attribute behind an answer column, where it is not the column's name:
 #: the bracket of f* (its ends, also where the search could not decide), the relative
 #: accuracy lambda* reached (its bracket's width), the bounds on every non-associative
-#: collapse multiplier (an end of ``load_multiplier_bounds``)
-ATTRIBUTE: dict[str, str | tuple[str, int]] = {
+#: collapse multiplier (an end of ``load_multiplier_bounds``) or, with associative
+#: flow, the bracket of lambda* where the result has one (an undecided one's: the
+#: columns were empty, the number too, and nothing said where lambda* lay)
+ATTRIBUTE: dict[str, str | tuple[tuple[str, ...], int]] = {
     "friction_factor_lower": "lower", "friction_factor_upper": "upper",
     "load_multiplier_accuracy": "accuracy",
-    "load_multiplier_lower": ("load_multiplier_bounds", 0),
-    "load_multiplier_upper": ("load_multiplier_bounds", 1)}
+    "load_multiplier_lower": (("load_multiplier_bounds", "bracket"), 0),
+    "load_multiplier_upper": (("load_multiplier_bounds", "bracket"), 1)}
 
 
 def _column(result: Any, column: str) -> Any:
-    """The value of an answer column from an analysis result (:data:`ATTRIBUTE`)."""
+    """The value of an answer column from an analysis result (:data:`ATTRIBUTE`; a pair
+    from the first of its attributes the result has)."""
     at = ATTRIBUTE.get(column, column)
     if isinstance(at, tuple):
-        pair = getattr(result, at[0], None)
+        pair = next((p for p in (getattr(result, a, None) for a in at[0]) if p is not None),
+                    None)
         return None if pair is None else pair[at[1]]
     return getattr(result, at)
 

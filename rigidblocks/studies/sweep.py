@@ -271,7 +271,8 @@ class StudyResult:
     (check); ``friction_factor``, ``friction_angle_deg``, ``friction_factor_lower``,
     ``friction_factor_upper`` (min_friction: f*'s bracket); ``load_multiplier``,
     ``load_multiplier_accuracy``, ``load_multiplier_lower``, ``load_multiplier_upper``
-    (max_load_multiplier; the last two bound every non-associative collapse multiplier);
+    (max_load_multiplier; the last two bound every non-associative collapse multiplier,
+    or hold the associative lambda*'s bracket where there is one);
     ``min_thickness``,
     ``min_thickness_lower``, ``min_thickness_friction`` (min_thickness: the friction it
     bisected at, the scene's unless its options give one).
@@ -295,6 +296,25 @@ class StudyResult:
         return int((self.frame["status"] == "failed").sum()) if len(self.frame) else 0
 
     @property
+    def outcomes(self) -> dict[str, dict[str, int]]:
+        """For each analysis, how many cases ended in each of its statuses (collapse,
+        undecided, failed, ...), in the order met."""
+        out: dict[str, dict[str, int]] = {}
+        for col in self.frame.columns if len(self.frame) else ():
+            if col.endswith("_status"):
+                counts = self.frame[col].dropna().value_counts(sort=False)
+                out[col[:-len("_status")]] = {str(k): int(v) for k, v in counts.items()}
+        return out
+
+    @property
+    def n_undecided(self) -> int:
+        """Cases with an analysis that could not decide (no number: its bracket in its
+        columns, where it has one)."""
+        cols = [c for c in self.frame.columns if c.endswith("_status")] \
+            if len(self.frame) else []
+        return int((self.frame[cols] == "undecided").any(axis=1).sum()) if cols else 0
+
+    @property
     def rate(self) -> float:
         """Cases run per second of wall-clock time (the skipped ones not counted)."""
         return self.n_run / self.elapsed if self.elapsed > 0 else math.nan
@@ -307,8 +327,16 @@ class StudyResult:
     def summary(self) -> str:
         where = f", output {self.path}" if self.path else ""
         return (f"cases {self.n_cases} ({self.n_run} run, {self.n_skipped} done before), "
-                f"failures {self.n_failed}, time {self.elapsed:.2f} s "
-                f"({self.rate:.1f} cases/s, {self.executor}){where}")
+                f"failures {self.n_failed}, undecided {self.n_undecided}, time "
+                f"{self.elapsed:.2f} s ({rate_text(self.rate)}, {self.executor}){where}")
+
+
+def rate_text(rate: float) -> str:
+    """Cases per second to three figures, or seconds per case below one a second (2
+    cases in 48 s read "0.0 cases/s")."""
+    if not rate > 0:
+        return "no cases run"
+    return f"{rate:.3g} cases/s" if rate >= 1 else f"{1 / rate:.3g} s per case"
 
 
 def run(source: str | Scene | Sweep, *, output: str | os.PathLike | None = None,
