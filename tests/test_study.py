@@ -273,13 +273,32 @@ def test_plot_friction_angle_vs_joint_inclination():
     res = study.run("flat_arch", grid={"voussoirs": [3, 5, 0], "centre_depth": [1.0, 2.0]},
                     parameters={"load_factor": 0.0}, workers=1, progress=False)
     ax = res.plot(x="centre_depth", y="friction_angle_deg", hue="voussoirs")
-    lines = ax.get_lines()
-    assert len(lines) == 2  # the failed voussoirs = 0 cases are left out
+    lines = {ln.get_label(): ln for ln in ax.get_lines()}
+    # the failed voussoirs = 0 cases: no number, marked at the foot of the axes in their
+    # line's colour and counted in a note (they were left out without a word)
+    assert set(lines) >= {"voussoirs = 0", "voussoirs = 3", "voussoirs = 5"}
+    assert np.isnan(lines["voussoirs = 0"].get_ydata().astype(float)).all()
+    marks = [ln for ln in ax.get_lines() if ln.get_marker() == "x"]
+    assert len(marks) == 1 and list(marks[0].get_xdata()) == [1.0, 2.0]
+    assert marks[0].get_color() == lines["voussoirs = 0"].get_color()
+    assert [t.get_text() for t in ax.texts] == [
+        "no friction_angle_deg (x on the axis): 2 failed"]
     assert ax.get_xlabel() == "centre_depth"
-    y = lines[0].get_ydata()
+    y = lines["voussoirs = 3"].get_ydata()
     assert np.allclose(y, res.frame["friction_angle_deg"].iloc[:2])
     with pytest.raises(InputError, match="no column"):
         res.plot(x="nope", y="friction_factor")
+    # a case without a number between two with one breaks the line there (it was drawn
+    # straight across, as if it were data)
+    frame = res.frame[res.frame["voussoirs"] == 3].copy()
+    mid = frame.iloc[:1].assign(centre_depth=1.5, friction_angle_deg=np.nan,
+                                min_friction_status="undecided")
+    ax = study.plot(pd.concat([frame, mid]), x="centre_depth", y="friction_angle_deg")
+    line = ax.get_lines()[0]
+    assert list(line.get_xdata()) == [1.0, 1.5, 2.0]
+    assert np.isnan(line.get_ydata().astype(float)[1])
+    assert [t.get_text() for t in ax.texts] == [
+        "no friction_angle_deg (x on the axis): 1 undecided"]
 
 
 # -- spec files and the CLI ---------------------------------------------------------------

@@ -12,7 +12,10 @@ from ..errors import InputError
 def plot(frame: Any, x: str, y: str, hue: str | None = None, ax: Any = None,
          **kwargs: Any) -> Any:
     """Line chart of column ``y`` against ``x`` of a study's frame, one line per value
-    of ``hue``; failed cases and missing answers are left out. Returns the Axes.
+    of ``hue``. A case without a number in ``y`` (failed, undecided, unstable, ...)
+    breaks its line and is marked with an x at the foot of the axes, and a note counts
+    them by status (such cases were left out and the line drawn straight across them,
+    as if it were data). Returns the Axes.
 
     Example: ``plot(df, x="centre_depth", y="friction_angle_deg", hue="voussoirs")``.
     """
@@ -24,9 +27,6 @@ def plot(frame: Any, x: str, y: str, hue: str | None = None, ax: Any = None,
     if ax is None:
         _, ax = plt.subplots()
     df = frame
-    if "status" in df.columns:
-        df = df[df["status"] == "ok"]
-    df = df[df[y].notna()]
     # a friction grid with "infinite" is a column of strings: drawn as numbers (an axis
     # of categories spaced evenly bent the line lambda = f), the infinite ones left out
     xs = _numbers(df[x])
@@ -37,21 +37,47 @@ def plot(frame: Any, x: str, y: str, hue: str | None = None, ax: Any = None,
     if hue is None and df[x].duplicated().any():
         raise InputError(f"several cases share a value of {x!r}: give hue, the parameter "
                          "that varies besides it (one line each)")
+    missing = df[y].isna()
     groups = [(None, df)] if hue is None else list(df.groupby(hue, sort=True))
     style = {"marker": "o", "markersize": 3, **kwargs}
     for key, g in groups:
         g = g.sort_values(x)
-        ax.plot(g[x], g[y].astype(float), label=None if hue is None else f"{hue} = {key}",
-                **style)
-    if left_out:  # in the axes (the title is the user's)
-        ax.text(0.01, 0.99, f"not drawn: {left_out} case(s) at {x} = infinite",
-                transform=ax.transAxes, ha="left", va="top", fontsize=8)
+        (line,) = ax.plot(g[x], g[y].astype(float), label=None if hue is None else
+                          f"{hue} = {key}", **style)
+        gone = g[g[y].isna()]
+        if len(gone):  # at the foot of the axes, in the line's colour
+            ax.plot(gone[x], np.full(len(gone), 0.02), "x", color=line.get_color(),
+                    transform=ax.get_xaxis_transform(), clip_on=False)
+    notes = []
+    if missing.any():
+        why = _why_missing(df[missing], y)
+        notes.append(f"no {y} (x on the axis): " + ", ".join(f"{v} {k}"
+                                                               for k, v in why.items()))
+    if left_out:
+        notes.append(f"not drawn: {left_out} case(s) at {x} = infinite")
+    if notes:  # in the axes (the title is the user's)
+        ax.text(0.01, 0.99, "\n".join(notes), transform=ax.transAxes, ha="left", va="top",
+                fontsize=8)
     ax.set_xlabel(x)
     ax.set_ylabel(y)
     if hue is not None and groups:
         ax.legend()
     ax.grid(True, alpha=0.3)
     return ax
+
+
+def _why_missing(rows: Any, y: str) -> dict[str, int]:
+    """How many of ``rows`` (cases without a number in ``y``) ended in each status of
+    the analysis that answers ``y`` (failed, undecided, unstable, ...), or of the case."""
+    from .execute import ANSWERS
+
+    name = next((a for a, cols in ANSWERS.items() if y in cols), None)
+    col = f"{name}_status"
+    status = rows[col] if col in rows.columns else rows.iloc[:, 0].map(lambda _: None)
+    if "status" in rows.columns:  # a case whose scene was not built: its analyses None
+        status = status.where(status.notna(), rows["status"].where(rows["status"] != "ok"))
+    counts = status.fillna("not computed").value_counts(sort=False)
+    return {str(k): int(v) for k, v in counts.items()}
 
 
 def _numbers(col: Any) -> Any:
