@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pandas as pd
@@ -617,3 +618,22 @@ def test_a_sweeps_summary_counts_its_outcomes_and_its_exit_says_them(tmp_path, c
     assert main(["sweep", str(bad), "-o", str(tmp_path / "f.csv"), "--workers", "1",
                  "--no-progress"]) == 1
     assert "failures  1 (the first, case 0:" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("grid, said", [
+    ({"voussoirs": [5.5]}, "voussoirs (case 0): expected an integer, got 5.5"),
+    ({"voussoirs": ["5"]}, 'voussoirs (case 0): expected an integer, got "5"'),
+    ({"voussoirs": [5, 5.0]}, "voussoirs (case 1): expected an integer, got 5.0"),
+])
+def test_an_optional_integer_parameter_is_an_integer(grid, said):
+    """The arch's voussoirs (None by default: automatic) took any string or number: 5.5
+    failed each case at run time (the sweep exiting 0), "5" ran as 5, and [5, 5.0] ran
+    twice with two case ids. Its signature's type (int | None) now types it, null
+    allowed; a min_thickness whose lo is not below its hi is refused before any case."""
+    with pytest.raises(InputError, match=re.escape(said)):
+        study.make_sweep("arch", grid=grid)
+    assert study.make_sweep("arch", grid={"voussoirs": [5, 5, None]}).cases == (
+        {"voussoirs": 5}, {"voussoirs": None})
+    with pytest.raises(InputError, match="lo must be below hi, got lo 0.3 and hi 0.1"):
+        study.make_sweep("arch", grid={"voussoirs": [5]}, analyses=[
+            {"analysis": "min_thickness", "lo": 0.3, "hi": 0.1}])

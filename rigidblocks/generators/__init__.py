@@ -34,6 +34,8 @@ class Param:
     name: str
     default: Any
     help: str = ""
+    #: the type the generator's signature gives it (e.g. "int | None"), as written
+    annotation: str = ""
 
 
 @dataclass(frozen=True)
@@ -54,7 +56,8 @@ class Generator:
     def params(self) -> tuple[Param, ...]:
         helps = dict(self.helps)
         sig = inspect.signature(self.function)
-        return tuple(Param(p.name, p.default, helps.get(p.name, ""))
+        return tuple(Param(p.name, p.default, helps.get(p.name, ""),
+                           "" if p.annotation is p.empty else str(p.annotation))
                      for p in sig.parameters.values())
 
     def check_params(self, names: Any) -> None:

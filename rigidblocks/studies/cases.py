@@ -35,7 +35,7 @@ def _param_specs(generator: str | None) -> dict[str, Any]:
     from ..generators import get
 
     gen = get(generator)
-    params = {p.name: p.default for p in gen.params}
+    params = {p.name: _typed_default(p.default, p.annotation) for p in gen.params}
     clash = set(params) & set(RESERVED)
     if clash:  # pragma: no cover - no registered generator has one
         raise InputError(f"generator {generator!r} has a parameter named {sorted(clash)[0]!r}, "
@@ -43,10 +43,31 @@ def _param_specs(generator: str | None) -> dict[str, Any]:
     return {**params, "load_factor": 1.0, "flow": "associative"}
 
 
+class Optional:
+    """The spec of a parameter whose default is None (automatic), given a value of the
+    type of ``example`` or null: the arch's ``voussoirs: int | None`` took 5.5 (each case
+    then failed) and "5" (run as 5, and as another case beside 5)."""
+
+    def __init__(self, example: Any):
+        self.example = example
+
+
+def _typed_default(default: Any, annotation: str) -> Any:
+    """A parameter's spec: its default, or where that is None, :class:`Optional` of the
+    type its annotation names first (int or float), else None (any string or number)."""
+    if default is not None:
+        return default
+    kind = annotation.split("|")[0].strip()
+    return Optional({"int": 0, "float": 0.0}[kind]) if kind in ("int", "float") else None
+
+
 def check_value(name: str, value: Any, default: Any, where: str) -> Any:
     """``value`` checked against the type of ``default`` (an int is a number; friction
-    may also be "infinite"); returns it as a plain Python value."""
+    may also be "infinite"; an :class:`Optional` one's, or null); returns it as a plain
+    Python value."""
     v = _plain(value)
+    if isinstance(default, Optional):
+        return None if v is None else check_value(name, v, default.example, where)
     if name == "friction" and (v == INFINITE or (_is_number(v) and math.isinf(v) and v > 0)):
         return INFINITE
     if isinstance(default, bool):

@@ -158,6 +158,10 @@ def _analysis(entry: Any, where: str) -> Analysis:
     for k in ("lo", "hi", "rtol"):
         if k in opts and not (_is_number(_plain(opts[k])) and _plain(opts[k]) > 0):
             raise InputError(f"{k} must be a number > 0, got {opts[k]!r}", where)
+    if "lo" in opts and "hi" in opts and not _plain(opts["lo"]) < _plain(opts["hi"]):
+        # (each case failed on its own, the sweep ending with status 0)
+        raise InputError(f"lo must be below hi, got lo {opts['lo']!r} and hi "
+                         f"{opts['hi']!r}", where)
     if "param" in opts and not isinstance(opts["param"], str):
         raise InputError(f"param must be a string, got {opts['param']!r}", where)
     if "friction" in opts:
