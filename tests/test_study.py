@@ -174,7 +174,10 @@ def test_scene_file_source_with_friction_override(tmp_path):
     df = pd.read_csv(tmp_path / "ref.csv")
     assert res.n_cases == len(df) == 10
     assert list(df["check_status"]) == ["inadmissible"] * 2 + ["admissible"] * 8
-    assert list(df["friction"])[:5] == ["0.3", "0.49", "0.51", "0.8", "infinite"]
+    # (numbers, inf for "infinite": a column of text, where d[d.friction == 0.5] found
+    # nothing)
+    assert list(df["friction"])[:5] == [0.3, 0.49, 0.51, 0.8, math.inf]
+    assert res.frame["friction"].dtype.kind == "f"
     with pytest.raises(InputError, match="min_thickness needs a generator"):
         study.make_sweep(str(EXAMPLES / "reference.json"), grid={"friction": [0.5]},
                          analyses=["min_thickness"])
@@ -467,6 +470,10 @@ def test_a_friction_grid_with_infinite_is_drawn_on_a_numeric_axis():
     assert list(line.get_xdata()) == [0.05, 0.1, 0.2]
     assert list(line.get_ydata()) == [0.05, 0.1, 0.2]
     assert any(t.get_text() == "not drawn: 1 case(s) at friction = infinite" for t in ax.texts)
+    # a sweep's own column: numbers, inf where infinite
+    ax = study.plot(df.assign(friction=[0.05, 0.1, 0.2, math.inf]), x="friction",
+                    y="load_multiplier")
+    assert any(t.get_text() == "not drawn: 1 case(s) at friction = infinite" for t in ax.texts)
     two = pd.DataFrame({"d": [1.0, 1.0, 2.0, 2.0], "n": [5, 9, 5, 9],
                         "f": [0.1, 0.2, 0.3, 0.4]})
     with pytest.raises(InputError, match="several cases share a value of 'd': give hue"):
@@ -533,7 +540,7 @@ def test_min_thickness_reads_the_scene_friction_as_check_does():
                                   analyses=[{"analysis": "min_thickness",
                                              "friction": "infinite"}])
     row_inf = study.run(no_sliding).frame.iloc[0]
-    assert row_inf["min_thickness_friction"] == "infinite"
+    assert row_inf["min_thickness_friction"] == math.inf
     assert row_inf["min_thickness"] < row["min_thickness_lower"]
 
 

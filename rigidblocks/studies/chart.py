@@ -81,12 +81,12 @@ def _why_missing(rows: Any, y: str) -> dict[str, int]:
 
 
 def _numbers(col: Any) -> Any:
-    """A column of numbers and "infinite" (a friction grid) as floats; None where it
-    holds other words (drawn as they are)."""
+    """A column of numbers, inf or "infinite" (a friction grid) as floats; None where
+    it holds other words (drawn as they are)."""
     import pandas as pd
 
-    if pd.api.types.is_numeric_dtype(col):
-        return None
+    if pd.api.types.is_numeric_dtype(col):  # (a sweep's friction: inf where infinite)
+        return col.to_numpy(dtype=float)
     out = pd.to_numeric(col.replace({"infinite": np.inf, "inf": np.inf}), errors="coerce")
     return None if out.isna().any() else out.to_numpy(dtype=float)
 

@@ -4,6 +4,7 @@ that run batches in this process, on local processes or on a Dask cluster."""
 from __future__ import annotations
 
 import itertools
+import math
 import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
@@ -11,7 +12,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..errors import InputError
-from ..scene.model import Scene, friction_label
+from ..scene.model import INFINITE, Scene, friction_value
 from .cases import RESERVED, SCENE_PARAMS
 
 #: analysis name -> options it accepts (given in the analysis entry, not per case)
@@ -113,7 +114,8 @@ def answer(analysis: Analysis, job: _Job, params: Mapping[str, Any],
                            load_factor=load_factor or 0.0, **opts, **params)
         return {"min_thickness_status": th.status, "min_thickness": th.thickness,
                 "min_thickness_lower": th.lower,
-                "min_thickness_friction": friction_label(th.friction)}, th.solve_time
+                "min_thickness_friction": float(friction_value(th.friction))}, \
+            th.solve_time
     if name not in ANALYSES:
         raise InputError(f"unknown analysis {name!r} (choose from {', '.join(ANALYSES)})")
     from ..analyses import analysis as registered
@@ -178,8 +180,16 @@ def run_case(job: _Job, params: Mapping[str, Any]) -> dict[str, Any]:
 
 def run_batch(job: _Job, batch: Sequence[tuple[int, str, dict[str, Any]]]) -> list[dict]:
     """Rows of a batch of cases ``(index, case_id, params)`` (a task of an executor)."""
-    return [{"case": i, "case_id": cid, **params, **run_case(job, params)}
+    return [{"case": i, "case_id": cid, **_numeric(params), **run_case(job, params)}
             for i, cid, params in batch]
+
+
+def _numeric(params: Mapping[str, Any]) -> dict[str, Any]:
+    """A case's parameters as its row gives them: an infinite friction as the number inf
+    (the spelling "infinite" made the column text, where d[d.friction == 0.5] found
+    nothing)."""
+    return {k: math.inf if k == "friction" and v == INFINITE else v
+            for k, v in params.items()}
 
 
 # -- executors ---------------------------------------------------------------------------
