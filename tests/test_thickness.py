@@ -42,8 +42,13 @@ def test_semicircular_arch_many_voussoirs():
 def test_bad_brackets():
     with pytest.raises(InputError, match="upper bound"):
         min_thickness("arch", voussoirs=20, lo=0.01, hi=0.05)
-    with pytest.raises(InputError, match="lower bound"):
-        min_thickness("arch", voussoirs=20, lo=0.5, hi=0.9)
+    # standing at the lower bound is an answer, at most lo (it was an error that asked
+    # for a lower one, which for the 3-voussoir arch, standing however thin, never ends)
+    r = min_thickness("arch", voussoirs=20, lo=0.5, hi=0.9)
+    assert (r.status, r.thickness, r.lower) == ("at_lower_bound", 0.5, 0.0)
+    r = min_thickness("arch", voussoirs=3, lo=1e-6)
+    assert (r.status, r.thickness, r.lower) == ("at_lower_bound", 1e-6, 0.0)
+    assert "the minimum is at most that" in r.notes[0]
     with pytest.raises(InputError, match="lo < hi"):
         min_thickness("arch", lo=0.2, hi=0.1)
 
@@ -253,3 +258,15 @@ def test_an_unknown_parameter_is_named_before_any_bound():
         assert msg.startswith(f"min_thickness: arch: unknown parameter {bad!r} "
                               "(parameters: arc_points, depth, friction,")
         assert "upper bound" not in msg
+
+
+def test_a_parameter_the_family_refuses_is_not_blamed_on_the_upper_bound():
+    """`min_thickness("arch", voussoirs=2.5)` advised "give a smaller upper bound", which
+    no bound mends: the family builds at neither bound. An upper bound the family
+    refuses (t/R = 3) keeps the advice."""
+    with pytest.raises(InputError) as err:
+        min_thickness("arch", voussoirs=2.5)
+    assert "voussoirs must be an integer >= 1, got 2.5" in str(err.value)
+    assert "upper bound" not in str(err.value)
+    with pytest.raises(InputError, match=r"give a smaller upper bound \(hi, --hi\)"):
+        min_thickness("arch", voussoirs=15, hi=3)

@@ -36,6 +36,7 @@ def run(args: argparse.Namespace) -> int:
     from ..generators import get
     from ..methods import method_name
     from ..studies import min_thickness
+    from ..studies.thickness import AT_LOWER_BOUND
     from .example import as_options, describe, options, parameter_name, parse_params
 
     gen = get(args.generator)
@@ -91,6 +92,9 @@ def run(args: argparse.Namespace) -> int:
             print("status     UNDECIDED: a check could not decide; the minimum is only "
                   "bracketed")
             print(f"{shown:<10} in {bracket}   ({res.n_checks} checks)")
+        elif res.status == AT_LOWER_BOUND:
+            print(f"{shown:<10} min <= {res.thickness:.10g}   (it stands at the lower bound "
+                  f"--lo; {res.n_checks} checks)")
         else:
             # the thinnest that stands, rounded up (a check at the printed value stands)
             print(f"{shown:<10} min {fmt_safe(res.thickness, 6, True)}   (bracket "

@@ -25,6 +25,9 @@ from ..errors import InputError
 from ..results import fmt_safe
 from ..scene.model import Scene, friction_label, friction_value
 
+#: the status of a search whose lower bound stands already
+AT_LOWER_BOUND = "at_lower_bound"
+
 
 @dataclass(frozen=True)
 class ThicknessResult:
@@ -37,9 +40,11 @@ class ThicknessResult:
         param: the generator's parameter that was varied.
         n_checks: number of admissibility checks solved.
         params: the generator's other parameters.
-        status: "found" (the bracket is ``rtol`` wide), or "undecided" when a check
-            could not decide (the distortion method near the limit): the bracket
-            ``[lower, thickness]`` is then wider, and ``notes`` say where it stopped.
+        status: "found" (the bracket is ``rtol`` wide), "at_lower_bound" (it stands
+            at ``lo``: the minimum is at most ``thickness`` = lo, ``lower`` 0), or
+            "undecided" when a check could not decide (the distortion method near the
+            limit): the bracket ``[lower, thickness]`` is then wider, and ``notes`` say
+            where it stopped.
         load_factor, solve_time: the multiple of the live load the checks stood under,
             and the seconds they spent in the solvers.
     """
@@ -125,7 +130,17 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         except InputError as err:
             raise InputError(f"min_thickness: {name} cannot be built at {param}={t:g} "
                              f"({err})" + ("; give a smaller upper bound (hi, --hi)"
-                                           if t == hi else "")) from None
+                                           if t == hi and _builds(lo) else "")) from None
+
+    def _builds(t: float) -> bool:
+        """Does the family build at ``t``? (Where it fails at the lower bound too, the
+        other parameters are at fault: voussoirs=2.5 was told to give a smaller upper
+        bound.)"""
+        try:
+            gen(**params, **{param: t})
+        except InputError:
+            return False
+        return True
 
     def admissible(t: float) -> tuple[bool | None, str]:
         nonlocal n, spent
@@ -157,10 +172,19 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         raise InputError(_not_at_hi(build(hi), name, f"{param}={hi:g}", at_hi, friction,
                                     method, load_factor, thicker))
     at_lo, status = admissible(lo)
-    if at_lo is not False:
-        what = "already admissible" if at_lo else f"{status}, not certified inadmissible,"
-        raise InputError(f"min_thickness: {name} is {what} at the lower bound "
-                         f"{param}={lo:g}; lower the lower bound (lo, --lo)")
+    if at_lo:
+        # an answer, not an error: the 3-voussoir arch (four joints) stands however thin,
+        # and "lower the lower bound" could never end
+        note = (f"it stands at the lower bound {param}={lo:g}: the minimum is at most "
+                "that (no thinner value was tried; a smaller lo, --lo, finds it where it "
+                "lies above 0)")
+        return ThicknessResult(name, param, lo, 0.0, n, friction, dict(params),
+                               status=AT_LOWER_BOUND, notes=(note,),
+                               load_factor=load_factor, solve_time=spent)
+    if at_lo is None:
+        raise InputError(f"min_thickness: {name} is {status}, not certified "
+                         f"inadmissible, at the lower bound {param}={lo:g}; lower the lower "
+                         "bound (lo, --lo)")
     br = bisect(admissible, lo, hi, rtol)
     if br.undecided_at is not None:
         note = (f"the check could not decide at {param}={br.undecided_at:.6g}: the minimum "
@@ -199,4 +223,4 @@ def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction
     return head + thicker()
 
 
-__all__ = ["ThicknessResult", "min_thickness"]
+__all__ = ["AT_LOWER_BOUND", "ThicknessResult", "min_thickness"]
