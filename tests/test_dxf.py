@@ -407,6 +407,39 @@ def test_import_doubts_a_declared_unit_that_makes_blocks_metres_across(tmp_path,
     assert "the blocks are 250 m across (the median): if the drawing" in err
 
 
+def test_import_without_a_unit_guesses_it_and_reads_unit_spellings(tmp_path, capsys):
+    """A drawing that declares no unit ($INSUNITS 0), of 350 x 200 blocks, and given
+    none: the import said nothing of units (its scene then weighed 350 mm blocks as 350
+    m ones); it says the lengths are the drawing's own, and in which units the blocks
+    are a masonry block's size. --length-unit meter, inches ... were units of their own
+    (no span in metres, no doubt of the size) and furlong was written into the scene:
+    the spellings are read, an unknown unit refused."""
+    doc = ezdxf.new()
+    doc.header["$INSUNITS"] = 0
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(-500, -200), (1000, -200), (1000, 0), (-500, 0)], close=True)
+    for k in range(3):
+        msp.add_lwpolyline([(0, 200 * k), (350, 200 * k), (350, 200 * k + 200),
+                            (0, 200 * k + 200)], close=True)
+    path = tmp_path / "u0.dxf"
+    doc.saveas(path)
+    out = tmp_path / "u0.json"
+    assert main(["import-dxf", str(path), "-o", str(out)]) == 0
+    said = capsys.readouterr()
+    assert "lengths in the drawing's own units, none declared (it spans 1500 x 800 units)" \
+        in said.out, said.out
+    assert ("warning: the drawing declares no length unit ($INSUNITS 0) and none was "
+            "given: its lengths are read as they are, the blocks 350 units across (the "
+            "median): in mm 0.35 m: give the drawing's unit with --length-unit") in said.err
+    for given, unit in (("millimetres", "mm"), ("Meter", "m"), ("inches", "in")):
+        assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", given]) == 0
+        assert read_scene(out).units.length == unit
+        capsys.readouterr()
+    assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", "furlong"]) == 2
+    assert "unknown length unit 'furlong' (known: in, ft, mm, cm, m, km, yd, dm)" in \
+        capsys.readouterr().err
+
+
 def test_export_of_a_3d_scene_is_refused_before_its_analysis(tmp_path, capsys, monkeypatch):
     """`export-dxf` of a 3D scene: one line, exit 2, and no analysis run first (it
     took the corbel dome's load analysis, 1.1 s CPU against 0.5 s, to say no)."""

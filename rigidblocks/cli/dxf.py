@@ -83,7 +83,11 @@ def run(args: argparse.Namespace) -> int:
     from ..io.dxf import read_dxf, require_2d, write_dxf
 
     if args.command == "import-dxf":
+        from ..io.dxf import length_unit
+
         units = None
+        if args.length_unit:
+            args.length_unit = length_unit(args.length_unit)
         if args.length_unit or args.force_unit:
             units = (args.length_unit, args.force_unit)
         scene, rep = read_dxf(args.dxf, supports=args.supports, unit_weight=args.unit_weight,
@@ -100,6 +104,7 @@ def run(args: argparse.Namespace) -> int:
             depth_note,
             span_text,
             unit_doubt,
+            unit_guess,
         )
 
         if rep.unit_conflict:
@@ -111,7 +116,10 @@ def run(args: argparse.Namespace) -> int:
         elif args.length_unit:  # (the span was said only for a declared unit)
             print(f"lengths in {scene.length_unit}, as given (the drawing spans "
                   f"{span_text(scene)})")
-        doubt = unit_doubt(scene)
+        else:  # (nothing was said, nor doubted: 350 mm blocks weighed as 350 m ones)
+            print(f"lengths in the drawing's own units, none declared (it spans "
+                  f"{span_text(scene)})")
+        doubt = unit_doubt(scene) or (unit_guess(scene) if not scene.length_unit else "")
         if doubt:
             print(f"rigidblocks: warning: {doubt}", file=sys.stderr)
         if scene.unit_weight is None:

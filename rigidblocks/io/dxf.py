@@ -169,6 +169,29 @@ INSUNITS = {1: "in", 2: "ft", 4: "mm", 5: "cm", 6: "m", 7: "km", 10: "yd", 14: "
 #: ... in metres
 METRES = {"in": 0.0254, "ft": 0.3048, "mm": 1e-3, "cm": 1e-2, "m": 1.0, "km": 1e3,
           "yd": 0.9144, "dm": 0.1}
+#: other spellings of ``METRES``' units (--length-unit meter was taken as a unit of
+#: its own: no span in metres, no doubt of the blocks' size)
+SPELLINGS = {**{w: "m" for w in ("meter", "meters", "metre", "metres")},
+             **{w: "mm" for w in ("millimeter", "millimeters", "millimetre", "millimetres")},
+             **{w: "cm" for w in ("centimeter", "centimeters", "centimetre", "centimetres")},
+             **{w: "dm" for w in ("decimeter", "decimeters", "decimetre", "decimetres")},
+             **{w: "km" for w in ("kilometer", "kilometers", "kilometre", "kilometres")},
+             "inch": "in", "inches": "in", "\"": "in", "foot": "ft", "feet": "ft",
+             "'": "ft", "yard": "yd", "yards": "yd"}
+
+
+def length_unit(text: str) -> str:
+    """A length unit given for a drawing as its short name (``METRES``' keys): "metre"
+    is "m", "inches" "in"; a unit none of them names is refused (a furlong was written
+    into the scene as its unit)."""
+    u = str(text).strip().lower()
+    u = SPELLINGS.get(u, u)
+    if u not in METRES:
+        raise InputError(f"unknown length unit {text!r} (known: {', '.join(METRES)})",
+                         "--length-unit")
+    return u
+
+
 #: the sizes of masonry blocks, in metres, outside which a drawing's unit is doubted
 #: (:func:`unit_doubt`): bricks and stones from a few centimetres to a few metres
 BLOCK_SIZES = (0.02, 3.0)
@@ -184,7 +207,7 @@ def span_text(scene: Scene) -> str:
     is known: "1247 x 447.7 in (31.66 x 11.37 m)"."""
     lo, hi = block_boxes(scene)
     w, h = (hi.max(axis=0) - lo.min(axis=0))[:2]
-    unit = scene.length_unit
+    unit = scene.length_unit or "units"  # ("2500 x 1940 )" where it had none)
     metres = _metres(scene)
     inm = f" ({w * metres:.4g} x {h * metres:.4g} m)" if metres not in (None, 1.0) else ""
     return f"{w:.4g} x {h:.4g} {unit}{inm}"
@@ -207,6 +230,24 @@ def unit_doubt(scene: Scene) -> str:
     inm = f", {size * metres:.3g} m" if metres != 1.0 else ""
     return (f"the blocks are {size:.4g} {scene.length_unit} across (the median){inm}: if "
             "the drawing is in another unit, give it with --length-unit (e.g. mm)")
+
+
+def unit_guess(scene: Scene) -> str:
+    """For a drawing that declares no unit and was given none: the blocks' median size
+    in its own units and the units in which that is a masonry block's size
+    (``BLOCK_SIZES``): "the blocks are 350 units across (the median): in mm 0.35 m"."""
+    if not scene.blocks:
+        return ""
+    lo, hi = block_boxes(scene)
+    size = float(np.median((hi - lo).max(axis=1)))
+    low, high = BLOCK_SIZES
+    fits = [f"in {u} {size * m:.3g} m" for u, m in METRES.items()
+            if u not in ("km", "yd", "dm") and low <= size * m <= high]
+    read = ("; ".join(fits) + ": give the drawing's unit with --length-unit") if fits else \
+        "in no common unit a masonry block's size"
+    return (f"the drawing declares no length unit ($INSUNITS 0) and none was given: its "
+            f"lengths are read as they are, the blocks {size:.4g} units across (the "
+            f"median): {read}")
 
 
 def depth_note(scene: Scene) -> str:
