@@ -492,3 +492,23 @@ def test_export_draws_no_arrow_on_an_open_joint(tmp_path):
     assert len(strokes) == 3 * int((~is_open).sum())
     assert all(math.dist(e.dxf.start, e.dxf.end) > 0 for e in strokes)
     assert len([e for e in msp if e.dxf.layer == "RB_THRUST_LINE"]) == int((~is_open).sum())
+
+
+def test_a_layer_that_holds_nothing_and_a_drawing_given_as_a_scene_are_named(
+        tmp_path, capsys):
+    """--layers NOPE said "no polylines or lines: nothing to make blocks of" of a
+    drawing full of them (on layer 0); `load drawing.dxf` said "malformed JSON: Extra
+    data at line 2 column 1". Each names what is wrong and what to do."""
+    doc = ezdxf.new()
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(-1, -1), (3, -1), (3, 0), (-1, 0)], close=True)
+    msp.add_lwpolyline([(0, 0), (1, 0), (1, 2), (0, 2)], close=True)
+    path = tmp_path / "d.dxf"
+    doc.saveas(path)
+    assert main(["import-dxf", str(path), "-o", str(tmp_path / "d.json"), "--layers",
+                 "NOPE"]) == 2
+    assert f"{path}: layers: no polylines or lines on the layer(s) NOPE (layers with " \
+        "some: 0)" in capsys.readouterr().err
+    assert main(["load", str(path)]) == 2
+    assert f"{path}: a DXF drawing, not a scene file: make its scene with `rigidblocks " \
+        f"import-dxf {path} -o SCENE.json`" in capsys.readouterr().err

@@ -369,6 +369,12 @@ def read_dxf(path: str | os.PathLike, *, supports: str | None = None,
     allpts = [r.points for r in raws] + [
         np.array([[e.dxf.start[0], e.dxf.start[1]], [e.dxf.end[0], e.dxf.end[1]]])
         for e in lines]
+    if not allpts and layers is not None:
+        # (it read "no polylines or lines" of a drawing full of them, on other layers)
+        have = sorted({e.dxf.layer for e in doc.modelspace()
+                       if e.dxftype() in ("LWPOLYLINE", "POLYLINE", "LINE")})
+        raise InputError(f"no polylines or lines on the layer(s) {', '.join(layers)} "
+                         f"(layers with some: {', '.join(have) or 'none'})", f"{src}: layers")
     if not allpts:
         raise InputError("no polylines or lines: nothing to make blocks of", src)
     cat = np.concatenate(allpts)

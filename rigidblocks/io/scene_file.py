@@ -287,6 +287,11 @@ def loads_json(text: str, source: str | None = None) -> Any:
     try:
         doc = json.loads(text, parse_constant=_nonfinite_constant)
     except json.JSONDecodeError as err:
+        head = text.lstrip()[:200].split()
+        if head[:2] == ["0", "SECTION"]:  # (it read "malformed JSON: Extra data ...")
+            raise InputError("a DXF drawing, not a scene file: make its scene with "
+                             f"`rigidblocks import-dxf {source or 'DRAWING.dxf'} -o "
+                             "SCENE.json` (rigidblocks.read_dxf in Python)", source) from None
         raise InputError(f"malformed JSON: {err.msg.removesuffix(' at')} at line "
                          f"{err.lineno} column {err.colno}",
                          source) from None
