@@ -644,3 +644,11 @@ def test_an_optional_integer_parameter_is_an_integer(grid, said):
     with pytest.raises(InputError, match="lo must be below hi, got lo 0.3 and hi 0.1"):
         study.make_sweep("arch", grid={"voussoirs": [5]}, analyses=[
             {"analysis": "min_thickness", "lo": 0.3, "hi": 0.1}])
+
+
+def test_the_sweep_commands_progress_bar_is_for_a_terminal(tmp_path, capsys):
+    """Off a terminal (a log, a pipe) the progress bar filled standard error with its
+    carriage-return lines; it is drawn only on a terminal, as the analyses' progress."""
+    spec = write(tmp_path, BASE)
+    assert main(["sweep", str(spec), "-o", str(tmp_path / "a.csv"), "--workers", "1"]) == 0
+    assert capsys.readouterr().err == ""

@@ -14,7 +14,8 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("--scheduler", default=None,
                    help="Dask scheduler address (tcp://HOST:PORT) instead of local processes")
     p.add_argument("--batch-size", type=int, default=None, help="cases per task")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress bar (drawn only where standard error is a terminal)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -28,7 +29,7 @@ def run(args: argparse.Namespace) -> int:
     sweep = read_spec(args.spec)
     res = run_sweep(sweep, output=args.output, workers=args.workers,
                     scheduler=args.scheduler, batch_size=args.batch_size,
-                    progress=not args.no_progress)
+                    progress=not args.no_progress and _terminal())
     print(f"cases     {res.n_cases} ({res.n_run} run, {res.n_skipped} done before)")
     for name, counts in res.outcomes.items():
         print(f"{'outcomes' if name == next(iter(res.outcomes)) else '':10s}{name}: "
@@ -41,6 +42,14 @@ def run(args: argparse.Namespace) -> int:
     print(f"output    {res.path}")
     # as an analysis's command: 1 where a case failed, 3 where one is undecided
     return 1 if res.n_failed else 3 if res.n_undecided else 0
+
+
+def _terminal() -> bool:
+    """Is standard error a terminal? The progress bar is drawn there only (a log
+    filled with its carriage-return lines), as the analyses' progress lines are."""
+    import sys
+
+    return sys.stderr.isatty()
 
 
 def _first_failure(frame) -> str:
