@@ -652,3 +652,23 @@ def test_the_sweep_commands_progress_bar_is_for_a_terminal(tmp_path, capsys):
     spec = write(tmp_path, BASE)
     assert main(["sweep", str(spec), "-o", str(tmp_path / "a.csv"), "--workers", "1"]) == 0
     assert capsys.readouterr().err == ""
+
+
+def test_a_thickness_that_is_only_a_bound_is_no_point_of_the_curve():
+    """A min_thickness row standing at its lower bound holds lo in min_thickness (the
+    minimum is at most that), an undecided one its bracket's upper end: drawn, the
+    3-voussoir arch's 0.02 was a point of the curve. They are marked as cases without a
+    number, by status."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    df = pd.DataFrame({"voussoirs": [3, 5, 9, 15], "status": ["ok"] * 4,
+                       "min_thickness": [0.02, 0.0963, 0.102, 0.1063],
+                       "min_thickness_status": ["at_lower_bound", "found", "undecided",
+                                                "found"]})
+    ax = study.plot(df, x="voussoirs", y="min_thickness")
+    line = ax.get_lines()[0]
+    assert list(line.get_xdata()) == [3, 5, 9, 15]
+    assert np.isnan(line.get_ydata().astype(float)[[0, 2]]).all()
+    assert [t.get_text() for t in ax.texts] == [
+        "no min_thickness (x on the axis): 1 at_lower_bound, 1 undecided"]

@@ -37,6 +37,11 @@ def plot(frame: Any, x: str, y: str, hue: str | None = None, ax: Any = None,
     if hue is None and df[x].duplicated().any():
         raise InputError(f"several cases share a value of {x!r}: give hue, the parameter "
                          "that varies besides it (one line each)")
+    # a number that is only a bound (an undecided search's bracket end, a thickness at
+    # most the lower bound searched) is no point of the curve
+    status = _status_of(df, y)
+    if status is not None:
+        df = df.assign(**{y: df[y].where(~status.isin(BOUNDS_ONLY))})
     missing = df[y].isna()
     groups = [(None, df)] if hue is None else list(df.groupby(hue, sort=True))
     style = {"marker": "o", "markersize": 3, **kwargs}
@@ -66,14 +71,25 @@ def plot(frame: Any, x: str, y: str, hue: str | None = None, ax: Any = None,
     return ax
 
 
-def _why_missing(rows: Any, y: str) -> dict[str, int]:
-    """How many of ``rows`` (cases without a number in ``y``) ended in each status of
-    the analysis that answers ``y`` (failed, undecided, unstable, ...), or of the case."""
+#: statuses whose answer column holds a bound, not the answer
+BOUNDS_ONLY = ("undecided", "at_lower_bound")
+
+
+def _status_of(frame: Any, y: str) -> Any:
+    """The status column of the analysis that answers ``y`` (None where there is none)."""
     from .execute import ANSWERS
 
     name = next((a for a, cols in ANSWERS.items() if y in cols), None)
     col = f"{name}_status"
-    status = rows[col] if col in rows.columns else rows.iloc[:, 0].map(lambda _: None)
+    return frame[col] if col in frame.columns else None
+
+
+def _why_missing(rows: Any, y: str) -> dict[str, int]:
+    """How many of ``rows`` (cases without a number in ``y``) ended in each status of
+    the analysis that answers ``y`` (failed, undecided, unstable, ...), or of the case."""
+    status = _status_of(rows, y)
+    if status is None:
+        status = rows.iloc[:, 0].map(lambda _: None)
     if "status" in rows.columns:  # a case whose scene was not built: its analyses None
         status = status.where(status.notna(), rows["status"].where(rows["status"] != "ok"))
     counts = status.fillna("not computed").value_counts(sort=False)
