@@ -561,12 +561,12 @@ class _Words:
             # what it measures: a 20 kN block leaning beyond its base, under its weight
             # again sideways, "breached" by 70 kN read as a misprint (about its toe the
             # loads turn 35 kNm, held by 70 kN of tension at its heel 0.5 m away)
-            # (in 3D each contact point's law is relaxed by it: a box short of friction
-            # by 0.6 read 0.15, a quarter, beside its joint)
-            of = "a contact" if self.scene.dimension == 2 else \
-                "one contact point; a joint's, summed over its points, is named with it"
+            # (each contact point's law, or in 2D each joint's shear, is relaxed by it: a
+            # 3D box short of friction by 0.6 read 0.15, a quarter, beside its joint, a
+            # 2D block lifted off its two points 10 beside its joint's 20)
             number = (f"{whose} breach of the joint laws {self.force(res.violation)} (the "
-                      f"most tension, or shear beyond friction, it asks of {of}; 0 would "
+                      "most tension, or shear beyond friction, it asks of one contact; a "
+                      "joint's, summed over its contact points, is named with it; 0 would "
                       "stand)")
         names = [f"{a}-{b} ({fmt(v, 3)} {self.fu})" for a, b, v in
                  ((*res.joint_name(k), v) for k, v in res.breaches)]
@@ -867,7 +867,7 @@ def accuracy_text(res: Any) -> str | None:
 
         near_zero = (f"; decided by its width {bracket[1] - bracket[0]:.1e} <= "
                      f"{BRACKET_ATOL:g}, the absolute floor for answers within it of 0")
-    return f"{accuracy:.1e} ({where}relative width; requested {rtol:.2g}{near_zero})"
+    return f"{accuracy:.1e} ({where}relative width; requested {rtol:g}{near_zero})"
 
 
 def method_text(res: Any) -> str | None:

@@ -220,3 +220,9 @@ def test_a_joints_breach_is_its_points_summed(sides):
     (_, breach), = res.breaches
     assert breach == pytest.approx(0.01 * weight, rel=1e-4)
     assert res.violation == pytest.approx(0.01 * weight / sides, rel=1e-4)
+    # the terminal says which is which, in 2D too (a block lifted off its two points read
+    # 10 on the answer line and 20 beside its joint, unexplained)
+    from rigidblocks.answer import answer_block
+
+    assert "a joint's, summed over its contact points, is named with it" in \
+        answer_block(scene, res).number

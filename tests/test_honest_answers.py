@@ -1041,7 +1041,8 @@ def test_the_breach_says_what_it_measures(tmp_path, capsys):
         units={"length": "m", "force": "kN"}))
     code, out, _ = run(capsys, ["check", path, "--friction", "infinite"])
     assert ("answer     smallest breach of the joint laws 70 kN (the most tension, or shear "
-            "beyond friction, it asks of a contact; 0 would stand)") in out, out
+            "beyond friction, it asks of one contact; a joint's, summed over its contact "
+            "points, is named with it; 0 would stand)") in out, out
 
 
 def test_a_linear_program_clarabel_cannot_solve_is_answered_by_highs(capsys):

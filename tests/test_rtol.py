@@ -206,3 +206,14 @@ def test_without_dilatancy_a_number_holds_to_the_accuracy_asked_too(capsys):
     assert "absolute floor" not in out
     assert main(["load", path, *na]) == 0
     assert "lambda* = 0.6," in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("rtol, shown", [("1.25e-4", "0.000125"), ("0.00123", "0.00123"),
+                                         ("1e-5", "1e-05")])
+def test_the_accuracy_line_gives_the_rtol_asked_as_asked(capsys, rtol, shown):
+    """--rtol 1.25e-4 read "requested 0.00013" (looser than asked), 0.00123 "0.0012"."""
+    assert main(["load", str(Path(__file__).parents[1] / "examples" / "arch.json"),
+                 "--rtol", rtol]) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines()
+                if ln.startswith("accuracy"))
+    assert line.endswith(f"relative width; requested {shown})"), line

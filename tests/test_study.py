@@ -672,3 +672,35 @@ def test_a_thickness_that_is_only_a_bound_is_no_point_of_the_curve():
     assert np.isnan(line.get_ydata().astype(float)[[0, 2]]).all()
     assert [t.get_text() for t in ax.texts] == [
         "no min_thickness (x on the axis): 1 at_lower_bound, 1 undecided"]
+
+
+def test_an_undecided_non_associative_row_keeps_its_bracket_and_a_failed_case_counts():
+    """The inclined corbel arch without dilatancy at f = 0.8 is undecided, lambda* in
+    [0.01279220942, 0.0127926969] (`load`); its sweep row gave the bounds on every
+    state instead, [-, 0.0213], 66 % above it, beside "its bracket in its lower and upper
+    columns". A case whose scene cannot be built left its analyses' statuses empty (the
+    outcomes did not count it); they read failed."""
+    sw = study.make_sweep("corbel_arch", cases=[
+        {"pattern": "inclined", "flow": "non-associative", "friction": 0.8},
+        {"pattern": "inclined", "courses": 0}], analyses=["max_load_multiplier"])
+    res = study.run(sw, workers=1, progress=False)
+    row, bad = res.frame.iloc[0], res.frame.iloc[1]
+    assert row["max_load_multiplier_status"] == "undecided"
+    assert (row["load_multiplier_lower"], row["load_multiplier_upper"]) == pytest.approx(
+        (0.01279220942, 0.0127926969), rel=1e-9)
+    assert bad["status"] == "failed" and bad["max_load_multiplier_status"] == "failed"
+    assert res.outcomes == {"max_load_multiplier": {"undecided": 1, "failed": 1}}
+
+
+def test_a_case_without_a_hue_value_is_drawn():
+    """A case that leaves the hue parameter to its default (friction not given) has an
+    empty hue: groupby dropped it, its number not drawn and not said."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    df = pd.DataFrame({"thickness": [0.15, 0.15, 0.2], "status": ["ok"] * 3,
+                       "friction": [np.nan, 0.4, 0.4],
+                       "friction_factor": [0.3466, 0.35, 0.33]})
+    ax = study.plot(df, x="thickness", y="friction_factor", hue="friction")
+    drawn = {ln.get_label(): list(ln.get_ydata()) for ln in ax.get_lines()}
+    assert drawn == {"friction = nan": [0.3466], "friction = 0.4": [0.35, 0.33]}

@@ -43,7 +43,9 @@ def plot(frame: Any, x: str, y: str, hue: str | None = None, ax: Any = None,
     if status is not None:
         df = df.assign(**{y: df[y].where(~status.isin(BOUNDS_ONLY))})
     missing = df[y].isna()
-    groups = [(None, df)] if hue is None else list(df.groupby(hue, sort=True))
+    # (a case without a hue value, a parameter some cases leave to the default, was
+    # dropped by groupby without a word)
+    groups = [(None, df)] if hue is None else list(df.groupby(hue, sort=True, dropna=False))
     style = {"marker": "o", "markersize": 3, **kwargs}
     for key, g in groups:
         g = g.sort_values(x)

@@ -33,15 +33,15 @@ ANSWERS: dict[str, tuple[str, ...]] = {
 }
 #: the result's attribute behind an answer column, where it is not the column's name:
 #: the bracket of f* (its ends, also where the search could not decide), the relative
-#: accuracy lambda* reached (its bracket's width), the bounds on every non-associative
-#: collapse multiplier (an end of ``load_multiplier_bounds``) or, with associative
-#: flow, the bracket of lambda* where the result has one (an undecided one's: the
-#: columns were empty, the number too, and nothing said where lambda* lay)
+#: accuracy lambda* reached (its bracket's width), and the narrowest bracket known to
+#: hold lambda*: its search's where it left one (an undecided answer's: the columns were
+#: empty, the number too, and nothing said where lambda* lay), else the bounds on every
+#: non-associative collapse multiplier (an end of ``load_multiplier_bounds``)
 ATTRIBUTE: dict[str, str | tuple[tuple[str, ...], int]] = {
     "friction_factor_lower": "lower", "friction_factor_upper": "upper",
     "load_multiplier_accuracy": "accuracy",
-    "load_multiplier_lower": (("load_multiplier_bounds", "bracket"), 0),
-    "load_multiplier_upper": (("load_multiplier_bounds", "bracket"), 1)}
+    "load_multiplier_lower": (("bracket", "load_multiplier_bounds"), 0),
+    "load_multiplier_upper": (("bracket", "load_multiplier_bounds"), 1)}
 
 
 def _column(result: Any, column: str) -> Any:
@@ -159,11 +159,13 @@ def run_case(job: _Job, params: Mapping[str, Any]) -> dict[str, Any]:
     errors = []
     for a in job.analyses:
         # each analysis on its own: one that raises leaves the others' answers; a scene
-        # that cannot be built fails the case
+        # that cannot be built fails the case, and every analysis of it (their statuses
+        # were left empty: the outcomes did not count the case)
         try:
             entries, solve_time = answer(a, job, gen_params, lf, scene, params.get("flow"))
         except _NoScene as err:
             errors = [f"{type(err.cause).__name__}: {err.cause}"]
+            row.update({f"{b.name}_status": "failed" for b in job.analyses})
             break
         except Exception as err:  # noqa: BLE001 - every failure is recorded, the study goes on
             row[f"{a.name}_status"] = "failed"

@@ -275,8 +275,8 @@ class StudyResult:
     (check); ``friction_factor``, ``friction_angle_deg``, ``friction_factor_lower``,
     ``friction_factor_upper`` (min_friction: f*'s bracket); ``load_multiplier``,
     ``load_multiplier_accuracy``, ``load_multiplier_lower``, ``load_multiplier_upper``
-    (max_load_multiplier; the last two bound every non-associative collapse multiplier,
-    or hold the associative lambda*'s bracket where there is one);
+    (max_load_multiplier; the last two the narrowest bracket known to hold lambda*: its
+    search's, else the bounds on every non-associative collapse multiplier);
     ``min_thickness``,
     ``min_thickness_lower``, ``min_thickness_friction`` (min_thickness: the friction it
     bisected at, the scene's unless its options give one).
