@@ -221,6 +221,8 @@ def test_a_tensile_strength_without_cohesion_is_a_bending_capacity_in_2d_only(
     for scene in (plane, solid):
         res = rb.max_load_multiplier(scene, friction="infinite", state=False)
         assert res.load_multiplier == pytest.approx(0.75, rel=1e-6)
+        # (no cone closes there: the note was said at infinite friction too)
+        assert TENSION_3D_NOTE not in res.notes
     path = tmp_path / "plane.json"
     write_scene(plane, path)
     assert main(["extrude", str(path), "-o", str(tmp_path / "solid.json")]) == 0

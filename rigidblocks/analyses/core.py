@@ -16,9 +16,17 @@ from contextlib import contextmanager
 from dataclasses import replace
 from typing import Any
 
+import numpy as np
+
 from ..errors import InputError, SolverFailure, finite_number
 from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_method
-from ..methods.convex import ADMISSIBLE_TOL, FRICTION_ATOL, FRICTION_RTOL, VERDICT_RTOL
+from ..methods.convex import (
+    ADMISSIBLE_TOL,
+    FRICTION_ATOL,
+    FRICTION_RTOL,
+    TENSION_3D_NOTE,
+    VERDICT_RTOL,
+)
 from ..results import (
     CheckResult,
     FrictionResult,
@@ -64,11 +72,17 @@ def requested_rtol(rtol: float | None, default: float) -> float:
 def _fields(m: Method, analysis: str, status: str, friction: Any,
             load_factor: float | None) -> dict[str, Any]:
     """The fields every result shares, from the method's record of its work."""
+    notes = tuple(m.notes)
+    if friction is not None and TENSION_3D_NOTE in notes:
+        # (said at infinite friction too, where no cone closes and 3D gives the 2D answer)
+        c = m.system.contacts
+        if np.all(np.isinf(m.f_joint(friction_value(friction))[c.tensile_strength > 0])):
+            notes = tuple(n for n in notes if n != TENSION_3D_NOTE)
     return dict(analysis=analysis, status=status, friction=friction_label(friction),
                 load_factor=load_factor, contacts=m.system.contacts, solver=m.solver,
                 n_solves=m.n_solves, solve_time=m.solve_time, iterations=m.iterations,
                 geometry=geometry_key(m.scene),
-                units=(m.scene.length_unit, m.scene.force_unit), notes=tuple(m.notes),
+                units=(m.scene.length_unit, m.scene.force_unit), notes=notes,
                 timings=dict(m.timings.wall), cpu_timings=dict(m.timings.cpu),
                 answered_by=m.answered_by, rejected=m.rejected)
 
