@@ -425,6 +425,12 @@ def _in_code(**changes):
     ({"blocks": "twice"}, "block 'B': duplicate block id"),
     ({"unit_weight": -1}, "unit_weight: must be a number >= 0, got -1"),
     ({"unit_weight": math.nan}, "unit_weight: must be a number >= 0, got nan"),
+    # (each was "... reaches nan, beyond 1e+150 ... give the scene in other units")
+    ({"unit_weight": math.inf}, "unit_weight: it must be finite, got inf"),
+    ({"live_body_force": (math.nan, 0.0)}, "live_body_force: it must be finite, got (nan"),
+    ({"loads": (rb.Load("B", (math.nan, 0.0)),)}, "load #0: force must be finite"),
+    ({"loads": (rb.Load("B", (1.0, 0.0), point=(math.nan, 0.0)),)},
+     "load #0: point must be finite"),
     ({"live_body_force": (1, 0, 0)}, "live_body_force: must be 2 numbers in a 2D scene"),
     ({"flow": "x"}, 'flow: flow must be "associative" or "non-associative", got \'x\''),
     ({"friction": "0.3"}, 'friction: friction must be a number >= 0 or "infinite"'),
@@ -501,6 +507,11 @@ def test_make_block_refuses_points_of_unequal_length():
 
 
 @pytest.mark.parametrize("faces,nan,said", [
+    # (1.9 was taken as 1 and answered; a string or None ended in ValueError, TypeError)
+    ("1.9", False, "block 'B': a face's vertex index must be an integer, got 1.9"),
+    ("x", False, "block 'B': \"faces\"[0] must list at least 3 vertex indices in 0..7"),
+    ("none", False, "block 'B': \"faces\"[0] must list at least 3 vertex indices in 0..7"),
+    (5, False, "block 'B': \"faces\" must be a list of at least 4 faces"),
     (None, False, "block 'B': missing \"faces\" (required for 3D blocks)"),
     ((), False, "block 'B': \"faces\" must be a list of at least 4 faces"),
     ("range", False, "block 'B': \"faces\"[0] must list at least 3 vertex indices in 0..7"),
@@ -517,11 +528,18 @@ def test_a_3d_block_built_in_code_is_checked_as_a_files_is(faces, nan, said):
     v, f = box(0, 0, 0, 1, 1, 1)
     if nan:
         v = [[math.nan, 0.0, 0.0], *v[1:]]
-    given = {"box": f, "range": [[0, 3, 2, 99], *f[1:]]}.get(faces, faces)
+    given = {"box": f, "range": [[0, 3, 2, 99], *f[1:]], "1.9": [[0, 3, 2, 1.9], *f[1:]],
+             "x": [[0, 3, 2, "x"], *f[1:]], "none": [[0, 3, 2, None], *f[1:]]}.get(
+        faces, faces) if isinstance(faces, str | type(None)) else faces
     bv, bf = box(-1, -1, -1, 3, 3, 1)
-    scene = rb.Scene(dimension=3, blocks=(make_block("base", bv, support=True, faces=bf),
-                                          make_block("B", v, faces=given)),
-                     unit_weight=1.0, friction=0.5, live_body_force=(1.0, 0.0, 0.0))
     with pytest.raises(InputError) as err:
+        scene = rb.Scene(dimension=3, blocks=(make_block("base", bv, support=True, faces=bf),
+                                              make_block("B", v, faces=given)),
+                         unit_weight=1.0, friction=0.5, live_body_force=(1.0, 0.0, 0.0))
         rb.max_load_multiplier(scene)
     assert said in str(err.value), str(err.value)
+    # a Block built with lists of lists (make_block builds tuples)
+    lists = rb.Block("B", tuple(map(tuple, box(0, 0, 0, 1, 1, 1)[0])), [list(x) for x in f])
+    with pytest.raises(InputError, match="a Block's faces are tuples of vertex indices"):
+        rb.check(rb.Scene(dimension=3, blocks=(make_block("base", bv, support=True,
+                                                          faces=bf), lists)))

@@ -12,7 +12,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 
@@ -260,8 +260,26 @@ def make_block(block_id: str, vertices: Sequence[Sequence[float]], *, support: b
         raise InputError("vertices must be a list of points of equal length, each of "
                          "numbers", f"block {block_id!r}")
     verts = tuple(tuple(float(c) for c in v) for v in pts)
-    fcs = None if faces is None else tuple(tuple(int(i) for i in f) for f in faces)
-    return Block(block_id, verts, fcs, support, unit_weight)
+    return Block(block_id, verts, None if faces is None else _faces(block_id, faces),
+                 support, unit_weight)
+
+
+def _faces(block_id: str, faces: Any) -> Any:
+    """Faces as tuples of indices, where each is an integer (1.9 was taken as 1, a
+    string or None ended in a ValueError or TypeError); what is not a list of lists of
+    integers is kept as given, for the scene's check to name."""
+    def index(i: Any) -> Any:
+        if isinstance(i, bool) or not isinstance(i, int | np.integer | float | np.floating):
+            return i
+        if not float(i).is_integer():
+            raise InputError(f"a face's vertex index must be an integer, got {i!r}",
+                             f"block {block_id!r}")
+        return int(i)
+
+    if isinstance(faces, str) or not isinstance(faces, Sequence | np.ndarray):
+        return faces
+    return tuple(tuple(index(i) for i in f) if isinstance(f, Sequence | np.ndarray)
+                 and not isinstance(f, str) else f for f in faces)
 
 
 def geometry_key(scene: Scene) -> str:

@@ -102,7 +102,12 @@ def _check_fields(scene: Scene) -> None:
                 raise InputError('missing "faces" (required for 3D blocks)',
                                  f"block {b.id!r}")
             check_faces(b.faces, len(b.vertices), f"block {b.id!r}")
-        if b.unit_weight is not None and not (is_number(b.unit_weight) and b.unit_weight >= 0):
+            if not (isinstance(b.faces, tuple) and all(isinstance(f, tuple) for f in b.faces)):
+                # (a Block built with lists ended in "unhashable type: 'list'")
+                raise InputError("a Block's faces are tuples of vertex indices (make_block "
+                                 "builds them from lists)", f"block {b.id!r}")
+        if b.unit_weight is not None and not (is_number(b.unit_weight) and b.unit_weight >= 0
+                                              and math.isfinite(b.unit_weight)):
             raise InputError(f"its unit_weight must be a number >= 0, got "
                              f"{b.unit_weight!r}", f"block {b.id!r}")
     for key, low, strict in (("unit_weight", 0.0, False), ("depth", 0.0, True),
@@ -111,9 +116,11 @@ def _check_fields(scene: Scene) -> None:
         if v is not None and not (is_number(v) and (v > low if strict else v >= low)):
             raise InputError(f"must be a number {'>' if strict else '>='} {low:g}, got "
                              f"{v!r}", key)
+        _finite(v, "it", key)
     if scene.live_body_force is not None and not _numbers(scene.live_body_force, dim):
         raise InputError(f"must be {dim} numbers in a {dim}D scene, got "
                          f"{scene.live_body_force!r}", "live_body_force")
+    _finite(scene.live_body_force, "it", "live_body_force")
     if scene.friction is not None:
         _typed_friction(scene.friction, "friction")
     if scene.flow is not None:
@@ -142,6 +149,7 @@ def check_faces(faces: object, nv: int, where: str) -> None:
     with an index out of range in an IndexError)."""
     if not isinstance(faces, list | tuple) or len(faces) < 4:
         raise InputError('"faces" must be a list of at least 4 faces', where)
+
     for k, f in enumerate(faces):
         if not (isinstance(f, list | tuple) and len(f) >= 3 and all(
                 isinstance(i, int | np.integer) and not isinstance(i, bool) and 0 <= i < nv
@@ -170,10 +178,19 @@ def _check_load(ld: object, dim: int, where: str) -> None:
         v = getattr(ld, key)
         if (v is not None or key == "force") and not _numbers(v, dim):
             raise InputError(f"{key} must be {dim} numbers, got {v!r}", where)
+        _finite(v, key, where)
     m = ld.moment
     if m is not None and not (is_number(m) if dim == 2 else _numbers(m, 3)):
         raise InputError(f"moment must be {'a number' if dim == 2 else '3 numbers'} in a "
                          f"{dim}D scene, got {m!r}", where)
+    _finite(m, "moment", where)
+
+
+def _finite(v: object, key: str, where: str) -> None:
+    """A number or vector with no NaN or infinity (a NaN force was "beyond 1e+150 ...
+    give the scene in other units")."""
+    if v is not None and not np.all(np.isfinite(np.asarray(v, dtype=float))):
+        raise InputError(f"{key} must be finite, got {v!r}", where)
 
 
 def _typed_friction(f: object, where: str) -> None:
