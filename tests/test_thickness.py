@@ -270,3 +270,19 @@ def test_a_parameter_the_family_refuses_is_not_blamed_on_the_upper_bound():
     assert "upper bound" not in str(err.value)
     with pytest.raises(InputError, match=r"give a smaller upper bound \(hi, --hi\)"):
         min_thickness("arch", voussoirs=15, hi=3)
+
+
+def test_a_count_is_not_bisected_whatever_its_default():
+    """The arch's voussoirs (None by default: automatic) was bisected from 2 to 10 ("min
+    <= 2"), where flat_arch's (5 by default) was refused as a count; in a sweep both were
+    taken, case by case."""
+    import rigidblocks.study as study
+    from rigidblocks.cli.main import main
+
+    with pytest.raises(InputError, match="voussoirs is a count or a switch, not a size"):
+        min_thickness("arch", param="voussoirs", lo=2, hi=10)
+    assert main(["thickness", "arch", "--param", "voussoirs", "--lo", "2", "--hi", "10"]) == 2
+    for gen in ("arch", "flat_arch"):
+        with pytest.raises(InputError, match="voussoirs is a count or a switch"):
+            study.make_sweep(gen, grid={"depth": [1.0]}, analyses=[
+                {"analysis": "min_thickness", "param": "voussoirs", "lo": 2, "hi": 20}])

@@ -51,7 +51,9 @@ def run(args: argparse.Namespace) -> int:
     default = {p.name: p.default for p in gen.params}
     if param not in default:
         raise InputError(f"--param {shown}: no such parameter ({options(gen)})", where)
-    if isinstance(default[param], int | bool):  # bisection takes every real in between
+    from ..studies.cases import is_count, param_specs
+
+    if is_count(param_specs(gen.name)[param]):  # bisection takes every real in between
         raise InputError(f"--param {shown}: a count or a switch, not a size to bisect",
                          where)
     try:

@@ -27,7 +27,7 @@ def _is_number(v: Any) -> bool:
     return isinstance(v, int | float) and not isinstance(v, bool)
 
 
-def _param_specs(generator: str | None) -> dict[str, Any]:
+def param_specs(generator: str | None) -> dict[str, Any]:
     """Parameter name -> default (the type a value must have)."""
     if generator is None:
         return {"friction": 0.0, "depth": 1.0, "unit_weight": 1.0, "load_factor": 1.0,
@@ -59,6 +59,13 @@ def _typed_default(default: Any, annotation: str) -> Any:
         return default
     kind = annotation.split("|")[0].strip()
     return Optional({"int": 0, "float": 0.0}[kind]) if kind in ("int", "float") else None
+
+
+def is_count(spec: Any) -> bool:
+    """Is a parameter of this spec (:func:`param_specs`) a count or a switch (an
+    integer, possibly None by default, or a boolean), which a bisection cannot vary?"""
+    example = spec.example if isinstance(spec, Optional) else spec
+    return isinstance(example, int | bool)
 
 
 def check_value(name: str, value: Any, default: Any, where: str) -> Any:
@@ -215,4 +222,5 @@ def _known(k: str, specs: Mapping[str, Any], generator: str | None, where: str) 
                          f"{', '.join(sorted(specs))})", where)
 
 
-__all__ = ["RANDOM_KEYS", "RESERVED", "SCENE_PARAMS", "check_value", "expand_cases"]
+__all__ = ["RANDOM_KEYS", "RESERVED", "SCENE_PARAMS", "check_value", "expand_cases",
+           "is_count"]

@@ -59,10 +59,11 @@ from .cases import (
     SCENE_PARAMS,
     _is_number,
     _known,
-    _param_specs,
     _plain,
     check_value,
     expand_cases,
+    is_count,
+    param_specs,
 )
 from .chart import plot
 from .execute import (
@@ -212,7 +213,7 @@ def make_sweep(source: str | Scene, *, grid: Mapping[str, Sequence[Any]] | None 
     if method not in METHODS:
         raise InputError(f"unknown method {method!r} (choose from {', '.join(METHODS)})",
                          "method")
-    specs = _param_specs(generator)
+    specs = param_specs(generator)
     for k in parameters or {}:
         _known(k, specs, generator, f"parameters.{k}")
     for k in grid if isinstance(grid, Mapping) else ():
@@ -248,6 +249,9 @@ def make_sweep(source: str | Scene, *, grid: Mapping[str, Sequence[Any]] | None 
             if p not in specs:
                 raise InputError(f"min_thickness: {generator} has no parameter {p!r}",
                                  "analyses")
+            if is_count(specs[p]):  # (flat_arch's voussoirs was bisected, case by case)
+                raise InputError(f"min_thickness: {p} is a count or a switch, not a size "
+                                 "to bisect", "analyses")
             if any(p in c for c in checked):
                 raise InputError(f"min_thickness bisects {p!r}: it cannot also be a case "
                                  "parameter", "analyses")
