@@ -428,9 +428,10 @@ def test_import_without_a_unit_guesses_it_and_reads_unit_spellings(tmp_path, cap
     said = capsys.readouterr()
     assert "lengths in the drawing's own units, none declared (it spans 1500 x 800 units)" \
         in said.out, said.out
-    assert ("warning: the drawing declares no length unit ($INSUNITS 0) and none was "
-            "given: its lengths are read as they are, the blocks 350 units across (the "
-            "median): in mm 0.35 m: give the drawing's unit with --length-unit") in said.err
+    assert ("warning: the drawing declares no length unit this import reads ($INSUNITS "
+            "0) and none was given: its lengths are read as they are, the blocks 350 units "
+            "across (the median): in mm 0.35 m: give the drawing's unit with --length-unit"
+            ) in said.err
     for given, unit in (("millimetres", "mm"), ("Meter", "m"), ("inches", "in")):
         assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", given]) == 0
         assert read_scene(out).units.length == unit
@@ -438,6 +439,28 @@ def test_import_without_a_unit_guesses_it_and_reads_unit_spellings(tmp_path, cap
     assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", "furlong"]) == 2
     assert "unknown length unit 'furlong' (known: in, ft, mm, cm, m, km, yd, dm)" in \
         capsys.readouterr().err
+    # a unit the header gives that the import does not read ($INSUNITS 3, miles) was
+    # "($INSUNITS 0)", "none declared"
+    doc.header["$INSUNITS"] = 3
+    doc.saveas(path)
+    assert main(["import-dxf", str(path), "-o", str(out)]) == 0
+    said = capsys.readouterr()
+    assert "own units, $INSUNITS 3, no unit this import reads (it spans" in said.out
+    assert "no length unit this import reads ($INSUNITS 3)" in said.err
+    # a scene in feet exported and imported again: its unit in the header and back
+    scene = read_scene(out)
+    from dataclasses import replace as _replace
+
+    from rigidblocks.io import write_scene
+    from rigidblocks.scene.model import Units
+
+    feet = tmp_path / "ft.json"
+    write_scene(_replace(scene, units=Units("ft", "lbf")), feet)
+    assert main(["export-dxf", str(feet), "-o", str(tmp_path / "ft.dxf")]) == 0
+    assert ezdxf.readfile(tmp_path / "ft.dxf").header["$INSUNITS"] == 2
+    capsys.readouterr()
+    assert main(["import-dxf", str(tmp_path / "ft.dxf"), "-o", str(out)]) == 0
+    assert "lengths in ft, as the drawing's scene records them" in capsys.readouterr().out
 
 
 def test_export_of_a_3d_scene_is_refused_before_its_analysis(tmp_path, capsys, monkeypatch):
@@ -509,6 +532,25 @@ def test_a_layer_that_holds_nothing_and_a_drawing_given_as_a_scene_are_named(
                  "NOPE"]) == 2
     assert f"{path}: layers: no polylines or lines on the layer(s) NOPE (layers with " \
         "some: 0)" in capsys.readouterr().err
+    # one of several named empty (it was read without a word), and names as DXF compares
+    # them, without case
+    assert main(["import-dxf", str(path), "-o", str(tmp_path / "d.json"), "--layers",
+                 "0,NOPE"]) == 2
+    assert "no polylines or lines on the layer(s) NOPE" in capsys.readouterr().err
+    doc.layers.add("WALLS")
+    for e in msp:
+        e.dxf.layer = "WALLS"
+    doc.saveas(path)
+    assert main(["import-dxf", str(path), "-o", str(tmp_path / "d.json"), "--layers",
+                 "walls"]) == 0
     assert main(["load", str(path)]) == 2
     assert f"{path}: a DXF drawing, not a scene file: make its scene with `rigidblocks " \
         f"import-dxf {path} -o SCENE.json`" in capsys.readouterr().err
+    # one that opens with a comment, and a binary one (malformed JSON; cannot read)
+    commented = tmp_path / "c.dxf"
+    commented.write_bytes(b"999\r\ndxfrw 0.6.3\r\n" + path.read_bytes())
+    binary = tmp_path / "b.dxf"
+    doc.saveas(binary, fmt="bin")
+    for drawing in (commented, binary):
+        assert main(["check", str(drawing)]) == 2
+        assert "a DXF drawing, not a scene file" in capsys.readouterr().err

@@ -116,10 +116,16 @@ def run(args: argparse.Namespace) -> int:
         elif args.length_unit:  # (the span was said only for a declared unit)
             print(f"lengths in {scene.length_unit}, as given (the drawing spans "
                   f"{span_text(scene)})")
+        elif scene.length_unit:  # the units of the scene export-dxf stored in it
+            print(f"lengths in {scene.length_unit}, as the drawing's scene records them (it "
+                  f"spans {span_text(scene)})")
         else:  # (nothing was said, nor doubted: 350 mm blocks weighed as 350 m ones)
-            print(f"lengths in the drawing's own units, none declared (it spans "
+            which = (f"$INSUNITS {rep.insunits}, no unit this import reads" if rep.insunits
+                     else "none declared")
+            print(f"lengths in the drawing's own units, {which} (it spans "
                   f"{span_text(scene)})")
-        doubt = unit_doubt(scene) or (unit_guess(scene) if not scene.length_unit else "")
+        doubt = unit_doubt(scene) or (unit_guess(scene, rep.insunits)
+                                      if not scene.length_unit else "")
         if doubt:
             print(f"rigidblocks: warning: {doubt}", file=sys.stderr)
         if scene.unit_weight is None:

@@ -184,8 +184,7 @@ def length_unit(text: str) -> str:
     """A length unit given for a drawing as its short name (``METRES``' keys): "metre"
     is "m", "inches" "in"; a unit none of them names is refused (a furlong was written
     into the scene as its unit)."""
-    u = str(text).strip().lower()
-    u = SPELLINGS.get(u, u)
+    u = _unit_key(str(text))
     if u not in METRES:
         raise InputError(f"unknown length unit {text!r} (known: {', '.join(METRES)})",
                          "--length-unit")
@@ -197,9 +196,16 @@ def length_unit(text: str) -> str:
 BLOCK_SIZES = (0.02, 3.0)
 
 
+def _unit_key(unit: str) -> str:
+    """A length unit's short name where it is a spelling of one (``SPELLINGS``), else as
+    given, lower case."""
+    u = unit.strip().lower()
+    return SPELLINGS.get(u, u)
+
+
 def _metres(scene: Scene) -> float | None:
     """The scene's length unit in metres (None where it is not one of ``METRES``)."""
-    return METRES.get(scene.length_unit.strip().lower())
+    return METRES.get(_unit_key(scene.length_unit))
 
 
 def span_text(scene: Scene) -> str:
@@ -232,7 +238,7 @@ def unit_doubt(scene: Scene) -> str:
             "the drawing is in another unit, give it with --length-unit (e.g. mm)")
 
 
-def unit_guess(scene: Scene) -> str:
+def unit_guess(scene: Scene, code: int = 0) -> str:
     """For a drawing that declares no unit and was given none: the blocks' median size
     in its own units and the units in which that is a masonry block's size
     (``BLOCK_SIZES``): "the blocks are 350 units across (the median): in mm 0.35 m"."""
@@ -245,9 +251,9 @@ def unit_guess(scene: Scene) -> str:
             if u not in ("km", "yd", "dm") and low <= size * m <= high]
     read = ("; ".join(fits) + ": give the drawing's unit with --length-unit") if fits else \
         "in no common unit a masonry block's size"
-    return (f"the drawing declares no length unit ($INSUNITS 0) and none was given: its "
-            f"lengths are read as they are, the blocks {size:.4g} units across (the "
-            f"median): {read}")
+    return (f"the drawing declares no length unit this import reads ($INSUNITS {code}) "
+            f"and none was given: its lengths are read as they are, the blocks {size:.4g} "
+            f"units across (the median): {read}")
 
 
 def depth_note(scene: Scene) -> str:
@@ -273,6 +279,7 @@ def _declared_units(doc: Any, units: tuple[str, str] | str | None, rep: DxfRepor
     code = doc.header.get("$INSUNITS", 0)
     declared = INSUNITS.get(int(code)) if isinstance(code, int | float) else None
     rep.declared_unit = declared
+    rep.insunits = int(code) if isinstance(code, int | float) else 0
     if declared is None:
         return units
     given = units[0] if units else None
@@ -356,10 +363,21 @@ def read_dxf(path: str | os.PathLike, *, supports: str | None = None,
         raise InputError(f"not a valid DXF file: {err}", src) from None
     rep = DxfReport(source=os.path.basename(src), tol=0.0)
     if layers is not None:
-        wanted = set(layers)
+        # layer names as DXF compares them, without case; each named must hold lines
+        # (WALLS,NOPE read WALLS alone without a word, walls nothing)
+        wanted = {name.lower() for name in layers}
+        drawn = {e.dxf.layer.lower() for e in doc.modelspace()
+                 if e.dxftype() in ("LWPOLYLINE", "POLYLINE", "LINE")}
+        empty = [name for name in layers if name.lower() not in drawn]
+        if empty:
+            have = sorted({e.dxf.layer for e in doc.modelspace()
+                           if e.dxftype() in ("LWPOLYLINE", "POLYLINE", "LINE")})
+            raise InputError(f"no polylines or lines on the layer(s) {', '.join(empty)} "
+                             f"(layers with some: {', '.join(have) or 'none'})",
+                             f"{src}: layers")
 
         def keep(layer: str) -> bool:
-            return layer in wanted
+            return layer.lower() in wanted
     else:
         def keep(layer: str) -> bool:
             return layer not in ANALYSIS_LAYERS
@@ -369,12 +387,6 @@ def read_dxf(path: str | os.PathLike, *, supports: str | None = None,
     allpts = [r.points for r in raws] + [
         np.array([[e.dxf.start[0], e.dxf.start[1]], [e.dxf.end[0], e.dxf.end[1]]])
         for e in lines]
-    if not allpts and layers is not None:
-        # (it read "no polylines or lines" of a drawing full of them, on other layers)
-        have = sorted({e.dxf.layer for e in doc.modelspace()
-                       if e.dxftype() in ("LWPOLYLINE", "POLYLINE", "LINE")})
-        raise InputError(f"no polylines or lines on the layer(s) {', '.join(layers)} "
-                         f"(layers with some: {', '.join(have) or 'none'})", f"{src}: layers")
     if not allpts:
         raise InputError("no polylines or lines: nothing to make blocks of", src)
     cat = np.concatenate(allpts)
@@ -556,7 +568,9 @@ def write_dxf(scene: Scene, path: str | os.PathLike, result: Any = None, *,
 
     require_2d(scene)
     doc = ezdxf.new("R2010")
-    doc.header["$INSUNITS"] = {"mm": 4, "cm": 5, "m": 6}.get(scene.length_unit, 0)
+    # (every unit the import reads: a scene in ft or dm was written unitless)
+    code = {u: k for k, u in INSUNITS.items()}.get(_unit_key(scene.length_unit))
+    doc.header["$INSUNITS"] = code or 0
     doc.appids.add(APPID)
     for key, lay in LAYERS.items():
         colour = {"blocks": 7, "supports": 8, "thrust": 1, "forces": 5, "text": 3}[key]

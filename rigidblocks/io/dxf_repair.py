@@ -70,6 +70,8 @@ class DxfReport:
     restored: bool = False
     #: the length unit the drawing declares ($INSUNITS), None where it declares none
     declared_unit: str | None = None
+    #: the header's $INSUNITS code (0: none; one the import does not read: not declared)
+    insunits: int = 0
     #: where the length unit given differs from the drawing's: what was done
     unit_conflict: str = ""
 

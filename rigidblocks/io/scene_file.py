@@ -278,6 +278,20 @@ def _parse_joint(j: Any, i: int) -> JointOverride:
     return JointOverride((pair[0], pair[1]), friction, coh, ts, flow)
 
 
+#: what a DXF drawing given where a scene file goes is told
+DXF_GIVEN = ("a DXF drawing, not a scene file: make its scene with `rigidblocks import-dxf "
+             "{} -o SCENE.json` (rigidblocks.read_dxf in Python)")
+
+
+def _is_dxf(text: str) -> bool:
+    """Does the text open as a DXF drawing: group code 0 and SECTION, after any 999
+    comments (a drawing that opened with one read as malformed JSON)?"""
+    lines = [ln.strip() for ln in text.lstrip()[:2000].splitlines()]
+    while lines[:1] == ["999"]:  # a comment: its code's line and its text's
+        lines = lines[2:]
+    return lines[:2] == ["0", "SECTION"]
+
+
 def loads_json(text: str, source: str | None = None) -> Any:
     """Parse JSON text; errors are InputError.
 
@@ -287,11 +301,8 @@ def loads_json(text: str, source: str | None = None) -> Any:
     try:
         doc = json.loads(text, parse_constant=_nonfinite_constant)
     except json.JSONDecodeError as err:
-        head = text.lstrip()[:200].split()
-        if head[:2] == ["0", "SECTION"]:  # (it read "malformed JSON: Extra data ...")
-            raise InputError("a DXF drawing, not a scene file: make its scene with "
-                             f"`rigidblocks import-dxf {source or 'DRAWING.dxf'} -o "
-                             "SCENE.json` (rigidblocks.read_dxf in Python)", source) from None
+        if _is_dxf(text):  # (it read "malformed JSON: Extra data ...")
+            raise InputError(DXF_GIVEN.format(source or "DRAWING.dxf"), source) from None
         raise InputError(f"malformed JSON: {err.msg.removesuffix(' at')} at line "
                          f"{err.lineno} column {err.colno}",
                          source) from None
@@ -343,7 +354,11 @@ def read_scene(path: str | os.PathLike, *, validate: bool = True) -> Scene:
         text = Path(path).read_text(encoding="utf-8")
     except FileNotFoundError:
         raise InputError("no such file", name) from None
-    except (OSError, UnicodeDecodeError) as err:
+    except UnicodeDecodeError as err:
+        if Path(path).read_bytes()[:18] == b"AutoCAD Binary DXF":
+            raise InputError(DXF_GIVEN.format(name), name) from None
+        raise InputError(f"cannot read: {err}", name) from None
+    except OSError as err:
         raise InputError(f"cannot read: {err}", name) from None
     return scene_from_dict(loads_json(text, name), name, validate=validate)
 
