@@ -288,3 +288,18 @@ def test_a_solver_failure_at_a_huge_friction_names_it(tmp_path, capsys):
     for f in ("infinite", "1e5"):
         assert main(["load", str(path), "--friction", f]) == 0
         assert "lambda* = 2," in capsys.readouterr().out
+
+
+def test_an_output_that_cannot_be_written_is_one_line_exit_2():
+    """`load --json > /dev/full` ended in an OSError traceback (No space left on
+    device), exit 1; the README promises one line and exit 2 for an unwritable output.
+    (/dev/full: Linux, where the tests run.)"""
+    import subprocess
+
+    with open("/dev/full", "w") as full:
+        run = subprocess.run([sys.executable, "-m", "rigidblocks.cli.main", "load",
+                              str(EXAMPLES / "arch.json"), "--json"], stdout=full,
+                             stderr=subprocess.PIPE, text=True, timeout=300)
+    assert run.returncode == 2
+    assert run.stderr == ("rigidblocks: error: cannot write: standard output: No space "
+                          "left on device\n"), run.stderr

@@ -49,6 +49,8 @@ def test_bad_brackets():
     r = min_thickness("arch", voussoirs=3, lo=1e-6)
     assert (r.status, r.thickness, r.lower) == ("at_lower_bound", 1e-6, 0.0)
     assert "the minimum is at most that" in r.notes[0]
+    # its JSON has why, as every command's (scene-format.md)
+    assert r.to_dict()["why"] == [r.notes[0]]
     with pytest.raises(InputError, match="lo < hi"):
         min_thickness("arch", lo=0.2, hi=0.1)
 

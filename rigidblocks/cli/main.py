@@ -122,6 +122,13 @@ def _main(argv: Sequence[str] | None) -> int:
     except KeyboardInterrupt:  # pragma: no cover
         print("rigidblocks: interrupted", file=sys.stderr)
         return 130
+    except OSError as err:  # an output that cannot be written (stdout on a full disk
+        # ended in a traceback): said in one line, as an unwritable -o is
+        _silence_stdout()
+        where = f"{err.filename}: " if err.filename else "standard output: "
+        print(f"rigidblocks: error: cannot write: {where}{err.strerror or err}",
+              file=sys.stderr)
+        return 2
 
 
 def _silence_stdout() -> None:

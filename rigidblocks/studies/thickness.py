@@ -64,7 +64,8 @@ class ThicknessResult:
     solve_time: float = 0.0
 
     def to_dict(self) -> dict[str, Any]:
-        return {"status": self.status, "notes": list(self.notes),
+        # (why: the terminal's note lines, as every command's JSON has them)
+        return {"status": self.status, "notes": list(self.notes), "why": list(self.notes),
                 "generator": self.generator, "param": self.param,
                 "min_thickness": self.thickness, "lower": self.lower,
                 "n_checks": self.n_checks, "friction": friction_label(self.friction),
