@@ -439,6 +439,10 @@ def test_import_without_a_unit_guesses_it_and_reads_unit_spellings(tmp_path, cap
     assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", "furlong"]) == 2
     assert "unknown length unit 'furlong' (known: in, ft, mm, cm, m, km, yd, dm)" in \
         capsys.readouterr().err
+    # its depth example is a block's size in its units ("--depth 300 for 300 length unit"
+    # of any drawing without a unit)
+    assert main(["import-dxf", str(path), "-o", str(out), "--unit-weight", "1"]) == 0
+    assert "e.g. import-dxf --depth 350 for 350 length units)" in capsys.readouterr().err
     # a unit the header gives that the import does not read ($INSUNITS 3, miles) was
     # "($INSUNITS 0)", "none declared"
     doc.header["$INSUNITS"] = 3

@@ -81,7 +81,7 @@ NO_FRICTION_NOTE = ("imported without a friction: the joints have infinite frict
 #: loads' reach scale with it; a multiplier of their own weights does not)
 NO_DEPTH_NOTE = ("imported without a depth: the blocks are 1 {unit} deep out of plane, "
                  "their weights per {unit} of wall (give the depth, e.g. import-dxf "
-                 "--depth {example} for {example} {unit})")
+                 "--depth {example} for {example} {units})")
 
 #: the note a scene read without a unit weight carries
 NO_UNIT_WEIGHT_NOTE = ("imported from a drawing without a unit weight: the blocks weigh "
@@ -262,10 +262,16 @@ def depth_note(scene: Scene) -> str:
     metres = _metres(scene)
     if metres:  # two figures: 300 mm, 30 cm, 0.3 m, 12 in, 0.98 ft
         x = 0.3 / metres
-        example = f"{round(x, 1 - math.floor(math.log10(x))):g}"
+    elif scene.blocks:  # no unit: a block's size ("--depth 300 for 300 length unit"
+        # of a drawing whose blocks are 3 units across)
+        lo, hi = block_boxes(scene)
+        x = float(np.median((hi - lo).max(axis=1)))
     else:
-        example = "300"
-    return NO_DEPTH_NOTE.format(unit=scene.length_unit or "length unit", example=example)
+        x = 1.0
+    example = f"{round(x, 1 - math.floor(math.log10(x))):g}"
+    unit = scene.length_unit
+    return NO_DEPTH_NOTE.format(unit=unit or "length unit", units=unit or "length units",
+                                example=example)
 
 
 def _declared_units(doc: Any, units: tuple[str, str] | str | None, rep: DxfReport,
