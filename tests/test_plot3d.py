@@ -212,3 +212,15 @@ def test_a_3d_picture_is_saved_without_a_layout_warning(tmp_path, recwarn):
     assert main(["plot", str(path), "--analysis", "load", "-o", str(tmp_path / "w.png")]) == 0
     assert (tmp_path / "w.png").stat().st_size > 10_000
     assert not [w for w in recwarn if "constrained_layout" in str(w.message)]
+
+
+def test_the_live_loads_label_is_on_two_lines():
+    """examples/box_stack_3d.json: "live: λ × 40 kN (weight × (0.866, 0.5, 0))" on one
+    line ran over the z axis's label; its direction goes on a line of its own."""
+    s = rb.read_scene(EXAMPLES / "box_stack_3d.json")
+    ax = rb.plot(s, rb.max_load_multiplier(s, state=False))
+    (live,) = [t.get_text() for t in ax.texts
+               if t.get_gid() == "rb-loads" and "live" in t.get_text()]
+    assert live == " live: \N{GREEK SMALL LETTER LAMDA} \N{MULTIPLICATION SIGN} 40 kN\n " \
+        "(weight \N{MULTIPLICATION SIGN} (0.866, 0.5, 0))"
+    plt.close("all")

@@ -274,7 +274,10 @@ def _draw_loads(ax: Any, scene: Scene, lo: np.ndarray, hi: np.ndarray,
                       zorder=7)
         q.set_gid("rb-loads")
         at = m.tip if m.kind != "point load" else m.tail
-        t = ax.text(*at, " " + m.label, color=colour, fontsize=8, zorder=7)
+        # (on two lines: "live: λ × 40 kN (weight × (0.866, 0.5, 0))" ran over the z
+        # axis's label)
+        t = ax.text(*at, " " + m.label.replace(" (", "\n (", 1), color=colour, fontsize=8,
+                    zorder=7)
         t.set_gid("rb-loads")
         kinds.add(m.live)
         lo = np.minimum(lo, np.minimum(m.tail, m.tip))
