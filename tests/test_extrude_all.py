@@ -223,6 +223,12 @@ def test_a_tensile_strength_without_cohesion_is_a_bending_capacity_in_2d_only(
         assert res.load_multiplier == pytest.approx(0.75, rel=1e-6)
         # (no cone closes there: the note was said at infinite friction too)
         assert TENSION_3D_NOTE not in res.notes
+    # at a load factor of 0.6, above the 3D tipping multiplier, no finite friction keeps
+    # the cones open and infinite friction stands: the search on lambda*(f) ended in a
+    # solver failure (InsufficientProgress), now the relaxations' search answers as it can
+    res = rb.min_friction(solid, load_factor=0.6, state=False)
+    assert res.status == "undecided" and any(
+        "f* is searched on the relaxations instead" in n for n in res.notes)
     path = tmp_path / "plane.json"
     write_scene(plane, path)
     assert main(["extrude", str(path), "-o", str(tmp_path / "solid.json")]) == 0

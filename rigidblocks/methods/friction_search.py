@@ -74,7 +74,16 @@ class FrictionSearch:
                       else Trial(0.0, False, "lower", rx.R, rx.slope, rx))
         if not rx.zero and lf > 0 and np.any(self.system.live):
             first = rx.R / rx.slope if rx.slope > 0 else 1.0
-            by_load = self._friction_by_load(lf, rtol, first)
+            try:
+                by_load = self._friction_by_load(lf, rtol, first)
+            except SolverFailure as exc:
+                # the search on R(f) goes on where a max-load trial fails (a 3D block
+                # bonded by a tensile strength, its cones closing under tension: a solver
+                # failure where the relaxations answer)
+                self.notes.append(f"the search on lambda*(f) stopped ({exc.solver} ended "
+                                  f"with status {exc.status} at a maximum-load trial): f* "
+                                  "is searched on the relaxations instead")
+                by_load = None
             if by_load is not None:
                 return by_load
         run(search, lambda f: self._friction_trial(f, lf), STOPS, STEPS, AMENDS,
