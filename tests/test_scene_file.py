@@ -431,6 +431,11 @@ def _in_code(**changes):
     ({"loads": (rb.Load("B", (math.nan, 0.0)),)}, "load #0: force must be finite"),
     ({"loads": (rb.Load("B", (1.0, 0.0), point=(math.nan, 0.0)),)},
      "load #0: point must be finite"),
+    # (a scipy traceback, or answers with a RuntimeWarning)
+    ({"joints": (rb.JointOverride(("base", "B"), cohesion=math.inf),)},
+     "joint 'base'-'B': cohesion must be finite, got inf"),
+    ({"joints": (rb.JointOverride(("base", "B"), tensile_strength=math.inf),)},
+     "joint 'base'-'B': tensile_strength must be finite, got inf"),
     ({"live_body_force": (1, 0, 0)}, "live_body_force: must be 2 numbers in a 2D scene"),
     ({"flow": "x"}, 'flow: flow must be "associative" or "non-associative", got \'x\''),
     ({"friction": "0.3"}, 'friction: friction must be a number >= 0 or "infinite"'),

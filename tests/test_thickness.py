@@ -139,7 +139,7 @@ def test_cli_help_gives_the_bounds_defaults(capsys):
      "thickness arch: --thickness is the parameter bisected (--param thickness) between "
      "--lo and --hi; do not give it"),
     (["wall", "--param", "blocks_per_course"],
-     "thickness wall: --param blocks_per_course: a count or a switch, not a size to "
+     "thickness wall: --param blocks_per_course is a count or a switch, not a size to "
      "bisect"),
     (["arch", "--param", "colour"],
      "thickness arch: --param colour: no such parameter (parameters: --shape, --voussoirs, "
@@ -288,3 +288,25 @@ def test_a_count_is_not_bisected_whatever_its_default():
         with pytest.raises(InputError, match="voussoirs is a count or a switch"):
             study.make_sweep(gen, grid={"depth": [1.0]}, analyses=[
                 {"analysis": "min_thickness", "param": "voussoirs", "lo": 2, "hi": 20}])
+
+
+@pytest.mark.parametrize("param, why", [
+    ("friction", "the friction its checks are asked at"),
+    ("shape", "a choice, not a size to bisect"),
+    ("unit_weight", "a scale of every weight")])
+def test_a_parameter_no_thickness_search_varies_is_refused(param, why):
+    """`thickness arch --param friction --lo 0.1 --hi 1` answered "min <= 0.1" (its
+    checks ran at the --friction option's, infinite: the bisected friction was
+    ignored), where the arch needs f = 0.347; --param shape failed at the upper bound
+    "shape must be one of ...". Each is refused by its reason, in the CLI, the API and
+    a sweep alike."""
+    import rigidblocks.study as study
+    from rigidblocks.cli.main import main
+
+    with pytest.raises(InputError, match=f"min_thickness: {param} is {why}"):
+        min_thickness("arch", param=param, lo=0.1, hi=1.0)
+    assert main(["thickness", "arch", "--param", param, "--lo", "0.1", "--hi", "1"]) == 2
+    with pytest.raises(InputError, match=f"min_thickness: {param} is {why}"):
+        study.make_sweep("arch", grid={"thickness": [0.15]} if param != "thickness" else
+                         {"radius": [2.0]}, analyses=[
+            {"analysis": "min_thickness", "param": param, "lo": 0.1, "hi": 1.0}])

@@ -51,11 +51,11 @@ def run(args: argparse.Namespace) -> int:
     default = {p.name: p.default for p in gen.params}
     if param not in default:
         raise InputError(f"--param {shown}: no such parameter ({options(gen)})", where)
-    from ..studies.cases import is_count, param_specs
+    from ..studies.cases import not_bisectable, param_specs
 
-    if is_count(param_specs(gen.name)[param]):  # bisection takes every real in between
-        raise InputError(f"--param {shown}: a count or a switch, not a size to bisect",
-                         where)
+    why = not_bisectable(param, param_specs(gen.name)[param])
+    if why:  # bisection takes every real in between, of the family's own sizes
+        raise InputError(f"--param {shown} is {why}", where)
     try:
         method, backend = method_name(args.method)  # before the generator is tried at --hi
     except InputError as err:

@@ -106,10 +106,10 @@ def _check_fields(scene: Scene) -> None:
                 # (a Block built with lists ended in "unhashable type: 'list'")
                 raise InputError("a Block's faces are tuples of vertex indices (make_block "
                                  "builds them from lists)", f"block {b.id!r}")
-        if b.unit_weight is not None and not (is_number(b.unit_weight) and b.unit_weight >= 0
-                                              and math.isfinite(b.unit_weight)):
+        if b.unit_weight is not None and not (is_number(b.unit_weight) and b.unit_weight >= 0):
             raise InputError(f"its unit_weight must be a number >= 0, got "
                              f"{b.unit_weight!r}", f"block {b.id!r}")
+        _finite(b.unit_weight, "its unit_weight", f"block {b.id!r}")
     for key, low, strict in (("unit_weight", 0.0, False), ("depth", 0.0, True),
                              ("load_factor", 0.0, False)):
         v = getattr(scene, key)
@@ -141,6 +141,7 @@ def _check_fields(scene: Scene) -> None:
             v = getattr(j, key)
             if v is not None and not (is_number(v) and v >= 0):
                 raise InputError(f"{key} must be a number >= 0, got {v!r}", where)
+            _finite(v, key, where)  # (infinite: a scipy traceback, or a warning)
 
 
 def check_faces(faces: object, nv: int, where: str) -> None:

@@ -61,11 +61,28 @@ def _typed_default(default: Any, annotation: str) -> Any:
     return Optional({"int": 0, "float": 0.0}[kind]) if kind in ("int", "float") else None
 
 
-def is_count(spec: Any) -> bool:
-    """Is a parameter of this spec (:func:`param_specs`) a count or a switch (an
-    integer, possibly None by default, or a boolean), which a bisection cannot vary?"""
+#: parameters a minimum-thickness bisection cannot vary though they are sizes: the
+#: friction its checks are asked at (bisected as a family's parameter, it was ignored:
+#: "min <= 0.1" of an arch that needs f = 0.347), the weights' scale
+NOT_BISECTED = {"friction": "the friction its checks are asked at (the friction command, "
+                            "min_friction, answers how much a structure needs)",
+                "unit_weight": "a scale of every weight, which no admissibility depends "
+                               "on without point loads",
+                "depth": "a scale of every weight and strength"}
+
+
+def not_bisectable(name: str, spec: Any) -> str:
+    """Why a minimum-thickness search cannot bisect the parameter ``name`` of this spec
+    (:func:`param_specs`), or "": a count or a switch (an integer, possibly None by
+    default, or a boolean), a choice (a string), or one of ``NOT_BISECTED``."""
+    if name in NOT_BISECTED:
+        return NOT_BISECTED[name]
     example = spec.example if isinstance(spec, Optional) else spec
-    return isinstance(example, int | bool)
+    if isinstance(example, int | bool):
+        return "a count or a switch, not a size to bisect"
+    if isinstance(example, str):
+        return "a choice, not a size to bisect"
+    return ""
 
 
 def check_value(name: str, value: Any, default: Any, where: str) -> Any:
@@ -222,5 +239,5 @@ def _known(k: str, specs: Mapping[str, Any], generator: str | None, where: str) 
                          f"{', '.join(sorted(specs))})", where)
 
 
-__all__ = ["RANDOM_KEYS", "RESERVED", "SCENE_PARAMS", "check_value", "expand_cases",
-           "is_count"]
+__all__ = ["NOT_BISECTED", "RANDOM_KEYS", "RESERVED", "SCENE_PARAMS", "check_value",
+           "expand_cases", "not_bisectable"]

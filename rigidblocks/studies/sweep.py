@@ -62,7 +62,7 @@ from .cases import (
     _plain,
     check_value,
     expand_cases,
-    is_count,
+    not_bisectable,
     param_specs,
 )
 from .chart import plot
@@ -249,9 +249,9 @@ def make_sweep(source: str | Scene, *, grid: Mapping[str, Sequence[Any]] | None 
             if p not in specs:
                 raise InputError(f"min_thickness: {generator} has no parameter {p!r}",
                                  "analyses")
-            if is_count(specs[p]):  # (flat_arch's voussoirs was bisected, case by case)
-                raise InputError(f"min_thickness: {p} is a count or a switch, not a size "
-                                 "to bisect", "analyses")
+            why = not_bisectable(p, specs[p])
+            if why:  # (flat_arch's voussoirs was bisected, case by case)
+                raise InputError(f"min_thickness: {p} is {why}", "analyses")
             if any(p in c for c in checked):
                 raise InputError(f"min_thickness bisects {p!r}: it cannot also be a case "
                                  "parameter", "analyses")

@@ -120,12 +120,11 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
             check_params([*params, param])
         except InputError as err:
             raise InputError(f"min_thickness: {err.detail}") from None
-        from .cases import is_count, param_specs
+        from .cases import not_bisectable, param_specs
 
-        if is_count(param_specs(name)[param]):
-            # (the arch's voussoirs, None by default, was bisected from 2 to 10)
-            raise InputError(f"min_thickness: {param} is a count or a switch, not a size "
-                             "to bisect")
+        why = not_bisectable(param, param_specs(name)[param])
+        if why:  # (the arch's voussoirs, None by default, was bisected from 2 to 10)
+            raise InputError(f"min_thickness: {param} is {why}")
     if not (math.isfinite(load_factor) and load_factor >= 0):
         raise InputError(f"min_thickness: load_factor must be >= 0, got {load_factor!r}")
     n = 0
