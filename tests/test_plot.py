@@ -537,3 +537,17 @@ def test_a_title_keeps_its_equations_on_one_line():
         lines = title.splitlines()
         assert not any(ln.startswith("= ") or ln.endswith(" =") for ln in lines), title
         plt.close(fig)
+
+
+def test_the_force_key_arrow_starts_at_the_structures_left_edge():
+    """The key arrow was placed as if centred on its point, but labelpos "E" pivots it on
+    its tip: its tail ran half its length past the structure's left edge, over the
+    axes' edge and the tick labels (examples/arch.json: tail at -3.14, axes from
+    -3.025)."""
+    sc = read_scene(EXAMPLES / "arch.json")
+    ax = rb.plot(sc, rb.check(sc, load_factor=0.0))
+    (key,) = by_gid(ax, "rb-force-key")
+    tail = key.X - key.U / key.Q.scale
+    left = min(min(x for x, _ in b.vertices) for b in sc.blocks)
+    assert tail == pytest.approx(left, abs=1e-9)
+    assert ax.get_xlim()[0] < tail

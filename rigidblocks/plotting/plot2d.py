@@ -415,8 +415,10 @@ def _draw_forces(ax: Any, scene: Scene, result: Any, size: float, max_arrows: in
             ref = _nice(top)
             unit = scene.force_unit or "force units"
             y = lo[1] - 0.08 * size
-            # (centred on its point: its tail at the structure's left edge, not past it)
-            key = ax.quiverkey(q, lo[0] + 0.5 * ref * scale, y, ref, f"{ref:g} {unit}",
+            # its tip at its point (labelpos "E" pivots the arrow on its tip): its tail
+            # at the structure's left edge (placed as if centred, it ran half its length
+            # past the axes' edge, over the tick labels)
+            key = ax.quiverkey(q, lo[0] + ref * scale, y, ref, f"{ref:g} {unit}",
                                labelpos="E",
                                coordinates="data", fontproperties={"size": 8})
             key.set_gid("rb-force-key")
