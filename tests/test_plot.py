@@ -551,3 +551,29 @@ def test_the_force_key_arrow_starts_at_the_structures_left_edge():
     left = min(min(x for x, _ in b.vertices) for b in sc.blocks)
     assert tail == pytest.approx(left, abs=1e-9)
     assert ax.get_xlim()[0] < tail
+
+
+def test_a_point_loads_label_is_clear_of_its_arrow():
+    """The reference model's "λ x 50 N" labels sat on their own arrowheads (their boxes
+    over the arrows by 27-35 x 4 px); a horizontal point load's label stands above its
+    arrow's middle. The Arpino gate's live body force label ran 66 px past the axes'
+    right edge; its direction now goes on a line of its own, inside the axes."""
+    sc = read_scene(EXAMPLES / "reference.json")
+    ax = rb.plot(sc, rb.max_load_multiplier(sc))
+    ax.figure.canvas.draw()
+    labels = [t for t in by_gid(ax, "rb-loads") if hasattr(t, "get_text")
+              and "\N{GREEK SMALL LETTER LAMDA}" in t.get_text()
+              and not hasattr(t, "arrow_patch")]
+    arrows = [a.arrow_patch for a in by_gid(ax, "rb-loads")
+              if getattr(a, "arrow_patch", None) is not None]
+    assert len(labels) == 2 and len(arrows) == 3
+    for t in labels:
+        box = t.get_window_extent()
+        assert not any(box.overlaps(a.get_window_extent()) for a in arrows), t.get_text()
+    assert not labels[0].get_window_extent().overlaps(labels[1].get_window_extent())
+    sc = read_scene(EXAMPLES / "arpino_gate.json")
+    ax = rb.plot(sc, rb.max_load_multiplier(sc))
+    ax.figure.canvas.draw()
+    (live,) = [t for t in by_gid(ax, "rb-loads") if not hasattr(t, "arrow_patch")
+               and "live" in t.get_text()]
+    assert live.get_window_extent().x1 <= ax.get_window_extent().x1

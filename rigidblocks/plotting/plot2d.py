@@ -217,6 +217,8 @@ def _nice(x: float) -> float:
 def _draw_loads(ax: Any, scene: Scene, lo: np.ndarray, hi: np.ndarray,
                 extra: list[Any], live: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Load arrows with their values (see :func:`rigidblocks.plotting.marks.load_marks`)."""
+    from matplotlib.transforms import ScaledTranslation
+
     marks = load_marks(scene, live)
     kinds = set()
     for m in marks:
@@ -225,12 +227,19 @@ def _draw_loads(ax: Any, scene: Scene, lo: np.ndarray, hi: np.ndarray,
                           arrowprops={"arrowstyle": "-|>", "color": colour, "lw": 2.0,
                                       "shrinkA": 0, "shrinkB": 0, "mutation_scale": 16})
         ann.set_gid("rb-loads")
-        at = m.tip if m.kind != "point load" else m.tail
-        # under the force arrows and the ids, its box half clear (a box over them hid
-        # the reference model's arrowheads and its blocks' ids)
-        t = ax.text(at[0], at[1], " " + m.label, color=colour, fontsize=8, zorder=4.5,
-                    ha="left" if m.direction[0] >= 0 else "right",
-                    va="top" if m.direction[1] < 0 else "bottom",
+        # beside its arrow: beyond a body load's tip, at a point load's tail, above the
+        # middle of a point load nearer horizontal than vertical (the reference model's
+        # "λ x 50 N" sat on its own arrowhead); a body load's direction on a line of its
+        # own (the Arpino gate's ran past the axes)
+        flat = m.kind == "point load" and abs(m.direction[0]) > abs(m.direction[1])
+        at = (0.5 * (m.tail + m.tip) if flat else m.tail if m.kind == "point load"
+              else m.tip)
+        ha = "center" if flat else "left" if m.direction[0] >= 0 else "right"
+        va = "bottom" if flat or m.direction[1] >= 0 else "top"
+        # (above the arrowhead's half-width too, 6 points)
+        lift = ScaledTranslation(0, 6 / 72 if flat else 0, ax.figure.dpi_scale_trans)
+        t = ax.text(at[0], at[1], " " + m.label.replace(" (", "\n (", 1), color=colour,
+                    fontsize=8, zorder=4.5, ha=ha, va=va, transform=ax.transData + lift,
                     bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
                           "alpha": 0.5})
         t.set_gid("rb-loads")
