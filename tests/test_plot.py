@@ -577,3 +577,16 @@ def test_a_point_loads_label_is_clear_of_its_arrow():
     (live,) = [t for t in by_gid(ax, "rb-loads") if not hasattr(t, "arrow_patch")
                and "live" in t.get_text()]
     assert live.get_window_extent().x1 <= ax.get_window_extent().x1
+
+
+def test_the_legend_leaves_the_x_label_clear_in_a_saved_picture(tmp_path):
+    """examples/segmental_arch.json, a check without dilatancy (a title of four lines):
+    the first layout of the figure put the x label 7 px under the legend below the axes,
+    as a saved picture showed it; later layouts put it clear."""
+    sc = read_scene(EXAMPLES / "segmental_arch.json")
+    ax = rb.plot(sc, rb.check(sc, load_factor=0.0, flow="non-associative"))
+    fig = ax.figure
+    fig.savefig(tmp_path / "a.png", dpi=100, bbox_inches="tight")
+    r = fig.canvas.get_renderer()
+    (leg,) = fig.legends
+    assert leg.get_window_extent(r).y1 < ax.xaxis.label.get_window_extent(r).y0

@@ -68,6 +68,7 @@ from .marks import (
     new_axes,
     place_legend,
     scene_weights,
+    settle_layout,
 )
 
 #: above this many joints no force arrows are drawn (the joints become a heat map)
@@ -169,6 +170,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     ax.set_xlabel(f"x [{unit}]" if unit else "x")
     ax.set_ylabel(f"y [{unit}]" if unit else "y")
     ax.set_title(title if title is not None else title_text)
+    settle_layout(ax)
     return ax
 
 
