@@ -590,3 +590,17 @@ def test_the_legend_leaves_the_x_label_clear_in_a_saved_picture(tmp_path):
     r = fig.canvas.get_renderer()
     (leg,) = fig.legends
     assert leg.get_window_extent(r).y1 < ax.xaxis.label.get_window_extent(r).y0
+
+
+def test_breach_labels_lie_along_their_joints_and_apart():
+    """examples/flat_arch_vertical.json without dilatancy, NOT ADMISSIBLE under its
+    self-weight: its ten breached vertical joints, side by side on the soffit, had their
+    labels in one row, running into one another ("6.46 4.69 2.91 1.94 kN3 3 ..."). Each
+    lies along its joint, read upwards, clear of the others."""
+    sc = read_scene(EXAMPLES / "flat_arch_vertical.json")
+    ax = rb.plot(sc, rb.check(sc, load_factor=0.0, flow="non-associative"))
+    ax.figure.canvas.draw()
+    labels = [t for t in by_gid(ax, "rb-breached") if hasattr(t, "get_text")]
+    assert len(labels) == 10 and {t.get_rotation() for t in labels} == {90.0}
+    boxes = [t.get_window_extent() for t in labels]
+    assert not any(a.overlaps(b) for i, a in enumerate(boxes) for b in boxes[i + 1:])

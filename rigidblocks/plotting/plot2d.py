@@ -309,10 +309,20 @@ def _draw_breaches(ax: Any, result: Any, unit: str) -> str:
         at = c.joint_centres[ks]
         art = ax.scatter(*at.T, s=40, c=BREACH_COLOUR, marker="X", zorder=5, label=label)
     art.set_gid("rb-breached")
-    for (_, v), p in zip(br[:BREACH_LABELS], at[:BREACH_LABELS], strict=True):
+    # in 2D along its joint (the flat arch's ten vertical joints, side by side, had
+    # their labels run into one another in a row)
+    d = last - first if c.dimension == 2 else np.zeros_like(at)
+    turn = np.degrees(np.arctan2(d[:, 1], d[:, 0])) if c.dimension == 2 else \
+        np.zeros(len(at))
+    turn = 90.0 - (90.0 - turn) % 180.0  # upright: in (-90, 90], read upwards
+    kw = {"rotation_mode": "anchor", "ha": "center", "va": "center"} \
+        if c.dimension == 2 else {}
+    for (_, v), p, r in zip(br[:BREACH_LABELS], at[:BREACH_LABELS], turn[:BREACH_LABELS],
+                            strict=True):
+        rot = {"rotation": float(r)} if c.dimension == 2 else {}
         t = ax.text(*p, f" {v:.3g} {unit}".rstrip(), color=BREACH_COLOUR, fontsize=8,
                     zorder=6, bbox={"boxstyle": "round,pad=0.15", "fc": "white",
-                                    "ec": "none", "alpha": 0.7})
+                                    "ec": "none", "alpha": 0.7}, **kw, **rot)
         t.set_gid("rb-breached")
     return f"{max(v for _, v in br):.3g} {unit}".rstrip()
 
