@@ -543,8 +543,16 @@ def test_a_3d_block_built_in_code_is_checked_as_a_files_is(faces, nan, said):
                          unit_weight=1.0, friction=0.5, live_body_force=(1.0, 0.0, 0.0))
         rb.max_load_multiplier(scene)
     assert said in str(err.value), str(err.value)
-    # a Block built with lists of lists (make_block builds tuples)
-    lists = rb.Block("B", tuple(map(tuple, box(0, 0, 0, 1, 1, 1)[0])), [list(x) for x in f])
-    with pytest.raises(InputError, match="a Block's faces are tuples of vertex indices"):
-        rb.check(rb.Scene(dimension=3, blocks=(make_block("base", bv, support=True,
-                                                          faces=bf), lists)))
+    # a Block built with lists of lists, an array, a tuple of arrays (make_block builds
+    # tuples; an array read as "not a list of at least 4 faces", arrays in a tuple as a
+    # bad face 0)
+    import numpy as np
+
+    verts = tuple(map(tuple, box(0, 0, 0, 1, 1, 1)[0]))
+    for faces in ([list(x) for x in f], np.array(f), tuple(np.array(x) for x in f)):
+        with pytest.raises(InputError, match="a Block's faces are tuples of vertex indices"):
+            rb.check(rb.Scene(dimension=3, blocks=(make_block(
+                "base", bv, support=True, faces=bf), rb.Block("B", verts, faces))))
+    # make_block takes arrays, and names a fractional index as a number
+    with pytest.raises(InputError, match="a face's vertex index must be an integer, got 0.5$"):
+        make_block("B", verts, faces=np.array(f, float) + 0.5)

@@ -272,7 +272,7 @@ def _faces(block_id: str, faces: Any) -> Any:
         if isinstance(i, bool) or not isinstance(i, int | np.integer | float | np.floating):
             return i
         if not float(i).is_integer():
-            raise InputError(f"a face's vertex index must be an integer, got {i!r}",
+            raise InputError(f"a face's vertex index must be an integer, got {float(i):g}",
                              f"block {block_id!r}")
         return int(i)
 

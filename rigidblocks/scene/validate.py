@@ -102,10 +102,11 @@ def _check_fields(scene: Scene) -> None:
                 raise InputError('missing "faces" (required for 3D blocks)',
                                  f"block {b.id!r}")
             check_faces(b.faces, len(b.vertices), f"block {b.id!r}")
-            if not (isinstance(b.faces, tuple) and all(isinstance(f, tuple) for f in b.faces)):
+            if not (isinstance(b.faces, tuple) and all(isinstance(f, tuple) for f in b.faces)
+                    and all(type(i) is int for f in b.faces for i in f)):
                 # (a Block built with lists ended in "unhashable type: 'list'")
                 raise InputError("a Block's faces are tuples of vertex indices (make_block "
-                                 "builds them from lists)", f"block {b.id!r}")
+                                 "builds them from lists or arrays)", f"block {b.id!r}")
         if b.unit_weight is not None and not (is_number(b.unit_weight) and b.unit_weight >= 0):
             raise InputError(f"its unit_weight must be a number >= 0, got "
                              f"{b.unit_weight!r}", f"block {b.id!r}")
@@ -148,11 +149,14 @@ def check_faces(faces: object, nv: int, where: str) -> None:
     """A 3D block's faces as the scene format has them: at least 4, each at least 3
     vertex indices in 0..nv-1 (a scene built in code with none ended in a numpy error,
     with an index out of range in an IndexError)."""
+    if isinstance(faces, np.ndarray):  # (read as "not a list of at least 4 faces")
+        raise InputError("a Block's faces are tuples of vertex indices (make_block builds "
+                         "them from lists or arrays)", where)
     if not isinstance(faces, list | tuple) or len(faces) < 4:
         raise InputError('"faces" must be a list of at least 4 faces', where)
 
     for k, f in enumerate(faces):
-        if not (isinstance(f, list | tuple) and len(f) >= 3 and all(
+        if not (isinstance(f, list | tuple | np.ndarray) and len(f) >= 3 and all(
                 isinstance(i, int | np.integer) and not isinstance(i, bool) and 0 <= i < nv
                 for i in f)):
             raise InputError(f'"faces"[{k}] must list at least 3 vertex indices in '
