@@ -147,6 +147,12 @@ def test_coulomb_slide_with_self_weight_collapses_where_it_slides():
         assert p.collapse_load == pytest.approx(lam_s, rel=EV)
         top = {frozenset(("left", "top")), frozenset(("right", "top"))}
         assert joints(p.first("slide")) == top and top <= joints(p.first("collapse"))
+        # where it was located, said (the collapse had no bracket and no why line)
+        lo, hi = p.bracket
+        assert lo <= p.collapse_load <= hi and lo <= lam_s * (1 + 1e-6) and \
+            hi >= lam_s * (1 - 1e-6)
+        assert any(n.startswith("the collapse follows the event at lambda = ")
+                   for n in p.notes), p.notes
 
 
 @pytest.mark.parametrize("steps", [7, 13, 40])

@@ -291,10 +291,10 @@ class _Path:
         return br.bad, br.good, br.good_data
 
     def event(self, a: float, b: float, r: Run
-              ) -> tuple[float, float, Run, list[int], list[int]]:
+              ) -> tuple[float, tuple[float, float], Run, list[int], list[int]]:
         """The first event in (a, b] (``r`` the state at b, where something happens): its
-        load, the upper end of its bracket and the state there, and its cracks and
-        joints. Bracketed to ``COARSE`` and extrapolated (:meth:`extrapolate`), else
+        load, the bracket it was located in and the state at its upper end, and its
+        cracks and joints. Bracketed to ``COARSE`` and extrapolated (:meth:`extrapolate`), else
         bisected on to ``refine`` steps in all; a state that is not admissible at the
         bracket's upper end is a collapse at its lower end."""
         lo, hi, rh = self.locate(a, b, COARSE if self.refine else 0.0)
@@ -303,7 +303,7 @@ class _Path:
             cracks, joints = self.new(rh)
             lam = self.extrapolate(lo, hi, b, cracks, joints, coarse=True)
             if lam is not None:
-                return lam, hi, rh, cracks, joints
+                return lam, (lo, hi), rh, cracks, joints
         used = math.ceil(math.log2((b - a) / (hi - lo))) if hi > lo else self.refine
         lo, hi, rf = self.locate(lo, hi, steps=max(self.refine - used, 1))
         rh = rf if rf is not None else rh
@@ -311,7 +311,7 @@ class _Path:
             raise self.collapse(lo, [], self.solve(lo))
         cracks, joints = self.new(rh)
         lam = self.extrapolate(lo, hi, b, cracks, joints)
-        return (hi if lam is None else lam), hi, rh, cracks, joints
+        return (hi if lam is None else lam), (lo, hi), rh, cracks, joints
 
     def extrapolate(self, lo: float, hi: float, top: float, cracks: list[int],
                     joints: list[int], coarse: bool = False) -> float | None:
@@ -377,10 +377,12 @@ class _Path:
         return _End("collapse", lam, bracket)
 
     def cascade(self, lam: float, r: Run, last: Run | None,
-                cause: list[int] | None = None) -> Run:
+                cause: list[int] | None = None,
+                located: tuple[float, float] | None = None) -> Run:
         """Apply the events of the state ``r`` at ``lam`` and solve again, until the
         state shows no new event; a lost admissibility is a collapse at ``lam``
-        (``cause``: the joints of the event that changed the laws before ``r``)."""
+        (``cause``: the joints of the event that changed the laws before ``r``;
+        ``located``: the bracket that event was located in, the collapse's)."""
         cause = list(cause or [])
         for _ in range(self.ds.m + 2):
             if r.status == "failure":
@@ -390,6 +392,15 @@ class _Path:
                                     f"{r.reason}")
                 raise _End("undecided", lam, (lam, lam))
             if r.status != "admissible":
+                # (a collapse that follows an event, a Coulomb slide, is where that event
+                # was located: it was given with no bracket and no word of its accuracy)
+                if located is not None:
+                    lo, hi = min(located[0], lam), max(located[1], lam)
+                    self.w.notes.append(
+                        f"the collapse follows the event at lambda = {lam:.9g}, which lies "
+                        f"in [{lo:.9g}, {hi:.9g}] (the bracket its bisection left; its load "
+                        "within it where the margins of its links, extrapolated, reach 0)")
+                    raise self.collapse(lam, cause, last, (lo, hi))
                 raise self.collapse(lam, cause, last)
             cracks, joints = self.new(r)
             if not (cracks or joints) or not self.apply(lam, cracks, joints):
@@ -409,12 +420,12 @@ class _Path:
                 if r.reason.startswith(UNSETTLED):
                     self.w.notes.append(f"at lambda = {b:.9g}: {r.reason}")
                 return r
-            lam, hi, rh, cracks, joints = self.event(a, b, r)
+            lam, located, rh, cracks, joints = self.event(a, b, r)
             if self.apply(lam, cracks, joints):
-                self.cascade(lam, self.solve(lam), rh, cracks or joints)
+                self.cascade(lam, self.solve(lam), rh, cracks or joints, located)
                 a = lam
             else:
-                a = max(hi, lam)
+                a = max(located[1], lam)
 
     def step(self, lam: float, r: Run, its: int) -> None:
         cracked = tuple(self.names[j] for j in range(self.ds.m)
