@@ -320,7 +320,8 @@ def _draw_breaches(ax: Any, result: Any, unit: str) -> str:
     for (_, v), p, r in zip(br[:BREACH_LABELS], at[:BREACH_LABELS], turn[:BREACH_LABELS],
                             strict=True):
         rot = {"rotation": float(r)} if c.dimension == 2 else {}
-        t = ax.text(*p, f" {v:.3g} {unit}".rstrip(), color=BREACH_COLOUR, fontsize=8,
+        lead = "" if c.dimension == 2 else " "  # (centred on its joint in 2D)
+        t = ax.text(*p, f"{lead}{v:.3g} {unit}".rstrip(), color=BREACH_COLOUR, fontsize=8,
                     zorder=6, bbox={"boxstyle": "round,pad=0.15", "fc": "white",
                                     "ec": "none", "alpha": 0.7}, **kw, **rot)
         t.set_gid("rb-breached")
