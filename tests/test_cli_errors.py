@@ -303,3 +303,8 @@ def test_an_output_that_cannot_be_written_is_one_line_exit_2():
     assert run.returncode == 2
     assert run.stderr == ("rigidblocks: error: cannot write: standard output: No space "
                           "left on device\n"), run.stderr
+    # the help too (argparse dropped the failed write: exit 0, nothing said)
+    with open("/dev/full", "w") as full:
+        run = subprocess.run([sys.executable, "-m", "rigidblocks.cli.main", "--help"],
+                             stdout=full, stderr=subprocess.PIPE, text=True, timeout=300)
+    assert run.returncode == 2 and "cannot write: standard output" in run.stderr

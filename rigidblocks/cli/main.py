@@ -14,6 +14,7 @@ import importlib
 import sys
 import warnings
 from collections.abc import Sequence
+from typing import Any
 
 from ..analyses import ANALYSES
 from ..errors import InputError, SolverFailure
@@ -45,6 +46,12 @@ class _Parser(argparse.ArgumentParser):
         # "rigidblocks: error: load: argument ...": the program is named once
         command = self.prog.removeprefix("rigidblocks").strip()
         raise InputError(f"{command}: {message}" if command else message)
+
+    def _print_message(self, message: str, file: Any = None) -> None:
+        # the help and the version, written or said not to be (argparse drops a write
+        # that fails: --help to a full disk exited 0 with nothing written)
+        if message:
+            (file or sys.stderr).write(message)
 
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:
