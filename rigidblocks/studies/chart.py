@@ -49,8 +49,10 @@ def plot(frame: Any, x: str, y: str, hue: str | None = None, ax: Any = None,
     style = {"marker": "o", "markersize": 3, **kwargs}
     for key, g in groups:
         g = g.sort_values(x)
-        (line,) = ax.plot(g[x], g[y].astype(float), label=None if hue is None else
-                          f"{hue} = {key}", **style)
+        # (a series without a number had a legend entry and nothing to see)
+        label = None if hue is None else f"{hue} = {key}" + (
+            " (no number: x at the foot)" if g[y].isna().all() else "")
+        (line,) = ax.plot(g[x], g[y].astype(float), label=label, **style)
         gone = g[g[y].isna()]
         if len(gone):  # at the foot of the axes, in the line's colour
             ax.plot(gone[x], np.full(len(gone), 0.02), "x", color=line.get_color(),
