@@ -216,9 +216,13 @@ def _processes(job: _Job, batches: Iterator[Batch], workers: int) -> Iterator[li
                     pending.add(ex.submit(run_batch, job, b))
                 yield fut.result()
     except KeyboardInterrupt:
-        # end the workers now: left to finish their cases, Ctrl-C took 9 to 14 s
+        # end the workers now: left to finish their cases, Ctrl-C took 9 to 14 s; then
+        # wait for the pool's own thread to see them gone (not waited for, the
+        # interpreter's exit wrote to its closed wake-up pipe now and then: a traceback
+        # after "rigidblocks: interrupted")
         for proc in list((getattr(ex, "_processes", None) or {}).values()):
             proc.terminate()
+        pending = set()
         raise
     finally:
         ex.shutdown(wait=not pending, cancel_futures=True)
