@@ -203,6 +203,13 @@ def _unit_key(unit: str) -> str:
     return SPELLINGS.get(u, u)
 
 
+def _block_size(scene: Scene) -> float:
+    """The blocks' median size: their bounding boxes' largest side, in the scene's
+    length unit."""
+    lo, hi = block_boxes(scene)
+    return float(np.median((hi - lo).max(axis=1)))
+
+
 def _metres(scene: Scene) -> float | None:
     """The scene's length unit in metres (None where it is not one of ``METRES``)."""
     return METRES.get(_unit_key(scene.length_unit))
@@ -227,8 +234,7 @@ def unit_doubt(scene: Scene) -> str:
     metres = _metres(scene)
     if metres is None or not scene.blocks:
         return ""
-    lo, hi = block_boxes(scene)
-    size = float(np.median((hi - lo).max(axis=1)))
+    size = _block_size(scene)
     low, high = BLOCK_SIZES
     if low <= size * metres <= high:
         return ""
@@ -244,8 +250,7 @@ def unit_guess(scene: Scene, code: int = 0) -> str:
     (``BLOCK_SIZES``): "the blocks are 350 units across (the median): in mm 0.35 m"."""
     if not scene.blocks:
         return ""
-    lo, hi = block_boxes(scene)
-    size = float(np.median((hi - lo).max(axis=1)))
+    size = _block_size(scene)
     low, high = BLOCK_SIZES
     fits = [f"in {u} {size * m:.3g} m" for u, m in METRES.items()
             if u not in ("km", "yd", "dm") and low <= size * m <= high]
@@ -264,8 +269,7 @@ def depth_note(scene: Scene) -> str:
         x = 0.3 / metres
     elif scene.blocks:  # no unit: a block's size ("--depth 300 for 300 length unit"
         # of a drawing whose blocks are 3 units across)
-        lo, hi = block_boxes(scene)
-        x = float(np.median((hi - lo).max(axis=1)))
+        x = _block_size(scene)
     else:
         x = 1.0
     example = f"{round(x, 1 - math.floor(math.log10(x))):g}"
@@ -372,12 +376,11 @@ def read_dxf(path: str | os.PathLike, *, supports: str | None = None,
         # layer names as DXF compares them, without case; each named must hold lines
         # (WALLS,NOPE read WALLS alone without a word, walls nothing)
         wanted = {name.lower() for name in layers}
-        drawn = {e.dxf.layer.lower() for e in doc.modelspace()
-                 if e.dxftype() in ("LWPOLYLINE", "POLYLINE", "LINE")}
+        have = sorted({e.dxf.layer for e in doc.modelspace()
+                       if e.dxftype() in ("LWPOLYLINE", "POLYLINE", "LINE")})
+        drawn = {layer.lower() for layer in have}
         empty = [name for name in layers if name.lower() not in drawn]
         if empty:
-            have = sorted({e.dxf.layer for e in doc.modelspace()
-                           if e.dxftype() in ("LWPOLYLINE", "POLYLINE", "LINE")})
             raise InputError(f"no polylines or lines on the layer(s) {', '.join(empty)} "
                              f"(layers with some: {', '.join(have) or 'none'})",
                              f"{src}: layers")
