@@ -16,8 +16,6 @@ from contextlib import contextmanager
 from dataclasses import replace
 from typing import Any
 
-import numpy as np
-
 from ..errors import InputError, SolverFailure, finite_number
 from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_method
 from ..methods.convex import (
@@ -26,6 +24,7 @@ from ..methods.convex import (
     FRICTION_RTOL,
     TENSION_3D_NOTE,
     VERDICT_RTOL,
+    cones_close_under_tension,
 )
 from ..results import (
     CheckResult,
@@ -73,11 +72,10 @@ def _fields(m: Method, analysis: str, status: str, friction: Any,
             load_factor: float | None) -> dict[str, Any]:
     """The fields every result shares, from the method's record of its work."""
     notes = tuple(m.notes)
-    if friction is not None and TENSION_3D_NOTE in notes:
+    if friction is not None and not cones_close_under_tension(
+            m.system.contacts, m.f_joint(friction_value(friction))):
         # (said at infinite friction too, where no cone closes and 3D gives the 2D answer)
-        c = m.system.contacts
-        if np.all(np.isinf(m.f_joint(friction_value(friction))[c.tensile_strength > 0])):
-            notes = tuple(n for n in notes if n != TENSION_3D_NOTE)
+        notes = tuple(n for n in notes if n != TENSION_3D_NOTE)
     return dict(analysis=analysis, status=status, friction=friction_label(friction),
                 load_factor=load_factor, contacts=m.system.contacts, solver=m.solver,
                 n_solves=m.n_solves, solve_time=m.solve_time, iterations=m.iterations,

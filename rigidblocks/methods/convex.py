@@ -93,10 +93,10 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
             self.pyramid = int(pyramid)
             self.notes.append(f"friction cones linearised as inscribed {int(pyramid)}-facet "
                               "pyramids (an approximation: not the Coulomb cone)")
-        c = system.contacts
-        if scene.dimension == 3 and np.any((c.tensile_strength > 0)
-                                           & ~np.isposinf(c.override_friction)):
-            self.notes.append(TENSION_3D_NOTE)  # (not where a joint's own f is infinite)
+        # (not where every bonded joint's own friction is infinite; the analyses drop it
+        # where the friction they are asked at is: core._fields)
+        if cones_close_under_tension(system.contacts, self.f_joint(0.0)):
+            self.notes.append(TENSION_3D_NOTE)
         loose = self.runner.loose_settings()
         if loose:
             self.notes.append(f"solver tolerances looser than 1e-9 ({', '.join(loose)}): "
@@ -317,6 +317,13 @@ TENSION_3D_NOTE = ("in 3D each contact point has its own Coulomb cone, |T_k| <= 
                    "capacity here, where in 2D it does (there |T| <= f (N1 + N2) + c a over "
                    "the joint): with finite friction the answers may lie below the 2D "
                    "scene's (on the safe side)")
+def cones_close_under_tension(contacts: Any, f_joint: np.ndarray) -> bool:
+    """Does :data:`TENSION_3D_NOTE` apply: a 3D joint with a tensile strength and a
+    finite friction (``f_joint``, per joint)?"""
+    return contacts.dimension == 3 and bool(np.any((contacts.tensile_strength > 0)
+                                                   & np.isfinite(f_joint)))
+
+
 #: the note where the mechanism drawn is one of several optimal ones
 OTHER_MECHANISMS = ("other collapse mechanisms reach the same multiplier: the one drawn is "
                     "one of them (their blend: `rigidblocks load --mechanism blend`)")
