@@ -30,7 +30,6 @@ from ..results import (
     CheckResult,
     FrictionResult,
     LoadResult,
-    fmt_bracket,
     fmt_safe,
     relative_width,
     within,
@@ -45,7 +44,7 @@ from .nonassociative import (
     min_friction_nonassociative,
 )
 from .notes import friction_governs, interlocking_note
-from .search import friction_by_bisection, load_by_bisection
+from .search import friction_by_bisection, load_by_bisection, no_number_note
 
 #: the default accuracy of lambda*, as f*'s (FRICTION_RTOL, chosen from the chart)
 LOAD_RTOL = FRICTION_RTOL
@@ -116,9 +115,7 @@ def certified(m: Method, lim: Limit, rtol: float, what: str, atol: float = 0.0) 
             return lim
     elif within(lim.lower, lim.upper, rtol, atol):
         return lim
-    m.notes.append(f"{what} is bracketed in {fmt_bracket(lim.lower, lim.upper)}: accuracy "
-                   f"{reached:.1e} reached, {rtol:.1e} requested (rtol): no number is "
-                   "given")
+    m.notes.append(no_number_note(what, lim.lower, lim.upper, reached, rtol))
     return replace(lim, status="undecided", value=None, at=None)
 
 

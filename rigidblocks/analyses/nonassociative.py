@@ -124,7 +124,7 @@ from .na_limit import (
 )
 from .na_mechanism import FIXED_TOL, limit_runs, walks
 from .notes import with_friction_governs
-from .search import BRACKET_ATOL, UNBOUNDED_AT, bisect
+from .search import BRACKET_ATOL, UNBOUNDED_AT, bisect, no_number_note
 
 #: relative change of the normal forces (of the largest force) that ends the iteration
 FIXED_POINT_TOL = 1e-6
@@ -1061,9 +1061,8 @@ def _too_wide_at_the_top(na: NonAssociative, at: tuple[float, float], rtol: floa
     floor for answers near 0", where the associative `load` said UNDECIDED."""
     if within(*at, rtol, BRACKET_ATOL):
         return False
-    na.notes.append(f"lambda* is bracketed in {fmt_bracket(*at)}, the associative "
-                    f"multiplier's bracket: accuracy {relative_width(*at):.1e} reached, "
-                    f"{rtol:.1e} requested (rtol): no number is given")
+    na.notes.append(no_number_note("lambda*, the associative multiplier,", *at,
+                                   relative_width(*at), rtol))
     return True
 
 

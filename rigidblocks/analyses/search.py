@@ -76,6 +76,15 @@ class Bracket:
         return not within(self.lower, self.upper, rtol, atol)
 
 
+def no_number_note(what: str, lower: float, upper: float, reached: float,
+                   rtol: float) -> str:
+    """Why a limit bracketed in [lower, upper] to the accuracy ``reached`` gives no
+    number where ``rtol`` was asked (every limit's note, and the non-associative answer
+    at the associative multiplier's)."""
+    return (f"{what} is bracketed in {fmt_bracket(lower, upper)}: accuracy {reached:.1e} "
+            f"reached, {rtol:.1e} requested (rtol): no number is given")
+
+
 def bisect(decide: Decide, bad: float, good: float, rtol: float, atol: float = 0.0,
            steps: int = MAX_TRIALS) -> Bracket:
     """Halve [bad, good] (either order) until |good - bad| <= rtol max(|good|, |bad|) +
