@@ -31,8 +31,8 @@ def run(args: argparse.Namespace) -> int:
                     scheduler=args.scheduler, batch_size=args.batch_size,
                     progress=not args.no_progress and _terminal())
     print(f"cases     {res.n_cases} ({res.n_run} run, {res.n_skipped} done before)")
-    for name, counts in res.outcomes.items():
-        print(f"{'outcomes' if name == next(iter(res.outcomes)) else '':10s}{name}: "
+    for i, (name, counts) in enumerate(res.outcomes.items()):
+        print(f"{'' if i else 'outcomes':10s}{name}: "
               + ", ".join(f"{k} {v}" for k, v in counts.items()))
     print(f"failures  {res.n_failed}" + _first_failure(res.frame))
     if res.n_undecided:

@@ -11,6 +11,7 @@ from typing import Any
 
 from ..errors import InputError
 from ..scene.model import INFINITE
+from ..scene.validate import is_number
 
 #: parameters a scene source accepts (scene fields), besides ``load_factor``
 SCENE_PARAMS = ("friction", "depth", "unit_weight")
@@ -21,10 +22,6 @@ def _plain(v: Any) -> Any:
     """Python scalars from numpy ones (np.float64 -> float)."""
     item = getattr(v, "item", None)
     return item() if callable(item) and not isinstance(v, str | bytes) else v
-
-
-def _is_number(v: Any) -> bool:
-    return isinstance(v, int | float) and not isinstance(v, bool)
 
 
 def param_specs(generator: str | None) -> dict[str, Any]:
@@ -92,7 +89,7 @@ def check_value(name: str, value: Any, default: Any, where: str) -> Any:
     v = _plain(value)
     if isinstance(default, Optional):
         return None if v is None else check_value(name, v, default.example, where)
-    if name == "friction" and (v == INFINITE or (_is_number(v) and math.isinf(v) and v > 0)):
+    if name == "friction" and (v == INFINITE or (is_number(v) and math.isinf(v) and v > 0)):
         return INFINITE
     if isinstance(default, bool):
         ok = isinstance(v, bool)
@@ -101,18 +98,18 @@ def check_value(name: str, value: Any, default: Any, where: str) -> Any:
         ok = isinstance(v, int) and not isinstance(v, bool)
         kind = "an integer"
     elif isinstance(default, float):
-        ok = _is_number(v) and math.isfinite(v)
+        ok = is_number(v) and math.isfinite(v)
         kind = 'a number or "infinite"' if name == "friction" else "a finite number"
         v = float(v) if ok else v
     elif isinstance(default, str):
         ok = isinstance(v, str)
         kind = "a string"
     else:
-        ok = isinstance(v, str) or _is_number(v) or v is None
+        ok = isinstance(v, str) or is_number(v) or v is None
         kind = "a string or a number"
     if not ok:
         raise InputError(f"expected {kind}, got {json.dumps(v, default=str)}", where)
-    if name in ("friction", "unit_weight", "load_factor") and _is_number(v) and v < 0:
+    if name in ("friction", "unit_weight", "load_factor") and is_number(v) and v < 0:
         raise InputError(f"must be >= 0, got {v}", where)
     if name == "flow" and v not in ("associative", "non-associative"):
         raise InputError(f'must be "associative" or "non-associative", got {json.dumps(v)}',
@@ -216,7 +213,7 @@ def _random_cases(spec: Mapping[str, Any], fixed: dict[str, Any]) -> list[dict[s
                 cols[name] = [_plain(rng_spec[i]) for i in idx]
                 continue
             if (isinstance(rng_spec, str) or not isinstance(rng_spec, Sequence)
-                    or len(rng_spec) != 2 or not all(_is_number(_plain(x)) for x in rng_spec)):
+                    or len(rng_spec) != 2 or not all(is_number(_plain(x)) for x in rng_spec)):
                 raise InputError(f"expected [low, high], got {rng_spec!r}", where)
             lo, hi = (_plain(x) for x in rng_spec)
             if not lo <= hi:

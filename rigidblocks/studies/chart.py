@@ -91,9 +91,11 @@ def _status_of(frame: Any, y: str) -> Any:
 def _why_missing(rows: Any, y: str) -> dict[str, int]:
     """How many of ``rows`` (cases without a number in ``y``) ended in each status of
     the analysis that answers ``y`` (failed, undecided, unstable, ...), or of the case."""
+    import pandas as pd
+
     status = _status_of(rows, y)
     if status is None:
-        status = rows.iloc[:, 0].map(lambda _: None)
+        status = pd.Series(None, index=rows.index, dtype=object)
     if "status" in rows.columns:  # a case whose scene was not built: its analyses None
         status = status.where(status.notna(), rows["status"].where(rows["status"] != "ok"))
     counts = status.fillna("not computed").value_counts(sort=False)

@@ -53,11 +53,11 @@ from typing import Any
 from ..errors import InputError
 from ..methods import METHODS
 from ..scene.model import Scene
+from ..scene.validate import is_number
 from .cases import (
     RANDOM_KEYS,
     RESERVED,
     SCENE_PARAMS,
-    _is_number,
     _known,
     _plain,
     check_value,
@@ -157,7 +157,7 @@ def _analysis(entry: Any, where: str) -> Analysis:
             allowed = ", ".join(ANALYSES[name]) or "none"
             raise InputError(f'unknown option "{k}" of {name} (allowed: {allowed})', where)
     for k in ("lo", "hi", "rtol"):
-        if k in opts and not (_is_number(_plain(opts[k])) and _plain(opts[k]) > 0):
+        if k in opts and not (is_number(_plain(opts[k])) and _plain(opts[k]) > 0):
             raise InputError(f"{k} must be a number > 0, got {opts[k]!r}", where)
     if "lo" in opts and "hi" in opts and not _plain(opts["lo"]) < _plain(opts["hi"]):
         # (each case failed on its own, the sweep ending with status 0)
