@@ -203,8 +203,16 @@ def _in_process(job: _Job, batches: Iterator[Batch]) -> Iterator[list[dict]]:
         yield run_batch(job, b)
 
 
+def _ignore_interrupts() -> None:
+    """A worker's start: Ctrl-C is the main process's to handle (it ends the workers);
+    caught in a worker, inside a solver's callback, it printed a traceback there."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def _processes(job: _Job, batches: Iterator[Batch], workers: int) -> Iterator[list[dict]]:
-    ex = ProcessPoolExecutor(max_workers=workers)
+    ex = ProcessPoolExecutor(max_workers=workers, initializer=_ignore_interrupts)
     pending: set = set()
     try:
         for b in itertools.islice(batches, 3 * workers):
