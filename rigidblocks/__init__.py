@@ -8,7 +8,7 @@ from .contacts import Contacts, detect_contacts
 from .equilibrium import EquilibriumSystem, assemble
 from .errors import InputError, RigidBlocksError, SolverFailure
 from .io import read_scene, write_scene
-from .scene import INFINITE, Block, JointOverride, Load, Scene, make_block
+from .scene import INFINITE, Block, JointOverride, Load, Scene, Units, make_block
 
 
 def __getattr__(name: str) -> _Any:
@@ -51,7 +51,7 @@ def read_dxf(path: object, **kwargs: object) -> object:
 __all__ = [
     "__version__", "INFINITE", "Block", "Contacts", "EquilibriumSystem", "InputError",
     "JointOverride",
-    "Load", "RigidBlocksError", "Scene", "SolverFailure", "assemble", "detect_contacts",
+    "Load", "RigidBlocksError", "Scene", "SolverFailure", "Units", "assemble", "detect_contacts",
     "check", "make_block", "max_load_multiplier", "min_friction", "plot", "read_dxf", "report",
     "read_scene", "write_scene", "load_path", "min_thickness",
 ]

@@ -353,6 +353,17 @@ def check_result(scene: Any, result: Any) -> None:
                if len(theirs) != len(ids) else "other block ids")
         raise InputError(f"result: the result of a {result.analysis} of another scene "
                          f"({how}): analyse this scene again")
+    if result.loading is not None:
+        from .scene.model import loading_keys
+
+        mine = loading_keys(scene)
+        changed = [k for k, v in result.loading.items() if mine.get(k) != v]
+        if changed:
+            # (an arch whose live load was halved reported with the old result: "0.149764
+            # x 18.85 kN", the old multiplier of the new load)
+            what = " and ".join([", ".join(changed[:-1])] * (len(changed) > 1) + changed[-1:])
+            raise InputError(f"result: the result of a {result.analysis} of this scene's "
+                             f"blocks under other values of {what}: analyse this scene again")
 
 
 @dataclass(frozen=True, eq=False)
@@ -406,6 +417,9 @@ class Result:
     #: the analysed scene's blocks (:func:`~rigidblocks.scene.model.geometry_key`), for
     #: the pictures and reports to tell another scene's result (None: not recorded)
     geometry: str | None = field(default=None, repr=False, compare=False)
+    #: ... and its loads, unit weights and joint laws
+    #: (:func:`~rigidblocks.scene.model.loading_keys`)
+    loading: dict[str, str] | None = field(default=None, repr=False, compare=False)
     #: why a non-associative status is what it is, where its notes give it in words and
     #: the answer's verdict depends on it: BELOW_DEAD_LOAD ("unstable" `load`: the limit
     #: fixed point from X0 is below 0), DIRECT_STANDS ("inadmissible" `check`: the state

@@ -427,6 +427,21 @@ def test_a_report_of_a_result_it_cannot_show_says_so():
         with pytest.raises(InputError, match=r"another scene \(its blocks' ids are this "
                            r"scene's, their corners are not\)"):
             show(wide, rb.max_load_multiplier(one))
+    # the same blocks, another load: the arch's live load halved was reported with the
+    # old result, "0.149764 x 18.85 kN" (the new load's lambda* is 0.2995), and a doubled
+    # unit weight beside the old forces
+    arch = rb.read_scene(EXAMPLES / "arch.json")
+    got = rb.max_load_multiplier(arch)
+    for changes, named in (({"live_body_force": (0.5, 0.0)}, "live_body_force"),
+                           ({"unit_weight": 40.0, "depth": 2.0},
+                            "unit_weight and depth"),
+                           ({"loads": (rb.Load("v3", (0.0, -1.0)),)}, "loads")):
+        for show in (rb.report, rb.plot):
+            with pytest.raises(InputError, match="result: the result of a max_load_multiplier"
+                               " of this scene's blocks under other values of " + named):
+                show(arch.with_changes(**changes), got)
+    # what the result records itself, and equal values spelt otherwise, are no change
+    rb.report(arch.with_changes(friction=0.3, live_body_force=(1, 0)), got)
     with pytest.raises(InputError, match=r"the load analysis takes no load_factor "
                        r"\(--load-factor\)"):
         rb.report(scene, analysis="load", load_factor=0.2)

@@ -451,6 +451,12 @@ def _in_code(**changes):
      "load #0: moment must be a number in a 2D scene, got (0, 0, 1)"),
     ({"joints": (rb.JointOverride("Bbase"),)},
      "joints: a joint override names two block ids, got 'Bbase'"),
+    # ("'str' object has no attribute 'length'": the tuple is what a result's units are)
+    ({"units": "m"}, "units: expected rigidblocks.Units(length=\"m\", force=\"kN\"), got 'm'"),
+    ({"units": ("m", "kN")}, "units: expected rigidblocks.Units("),
+    ({"units": rb.Units("m", 1)}, "got Units(length='m', force=1)"),
+    # (read "polygon has zero area (its vertices are collinear ...": the reader's words)
+    ({"blocks": "two vertices"}, "block 'B': needs at least 3 vertices, got 2"),
 ])
 def test_a_scene_built_in_code_is_checked_as_a_files_is(changes, said):
     """The analyses took a scene built in code as given: two overlapping blocks
@@ -468,6 +474,8 @@ def test_a_scene_built_in_code_is_checked_as_a_files_is(changes, said):
     elif changes.get("blocks") == "twice":
         base, b = _in_code().blocks
         changes = {"blocks": (base, b, b)}
+    elif changes.get("blocks") == "two vertices":
+        changes = {"blocks": (_in_code().blocks[0], make_block("B", [[0, 0], [1, 0]]))}
     elif changes.get("blocks") == "support no":
         base, b = _in_code().blocks
         changes = {"blocks": (base, make_block("B", b.vertices, support="no"))}

@@ -34,7 +34,7 @@ from ..results import (
     relative_width,
     within,
 )
-from ..scene.model import Scene, friction_label, friction_value, geometry_key
+from ..scene.model import Scene, friction_label, friction_value, geometry_key, loading_keys
 from ..scene.validate import check_load_factor, validate_scene
 from .nonassociative import (
     NA_RTOL,
@@ -78,7 +78,7 @@ def _fields(m: Method, analysis: str, status: str, friction: Any,
     return dict(analysis=analysis, status=status, friction=friction_label(friction),
                 load_factor=load_factor, contacts=m.system.contacts, solver=m.solver,
                 n_solves=m.n_solves, solve_time=m.solve_time, iterations=m.iterations,
-                geometry=geometry_key(m.scene),
+                geometry=geometry_key(m.scene), loading=loading_keys(m.scene),
                 units=(m.scene.length_unit, m.scene.force_unit), notes=notes,
                 timings=dict(m.timings.wall), cpu_timings=dict(m.timings.cpu),
                 answered_by=m.answered_by, rejected=m.rejected)

@@ -110,6 +110,7 @@ from ..scene.model import (
     friction_label,
     friction_value,
     geometry_key,
+    loading_keys,
 )
 from ..solvers import OPTIMAL
 from .na_limit import (
@@ -578,7 +579,7 @@ def _fields(na: NonAssociative, analysis: str, status: str, friction: Any,
     return dict(analysis=analysis, status=status, friction=friction_label(friction),
                 load_factor=load_factor, contacts=na.contacts, solver=na.solver,
                 n_solves=na.n_solves, solve_time=na.solve_time, iterations=na.iterations,
-                geometry=geometry_key(na.scene),
+                geometry=geometry_key(na.scene), loading=loading_keys(na.scene),
                 units=(na.scene.length_unit, na.scene.force_unit), notes=tuple(notes),
                 timings=dict(na.timings.wall), cpu_timings=dict(na.timings.cpu),
                 flow=NON_ASSOCIATIVE, converged=converged, history=history,

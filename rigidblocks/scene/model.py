@@ -294,6 +294,38 @@ def geometry_key(scene: Scene) -> str:
     return h.hexdigest()
 
 
+#: what of a scene besides its blocks a result depends on (:func:`loading_keys`): the
+#: friction, the flow and the load factor are the result's own (an analysis' options
+#: override them), recorded in it
+LOADING = ("unit_weight", "depth", "loads", "joints", "live_body_force", "units")
+
+
+def loading_keys(scene: Scene) -> dict[str, str]:
+    """A digest of each of the scene's ``LOADING`` values (the blocks' own unit weights
+    with the scene's), numbers compared as floats (1 and 1.0 alike): a result drawn or
+    reported with a scene whose loads changed drew the new loads beside the old
+    answer's forces."""
+    import hashlib
+    from dataclasses import fields, is_dataclass
+
+    def canonical(v: Any) -> Any:
+        if isinstance(v, bool) or v is None or isinstance(v, str):
+            return v
+        if isinstance(v, int | float | np.integer | np.floating):
+            return float(v)
+        if is_dataclass(v):
+            return (type(v).__name__,) + tuple(canonical(getattr(v, f.name))
+                                               for f in fields(v))
+        if isinstance(v, Sequence | np.ndarray):
+            return tuple(canonical(x) for x in v)
+        return repr(v)
+
+    values = {k: getattr(scene, k) for k in LOADING}
+    values["unit_weight"] = (scene.unit_weight, tuple(b.unit_weight for b in scene.blocks))
+    return {k: hashlib.sha1(repr(canonical(v)).encode()).hexdigest()
+            for k, v in values.items()}
+
+
 def block_boxes(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
     """(n, d) lowest and highest corners of every block's bounding box, in one pass."""
     starts = np.cumsum([0] + [len(b.vertices) for b in scene.blocks[:-1]])

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..errors import InputError
 from .geometry import flat_polygons, polygon_areas_centroids, polygon_diagonals, scene_size
-from .model import Block, Load, Scene, flow_value, friction_value
+from .model import Block, Load, Scene, Units, flow_value, friction_value
 
 #: relative tolerance for geometric coincidence (times the scene's size)
 DEFAULT_TOL = 1e-7
@@ -91,6 +91,10 @@ def _check_fields(scene: Scene) -> None:
         if not all(_numbers(v, dim) for v in b.vertices):
             raise InputError(f"every vertex must be {dim} numbers in a {dim}D scene",
                              f"block {b.id!r}")
+        if len(b.vertices) < dim + 1:
+            # (two vertices read "polygon has zero area (its vertices are collinear ...")
+            raise InputError(f"needs at least {dim + 1} vertices, got {len(b.vertices)}",
+                             f"block {b.id!r}")
         bad = next((c for v in b.vertices for c in v if not math.isfinite(c)), None)
         if bad is not None:
             # (a NaN was "beyond 1e+150 ... give the scene in other units")
@@ -118,6 +122,12 @@ def _check_fields(scene: Scene) -> None:
             raise InputError(f"must be a number {'>' if strict else '>='} {low:g}, got "
                              f"{v!r}", key)
         _finite(v, "it", key)
+    units = scene.units
+    if units is not None and not (isinstance(units, Units) and all(
+            v is None or isinstance(v, str) for v in (units.length, units.force))):
+        # ("m" or ("m", "kN") ended in "'str' object has no attribute 'length'")
+        raise InputError(f'expected rigidblocks.Units(length="m", force="kN"), got '
+                         f'{units!r}', "units")
     if scene.live_body_force is not None and not _numbers(scene.live_body_force, dim):
         raise InputError(f"must be {dim} numbers in a {dim}D scene, got "
                          f"{scene.live_body_force!r}", "live_body_force")
