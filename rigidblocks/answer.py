@@ -285,6 +285,30 @@ def _within(x: float, bracket: Any, digits: int = 6) -> str:
     return fmt_safe(x, digits, True)
 
 
+def _governing_tail(res: Any) -> str:
+    """What f*'s governing joints are: " (at their friction limit[, to f*'s accuracy])"
+    where the state shown has each at it (the joint table's words,
+    :func:`~rigidblocks.results.force_state_words`), else the range of their |T|/N in that
+    state: f* rests on their friction (the certificate below it names them), while the
+    state at f*, one of many, may leave some below it (the stocky arch's pier joints at
+    0.29798 for f* = 0.298455, "closed" in the table beside "at their friction limit")."""
+    from .results import force_state_words
+
+    k = list(res.governing)
+    if not k:
+        return ""
+    one = len(k) == 1
+    words = force_state_words(res) if res.state is not None else None
+    if words is None or all("at friction limit" in words[j] for j in k):
+        return (" (at its friction limit" if one else " (at their friction limit") + \
+            _to_accuracy(res, "f*") + ")"
+    demand = np.asarray(res.state.demand, dtype=float)[k]
+    lo, hi = float(demand.min()), float(demand.max())
+    span = f"{lo:.6g}" if one or f"{lo:.6g}" == f"{hi:.6g}" else f"{lo:.6g} to {hi:.6g}"
+    return (f" (f* rests on {'its' if one else 'their'} friction; the state shown at f*, "
+            f"one of many, has |T|/N = {span} there)")
+
+
 def _to_accuracy(res: Any, symbol: str) -> str:
     """How far a bisection's governing joints are from their friction limit: its state
     is at an end of the answer's bracket, not at the limit itself, and the joints are
@@ -635,10 +659,7 @@ class _Words:
                                            "--friction F --safe`") + ")")
         names = [f"{a}-{b}" for a, b in res.governing_joints]
         verdict = "STANDS at friction f = f*" if na else "STANDS with friction f >= f*"
-        return (verdict, number,
-                joint_list(names) + ((" (at its friction limit" if len(names) == 1 else
-                                      " (at their friction limit") + _to_accuracy(res, "f*")
-                                     + ")" if names else ""), why)
+        return (verdict, number, joint_list(names) + _governing_tail(res), why)
 
     def load(self, res: Any) -> tuple[str, str, str, list[str]]:
         if res.status == "unbounded":

@@ -1518,3 +1518,28 @@ def test_the_tilt_angle_is_given_only_where_a_tilt_loads_it_the_same_way():
         make_scene(blocks, friction=0.1, joints=[{"blocks": ["base", "B"],
                                                  "cohesion": 10.0}], **top),
         bonded).reasons)
+
+
+def test_governing_joints_below_their_limit_in_the_state_shown_are_not_called_at_it(capsys):
+    """The stocky arch's f* for its dead load, 0.298455 (bracket [0.2981565, 0.2984547]),
+    rests on four joints (the certificate below f* names them), but its state at f*, the
+    least-energy one of many, has |T|/N = 0.29798 at the two pier joints: the table read
+    "closed" there beside a governing line "at their friction limit, to f*'s accuracy".
+    The line now says what f* rests on and the |T|/N the state shown has there; where the
+    state has each governing joint at its limit (the reference model) it says so."""
+    from rigidblocks.results import force_state_words
+
+    path = str(EXAMPLES / "stocky_arch.json")
+    res = rb.min_friction(rb.read_scene(path), load_factor=0)
+    words = force_state_words(res)
+    names = ["-".join(res.joint_name(k)) for k in res.governing]
+    assert set(names) == {"v7-pier_l", "v1-pier_r", "v5-v6", "v2-v3"}
+    assert [words[k] for k in res.governing].count("closed") == 2
+    text = run(capsys, ["friction", path, "--load-factor", "0", "--joints"])[1]
+    line = next(x for x in text.splitlines() if x.startswith("governing"))
+    lo = min(float(res.state.demand[k]) for k in res.governing)
+    assert 0.2979 < lo < 0.2981
+    assert line.endswith(f"(f* rests on their friction; the state shown at f*, one of many, "
+                         f"has |T|/N = {lo:.6g} to 0.298455 there)"), line
+    ref = str(EXAMPLES / "reference.json")
+    assert "(at their friction limit)" in run(capsys, ["friction", ref, "--joints"])[1]
