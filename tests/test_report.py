@@ -491,3 +491,15 @@ def test_3d_report_of_a_check_that_fails_runs_in_chromium(tmp_path):
     assert st.errors == () and st.data.get("viewer-ready") == "1"
     ctl = page_state(html, fragment="rb-selftest")
     assert ctl.errors == () and ctl.data.get("selftest") == "done"
+
+
+def test_a_report_of_a_result_without_its_force_state_says_so():
+    """`rb.report(scene, rb.min_friction(scene, state=False))`: the joint table was a row
+    per joint, each "joint -", under "sorted by highest friction demand"; it now says
+    that the result has no force state and how to get one."""
+    arch = rb.read_scene(EXAMPLES / "arch.json")
+    page = rb.report(arch, rb.min_friction(arch, state=False))
+    assert "No joint forces: the result was made without its force state (state=False)" \
+        in page and 'id="rb-table"' not in page
+    page = rb.report(arch, rb.min_friction(arch))
+    assert "No joint forces" not in page and 'id="rb-table"' in page

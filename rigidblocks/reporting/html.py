@@ -254,7 +254,13 @@ def render(scene: Scene, result: Any = None, *, title: str | None = None) -> str
         parts.append("<p><b>Point loads</b></p><ul>" + "".join(
             f"<li>{_e(x)}</li>" for x in summ.loads) + "</ul>")
     parts.append("</section>")
-    if table.get("n"):
+    if table.get("n") and not table.get("has_forces") \
+            and all(x == "-" for x in table.get("state", ())):
+        # (a result made with state=False: a row per joint, each "joint -", nothing else)
+        parts.append("<section><h2>Joints</h2><p class=\"rb-help\">No joint forces: the "
+                     "result was made without its force state (state=False); analyse "
+                     "with state=True for the joint table.</p></section>")
+    elif table.get("n"):
         parts.append("<section><h2>Joints</h2><p class=\"rb-help\">Click a column to sort "
                      "(highest friction demand first); governing joints are highlighted."
                      "</p><div id=\"rb-table\"></div></section>")
