@@ -252,7 +252,8 @@ def test_extrude_to_another_depth_says_that_point_loads_do_not_scale(tmp_path, c
     lam = rb.max_load_multiplier(read_scene(out)).load_multiplier
     assert lam == pytest.approx(3.6, rel=1e-5)
     assert main(["extrude", src, "-o", str(out)]) == 0
-    assert "f* and lambda* are the 2D scene's)" in capsys.readouterr().out
+    assert "f* and lambda* are the 2D scene's, each to its search's accuracy)" in \
+        capsys.readouterr().out
     assert rb.max_load_multiplier(read_scene(out)).load_multiplier == pytest.approx(
         2.4, rel=1e-5)  # the seed's reference model with self-weight
 

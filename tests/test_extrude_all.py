@@ -233,5 +233,5 @@ def test_a_tensile_strength_without_cohesion_is_a_bending_capacity_in_2d_only(
     write_scene(plane, path)
     assert main(["extrude", str(path), "-o", str(tmp_path / "solid.json")]) == 0
     out = capsys.readouterr().out
-    assert "f* and lambda* are the 2D scene's with the joints' tensile strength counted " \
-        "as in 2D only at infinite friction" in out, out
+    assert "f* and lambda* are the 2D scene's, each to its search's accuracy; with the " \
+        "joints' tensile strength counted as in 2D only at infinite friction" in out, out
