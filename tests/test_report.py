@@ -503,3 +503,26 @@ def test_a_report_of_a_result_without_its_force_state_says_so():
         in page and 'id="rb-table"' not in page
     page = rb.report(arch, rb.min_friction(arch))
     assert "No joint forces" not in page and 'id="rb-table"' in page
+
+
+def test_a_report_and_a_picture_take_the_limits_options(tmp_path, capsys):
+    """`report` and `plot` had no --rtol and no --mechanism: a report could not give the
+    answer of `load --rtol 1e-5` (its accuracy line read "requested 0.002"). Now they
+    take both, and refuse them with an analysis that has no such limit."""
+    arch = str(EXAMPLES / "arch.json")
+    out = tmp_path / "arch.html"
+    assert main(["report", arch, "--analysis", "load", "--rtol", "1e-5", "-o",
+                 str(out)]) == 0
+    assert "requested 1e-05" in out.read_text(encoding="utf-8")
+    assert main(["plot", arch, "--analysis", "load", "--mechanism", "blend", "-o",
+                 str(tmp_path / "arch.png")]) == 0
+    capsys.readouterr()
+    for argv, said in (
+            (["report", arch, "--analysis", "check", "--rtol", "1e-5"],
+             "--rtol is an option of --analysis friction or load, not check"),
+            (["plot", arch, "--analysis", "friction", "--mechanism", "blend"],
+             "--mechanism is an option of --analysis load, not friction"),
+            (["report", arch, "--rtol", "1e-5"], "--rtol is an option of --analysis")):
+        assert main(argv + ["-o", str(tmp_path / ("x" + (".png" if argv[0] == "plot"
+                                                          else ".html")))]) == 2
+        assert said in capsys.readouterr().err

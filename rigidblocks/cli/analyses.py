@@ -20,7 +20,7 @@ from ..io import read_scene
 from ..methods import METHODS, Progress
 from ..results import fmt_safe
 from ..scene.model import INFINITE, friction_label
-from .options import add_rtol, finite_float, friction_option
+from .options import add_rtol, finite_float, friction_option, relative_tolerance
 from .options import load_factor as load_factor_type
 from .progress import run_interruptible
 
@@ -53,6 +53,34 @@ def add_question_args(p: argparse.ArgumentParser, takes: tuple[str, ...]) -> Non
     p.add_argument("--flow", choices=("associative", "non-associative"), default=None,
                    help="sliding rule of every joint without its own (default: the "
                    "scene's flow, else associative)")
+
+
+def add_limit_args(p: argparse.ArgumentParser) -> None:
+    """The options of a limit's search that a picture or a report of any analysis takes
+    (``--rtol``, ``--mechanism``), refused by :func:`limit_options` where the analysis
+    has no such limit (a report could not reproduce `load --rtol 1e-5`)."""
+    p.add_argument("--rtol", type=relative_tolerance, default=None,
+                   help="with --analysis friction or load: the relative accuracy of the "
+                   "limit (default: the command's, see `rigidblocks friction --help`)")
+    p.add_argument("--mechanism", choices=("vertex", "blend"), default=None,
+                   help="with --analysis load: one collapse mechanism (vertex, default) or "
+                   "the interior-point mix of every optimal mechanism (blend)")
+
+
+def limit_options(args: argparse.Namespace) -> dict[str, Any]:
+    """The options of :func:`add_limit_args` given, as keyword arguments of the analysis
+    ``args.analysis``; an option it does not take is an :class:`InputError`."""
+    out: dict[str, Any] = {}
+    for key, takes in (("rtol", ("friction", "load")), ("mechanism", ("load",))):
+        value = getattr(args, key, None)
+        if value is None:
+            continue
+        if args.analysis not in takes:
+            raise InputError(f"--{key} is an option of --analysis "
+                             + " or ".join(takes) + (f", not {args.analysis}"
+                                                     if args.analysis else ""))
+        out[key] = value
+    return out
 
 
 def question(args: argparse.Namespace) -> dict[str, Any]:

@@ -8,7 +8,7 @@ from pathlib import Path
 from ..analyses import ANALYSES
 from ..errors import InputError
 from ..io import read_scene
-from .analyses import EXIT, add_question_args, question
+from .analyses import EXIT, add_limit_args, add_question_args, limit_options, question
 
 FORMATS = (".png", ".svg", ".pdf")
 
@@ -20,6 +20,7 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                    help="run this analysis and draw its result (forces and thrust line "
                    "for check/friction, the collapse mechanism for load)")
     add_question_args(p, ("friction", "load_factor"))
+    add_limit_args(p)
     p.add_argument("--ids", action="store_true", help="write the block ids")
     p.add_argument("-o", "--output", default=None,
                    help="output file, .png, .svg or .pdf (default: SCENE with .png)")
@@ -31,7 +32,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"unknown picture format '{out.suffix}': use "
                          f"{', '.join(FORMATS)}", str(out))
     scene = read_scene(args.scene)
-    result = analyse(scene, args.analysis, question(args))
+    result = analyse(scene, args.analysis, {**question(args), **limit_options(args)})
 
     import matplotlib
 

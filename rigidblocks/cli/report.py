@@ -15,7 +15,7 @@ from pathlib import Path
 from ..analyses import ANALYSES
 from ..errors import InputError
 from ..io import read_scene
-from .analyses import EXIT, add_question_args, question
+from .analyses import EXIT, add_limit_args, add_question_args, limit_options, question
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
@@ -24,6 +24,7 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                    default=None,
                    help="the question to answer (default: none, the scene alone)")
     add_question_args(p, ("friction", "load_factor"))
+    add_limit_args(p)
     p.add_argument("--title", default=None, help="the report's title (default: the scene's name)")
     p.add_argument("-o", "--output", default=None,
                    help="output file, .html (default: SCENE with .html)")
@@ -34,7 +35,7 @@ def run(args: argparse.Namespace) -> int:
     if out.suffix.lower() not in (".html", ".htm"):
         raise InputError(f"a report is an HTML file: use .html, not '{out.suffix}'", str(out))
     scene = read_scene(args.scene)
-    options = question(args)
+    options = {**question(args), **limit_options(args)}
     if args.analysis is None and options:
         raise InputError("--" + ", --".join(sorted(o.replace("_", "-") for o in options))
                          + " need --analysis")
