@@ -385,6 +385,9 @@ class Result:
     iterations: int
     units: tuple[str, str] = ("", "")
     state: ForceState | None = field(default=None, repr=False)
+    #: joint indices whose friction governs: those f* rests on (`friction`), those at
+    #: their friction limit (`load`; a collapse by hinging alone has none). The joints the
+    #: answer names, a mechanism's moving ones included, are ``governing_joints``
     governing: tuple[int, ...] = ()
     notes: tuple[str, ...] = ()
     #: [lower, upper] around the answer where the method bracketed it (None otherwise)
