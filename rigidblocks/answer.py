@@ -114,6 +114,10 @@ _SOLVED_AGAIN = re.compile(r"answers of (\S+) that failed their check .*? solved
                            r"by (\w+)")
 
 
+#: the longest closing aside of an answer's number that a picture's title keeps
+TITLE_ASIDE = 60
+
+
 @dataclass(frozen=True)
 class AnswerBlock:
     """One answer, in words (see the module's docstring). ``decided`` is False for an
@@ -140,8 +144,14 @@ class AnswerBlock:
         return [f"{k:<{width}} {v}" for k, v in rows if v]
 
     def title(self) -> str:
-        """A picture's title: the verdict, the number and the load case."""
-        text = f"{self.verdict}: {self.number}" if self.number else self.verdict
+        """A picture's title: the verdict, the number and the load case; the number
+        without a closing explanation in parentheses longer than TITLE_ASIDE characters
+        (a check's breach: the arch's title ran to six lines over its picture)."""
+        number = self.number
+        aside = re.search(r" \(([^()]*)\)$", number)
+        if aside and len(aside.group(1)) > TITLE_ASIDE:
+            number = number[:aside.start()]
+        text = f"{self.verdict}: {number}" if number else self.verdict
         return f"{text}, {self.case}" if self.case else text
 
 

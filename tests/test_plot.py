@@ -655,3 +655,17 @@ def test_breach_labels_lie_along_their_joints_and_apart():
     assert len(labels) == 10 and {t.get_rotation() for t in labels} == {90.0}
     boxes = [t.get_window_extent() for t in labels]
     assert not any(a.overlaps(b) for i, a in enumerate(boxes) for b in boxes[i + 1:])
+
+
+def test_a_checks_title_leaves_the_breachs_explanation_to_the_answer():
+    """The arch's check at load factor 0.2 had a title of six lines over its picture:
+    the breach's explanation in parentheses (150 characters) is the answer's text, not
+    the title's; a short aside (f*'s friction angle) stays."""
+    arch = read_scene(EXAMPLES / "arch.json")
+    title = rb.plot(arch, rb.check(arch, load_factor=0.2)).get_title()
+    assert "smallest breach of the joint laws 0.6906 kN, under the dead load" in title
+    assert "asks of one contact" not in title and title.count("\n") <= 3, title
+    plt.close("all")
+    ref = read_scene(EXAMPLES / "reference.json")
+    assert "(friction angle 26.5651" in rb.plot(ref, rb.min_friction(ref)).get_title()
+    plt.close("all")
