@@ -296,3 +296,45 @@ def test_path_json_gives_the_terminals_why_lines(capsys):
     assert d["status"] == "unstable" and d["why"] == why
     assert d["why"][0].startswith("the state reached from the elastic state X0 under the "
                                   "dead load alone breaches the joint laws")
+
+
+def test_a_path_without_dilatancy_names_the_lower_collapse_of_the_convex_path(tmp_path,
+                                                                                capsys):
+    """The non-associative path of the 3 x 3 running-bond wall at f = 0.8 collapsed at
+    0.749241, 4.9 % above `load --flow non-associative` (0.714286, within LMGC90's
+    [0.7136, 0.7143], docs/methods.md), and the Arpino gate's at 0.122798 above 0.118702,
+    with no word of it: the path now names the lower collapse (the safer)."""
+    from rigidblocks.generators import build
+    from rigidblocks.io import write_scene
+
+    wall = tmp_path / "w33.json"
+    write_scene(build("wall", courses=3, blocks_per_course=3, friction=0.8), wall)
+    for path, low in ((str(wall), "0.714285"),
+                      (str(EXAMPLES / "arpino_gate.json"), "0.118702")):
+        assert main(["path", path, "--flow", "non-associative"]) == 0
+        out = capsys.readouterr().out
+        assert "status     COLLAPSE at lambda = " in out
+        assert (f"why        `rigidblocks load --flow non-associative` (the convex path, "
+                f"from X0) collapses at lambda = {low}, below this path's collapse load: "
+                "non-associative collapse states are not unique, and the lower is the "
+                "safer") in out, out
+    # associative: no such word (the convex path's is the one multiplier)
+    assert main(["path", str(wall), "--max-load", "0.7"]) == 0
+    assert "the convex path, from X0" not in capsys.readouterr().out
+
+
+def test_an_undecided_path_says_why(capsys, monkeypatch):
+    """An undecided path (exit 3) printed its reason, the run's iteration budget, with -v
+    alone, and its JSON's why was [] (the 3 x 3 wall at f = 0.8: undecided at 0.770410156,
+    "no convergence within the iteration budget (19300 iterations ..."). Here the budget
+    is cut to 10 iterations so that the reference model's path is undecided at once."""
+    monkeypatch.setattr("rigidblocks.methods.distortion.MAX_ITER", 10)
+    ref = str(EXAMPLES / "reference.json")
+    assert main(["path", ref]) == 3
+    out = capsys.readouterr().out
+    assert "status     UNDECIDED" in out
+    assert any(x.startswith("why        at lambda = ") and "no convergence" in x
+               for x in out.splitlines()), out
+    assert main(["path", ref, "--json"]) == 3
+    doc = json.loads(capsys.readouterr().out)
+    assert any("no convergence" in w for w in doc["why"]), doc["why"]

@@ -44,6 +44,10 @@ from ..solvers.distortion import TOL, Run
 from .nonassociative import _UNSETTLED, flow_mask
 from .search import BRACKET_ATOL, bisect
 
+#: how far (relative) below a path's collapse load the convex path's non-associative
+#: multiplier from X0 is said to lie (:func:`_lower_from_x0`): both are located to 1e-5
+#: or better
+LOWER_RTOL = 1e-4
 #: relative step below an event's bracket over which its margin is extrapolated
 EXTRAPOLATE = 1e-4
 #: an event is first bracketed to this (relative) by bisection, then its load is
@@ -475,9 +479,39 @@ def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: An
     finally:
         where.context = ""
     flow_name = "non-associative" if p.marked.any() else "associative"
+    if p.marked.any() and math.isfinite(f) and status in ("collapse", "standing"):
+        p.w.notes += _lower_from_x0(scene, f, flow, collapse if status == "collapse"
+                                    else max_load, status == "collapse")
     return PathResult(status, sliding, friction_label(f), tuple(p.steps), tuple(p.events),
                       collapse, p.w.n_solves, p.w.iterations, p.w.solve_time,
                       tuple(p.w.notes), flow_name, bracket)
+
+
+def _lower_from_x0(scene: Scene, f: float, flow: str | None, lam: float,
+                   collapsed: bool) -> list[str]:
+    """Without dilatancy, a note where the convex path's limit iteration from X0 (`load
+    --flow non-associative`) collapses below the path's collapse load, or below the end
+    of a path that stands (``lam``): the 3 x 3 running-bond wall at f = 0.8 collapsed on
+    the path at 0.749241, 4.9 % above `load`'s 0.714285 (and LMGC90's [0.7136, 0.7143]),
+    and the Arpino gate at 0.122798 for 0.118702, with no word of it."""
+    from ..errors import SolverFailure
+    from ..results import fmt_safe
+    from .nonassociative import max_load_nonassociative
+
+    try:
+        other = max_load_nonassociative(scene, f, "clarabel", flow=flow, state=False)
+    except SolverFailure:
+        return []
+    low = other.load_multiplier
+    if other.status != "collapse" or low is None or not low < lam * (1 - LOWER_RTOL):
+        return []
+    where = "this path's collapse load" if collapsed else \
+        f"the end of this path, lambda = {lam:g}, where it stands"
+    # (no word of the terminal's solver notes: "iteration" hid it behind --verbose)
+    return [f"`rigidblocks load --flow non-associative` (the convex path, from X0) "
+            f"collapses at lambda = {fmt_safe(float(low), 6, False)}, below "
+            f"{where}: non-associative collapse states are not unique, and the lower is "
+            "the safer"]
 
 
 def _at_zero(p: _Path) -> Run:

@@ -45,10 +45,8 @@ def run(args: argparse.Namespace) -> int:
         sliding=args.sliding, flow=args.flow, progress=progress), progress,
         show=not args.json and sys.stderr.isatty())
     if args.json:
-        from ..answer import split_notes
-
         # the terminal's "why" lines, as every analysis's JSON has them
-        doc = {**res.to_dict(), "why": list(split_notes(res.notes)[0])}
+        doc = {**res.to_dict(), "why": list(_why(res)[0])}
         print(json.dumps(_jsonable(doc)))
         return EXIT.get(res.status, 0)
     print("\n".join(_lines(scene, res, args)))
@@ -56,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _lines(scene, res, args: argparse.Namespace) -> list[str]:
-    from ..answer import live_load_size, live_load_text, split_notes
+    from ..answer import live_load_size, live_load_text
 
     fu = scene.force_unit or "force units"
     live, direction = live_load_size(scene)
@@ -82,11 +80,22 @@ def _lines(scene, res, args: argparse.Namespace) -> list[str]:
     if args.verbose:
         lines.append(f"work       {res.n_solves} runs, {res.iterations} iterations, "
                      f"{res.solve_time:.3g} s")
-    reasons, notes = split_notes(res.notes)
+    reasons, notes = _why(res)
     lines.extend(f"why        {n}" for n in reasons)
     if args.verbose:
         lines.extend(f"note       {n}" for n in notes)
     return lines
+
+
+def _why(res) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """(reasons, solver notes) of a path (:func:`~rigidblocks.answer.split_notes`), where
+    what happened at a load ("at lambda = ...: no convergence within the iteration
+    budget ...", the reason an undecided path stops) is a reason: it read only with -v."""
+    from ..answer import split_notes
+
+    reasons, notes = split_notes(res.notes)
+    at = tuple(n for n in notes if n.startswith("at lambda = "))
+    return (reasons + at, tuple(n for n in notes if n not in at))
 
 
 def _status_tail(res, live: float, fu: str, direction: str = "") -> str:
