@@ -915,6 +915,12 @@ def method_text(res: Any) -> str | None:
             f"from the elastic state X0; {what}")
 
 
+def joint_friction_words(scene: Scene, result: Any) -> str:
+    """The friction the joints of ``result`` have, as the answers' question says it
+    (the uniform f, and the joints at a friction of their own): a load path's too."""
+    return _Words(scene, False).joint_friction_text(result)
+
+
 def flow_lines(res: Any) -> list[str]:
     """The non-associative analysis in labelled lines: its iterations ("flow"), its
     bounds and the answers from each start (a terminal's and a report's)."""

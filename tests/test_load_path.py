@@ -338,3 +338,35 @@ def test_an_undecided_path_says_why(capsys, monkeypatch):
     assert main(["path", ref, "--json"]) == 3
     doc = json.loads(capsys.readouterr().out)
     assert any("no convergence" in w for w in doc["why"]), doc["why"]
+
+
+def test_a_paths_question_names_the_joints_own_laws(tmp_path, capsys):
+    """A stack whose middle joint has f = 0.2 of its own, at --friction infinite, read
+    "friction infinite" and then slid there at 0.2; with that joint alone without
+    dilatancy and --flow associative, "non-associative flow" for the whole path. The
+    question now says what `load`'s says: the joint's own friction, and how many joints
+    slide without dilatancy."""
+    from conftest import make_scene, rect
+
+    from rigidblocks.io import write_scene
+
+    def stack(joint):
+        path = tmp_path / "stack.json"
+        write_scene(make_scene(
+            [{"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+             {"id": "A", "vertices": rect(0, 0, 1, 1)}, {"id": "B", "vertices": rect(0, 1, 1, 1)}],
+            unit_weight=20.0, friction=0.6, live_body_force=[1, 0],
+            joints=[{"blocks": ["A", "B"], **joint}]), path)
+        return str(path)
+
+    assert main(["path", stack({"friction": 0.2}), "--friction", "infinite"]) == 0
+    out = capsys.readouterr().out
+    assert "associative flow, infinite friction (no sliding), 1 joint at a friction of " \
+           "their own (A-B f = 0.2)" in out, out
+    assert "status     COLLAPSE at lambda = 0.2" in out
+    assert main(["path", stack({"flow": "non-associative"}), "--flow", "associative"]) == 0
+    out = capsys.readouterr().out
+    assert "1 of 2 joints sliding without dilatancy (the seed's procedure), the others " \
+           "associative, friction f = 0.6" in out, out
+    assert main(["path", stack({"flow": "non-associative"}), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["sliding_joints"] == 1

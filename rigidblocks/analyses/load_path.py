@@ -30,7 +30,7 @@ one event at lambda = 0.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -120,6 +120,14 @@ class PathResult:
     notes: tuple[str, ...] = ()
     flow: str = "associative"
     bracket: tuple[float, float] | None = None
+    #: the joints (their laws: friction overrides), and how many slide without dilatancy
+    #: where some do but not all (None: all, or none)
+    contacts: Any = field(default=None, repr=False, compare=False)
+    sliding_joints: int | None = None
+
+    def joint_name(self, k: int) -> tuple[str, str]:
+        ids = self.contacts.block_ids
+        return ids[self.contacts.pairs[k, 0]], ids[self.contacts.pairs[k, 1]]
 
     def first(self, kind: str) -> PathEvent | None:
         return next((e for e in self.events if e.kind == kind), None)
@@ -134,6 +142,7 @@ class PathResult:
                            "cracked": [list(j) for j in s.cracked],
                            "at_threshold": [list(j) for j in s.at_threshold],
                            "iterations": s.iterations} for s in self.steps],
+                "sliding_joints": self.sliding_joints,
                 "solver": "distortion", "n_solves": self.n_solves,
                 "iterations": self.iterations, "solve_time": self.solve_time,
                 "notes": list(self.notes)}
@@ -482,9 +491,10 @@ def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: An
     if p.marked.any() and math.isfinite(f) and status in ("collapse", "standing"):
         p.w.notes += _lower_from_x0(scene, f, flow, collapse if status == "collapse"
                                     else max_load, status == "collapse")
+    some = int(p.marked.sum()) if 0 < p.marked.sum() < len(p.marked) else None
     return PathResult(status, sliding, friction_label(f), tuple(p.steps), tuple(p.events),
                       collapse, p.w.n_solves, p.w.iterations, p.w.solve_time,
-                      tuple(p.w.notes), flow_name, bracket)
+                      tuple(p.w.notes), flow_name, bracket, p.c, some)
 
 
 def _lower_from_x0(scene: Scene, f: float, flow: str | None, lam: float,

@@ -54,17 +54,22 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _lines(scene, res, args: argparse.Namespace) -> list[str]:
-    from ..answer import live_load_size, live_load_text
+    from ..answer import joint_friction_words, live_load_size, live_load_text
 
     fu = scene.force_unit or "force units"
     live, direction = live_load_size(scene)
-    flow = ("non-associative flow (no dilatancy: the seed's procedure)"
-            if res.flow == "non-associative" else "associative flow")
+    some = res.sliding_joints
+    # (a scene's one joint without dilatancy read "non-associative flow" for them all,
+    # and a joint's own friction went unsaid beside "friction infinite")
+    flow = ("non-associative flow (no dilatancy: the seed's procedure)" if some is None
+            else f"{some} of {res.contacts.n_joints} joints sliding without dilatancy "
+            "(the seed's procedure), the others associative") \
+        if res.flow == "non-associative" else "associative flow"
     lines = [f"scene      {scene.name or scene.source}",
              f"asked      the load path of the distortion method from lambda = 0 to "
              f"{args.max_load:g} in {args.steps} steps, lambda multiplying the live load "
-             f"({live_load_text(scene)}); {res.sliding} sliding, {flow}, friction "
-             f"{res.friction}",
+             f"({live_load_text(scene)}); {res.sliding} sliding, {flow}, "
+             f"{joint_friction_words(scene, res)}",
              f"status     {res.status.upper()}" + _status_tail(res, live, fu, direction)]
     if res.events:
         # a balanced live load (the reference model's two opposing pulls) has no
