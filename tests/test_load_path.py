@@ -370,3 +370,34 @@ def test_a_paths_question_names_the_joints_own_laws(tmp_path, capsys):
            "associative, friction f = 0.6" in out, out
     assert main(["path", stack({"flow": "non-associative"}), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["sliding_joints"] == 1
+
+
+def test_a_collapse_says_what_each_of_its_joints_does(tmp_path, capsys):
+    """A 1 x 2 block bonded to its base (tensile strength 20, depth 1.5, W = 60) at
+    infinite friction tips at (b + sigma_t d b^2 / W) / h = (1 + 20 x 1.5 / 60) / 2 = 0.75
+    when its bond cracks: the path read "crack", then "plastic" (its |T|/N is 0.75,
+    against no friction limit), then "collapse base-B"; and the same block unbonded read
+    "collapse base-B" whether it slid (f = 0.4) or tipped (f = 0.6, b/h = 0.5). The
+    collapse's joints now say what each does, and a crack is no plasticity."""
+    from conftest import make_scene, rect
+
+    from rigidblocks.io import write_scene
+
+    def block(**top):
+        path = tmp_path / "block.json"
+        write_scene(make_scene([{"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+                                {"id": "B", "vertices": rect(0, 0, 1, 2)}],
+                               unit_weight=20.0, live_body_force=[1, 0], **top), path)
+        return str(path)
+
+    bonded = block(friction=5.0, depth=1.5,
+                   joints=[{"blocks": ["base", "B"], "tensile_strength": 20.0}])
+    assert main(["path", bonded, "--friction", "infinite", "--json"]) == 0
+    events = json.loads(capsys.readouterr().out)["events"]
+    assert [(e["kind"], e["load_factor"]) for e in events] == [("crack", pytest.approx(0.75)),
+                                                              ("collapse", pytest.approx(0.75))]
+    assert events[1]["modes"] == ["cracked, hinging"]
+    for f, lam, mode in ((0.4, 0.4, "at friction limit"), (0.6, 0.5, "hinging")):
+        assert main(["path", block(friction=f)]) == 0
+        out = capsys.readouterr().out
+        assert f"collapse  base-B ({mode})" in out and f"COLLAPSE at lambda = {lam}" in out, out

@@ -87,6 +87,10 @@ class PathEvent:
     kind: str
     load_factor: float
     joints: tuple[Joint, ...]
+    #: a collapse's joints, each what it does in the last admissible state: "cracked"
+    #: (the event that caused it), "at friction limit", "hinging", or two of them
+    #: (empty for the other events: their kind says it)
+    modes: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -137,7 +141,9 @@ class PathResult:
                 "friction": friction_label(self.friction), "collapse_load": self.collapse_load,
                 "bracket": list(self.bracket) if self.bracket else None,
                 "events": [{"kind": e.kind, "load_factor": e.load_factor,
-                            "joints": [list(j) for j in e.joints]} for e in self.events],
+                            "joints": [list(j) for j in e.joints],
+                            **({"modes": list(e.modes)} if e.modes else {})}
+                           for e in self.events],
                 "steps": [{"load_factor": s.load_factor, "status": s.status,
                            "cracked": [list(j) for j in s.cracked],
                            "at_threshold": [list(j) for j in s.at_threshold],
@@ -380,13 +386,24 @@ class _Path:
 
     def collapse(self, lam: float, cause: list[int], last: Run | None,
                  bracket: tuple[float, float] | None = None) -> _End:
-        gov = list(cause) + [j for j in (self.at_threshold(last) if last else [])
-                             if j not in cause]
-        new = [j for j in gov if j not in self.seen]
+        at = self.at_threshold(last) if last else []
+        gov = list(cause) + [j for j in at if j not in cause]
+        # plastic: the joints at their threshold not yet so (a crack that causes the
+        # collapse is no plasticity: a block bonded to its base, at infinite friction,
+        # read "crack", then "plastic" at |T|/N = 0.75)
+        new = [j for j in at if j not in self.seen]
         if new:
             self.events.append(PathEvent("plastic", lam, tuple(self.names[j] for j in new)))
-        gov += [j for j in (self.hinging(last) if last else []) if j not in gov]
-        self.events.append(PathEvent("collapse", lam, tuple(self.names[j] for j in gov)))
+        hinges = self.hinging(last) if last else []
+        gov += [j for j in hinges if j not in gov]
+        # (a block that slid and one that tipped read alike: "collapse base-B")
+        cracked = [j for j in cause if j not in self.seen and j not in at]
+        modes = tuple(", ".join(w for w, on in (("cracked", j in cracked),
+                                                ("at friction limit", j in at),
+                                                ("hinging", j in hinges)) if on)
+                      for j in gov)
+        self.events.append(PathEvent("collapse", lam, tuple(self.names[j] for j in gov),
+                                     modes))
         return _End("collapse", lam, bracket)
 
     def cascade(self, lam: float, r: Run, last: Run | None,

@@ -78,7 +78,9 @@ def _lines(scene, res, args: argparse.Namespace) -> list[str]:
         lines.append(f"  {'lambda [-]':>14}  {head:>12}  {'event':8s}  "
                      "joints (blocks a-b)")
     for e in res.events:
-        joints = ", ".join(f"{a}-{b}" for a, b in e.joints) or "-"
+        modes = e.modes or ("",) * len(e.joints)
+        joints = ", ".join(f"{a}-{b}" + (f" ({m})" if m else "")
+                           for (a, b), m in zip(e.joints, modes, strict=True)) or "-"
         # down, as the status line's collapse: an event happens at or above its load
         lines.append(f"  {fmt_safe(e.load_factor, 9, False):>14}  "
                      f"{fmt_safe(e.load_factor * live, 6, False):>12}  {e.kind:8s}  {joints}")
