@@ -401,3 +401,14 @@ def test_a_collapse_says_what_each_of_its_joints_does(tmp_path, capsys):
         assert main(["path", block(friction=f)]) == 0
         out = capsys.readouterr().out
         assert f"collapse  base-B ({mode})" in out and f"COLLAPSE at lambda = {lam}" in out, out
+
+
+def test_joints_plastic_under_the_dead_load_are_said_to_be(capsys):
+    """The flat arch with vertical joints on piers at f = 0.6: its two pier joints are at
+    the friction threshold under its self-weight, an event at lambda = 0 that nothing
+    explained (the one note at lambda = 0 is for joints that carry no force)."""
+    assert main(["path", str(EXAMPLES / "flat_arch_vertical.json")]) == 0
+    out = capsys.readouterr().out
+    assert "               0             0  plastic   v1-pier_l, v9-pier_r" in out, out
+    assert ("why        2 joints are at the friction threshold under the dead load alone (in "
+            "the state reached from the elastic state X0): plastic from lambda = 0") in out
