@@ -669,3 +669,23 @@ def test_a_checks_title_leaves_the_breachs_explanation_to_the_answer():
     ref = read_scene(EXAMPLES / "reference.json")
     assert "(friction angle 26.5651" in rb.plot(ref, rb.min_friction(ref)).get_title()
     plt.close("all")
+
+
+def test_a_load_label_keeps_clear_of_breach_labels_and_ids():
+    """The arch's check at load factor 0.2: the live load's label lay over two breach
+    labels (0.527 and 0.691 kN), one blot; it now goes to the side of its anchor that
+    lies over none. Block ids (``ids=True``) count too."""
+    arch = read_scene(EXAMPLES / "arch.json")
+    for ids in (False, True):
+        ax = rb.plot(arch, rb.check(arch, load_factor=0.2), ids=ids)
+        fig = ax.figure
+        fig.draw_without_rendering()
+        r = fig.canvas.get_renderer()
+        others = [t.get_window_extent(r) for t in ax.texts
+                  if t.get_gid() in ("rb-breached", "rb-ids")]
+        assert len(others) >= 6
+        for t in ax.texts:
+            if t.get_gid() == "rb-loads":
+                bb = t.get_window_extent(r)
+                assert not any(bb.overlaps(o) for o in others), t.get_text()
+        plt.close("all")

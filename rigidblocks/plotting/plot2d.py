@@ -160,7 +160,8 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     if ids:  # on the blocks as drawn (displaced in a mechanism)
         fs = 8 if len(polys) < 60 else 5
         for b, c in zip(scene.blocks, label_at, strict=True):
-            ax.text(c[0], c[1], b.id, ha="center", va="center", fontsize=fs, zorder=6)
+            ax.text(c[0], c[1], b.id, ha="center", va="center", fontsize=fs,
+                    zorder=6).set_gid("rb-ids")
     place_legend(ax, extra)
     pad = 0.05 * (hi - lo).max()
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
@@ -171,7 +172,41 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     ax.set_ylabel(f"y [{unit}]" if unit else "y")
     ax.set_title(title if title is not None else title_text)
     settle_layout(ax)
+    _clear_load_labels(ax)
     return ax
+
+
+def _clear_load_labels(ax: Any) -> None:
+    """A load's label that lies over a breach's label or a block's id moved to the side
+    of its anchor that lies over the fewest (the arch's live load label and two breach
+    labels were one blot), once the figure is laid out."""
+    labels = [t for t in ax.texts if t.get_gid() == "rb-loads"]
+    others = [t for t in ax.texts if t.get_gid() in ("rb-breached", "rb-ids")]
+    if not labels or not others:
+        return
+    fig = ax.figure
+    fig.draw_without_rendering()
+    renderer = fig.canvas.get_renderer()
+    boxes = [t.get_window_extent(renderer) for t in others]
+
+    def covered(t: Any) -> float:
+        bb = t.get_window_extent(renderer)
+        return sum(max(0.0, min(bb.x1, o.x1) - max(bb.x0, o.x0))
+                   * max(0.0, min(bb.y1, o.y1) - max(bb.y0, o.y0)) for o in boxes)
+
+    for t in labels:
+        best = (covered(t), t.get_ha(), t.get_va())
+        if best[0] == 0:
+            continue
+        for ha in (best[1], "left", "right", "center"):
+            for va in ("bottom", "top"):
+                t.set_ha(ha)
+                t.set_va(va)
+                area = covered(t)
+                if area < best[0]:
+                    best = (area, ha, va)
+        t.set_ha(best[1])
+        t.set_va(best[2])
 
 
 def _title(scene: Scene, result: Any, ax: Any = None) -> str:
