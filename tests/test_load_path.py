@@ -412,3 +412,15 @@ def test_joints_plastic_under_the_dead_load_are_said_to_be(capsys):
     assert "               0             0  plastic   v1-pier_l, v9-pier_r" in out, out
     assert ("why        2 joints are at the friction threshold under the dead load alone (in "
             "the state reached from the elastic state X0): plastic from lambda = 0") in out
+
+
+def test_an_unstable_path_says_where_its_breached_joints_are_named(capsys):
+    """The corbel arch with horizontal joints at f = 0.6 has no admissible state under
+    its self-weight: the path said so and named no joint, where `check --load-factor 0`
+    names the five it breaches; it now points there."""
+    path = str(EXAMPLES / "corbel_arch_horizontal.json")
+    assert main(["path", path]) == 0
+    out = capsys.readouterr().out
+    assert "status     UNSTABLE" in out
+    assert ("why        the dead load alone has no admissible state (`rigidblocks check "
+            "--load-factor 0` names the joints it breaches)") in out, out

@@ -559,7 +559,8 @@ def _at_zero(p: _Path) -> Run:
                          "alone breaches the joint laws (without dilatancy: whether "
                          "another state stands, `rigidblocks check --load-factor 0` without "
                          "--flow says)" if p.marked.any()
-                         else "the dead load alone has no admissible state")
+                         else "the dead load alone has no admissible state (`rigidblocks "
+                         "check --load-factor 0` names the joints it breaches)")
         raise _End("unstable", 0.0)
     return r
 
