@@ -1543,3 +1543,22 @@ def test_governing_joints_below_their_limit_in_the_state_shown_are_not_called_at
                          f"has |T|/N = {lo:.6g} to 0.298455 there)"), line
     ref = str(EXAMPLES / "reference.json")
     assert "(at their friction limit)" in run(capsys, ["friction", ref, "--joints"])[1]
+
+
+def test_a_bond_that_pulls_only_at_infinite_friction_is_said_to(tmp_path, capsys):
+    """A 1 x 2 block (W = 40) bonded to its base by a tensile strength of 10 under an
+    upward live body force: at infinite friction it lifts at (W + sigma_t a) / W = 1.25
+    (no shear row: the bond pulls up to sigma_t a = 10), at every finite f at 1 (the row
+    |T| <= f (N1 + N2) + c a keeps N1 + N2 >= 0 without cohesion), f = 1e6 included,
+    which docs/scene-format.md called the same law as infinite friction. The answer at
+    infinite friction now says so; at finite f there is nothing to say."""
+    path = write(tmp_path, make_scene(
+        [{"id": "base", "vertices": rect(-2, -1, 6, 1), "support": True},
+         {"id": "B", "vertices": rect(0, 0, 1, 2)}],
+        unit_weight=20.0, friction="infinite", live_body_force=[0, 1],
+        joints=[{"blocks": ["base", "B"], "tensile_strength": 10.0}]))
+    note = "at infinite friction a bonded joint has no shear row"
+    for f, lam, said in (("infinite", 1.25, True), ("1e6", 1.0, False), ("0.6", 1.0, False)):
+        code, doc, _ = run_json(capsys, ["load", path, "--friction", f, "--json"])
+        assert code == 0 and doc["load_multiplier"] == pytest.approx(lam, rel=1e-6)
+        assert any(note in w for w in doc["why"]) is said, (f, doc["why"])

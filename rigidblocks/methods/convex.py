@@ -317,6 +317,21 @@ TENSION_3D_NOTE = ("in 3D each contact point has its own Coulomb cone, |T_k| <= 
                    "capacity here, where in 2D it does (there |T| <= f (N1 + N2) + c a over "
                    "the joint): with finite friction the answers may lie below the 2D "
                    "scene's (on the safe side)")
+#: ... and at infinite friction, in 2D and 3D alike: the law has no shear row there
+TENSION_INFINITE_NOTE = ("at infinite friction a bonded joint has no shear row, so its net "
+                         "tension is bounded by its tensile strength alone; at any finite "
+                         "f the row |T| <= f (N1 + N2) + c a keeps it below c a / f (none "
+                         "without cohesion): a pull it carries here it carries at no large "
+                         "finite f (a 1 x 2 block bonded by 10, W = 40, lifts at lambda* "
+                         "= 1.25 here and at 1 for every finite f; docs/methods.md)")
+
+
+def bonds_pull_without_friction(contacts: Any, f_joint: np.ndarray) -> bool:
+    """Does :data:`TENSION_INFINITE_NOTE` apply: a joint with a tensile strength and
+    infinite friction (``f_joint``, per joint)?"""
+    return bool(np.any((contacts.tensile_strength > 0) & ~np.isfinite(f_joint)))
+
+
 def cones_close_under_tension(contacts: Any, f_joint: np.ndarray) -> bool:
     """Does :data:`TENSION_3D_NOTE` apply: a 3D joint with a tensile strength and a
     finite friction (``f_joint``, per joint)?"""
