@@ -1562,3 +1562,25 @@ def test_a_bond_that_pulls_only_at_infinite_friction_is_said_to(tmp_path, capsys
         code, doc, _ = run_json(capsys, ["load", path, "--friction", f, "--json"])
         assert code == 0 and doc["load_multiplier"] == pytest.approx(lam, rel=1e-6)
         assert any(note in w for w in doc["why"]) is said, (f, doc["why"])
+
+
+def test_a_scene_without_depth_beside_point_loads_is_said_to_be_a_slice(tmp_path, capsys):
+    """A 1 x 2 m block in mm and N (unit weight 2e-5 N/mm^3) under a point load of 40 kN
+    on its top: without a depth it is 1 mm deep and weighs 40 N, and it tipped at
+    lambda* = 500.5 with no word; with its depth of 1000 mm it weighs 40 kN and tips at
+    (W + P) b / (W h) = 1 (P = W, b/h = 1/2). The answer now says the blocks are a 1 mm
+    slice beside the point loads."""
+    def scene(**top):
+        return write(tmp_path, make_scene(
+            [{"id": "base", "vertices": rect(-2000, -1000, 6000, 1000), "support": True},
+             {"id": "B", "vertices": rect(0, 0, 1000, 2000)}],
+            units={"length": "mm", "force": "N"}, unit_weight=2e-5, friction="infinite",
+            live_body_force=[1, 0],
+            loads=[{"block": "B", "force": [0, -40000], "point": [500, 2000]}], **top))
+
+    said = "the scene gives no depth: its blocks are 1 mm deep"
+    code, doc, _ = run_json(capsys, ["load", scene(), "--json"])
+    assert doc["load_multiplier"] == pytest.approx(500.5) and any(said in w for w in doc["why"])
+    code, doc, _ = run_json(capsys, ["load", scene(depth=1000), "--json"])
+    assert doc["load_multiplier"] == pytest.approx(1.0)
+    assert not any(said in w for w in doc["why"]), doc["why"]

@@ -102,6 +102,20 @@ def _weightless(scene: Scene, system: Any) -> list[str]:
                                              if not np.any(system.live) else "")]
 
 
+def _no_depth(scene: Scene, system: Any) -> list[str]:
+    """The note on a 2D scene with weights and point loads but no depth: its blocks are
+    1 length unit deep, which in millimetres weighs a wall a thousandth of its weight
+    beside point loads on the whole wall (a 1 x 2 m block in mm and N under a 40 kN
+    load lifted at lambda* = 500.5, 1 with its depth of 1000 mm, with no word)."""
+    if scene.dimension != 2 or scene.depth is not None or not scene.loads or \
+            not np.any(system.dead) and not any(b.unit_weight for b in scene.blocks):
+        return []
+    unit = scene.length_unit or "length unit"
+    return [f"the scene gives no depth: its blocks are 1 {unit} deep, their weights those "
+            f"of a slice 1 {unit} thick, beside point loads given as they are: where those "
+            "act on the whole wall, give its \"depth\""]
+
+
 def _unheld(scene: Scene, contacts: Any, tol: float) -> list[str]:
     """The notes on the blocks that nothing holds (:func:`unsupported_blocks`): one that
     touches another at a point only (:func:`~rigidblocks.contacts.point_touches`), one
@@ -184,7 +198,7 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
     else:
         m = ConvexMethod(scene, system, timings, solver=solver or "clarabel",
                          settings=settings, pyramid=pyramid, progress=progress)
-    m.notes.extend(_weightless(scene, system))
+    m.notes.extend(_weightless(scene, system) + _no_depth(scene, system))
     m.notes.extend(_unheld(scene, contacts, kw.get("tol", DEFAULT_TOL)))
     bonded = int(np.count_nonzero((contacts.tensile_strength > 0) | (contacts.cohesion > 0)))
     if bonds_kept and bonded:
