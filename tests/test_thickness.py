@@ -310,3 +310,22 @@ def test_a_parameter_no_thickness_search_varies_is_refused(param, why):
         study.make_sweep("arch", grid={"thickness": [0.15]} if param != "thickness" else
                          {"radius": [2.0]}, analyses=[
             {"analysis": "min_thickness", "param": param, "lo": 0.1, "hi": 1.0}])
+
+
+def test_the_default_upper_bound_is_one_the_family_builds(capsys):
+    """`thickness arch --shape pointed` ended in an error with its defaults: the pointed
+    arch of 16 voussoirs is not built at t/R = 1 (--hi's default). The default bound is
+    now the largest of 1, 1/2, 1/4, ... at which it is, said in a note; a bound given is
+    kept, and refused as before. The minimum, 0.063736, is a no-sliding LP bisection's
+    (0.06373) too."""
+    import json
+
+    assert main(["thickness", "arch", "--shape", "pointed", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert 0.0637 < doc["min_thickness"] < 0.0638
+    assert doc["why"][0].startswith("the upper bound is thickness = 0.5: the family is not "
+                                    "built at 1 (--voussoirs: with 16, the last radial")
+    assert main(["thickness", "arch", "--shape", "pointed", "--hi", "1"]) == 2
+    assert "at the upper bound thickness = 1 (--hi)" in capsys.readouterr().err
+    assert main(["thickness", "arch", "--json"]) == 0  # builds at 1: no such note
+    assert not any("upper bound is" in w for w in json.loads(capsys.readouterr().out)["why"])

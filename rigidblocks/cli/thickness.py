@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+from typing import Any
 
 from ..errors import InputError
 from ..results import fmt_safe
@@ -16,8 +17,9 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                    "`example NAME --help` lists it (default: thickness)")
     p.add_argument("--lo", type=finite_float, default=0.01,
                    help="a value at which the structure does not stand (default %(default)g)")
-    p.add_argument("--hi", type=finite_float, default=1.0,
-                   help="a value at which it stands (default %(default)g)")
+    p.add_argument("--hi", type=finite_float, default=None,
+                   help="a value at which it stands (default 1); where the family is not "
+                   "built at 1 and none is given, the largest of 1/2, 1/4, ... at which it is")
     add_rtol(p, "thickness", 1e-4)
     p.add_argument("--friction", type=friction_option, default="infinite",
                    help='friction coefficient f, or "infinite" (default)')
@@ -66,19 +68,31 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"{typed[param]} is the parameter bisected (--param {shown}) "
                          "between --lo and --hi; do not give it", where)
     typed[param] = shown
+    hi, halved = (1.0 if args.hi is None else args.hi), ""
     try:
-        gen(**params, **{param: args.hi})  # the user's parameters, before any solve
+        gen(**params, **{param: hi})  # the user's parameters, before any solve
     except InputError as err:
-        raise InputError(f"at the upper bound {shown} = {args.hi:g} (--hi): "
-                         f"{as_options(err, gen, typed).detail}", where) from None
+        why = as_options(err, gen, typed).detail
+        hi = _thinner(gen, params, param, args.lo) if args.hi is None else None
+        if hi is None:
+            raise InputError(f"at the upper bound {shown} = {args.hi or 1.0:g} (--hi): {why}",
+                             where) from None
+        halved = why  # (a pointed arch of 16 voussoirs is not built at t/R = 1)
+    args.hi = hi
     try:
         res = min_thickness(args.generator, param=param, lo=args.lo, hi=args.hi,
                             rtol=args.rtol, friction=args.friction, method=args.method,
                             load_factor=args.load_factor, **params)
     except InputError as err:
         raise as_options(err, gen, typed, "thickness") from None
+    bound = (f"the upper bound is {shown} = {hi:g}: the family is not built at 1 "
+             f"({halved})") if halved else ""
     if args.json:
-        print(json.dumps(res.to_dict()))
+        doc = res.to_dict()
+        if bound:
+            doc["notes"] = [bound, *doc["notes"]]
+            doc["why"] = [bound, *doc["why"]]
+        print(json.dumps(doc))
     else:
         extra = " ".join(f"{typed[k]} {v}" for k, v in params.items()) or "defaults"
         what = next((p.help for p in gen.params if p.name == param), "") or shown
@@ -101,9 +115,27 @@ def run(args: argparse.Namespace) -> int:
             # the thinnest that stands, rounded up (a check at the printed value stands)
             print(f"{shown:<10} min {fmt_safe(res.thickness, 6, True)}   (bracket "
                   f"{bracket}, {res.n_checks} checks)")
-        for n in res.notes:
+        for n in ([bound] if bound else []) + list(res.notes):
             print(f"note       {n}")
     return 3 if res.status == "undecided" else 0
+
+
+def _thinner(gen: Any, params: dict, param: str, lo: float) -> float | None:
+    """The largest of 1/2, 1/4, ... above ``lo`` at which the family builds, where it
+    builds at ``lo`` (else its other parameters are at fault: None)."""
+    def builds(t: float) -> bool:
+        try:
+            gen(**params, **{param: t})
+        except InputError:
+            return False
+        return True
+
+    if not builds(lo):
+        return None
+    hi = 0.5
+    while hi / 2 > lo and not builds(hi):
+        hi /= 2
+    return hi if builds(hi) else None
 
 
 _OWN = {"--param": str, "--lo": finite_float, "--hi": finite_float,
