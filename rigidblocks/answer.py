@@ -504,7 +504,7 @@ class _Words:
                      for k in own]
             n = len(set(names))
             return (f"{self.friction_text(f)}, {n} joint{'s' if n > 1 else ''} at a "
-                    f"friction of their own ({joint_list(names)})")
+                    f"friction of {'their' if n > 1 else 'its'} own ({joint_list(names)})")
         v = friction_value(f) if f is not None else math.inf
         uniform = "infinite friction" if math.isinf(v) else f"f = {v:.10g}"
         return f"each joint's own friction (every joint has an override; {uniform} applies " \

@@ -1574,9 +1574,10 @@ def test_a_scene_without_depth_beside_point_loads_is_said_to_be_a_slice(tmp_path
         return write(tmp_path, make_scene(
             [{"id": "base", "vertices": rect(-2000, -1000, 6000, 1000), "support": True},
              {"id": "B", "vertices": rect(0, 0, 1000, 2000)}],
-            units={"length": "mm", "force": "N"}, unit_weight=2e-5, friction="infinite",
-            live_body_force=[1, 0],
-            loads=[{"block": "B", "force": [0, -40000], "point": [500, 2000]}], **top))
+            **{"units": {"length": "mm", "force": "N"}, "unit_weight": 2e-5,
+               "friction": "infinite", "live_body_force": [1, 0],
+               "loads": [{"block": "B", "force": [0, -40000], "point": [500, 2000]}],
+               **top}))
 
     said = "the scene gives no depth: its blocks are 1 mm deep"
     code, doc, _ = run_json(capsys, ["load", scene(), "--json"])
@@ -1584,3 +1585,6 @@ def test_a_scene_without_depth_beside_point_loads_is_said_to_be_a_slice(tmp_path
     code, doc, _ = run_json(capsys, ["load", scene(depth=1000), "--json"])
     assert doc["load_multiplier"] == pytest.approx(1.0)
     assert not any(said in w for w in doc["why"]), doc["why"]
+    # weightless blocks beside point loads: the depth changes nothing, nothing to say
+    code, doc, _ = run_json(capsys, ["load", scene(unit_weight=0), "--json"])
+    assert code == 0 and not any(said in w for w in doc["why"]), doc["why"]

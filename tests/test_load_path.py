@@ -362,7 +362,7 @@ def test_a_paths_question_names_the_joints_own_laws(tmp_path, capsys):
     assert main(["path", stack({"friction": 0.2}), "--friction", "infinite"]) == 0
     out = capsys.readouterr().out
     assert "associative flow, infinite friction (no sliding), 1 joint at a friction of " \
-           "their own (A-B f = 0.2)" in out, out
+           "its own (A-B f = 0.2)" in out, out
     assert "status     COLLAPSE at lambda = 0.2" in out
     assert main(["path", stack({"flow": "non-associative"}), "--flow", "associative"]) == 0
     out = capsys.readouterr().out
@@ -378,7 +378,8 @@ def test_a_collapse_says_what_each_of_its_joints_does(tmp_path, capsys):
     when its bond cracks: the path read "crack", then "plastic" (its |T|/N is 0.75,
     against no friction limit), then "collapse base-B"; and the same block unbonded read
     "collapse base-B" whether it slid (f = 0.4) or tipped (f = 0.6, b/h = 0.5). The
-    collapse's joints now say what each does, and a crack is no plasticity."""
+    collapse's joints now say what each does in the last state (a hinge of the state, its
+    thrust at an edge, not necessarily the mechanism's), and a crack is no plasticity."""
     from conftest import make_scene, rect
 
     from rigidblocks.io import write_scene
@@ -396,8 +397,8 @@ def test_a_collapse_says_what_each_of_its_joints_does(tmp_path, capsys):
     events = json.loads(capsys.readouterr().out)["events"]
     assert [(e["kind"], e["load_factor"]) for e in events] == [("crack", pytest.approx(0.75)),
                                                               ("collapse", pytest.approx(0.75))]
-    assert events[1]["modes"] == ["cracked, hinging"]
-    for f, lam, mode in ((0.4, 0.4, "at friction limit"), (0.6, 0.5, "hinging")):
+    assert events[1]["modes"] == ["cracked, thrust at an edge"]
+    for f, lam, mode in ((0.4, 0.4, "at friction limit"), (0.6, 0.5, "thrust at an edge")):
         assert main(["path", block(friction=f)]) == 0
         out = capsys.readouterr().out
         assert f"collapse  base-B ({mode})" in out and f"COLLAPSE at lambda = {lam}" in out, out
@@ -424,3 +425,17 @@ def test_an_unstable_path_says_where_its_breached_joints_are_named(capsys):
     assert "status     UNSTABLE" in out
     assert ("why        the dead load alone has no admissible state (`rigidblocks check "
             "--load-factor 0` names the joints it breaches)") in out, out
+
+
+def test_joints_that_slide_at_once_under_the_dead_load_are_said_to(capsys):
+    """`path --sliding coulomb` on the flat arch with vertical joints: its pier joints are
+    at the friction threshold under its self-weight, slide and keep no shear, and the
+    path collapses at lambda = 0; the note on joints plastic under the dead load was not
+    given where the collapse came at once (no why line at all)."""
+    assert main(["path", str(EXAMPLES / "flat_arch_vertical.json"), "--sliding",
+                 "coulomb"]) == 0
+    out = capsys.readouterr().out
+    assert "status     COLLAPSE at lambda = 0" in out
+    assert ("why        2 joints are at the friction threshold under the dead load alone (in "
+            "the state reached from the elastic state X0): plastic from lambda = 0; with "
+            "Coulomb sliding friction they slide and keep no shear") in out, out

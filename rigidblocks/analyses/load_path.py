@@ -88,7 +88,8 @@ class PathEvent:
     load_factor: float
     joints: tuple[Joint, ...]
     #: a collapse's joints, each what it does in the last admissible state: "cracked"
-    #: (the event that caused it), "at friction limit", "hinging", or two of them
+    #: (the event that caused it), "at friction limit", "thrust at an edge" (a hinge of
+    #: the state, not necessarily of the mechanism), or two of them
     #: (empty for the other events: their kind says it)
     modes: tuple[str, ...] = ()
 
@@ -398,9 +399,11 @@ class _Path:
         gov += [j for j in hinges if j not in gov]
         # (a block that slid and one that tipped read alike: "collapse base-B")
         cracked = [j for j in cause if j not in self.seen and j not in at]
+        # (the state's, not the mechanism's: "hinging" named head joints of a wall that
+        # moves as one body)
         modes = tuple(", ".join(w for w, on in (("cracked", j in cracked),
                                                 ("at friction limit", j in at),
-                                                ("hinging", j in hinges)) if on)
+                                                ("thrust at an edge", j in hinges)) if on)
                       for j in gov)
         self.events.append(PathEvent("collapse", lam, tuple(self.names[j] for j in gov),
                                      modes))
@@ -491,14 +494,19 @@ def load_path(scene: Scene, steps: int = 40, max_load: float = 2.0, friction: An
     where = p.w.progress
     try:
         where.context = "load path: under the dead load"
-        r0 = p.cascade(0.0, _at_zero(p), None)
-        dead = sum(len(e.joints) for e in p.events if e.kind == "plastic")
-        if dead:
-            # (the flat arch with vertical joints: its two pier joints at |T|/N = 0.6 of
-            # f = 0.6 under its self-weight, an event at lambda = 0 with no word)
-            p.w.notes.append(f"{dead} joint{'s are' if dead > 1 else ' is'} at the friction "
-                             "threshold under the dead load alone (in the state reached "
-                             "from the elastic state X0): plastic from lambda = 0")
+        try:
+            r0 = p.cascade(0.0, _at_zero(p), None)
+        finally:  # (also where they collapse it at once: Coulomb sliding friction)
+            dead = sum(len(e.joints) for e in p.events if e.kind == "plastic")
+            if dead:
+                # (the flat arch with vertical joints: its two pier joints at |T|/N = 0.6
+                # of f = 0.6 under its self-weight, an event at lambda = 0 with no word)
+                p.w.notes.append(
+                    f"{dead} joint{'s are' if dead > 1 else ' is'} at the friction "
+                    "threshold under the dead load alone (in the state reached from the "
+                    "elastic state X0): plastic from lambda = 0" + (
+                        "; with Coulomb sliding friction they slide and keep no shear"
+                        if sliding == "coulomb" else ""))
         p.from_the_start(r0, FIRST_LOAD * max_load / steps)
         prev = 0.0
         for k in range(1, steps + 1):
@@ -543,7 +551,9 @@ def _lower_from_x0(scene: Scene, f: float, flow: str | None, lam: float,
     where = "this path's collapse load" if collapsed else \
         f"the end of this path, lambda = {lam:g}, where it stands"
     # (no word of the terminal's solver notes: "iteration" hid it behind --verbose)
-    return [f"`rigidblocks load --flow non-associative` (the convex path, from X0) "
+    at = "" if scene.effective_friction == friction_label(f) or \
+        friction_value(scene.effective_friction) == f else f" --friction {f:g}"
+    return [f"`rigidblocks load --flow non-associative{at}` (the convex path, from X0) "
             f"collapses at lambda = {fmt_safe(float(low), 6, False)}, below "
             f"{where}: non-associative collapse states are not unique, and the lower is "
             "the safer"]

@@ -107,9 +107,9 @@ def _no_depth(scene: Scene, system: Any) -> list[str]:
     1 length unit deep, which in millimetres weighs a wall a thousandth of its weight
     beside point loads on the whole wall (a 1 x 2 m block in mm and N under a 40 kN
     load lifted at lambda* = 500.5, 1 with its depth of 1000 mm, with no word)."""
-    if scene.dimension != 2 or scene.depth is not None or not scene.loads or \
-            not np.any(system.dead) and not any(b.unit_weight for b in scene.blocks):
-        return []
+    weighs = bool(scene.effective_unit_weight) or any(b.unit_weight for b in scene.blocks)
+    if scene.dimension != 2 or scene.depth is not None or not scene.loads or not weighs:
+        return []  # (weightless blocks beside point loads: the depth changes nothing)
     unit = scene.length_unit or "length unit"
     return [f"the scene gives no depth: its blocks are 1 {unit} deep, their weights those "
             f"of a slice 1 {unit} thick, beside point loads given as they are: where those "

@@ -321,9 +321,11 @@ TENSION_3D_NOTE = ("in 3D each contact point has its own Coulomb cone, |T_k| <= 
 TENSION_INFINITE_NOTE = ("at infinite friction a bonded joint has no shear row, so its net "
                          "tension is bounded by its tensile strength alone; at any finite "
                          "f the row |T| <= f (N1 + N2) + c a keeps it below c a / f (none "
-                         "without cohesion): a pull it carries here it carries at no large "
-                         "finite f (a 1 x 2 block bonded by 10, W = 40, lifts at lambda* "
-                         "= 1.25 here and at 1 for every finite f; docs/methods.md)")
+                         "without cohesion): where the answer rests on a bonded joint's net "
+                         "pull, no large finite f gives it (a 1 x 2 block bonded by 10, W "
+                         "= 40, lifts at lambda* = 1.25 here and at 1 for every finite f; "
+                         "a bending capacity, one link pulling while the other pushes, is "
+                         "the same at every f; docs/methods.md)")
 
 
 def bonds_pull_without_friction(contacts: Any, f_joint: np.ndarray) -> bool:
