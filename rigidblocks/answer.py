@@ -296,8 +296,10 @@ def _within(x: float, bracket: Any, digits: int = 6) -> str:
 
 
 def _governing_tail(res: Any) -> str:
-    """What f*'s governing joints are: " (at their friction limit[, to f*'s accuracy])"
-    where the state shown has each at it (the joint table's words,
+    """What f*'s governing joints are: " (f* rests on their friction)" without a state
+    (the certificate below f* names them; the line said "at their friction limit" of a
+    state that `--joints` then showed below it), " (at their friction limit[, to f*'s
+    accuracy])" where the state shown has each at it (the joint table's words,
     :func:`~rigidblocks.results.force_state_words`), else the range of their |T|/N in that
     state: f* rests on their friction (the certificate below it names them), while the
     state at f*, one of many, may leave some below it (the stocky arch's pier joints at
@@ -308,8 +310,10 @@ def _governing_tail(res: Any) -> str:
     if not k:
         return ""
     one = len(k) == 1
-    words = force_state_words(res) if res.state is not None else None
-    if words is None or all("at friction limit" in words[j] for j in k):
+    if res.state is None:  # no state to show them in: what the certificate says
+        return f" (f* rests on {'its' if one else 'their'} friction)"
+    words = force_state_words(res)
+    if all("at friction limit" in words[j] for j in k):
         return (" (at its friction limit" if one else " (at their friction limit") + \
             _to_accuracy(res, "f*") + ")"
     demand = np.asarray(res.state.demand, dtype=float)[k]

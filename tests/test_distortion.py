@@ -443,6 +443,9 @@ def test_governing_joints_at_the_accuracy_of_the_bisection(capsys):
     assert (f"governing  joints at their friction limit, to lambda*'s accuracy: {bed}"
             in capsys.readouterr().out)
     assert main(["friction", path, "--method", "distortion", "--load-factor", "1"]) == 0
+    assert f"governing  {bed} (f* rests on their friction)" in capsys.readouterr().out
+    assert main(["friction", path, "--method", "distortion", "--load-factor", "1",
+                 "--joints"]) == 0  # with the state: at the limit to the bracket's width
     assert f"governing  {bed} (at their friction limit, to f*'s accuracy)" in \
         capsys.readouterr().out
     # and `load --json` gives them, as `friction --json` does (it gave none)

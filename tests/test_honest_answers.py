@@ -1543,6 +1543,11 @@ def test_governing_joints_below_their_limit_in_the_state_shown_are_not_called_at
                          f"has |T|/N = {lo:.6g} to 0.298455 there)"), line
     ref = str(EXAMPLES / "reference.json")
     assert "(at their friction limit)" in run(capsys, ["friction", ref, "--joints"])[1]
+    # without a state to show them in, what the certificate says, --joints or not alike
+    # (the stocky arch's line was "at their friction limit" without --joints)
+    for argv in ([path, "--load-factor", "0"], [ref]):
+        out = run(capsys, ["friction", *argv])[1]
+        assert "(f* rests on their friction)" in out, out
 
 
 def test_a_bond_that_pulls_only_at_infinite_friction_is_said_to(tmp_path, capsys):

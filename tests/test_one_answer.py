@@ -333,7 +333,7 @@ def test_check_friction_demand_is_not_called_what_the_structure_needs(capsys):
     assert main(["friction", str(EXAMPLES / "arch.json"), "--load-factor", "0.1"]) == 0
     gov = next(ln for ln in capsys.readouterr().out.splitlines()
                if ln.startswith("governing"))
-    assert gov.endswith("v1-abutment_r (at its friction limit)")
+    assert gov.endswith("v1-abutment_r (f* rests on its friction)")
 
 
 def test_the_answer_line_multiplies_the_number_it_prints(tmp_path, capsys):
