@@ -655,10 +655,15 @@ class _Words:
                   f"{math.degrees(math.atan(float(shown))):.4f}{self.deg})")
         why = []
         f = self.scene.effective_friction
+        # a bond's net pull is capped by c a / f: more friction may carry less (a block
+        # bonded without cohesion and pulled up stood at f* = 0, and at no f above it)
+        bonded = not na and bool(np.any(np.asarray(res.contacts.tensile_strength) > 0))
         if not isinstance(f, str) and math.isfinite(float(f)):
             lo = res.lower if res.lower is not None else fs
             if na:
                 enough = _own_friction(res, f)
+            elif bonded and float(f) > fs:
+                enough = "above f* (whether it carries the load: `rigidblocks check`)"
             elif lo < float(f) < fs:
                 enough = (f"within f*'s bracket [{lo:.9g}, {fs:.9g}]: at the limit, not "
                           "decided at this accuracy")
@@ -671,8 +676,14 @@ class _Words:
                        "load, not a bound for every f above it nor for every state ("
                        + safe_command(res, "check a given f with `rigidblocks load "
                                            "--friction F --safe`") + ")")
+        if bonded:
+            why.append("with bonded joints a larger f need not carry more: the row |T| <= "
+                       "f (N1 + N2) + c a caps a joint's net tension at c a / f (without "
+                       "cohesion none for any f > 0, while at f = 0 it caps nothing): check "
+                       "the friction the joints have with `rigidblocks check --friction F`")
         names = [f"{a}-{b}" for a, b in res.governing_joints]
-        verdict = "STANDS at friction f = f*" if na else "STANDS with friction f >= f*"
+        verdict = "STANDS at friction f = f*" if na or bonded else \
+            "STANDS with friction f >= f*"
         return (verdict, number, joint_list(names) + _governing_tail(res), why)
 
     def load(self, res: Any) -> tuple[str, str, str, list[str]]:

@@ -1593,3 +1593,23 @@ def test_a_scene_without_depth_beside_point_loads_is_said_to_be_a_slice(tmp_path
     # weightless blocks beside point loads: the depth changes nothing, nothing to say
     code, doc, _ = run_json(capsys, ["load", scene(unit_weight=0), "--json"])
     assert code == 0 and not any(said in w for w in doc["why"]), doc["why"]
+
+
+def test_f_star_of_a_bonded_scene_is_no_bound_for_every_larger_f(tmp_path, capsys):
+    """A 1 x 2 block (W = 40) bonded to its base by a tensile strength of 10, pulled up by
+    1.1 W: at f = 0 the row |T| <= f (N1 + N2) + c a caps nothing and the bond pulls (up
+    to 10 > 4), at every f > 0 it keeps N1 + N2 >= 0 and the block lifts. `friction` said
+    "STANDS with friction f >= f*, f* = 0", false for every f above it; it now says the
+    structure stands at f*, and why a larger f need not carry more."""
+    path = write(tmp_path, make_scene(
+        [{"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
+         {"id": "B", "vertices": rect(0, 0, 1, 2)}],
+        unit_weight=20.0, friction="infinite", live_body_force=[0, 1],
+        joints=[{"blocks": ["base", "B"], "tensile_strength": 10.0}]))
+    code, out, _ = run(capsys, ["friction", path, "--load-factor", "1.1"])
+    assert code == 0 and "verdict    STANDS at friction f = f*\n" in out, out
+    assert "why        with bonded joints a larger f need not carry more" in out
+    code, out, _ = run(capsys, ["check", path, "--load-factor", "1.1", "--friction", "0.5"])
+    assert "verdict    NOT ADMISSIBLE" in out  # the caveat's case
+    code, out, _ = run(capsys, ["friction", str(EXAMPLES / "reference.json")])
+    assert "verdict    STANDS with friction f >= f*\n" in out  # no bond: a bound
