@@ -564,3 +564,31 @@ def test_a_3d_block_built_in_code_is_checked_as_a_files_is(faces, nan, said):
     # make_block takes arrays, and names a fractional index as a number
     with pytest.raises(InputError, match="a face's vertex index must be an integer, got 0.5$"):
         make_block("B", verts, faces=np.array(f, float) + 0.5)
+
+
+def test_a_scene_built_in_code_is_checked_before_it_is_drawn_reported_or_written(tmp_path):
+    """`Scene(..., units="m")` was refused by the analyses but ended in an AttributeError
+    in `rb.plot`, `rb.report` without an analysis and `rb.write_scene`; a block of two
+    vertices was written and then refused by the reader. Each names the fault now (a
+    geometry that overlaps is still drawn: a picture shows what is wrong)."""
+    from rigidblocks import make_block
+
+    bad = (_in_code(units="m"), "units: expected rigidblocks.Units(")
+    short = (_in_code(blocks=(_in_code().blocks[0], make_block("B", [[0, 0], [1, 0]]))),
+             "block 'B': needs at least 3 vertices, got 2")
+    import re
+
+    for scene, said in (bad, short):
+        for act, more in ((rb.plot, ()), (rb.report, ()),
+                          (rb.write_scene, (tmp_path / "s.json",))):
+            with pytest.raises(InputError, match=re.escape(said)):
+                act(scene, *more)
+    assert not (tmp_path / "s.json").exists()
+    from rigidblocks.scene.model import make_block as mb
+
+    base, b = _in_code().blocks
+    overlap = _in_code(blocks=(base, b, mb("C", [[0.5, 0], [1.5, 0], [1.5, 2], [0.5, 2]])))
+    rb.plot(overlap)  # drawn, for its maker to see
+    import matplotlib.pyplot as plt
+
+    plt.close("all")

@@ -445,6 +445,9 @@ def write_scene(scene: Scene, path: str | os.PathLike) -> None:
     Raises:
         InputError: the file cannot be written (its folder is missing, say).
     """
+    from ..scene.validate import check_fields
+
+    check_fields(scene)  # (a block of two vertices was written, and refused when read)
     text = dumps_scene(scene)
     try:
         Path(path).write_text(text, encoding="utf-8")

@@ -10,6 +10,7 @@ from typing import Any
 
 from ..results import check_result
 from ..scene.model import Scene
+from ..scene.validate import check_fields
 from .plot2d import MAX_ARROWS, displaced_polygons, save_figure
 from .plot2d import plot as plot2d
 
@@ -24,6 +25,7 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, **kwargs: Any) -> Any
     give it ``layout="constrained"`` or save it with ``bbox_inches="tight"``, as
     :func:`~rigidblocks.plotting.plot2d.save_figure` does, for the legend below it.
     """
+    check_fields(scene)  # (units="m" ended in an AttributeError; a bad geometry is drawn)
     check_result(scene, result)
     if scene.dimension == 3:
         from .plot3d import plot as plot3d

@@ -98,10 +98,12 @@ def report(scene: Scene | str | Path, result: Any = None, *, analysis: str | Non
         The HTML document, a :class:`Report` (a ``str`` that a notebook shows).
     """
     from ..io import read_scene
+    from ..scene.validate import check_fields
     from .html import render
 
     if not isinstance(scene, Scene):
         scene = read_scene(scene)
+    check_fields(scene)  # (units="m" ended in an AttributeError without an analysis)
     if result is None and analysis is not None:
         result = run_analysis(scene, analysis, **options)
     elif options:

@@ -42,7 +42,7 @@ def validate_scene(scene: Scene, tol: float = DEFAULT_TOL) -> None:
     default = tol == DEFAULT_TOL and isinstance(scene, Scene)
     if default and scene.__dict__.get(_VALID):
         return
-    _check_fields(scene)
+    check_fields(scene)
     _check_ids_and_loads(scene)
     check_representable(scene)
     if scene.dimension == 2:
@@ -65,7 +65,7 @@ def is_number(v: object) -> bool:
     return isinstance(v, int | float | np.integer | np.floating) and not isinstance(v, bool)
 
 
-def _check_fields(scene: Scene) -> None:
+def check_fields(scene: Scene) -> None:
     """The values a scene file's reader checks (:mod:`rigidblocks.io.scene_file`), for
     a scene built in code (``Scene``, ``make_block``): a dimension of 2 or 3, the blocks
     Blocks with points of that dimension, vectors of that dimension, numbers where
