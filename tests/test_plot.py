@@ -689,3 +689,19 @@ def test_a_load_label_keeps_clear_of_breach_labels_and_ids():
                 bb = t.get_window_extent(r)
                 assert not any(bb.overlaps(o) for o in others), t.get_text()
         plt.close("all")
+
+
+def test_a_blend_of_mechanisms_is_drawn_as_one(tmp_path):
+    """`plot --analysis load --mechanism blend` had the title of the one mechanism's
+    picture while it drew the interior-point mix of every optimal mechanism (which the
+    text calls "the blend"); the title says so now, in 2D and 3D."""
+    from rigidblocks.scene.extrude import extrude
+
+    ref = read_scene(EXAMPLES / "reference.json")
+    for scene in (ref, extrude(ref)):
+        said = "drawn: the blend of every optimal mechanism, not one of them"
+        title = rb.plot(scene, rb.max_load_multiplier(scene, mechanism="blend")).get_title()
+        assert said in " ".join(title.split()), title
+        assert said not in " ".join(rb.plot(scene, rb.max_load_multiplier(scene))
+                                    .get_title().split())
+        plt.close("all")

@@ -227,6 +227,10 @@ def _title(scene: Scene, result: Any, ax: Any = None) -> str:
         # as the answer's reasons say: the picture is not of a collapse mechanism
         txt += "; the mechanism drawn is the nearest that can be drawn, not a collapse " \
             "mechanism at this multiplier"
+    elif block is not None and getattr(getattr(result, "mechanism", None), "kind",
+                                       "") == "blend":
+        # (its picture read as the one mechanism's, where the text says "the blend")
+        txt += "; drawn: the blend of every optimal mechanism, not one of them"
     txt = txt.replace("`", "")  # (a terminal's command quotes, literal in a title)
     # as wide as the figure takes at the title's size (a 5 x 4 in figure of one's own
     # cut it at both sides; about 0.55 em a character)
