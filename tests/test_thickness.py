@@ -327,5 +327,8 @@ def test_the_default_upper_bound_is_one_the_family_builds(capsys):
                                     "built at 1 (--voussoirs: with 16, the last radial")
     assert main(["thickness", "arch", "--shape", "pointed", "--hi", "1"]) == 2
     assert "at the upper bound thickness = 1 (--hi)" in capsys.readouterr().err
+    # a lower bound above every halved one: the upper bound 1's own error, not "hi=0.5"
+    assert main(["thickness", "arch", "--shape", "pointed", "--lo", "0.6"]) == 2
+    assert "at the upper bound thickness = 1 (--hi)" in capsys.readouterr().err
     assert main(["thickness", "arch", "--json"]) == 0  # builds at 1: no such note
     assert not any("upper bound is" in w for w in json.loads(capsys.readouterr().out)["why"])

@@ -133,9 +133,11 @@ def _thinner(gen: Any, params: dict, param: str, lo: float) -> float | None:
     if not builds(lo):
         return None
     hi = 0.5
-    while hi / 2 > lo and not builds(hi):
+    while hi > lo:  # (with --lo 0.6 it gave 0.5 and "got lo=0.6, hi=0.5")
+        if builds(hi):
+            return hi
         hi /= 2
-    return hi if builds(hi) else None
+    return None
 
 
 _OWN = {"--param": str, "--lo": finite_float, "--hi": finite_float,
