@@ -545,8 +545,12 @@ def test_thickness_says_what_it_minimised_and_what_to_change(capsys):
     code, out, _ = run(capsys, ["thickness", "arch", "--voussoirs", "10", "--rtol", "1e-2"])
     assert code == 0 and "t/R" in out
     code, _, err = run(capsys, ["thickness", "arch", "--shape", "pointed", "--voussoirs",
-                                "10"])
+                                "10", "--hi", "1"])
     assert code == 2 and "--hi" in err and "Traceback" not in err
+    # without --hi the default bound is one the family builds (tests/test_thickness.py)
+    code, out, _ = run(capsys, ["thickness", "arch", "--shape", "pointed", "--voussoirs",
+                                "10", "--rtol", "1e-2"])
+    assert code == 0 and "note       the upper bound is thickness = 0.5" in out, out
 
 
 def test_printed_multiplier_and_friction_are_on_the_safe_side(tmp_path, capsys):
