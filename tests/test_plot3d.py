@@ -224,3 +224,19 @@ def test_the_live_loads_label_is_on_two_lines():
     assert live == " live: \N{GREEK SMALL LETTER LAMDA} \N{MULTIPLICATION SIGN} 40 kN\n " \
         "(weight \N{MULTIPLICATION SIGN} (0.866, 0.5, 0))"
     plt.close("all")
+
+
+def test_a_3d_picture_is_as_deep_as_its_scene():
+    """The extruded semicircular arch (5.5 m wide, 1 m deep, 3.65 m high with its
+    abutments) was drawn in a cube 5.5 m along every axis: most of the picture empty.
+    Each axis is now as long as the scene along it (equal scales: the box's sides in the
+    ratio of the axes' ranges), with no more ticks than its length holds."""
+    from rigidblocks.scene.extrude import extrude
+
+    arch = extrude(read_scene(EXAMPLES / "arch.json"))
+    ax = rb.plot(arch)
+    spans = np.array([np.ptp(ax.get_xlim()), np.ptp(ax.get_ylim()), np.ptp(ax.get_zlim())])
+    box = np.asarray(ax.get_box_aspect(), dtype=float)
+    assert np.allclose(box / box.max(), spans / spans.max())  # equal scales
+    assert spans[1] < 0.4 * spans[0] and spans[2] < 0.8 * spans[0]
+    assert len([t for t in ax.get_yticks() if ax.get_ylim()[0] <= t <= ax.get_ylim()[1]]) <= 3

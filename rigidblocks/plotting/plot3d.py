@@ -215,13 +215,20 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
 
 
 def _limits(ax: Any, lo: np.ndarray, hi: np.ndarray) -> None:
-    """Equal scales on the three axes around the box [lo, hi]."""
+    """Equal scales on the three axes around the box [lo, hi], each axis as long as the
+    box is along it (at least a fifth of its longest side): a cube around an arch 5.5 m
+    wide and 1 m deep left most of the picture empty."""
     mid = 0.5 * (lo + hi)
-    half = 0.55 * float((hi - lo).max())
-    ax.set_xlim(mid[0] - half, mid[0] + half)
-    ax.set_ylim(mid[1] - half, mid[1] + half)
-    ax.set_zlim(mid[2] - half, mid[2] + half)
-    ax.set_box_aspect((1, 1, 1))
+    half = 0.55 * np.maximum(hi - lo, 0.2 * float((hi - lo).max()))
+    ax.set_xlim(mid[0] - half[0], mid[0] + half[0])
+    ax.set_ylim(mid[1] - half[1], mid[1] + half[1])
+    ax.set_zlim(mid[2] - half[2], mid[2] + half[2])
+    ax.set_box_aspect(tuple(2 * half))
+    from matplotlib.ticker import MaxNLocator
+
+    # ticks as many as an axis's length holds (a short one's labels ran together)
+    for axis, h in zip((ax.xaxis, ax.yaxis, ax.zaxis), half, strict=True):
+        axis.set_major_locator(MaxNLocator(max(2, round(7 * h / half.max()))))
 
 
 def joint_force_vectors_3d(contacts: Any, state: Any) -> np.ndarray:
