@@ -160,8 +160,10 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     if ids:  # on the blocks as drawn (displaced in a mechanism)
         fs = 8 if len(polys) < 60 else 5
         for b, c in zip(scene.blocks, label_at, strict=True):
-            ax.text(c[0], c[1], b.id, ha="center", va="center", fontsize=fs,
-                    zorder=6).set_gid("rb-ids")
+            # over the load arrows (zorder 7), on a light box: an arrowhead hid "c1b2"
+            ax.text(c[0], c[1], b.id, ha="center", va="center", fontsize=fs, zorder=8,
+                    bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none",
+                          "alpha": 0.6}).set_gid("rb-ids")
     place_legend(ax, extra)
     pad = 0.05 * (hi - lo).max()
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
@@ -361,7 +363,7 @@ def _draw_breaches(ax: Any, result: Any, unit: str) -> str:
         rot = {"rotation": float(r)} if c.dimension == 2 else {}
         lead = "" if c.dimension == 2 else " "  # (centred on its joint in 2D)
         t = ax.text(*p, f"{lead}{v:.3g} {unit}".rstrip(), color=BREACH_COLOUR, fontsize=8,
-                    zorder=6, bbox={"boxstyle": "round,pad=0.15", "fc": "white",
+                    zorder=8, bbox={"boxstyle": "round,pad=0.15", "fc": "white",
                                     "ec": "none", "alpha": 0.7}, **kw, **rot)
         t.set_gid("rb-breached")
     return f"{max(v for _, v in br):.3g} {unit}".rstrip()
