@@ -705,3 +705,19 @@ def test_a_blend_of_mechanisms_is_drawn_as_one(tmp_path):
         assert said not in " ".join(rb.plot(scene, rb.max_load_multiplier(scene))
                                     .get_title().split())
         plt.close("all")
+
+
+def test_block_ids_and_breach_labels_lie_over_the_load_arrows():
+    """The 3 x 3 wall's live arrowhead hid the id c1b2 and the self-weight's c0b1 (ids
+    at zorder 6, arrows at 7); a breach label lay under the self-weight's shaft."""
+    from rigidblocks.generators import build
+
+    wall = build("wall", courses=3, blocks_per_course=3, friction=0.8)
+    arch = read_scene(EXAMPLES / "arch.json")
+    for ax in (rb.plot(wall, rb.max_load_multiplier(wall), ids=True),
+               rb.plot(arch, rb.check(arch, load_factor=0.3))):
+        arrows = [a.get_zorder() for a in ax.texts if a.get_gid() == "rb-loads"
+                  and getattr(a, "arrow_patch", None) is not None]
+        marks = [t.get_zorder() for t in ax.texts if t.get_gid() in ("rb-ids", "rb-breached")]
+        assert arrows and marks and min(marks) > max(arrows)
+        plt.close("all")
