@@ -1617,3 +1617,19 @@ def test_f_star_of_a_bonded_scene_is_no_bound_for_every_larger_f(tmp_path, capsy
     assert "verdict    NOT ADMISSIBLE" in out  # the caveat's case
     code, out, _ = run(capsys, ["friction", str(EXAMPLES / "reference.json")])
     assert "verdict    STANDS with friction f >= f*\n" in out  # no bond: a bound
+
+
+def test_an_associative_answer_of_a_non_associative_scene_says_which_flow(tmp_path,
+                                                                           capsys):
+    """The reference model with "flow": "non-associative", asked with --flow associative
+    (lambda* = 1.2 with dilatancy): the question named no flow, and a report of the
+    result read as the scene's own flow."""
+    scene = rb.read_scene(EXAMPLES / "reference.json").with_changes(flow="non-associative")
+    path = tmp_path / "ref_na.json"
+    rb.write_scene(scene, path)
+    code, out, _ = run(capsys, ["load", str(path), "--flow", "associative"])
+    assert code == 0 and "lambda* = 1.2," in out
+    assert "at friction f = 0.6 (30.96 deg), sliding with dilatancy (associative; not the " \
+           "scene's flow)" in out, out
+    code, out, _ = run(capsys, ["load", str(EXAMPLES / "reference.json")])
+    assert "with dilatancy" not in out
