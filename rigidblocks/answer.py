@@ -502,17 +502,18 @@ class _Words:
         own = np.flatnonzero(mask)
         if not len(own):
             return self.friction_text(f)
+        names = [f"{'-'.join(result.joint_name(k))} "
+                 + ("infinite" if math.isinf(over[k]) else f"f = {over[k]:g}")
+                 for k in own]
         if len(own) < c.n_joints:
-            names = [f"{'-'.join(result.joint_name(k))} "
-                     + ("infinite" if math.isinf(over[k]) else f"f = {over[k]:g}")
-                     for k in own]
             n = len(set(names))
             return (f"{self.friction_text(f)}, {n} joint{'s' if n > 1 else ''} at a "
                     f"friction of {'their' if n > 1 else 'its'} own ({joint_list(names)})")
         v = friction_value(f) if f is not None else math.inf
         uniform = "infinite friction" if math.isinf(v) else f"f = {v:.10g}"
-        return f"each joint's own friction (every joint has an override; {uniform} applies " \
-               "to none)"
+        # (their values too: the question named none of them)
+        return f"each joint's own friction (every joint has an override: " \
+               f"{joint_list(names)}; {uniform} applies to none)"
 
     def asked(self, result: Any) -> str:
         a = getattr(result, "analysis", "")

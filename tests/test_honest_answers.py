@@ -359,7 +359,7 @@ def test_a_multiplier_that_is_round_off_of_zero_reads_zero(capsys):
 def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, capsys):
     """A block on a base whose one joint has its own friction 0.3: `load --friction 5`
     echoed "at friction f = 5 (78.69 deg)" beside lambda* = 0.3, the override's; the
-    question now says the joints' own friction decides."""
+    question now says the joints' own friction decides, and what it is (it named none)."""
     path = write(tmp_path, make_scene([
         {"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
         {"id": "B", "vertices": rect(0, 0, 1, 2)},
@@ -367,8 +367,8 @@ def test_a_friction_that_no_joint_has_is_not_echoed_as_the_joints(tmp_path, caps
         joints=[{"blocks": ["B", "base"], "friction": 0.3}]))
     code, out, _ = run(capsys, ["load", path, "--friction", "5"])
     asked = next(ln for ln in out.splitlines() if ln.startswith("asked"))
-    assert asked.endswith("at each joint's own friction (every joint has an override; "
-                          "f = 5 applies to none)"), asked
+    assert asked.endswith("at each joint's own friction (every joint has an override: "
+                          "base-B f = 0.3; f = 5 applies to none)"), asked
     assert "lambda* = 0.3," in out  # sliding at the override's f (a 1 x 2 block: tips at 0.5)
 
 
