@@ -247,17 +247,20 @@ def place_legend(ax: Any, extra: list[Any] | None = None) -> Any:
     return leg
 
 
-def settle_layout(ax: Any) -> None:
+def settle_layout(ax: Any) -> bool:
     """Lay out a figure of the plot's own once, without drawing it: the first layout of
     its constrained ("compressed") engine put the x label under the legend below the
     axes (the segmental arch's title of four lines: 7 px of "x [m]" hidden), and every
-    later one puts it clear; a picture saved or shown after this one is its second."""
+    later one puts it clear; a picture saved or shown after this one is its second.
+    Whether it laid the figure out."""
     from matplotlib.layout_engine import ConstrainedLayoutEngine
 
     fig = ax.figure
     if isinstance(fig.get_layout_engine(), ConstrainedLayoutEngine) and any(
             leg.get_gid() == "rb-legend" for leg in fig.legends):
         fig.draw_without_rendering()
+        return True
+    return False
 
 
 def arrow_handle(colour: str, label: str) -> Any:

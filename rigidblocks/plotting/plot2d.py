@@ -173,21 +173,21 @@ def plot(scene: Scene, result: Any = None, ax: Any = None, *, ids: bool = False,
     ax.set_xlabel(f"x [{unit}]" if unit else "x")
     ax.set_ylabel(f"y [{unit}]" if unit else "y")
     ax.set_title(title if title is not None else title_text)
-    settle_layout(ax)
-    _clear_load_labels(ax)
+    _clear_load_labels(ax, laid_out=settle_layout(ax))
     return ax
 
 
-def _clear_load_labels(ax: Any) -> None:
+def _clear_load_labels(ax: Any, laid_out: bool = False) -> None:
     """A load's label that lies over a breach's label or a block's id moved to the side
     of its anchor that lies over the fewest (the arch's live load label and two breach
-    labels were one blot), once the figure is laid out."""
+    labels were one blot), once the figure is laid out (here, unless ``laid_out``)."""
     labels = [t for t in ax.texts if t.get_gid() == "rb-loads"]
     others = [t for t in ax.texts if t.get_gid() in ("rb-breached", "rb-ids")]
     if not labels or not others:
         return
     fig = ax.figure
-    fig.draw_without_rendering()
+    if not laid_out:
+        fig.draw_without_rendering()
     renderer = fig.canvas.get_renderer()
     boxes = [t.get_window_extent(renderer) for t in others]
 
@@ -514,13 +514,9 @@ def displaced_polygons(scene: Scene, velocities: np.ndarray, s: float,
     if contacts is not None:
         theta, shift = _close_hinges(scene, contacts, np.asarray(velocities, dtype=float),
                                      centroids, theta, shift)
-    out = []
-    for k, b in enumerate(scene.blocks):
-        pts = b.points if points is None else points[k]
-        t = theta[k]
-        rot = np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
-        out.append(pts @ rot.T + shift[k])
-    return out
+    rots = _rotations(theta)
+    return [(b.points if points is None else points[k]) @ rots[k].T + shift[k]
+            for k, b in enumerate(scene.blocks)]
 
 
 def _finite_motions(scene: Scene, vel: np.ndarray, s: float, centroids: np.ndarray
@@ -535,9 +531,8 @@ def _finite_motions(scene: Scene, vel: np.ndarray, s: float, centroids: np.ndarr
             shift[k] = s * np.array([u, v])
             continue
         p0 = c + np.array([-v, u]) / w
-        t = s * w
-        rot = np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
-        theta[k], shift[k] = t, p0 - rot @ p0
+        theta[k] = s * w
+        shift[k] = p0 - _rotations(theta[k:k + 1])[0] @ p0
     return theta, shift
 
 
@@ -571,25 +566,23 @@ def _close_hinges(scene: Scene, contacts: Any, vel: np.ndarray, centroids: np.nd
         d = p - centroids[i]
         return np.stack([u - w * d[:, 1], v + w * d[:, 0]], axis=1)
 
-    rel = np.linalg.norm(speed(b) - speed(a), axis=1)
+    va, vb = speed(a), speed(b)
     top = float(np.abs(vel).max(initial=0.0))
     moving = np.abs(vel).max(axis=1) > 1e-9 * top
-    keep = (rel <= 1e-6 * max(float(np.linalg.norm(speed(a), axis=1).max(initial=0.0)),
-                              float(np.linalg.norm(speed(b), axis=1).max(initial=0.0)),
-                              1e-300)) & (moving[a] | moving[b])
+    fastest = float(np.linalg.norm(np.concatenate([va, vb]), axis=1).max(initial=0.0))
+    keep = (np.linalg.norm(vb - va, axis=1) <= 1e-6 * max(fastest, 1e-300)) \
+        & (moving[a] | moving[b])
     if not keep.any():
         return theta, shift
+    pk = p[keep]
 
     def place(th: np.ndarray, sh: np.ndarray, i: np.ndarray) -> np.ndarray:
-        cs, sn = np.cos(th[i]), np.sin(th[i])
-        x, y = p[keep, 0], p[keep, 1]
-        return np.stack([cs * x - sn * y, sn * x + cs * y], axis=1) + sh[i]
+        return np.einsum("kij,kj->ki", _rotations(th[i]), pk) + sh[i]
 
     ka, kb = a[keep], b[keep]
-    gaps = np.linalg.norm(place(theta, shift, kb) - place(theta, shift, ka), axis=1)
-    moved = np.linalg.norm(
-        np.concatenate([place(theta, shift, ka) - p[keep], place(theta, shift, kb) - p[keep]]),
-        axis=1).max(initial=0.0)
+    at_a, at_b = place(theta, shift, ka), place(theta, shift, kb)
+    gaps = np.linalg.norm(at_b - at_a, axis=1)
+    moved = np.linalg.norm(np.concatenate([at_a - pk, at_b - pk]), axis=1).max(initial=0.0)
     if gaps.max(initial=0.0) <= 1e-3 * max(moved, 1e-300):
         return theta, shift
     free = np.flatnonzero(moving)
@@ -613,7 +606,6 @@ def _close_hinges(scene: Scene, contacts: Any, vel: np.ndarray, centroids: np.nd
                                (th[free] - theta[free]) * size])
 
     m, nf = int(keep.sum()), len(free)
-    pk = p[keep]
     rows = np.arange(2 * m).reshape(m, 2)
 
     def jacobian(q: np.ndarray) -> Any:
