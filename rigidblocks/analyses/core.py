@@ -73,15 +73,16 @@ def _fields(m: Method, analysis: str, status: str, friction: Any,
             load_factor: float | None) -> dict[str, Any]:
     """The fields every result shares, from the method's record of its work."""
     notes = tuple(m.notes)
-    if friction is not None and not cones_close_under_tension(
-            m.system.contacts, m.f_joint(friction_value(friction))):
-        # (said at infinite friction too, where no cone closes and 3D gives the 2D answer)
-        notes = tuple(n for n in notes if n != TENSION_3D_NOTE)
-    if friction is not None and bonds_pull_without_friction(
-            m.system.contacts, m.f_joint(friction_value(friction))):
-        # (a bonded block lifted at 1.25 at infinite friction, at 1 at f = 1e6, which
-        # docs/scene-format.md called the same law)
-        notes += (TENSION_INFINITE_NOTE,)
+    if friction is not None:
+        fj = m.f_joint(friction_value(friction))
+        if not cones_close_under_tension(m.system.contacts, fj):
+            # (said at infinite friction too, where no cone closes and 3D gives the 2D
+            # answer)
+            notes = tuple(n for n in notes if n != TENSION_3D_NOTE)
+        if bonds_pull_without_friction(m.system.contacts, fj):
+            # (a bonded block lifted at 1.25 at infinite friction, at 1 at f = 1e6, which
+            # docs/scene-format.md called the same law)
+            notes += (TENSION_INFINITE_NOTE,)
     return dict(analysis=analysis, status=status, friction=friction_label(friction),
                 load_factor=load_factor, contacts=m.system.contacts, solver=m.solver,
                 n_solves=m.n_solves, solve_time=m.solve_time, iterations=m.iterations,

@@ -551,8 +551,7 @@ def _lower_from_x0(scene: Scene, f: float, flow: str | None, lam: float,
     where = "this path's collapse load" if collapsed else \
         f"the end of this path, lambda = {lam:g}, where it stands"
     # (no word of the terminal's solver notes: "iteration" hid it behind --verbose)
-    at = "" if scene.effective_friction == friction_label(f) or \
-        friction_value(scene.effective_friction) == f else f" --friction {f:g}"
+    at = "" if friction_value(scene.effective_friction) == f else f" --friction {f:g}"
     return [f"`rigidblocks load --flow non-associative{at}` (the convex path, from X0) "
             f"collapses at lambda = {fmt_safe(float(low), 6, False)}, below "
             f"{where}: non-associative collapse states are not unique, and the lower is "

@@ -123,18 +123,13 @@ def run(args: argparse.Namespace) -> int:
 def _thinner(gen: Any, params: dict, param: str, lo: float) -> float | None:
     """The largest of 1/2, 1/4, ... above ``lo`` at which the family builds, where it
     builds at ``lo`` (else its other parameters are at fault: None)."""
-    def builds(t: float) -> bool:
-        try:
-            gen(**params, **{param: t})
-        except InputError:
-            return False
-        return True
+    from ..studies.thickness import builds
 
-    if not builds(lo):
+    if not builds(gen, params, param, lo):
         return None
     hi = 0.5
     while hi > lo:  # (with --lo 0.6 it gave 0.5 and "got lo=0.6, hi=0.5")
-        if builds(hi):
+        if builds(gen, params, param, hi):
             return hi
         hi /= 2
     return None

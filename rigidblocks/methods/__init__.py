@@ -91,10 +91,14 @@ def _names(ids: list[str], most: int = 5) -> str:
     return f"block{'s' if len(ids) > 1 else ''} {head}{more}"
 
 
+def _weighs(scene: Scene) -> bool:
+    """Do the scene's blocks weigh anything (its unit weight, or a block's own)?"""
+    return bool(scene.effective_unit_weight) or any(b.unit_weight for b in scene.blocks)
+
+
 def _weightless(scene: Scene, system: Any) -> list[str]:
     """The note on blocks that weigh nothing (and on a scene that nothing loads)."""
-    if np.any(system.dead) or any(b.unit_weight for b in scene.blocks) or \
-            scene.effective_unit_weight:
+    if np.any(system.dead) or _weighs(scene):
         return []
     return ["the blocks weigh nothing (no unit_weight): self-weight is not part of this "
             "analysis, only the loads act" + ("; and no load acts: every force is zero (set "
@@ -107,8 +111,8 @@ def _no_depth(scene: Scene, system: Any) -> list[str]:
     1 length unit deep, which in millimetres weighs a wall a thousandth of its weight
     beside point loads on the whole wall (a 1 x 2 m block in mm and N under a 40 kN
     load lifted at lambda* = 500.5, 1 with its depth of 1000 mm, with no word)."""
-    weighs = bool(scene.effective_unit_weight) or any(b.unit_weight for b in scene.blocks)
-    if scene.dimension != 2 or scene.depth is not None or not scene.loads or not weighs:
+    if scene.dimension != 2 or scene.depth is not None or not scene.loads or \
+            not _weighs(scene):
         return []  # (weightless blocks beside point loads: the depth changes nothing)
     unit = scene.length_unit or "length unit"
     return [f"the scene gives no depth: its blocks are 1 {unit} deep, their weights those "

@@ -73,6 +73,15 @@ class ThicknessResult:
                 "params": dict(self.params)}
 
 
+def builds(gen: Callable[..., Scene], params: dict[str, Any], param: str, t: float) -> bool:
+    """Does the family ``gen`` build with ``params`` and ``param`` = ``t``?"""
+    try:
+        gen(**params, **{param: t})
+    except InputError:
+        return False
+    return True
+
+
 def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness",
                   lo: float = 0.01, hi: float = 1.0, rtol: float = 1e-4,
                   friction: Any = "infinite", method: str = "clarabel",
@@ -134,19 +143,12 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         try:
             return gen(**params, **{param: t})
         except InputError as err:
+            # (where it fails at the lower bound too, the other parameters are at
+            # fault: voussoirs=2.5 was told to give a smaller upper bound)
             raise InputError(f"min_thickness: {name} cannot be built at {param}={t:g} "
                              f"({err})" + ("; give a smaller upper bound (hi, --hi)"
-                                           if t == hi and _builds(lo) else "")) from None
-
-    def _builds(t: float) -> bool:
-        """Does the family build at ``t``? (Where it fails at the lower bound too, the
-        other parameters are at fault: voussoirs=2.5 was told to give a smaller upper
-        bound.)"""
-        try:
-            gen(**params, **{param: t})
-        except InputError:
-            return False
-        return True
+                                           if t == hi and builds(gen, params, param, lo)
+                                           else "")) from None
 
     def admissible(t: float) -> tuple[bool | None, str]:
         nonlocal n, spent
@@ -229,4 +231,4 @@ def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction
     return head + thicker()
 
 
-__all__ = ["AT_LOWER_BOUND", "ThicknessResult", "min_thickness"]
+__all__ = ["AT_LOWER_BOUND", "ThicknessResult", "builds", "min_thickness"]
