@@ -62,9 +62,15 @@ def add_limit_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--rtol", type=relative_tolerance, default=None,
                    help="with --analysis friction or load: the relative accuracy of the "
                    "limit (default: the command's, see `rigidblocks friction --help`)")
-    p.add_argument("--mechanism", choices=("vertex", "blend"), default=None,
-                   help="with --analysis load: one collapse mechanism (vertex, default) or "
-                   "the interior-point mix of every optimal mechanism (blend)")
+    add_mechanism(p, None, "with --analysis load: ")
+
+
+def add_mechanism(p: argparse.ArgumentParser, default: str | None, lead: str = "") -> None:
+    """The ``--mechanism`` option (of `load`, and of a picture or a report of one)."""
+    p.add_argument("--mechanism", choices=("vertex", "blend"), default=default,
+                   help=f"{lead}vertex: one collapse mechanism, joints ranked by relative "
+                   "velocity (default); blend: the interior-point mix of every optimal "
+                   "mechanism")
 
 
 def limit_options(args: argparse.Namespace) -> dict[str, Any]:
@@ -93,10 +99,7 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("scene", help="scene file (JSON, see docs/scene-format.md)")
     add_question_args(p, analysis(name).takes)
     if name == "load":
-        p.add_argument("--mechanism", choices=("vertex", "blend"), default="vertex",
-                       help="vertex: one collapse mechanism, joints ranked by relative "
-                       "velocity (default); blend: the interior-point mix of every "
-                       "optimal mechanism")
+        add_mechanism(p, "vertex")
         p.add_argument("--safe", action="store_true",
                        help="with non-associative joints, scenes of up to 50 joints: also "
                        "the smallest non-associative collapse multiplier over all states "
