@@ -116,8 +116,11 @@ def test_cli_help_gives_the_bounds_defaults(capsys):
     with pytest.raises(SystemExit):
         main(["thickness", "--help"])
     out = " ".join(capsys.readouterr().out.split())
-    for name in ("lo", "hi"):
-        assert f"(default {defaults[name].default:g})" in out
+    assert f"(default {defaults['lo'].default:g})" in out
+    # hi: None, 1 or the largest of 1/2, 1/4, ... the family builds, in both
+    assert defaults["hi"].default is None
+    assert "(default 1); where the family is not built at 1 and none is given, the " \
+        "largest of 1/2, 1/4, ... at which it is" in out
     # --rtol's help gives its default as written in RTOL_DEFAULTS (1e-4)
     from rigidblocks.cli.options import RTOL_DEFAULTS
 
@@ -332,3 +335,19 @@ def test_the_default_upper_bound_is_one_the_family_builds(capsys):
     assert "at the upper bound thickness = 1 (--hi)" in capsys.readouterr().err
     assert main(["thickness", "arch", "--json"]) == 0  # builds at 1: no such note
     assert not any("upper bound is" in w for w in json.loads(capsys.readouterr().out)["why"])
+
+
+def test_the_api_takes_the_same_default_upper_bound():
+    """`min_thickness("arch", shape="pointed")` ended in the error of the upper bound 1
+    where the command answers (the pointed arch of 16 voussoirs is not built at t/R = 1):
+    the default bound is the same largest of 1, 1/2, 1/4, ... at which the family builds,
+    said in the first note; a bound given is kept and refused as before. The minimum,
+    0.063736, is a no-sliding LP bisection's (0.06373) too
+    (test_the_default_upper_bound_is_one_the_family_builds)."""
+    r = min_thickness("arch", shape="pointed", rtol=1e-3)
+    assert 0.0636 < r.thickness < 0.0639 and r.status == "found"
+    assert r.notes[0].startswith("the upper bound is thickness = 0.5: the family is not "
+                                 "built at 1 (arch: voussoirs: with 16, the last radial")
+    with pytest.raises(InputError, match="give a smaller upper bound"):
+        min_thickness("arch", shape="pointed", hi=1.0)
+    assert min_thickness("arch", voussoirs=12, rtol=1e-2).notes == ()  # builds at 1

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import json
-from typing import Any
 
 from ..errors import InputError
 from ..results import fmt_safe
@@ -38,7 +37,7 @@ def run(args: argparse.Namespace) -> int:
     from ..generators import get
     from ..methods import method_name
     from ..studies import min_thickness
-    from ..studies.thickness import AT_LOWER_BOUND
+    from ..studies.thickness import AT_LOWER_BOUND, thinner
     from .example import as_options, describe, options, parameter_name, parse_params
 
     gen = get(args.generator)
@@ -73,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
         gen(**params, **{param: hi})  # the user's parameters, before any solve
     except InputError as err:
         why = as_options(err, gen, typed).detail
-        hi = _thinner(gen, params, param, args.lo) if args.hi is None else None
+        hi = thinner(gen, params, param, args.lo) if args.hi is None else None
         if hi is None:
             raise InputError(f"at the upper bound {shown} = {args.hi or 1.0:g} (--hi): {why}",
                              where) from None
@@ -118,21 +117,6 @@ def run(args: argparse.Namespace) -> int:
         for n in ([bound] if bound else []) + list(res.notes):
             print(f"note       {n}")
     return 3 if res.status == "undecided" else 0
-
-
-def _thinner(gen: Any, params: dict, param: str, lo: float) -> float | None:
-    """The largest of 1/2, 1/4, ... above ``lo`` at which the family builds, where it
-    builds at ``lo`` (else its other parameters are at fault: None)."""
-    from ..studies.thickness import builds
-
-    if not builds(gen, params, param, lo):
-        return None
-    hi = 0.5
-    while hi > lo:  # (with --lo 0.6 it gave 0.5 and "got lo=0.6, hi=0.5")
-        if builds(gen, params, param, hi):
-            return hi
-        hi /= 2
-    return None
 
 
 _OWN = {"--param": str, "--lo": finite_float, "--hi": finite_float,

@@ -82,8 +82,22 @@ def builds(gen: Callable[..., Scene], params: dict[str, Any], param: str, t: flo
     return True
 
 
+def thinner(gen: Callable[..., Scene], params: dict[str, Any], param: str, lo: float
+            ) -> float | None:
+    """The largest of 1/2, 1/4, ... above ``lo`` at which the family ``gen`` builds, where
+    it builds at ``lo`` (else its other parameters are at fault: None)."""
+    if not builds(gen, params, param, lo):
+        return None
+    hi = 0.5
+    while hi > lo:  # (with lo = 0.6 it gave 0.5 and "got lo=0.6, hi=0.5")
+        if builds(gen, params, param, hi):
+            return hi
+        hi /= 2
+    return None
+
+
 def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness",
-                  lo: float = 0.01, hi: float = 1.0, rtol: float = 1e-4,
+                  lo: float = 0.01, hi: float | None = None, rtol: float = 1e-4,
                   friction: Any = "infinite", method: str = "clarabel",
                   load_factor: float = 0.0, **params: Any) -> ThicknessResult:
     """Smallest value of ``param`` for which ``generator(**params)`` admits equilibrium
@@ -94,7 +108,9 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         generator: a registered generator name (:mod:`rigidblocks.generators`) or a
             function returning a scene.
         param: the thickness parameter (``thickness`` is t / R for :func:`arch`).
-        lo, hi: the initial bracket; ``hi`` must be admissible and ``lo`` not.
+        lo, hi: the initial bracket; ``hi`` must be admissible and ``lo`` not. ``hi``
+            by default is 1, or where the family is not built at 1 the largest of 1/2,
+            1/4, ... above ``lo`` at which it is (a note says so).
         friction: friction coefficient for every joint without its own (default: no
             sliding), or None: the scene's own (the generator's ``friction`` parameter,
             as ``check`` reads it), which the result records.
@@ -114,7 +130,7 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         name = generator
     else:
         gen, name = generator, getattr(generator, "__name__", "generator")
-    if not (0 < lo < hi):
+    if not (0 < lo < (1.0 if hi is None else hi)):
         raise InputError(f"min_thickness: need 0 < lo < hi, got lo={lo!r}, hi={hi!r}")
     if not (0 < rtol < 1):
         raise InputError(f"min_thickness: rtol must be in (0, 1), got {rtol!r}")
@@ -136,6 +152,17 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
             raise InputError(f"min_thickness: {param} is {why}")
     if not (math.isfinite(load_factor) and load_factor >= 0):
         raise InputError(f"min_thickness: load_factor must be >= 0, got {load_factor!r}")
+    bound: tuple[str, ...] = ()  # the note of a default upper bound below 1
+    if hi is None:
+        hi = 1.0
+        smaller = None if builds(gen, params, param, hi) else thinner(gen, params, param, lo)
+        if smaller is not None:  # (a pointed arch of 16 voussoirs is not built at 1)
+            try:
+                gen(**params, **{param: hi})
+            except InputError as err:
+                bound = (f"the upper bound is {param} = {smaller:g}: the family is not "
+                         f"built at 1 ({err.detail})",)
+            hi = smaller
     n = 0
     spent = 0.0
 
@@ -187,7 +214,7 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
                 "that (no thinner value was tried; a smaller lo, --lo, finds it where it "
                 "lies above 0)")
         return ThicknessResult(name, param, lo, 0.0, n, friction, dict(params),
-                               status=AT_LOWER_BOUND, notes=(note,),
+                               status=AT_LOWER_BOUND, notes=(*bound, note),
                                load_factor=load_factor, solve_time=spent)
     if at_lo is None:
         raise InputError(f"min_thickness: {name} is {status}, not certified "
@@ -198,10 +225,10 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         note = (f"the check could not decide at {param}={br.undecided_at:.6g}: the minimum "
                 f"is bracketed in [{br.bad:.6g}, {br.good:.6g}]")
         return ThicknessResult(name, param, br.good, br.bad, n, friction, dict(params),
-                               status="undecided", notes=(note,), load_factor=load_factor,
-                               solve_time=spent)
+                               status="undecided", notes=(*bound, note),
+                               load_factor=load_factor, solve_time=spent)
     return ThicknessResult(name, param, br.good, br.bad, n, friction, dict(params),
-                           load_factor=load_factor, solve_time=spent)
+                           notes=bound, load_factor=load_factor, solve_time=spent)
 
 
 def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction: Any,
