@@ -558,3 +558,60 @@ def test_a_layer_that_holds_nothing_and_a_drawing_given_as_a_scene_are_named(
     for drawing in (commented, binary):
         assert main(["check", str(drawing)]) == 2
         assert "a DXF drawing, not a scene file" in capsys.readouterr().err
+
+
+def _wall(msp, mirror=False, **attribs):
+    """A base 3 x 1 and a block 1 x 2 standing on it at x in [0, 1] (world
+    coordinates); ``mirror``: each drawn as CAD draws it mirrored, in the coordinate
+    system of the extrusion (0, 0, -1), whose x is the world's -x."""
+    s = -1.0 if mirror else 1.0
+    extra = {"extrusion": (0, 0, -1)} if mirror else {}
+    for pts in ([(-1, -1), (2, -1), (2, 0), (-1, 0)], [(0, 0), (1, 0), (1, 2), (0, 2)]):
+        msp.add_lwpolyline([(s * x, y) for x, y in pts], close=True,
+                           dxfattribs={**attribs, **extra})
+
+
+def test_a_mirrored_polyline_is_read_where_it_lies_in_the_world(tmp_path):
+    """A polyline CAD drew in a mirrored coordinate system (extrusion (0, 0, -1)) was
+    read in its own coordinates: the mirror image of the drawing, the LACT3 portal's
+    multiplier 0.528994 where the drawing's is 0.516365, with no word. Its world
+    coordinates are read; one drawn in another plane (a vertical one) is refused."""
+    for mirror in (False, True):
+        doc = ezdxf.new()
+        _wall(doc.modelspace(), mirror)
+        doc.saveas(tmp_path / "w.dxf")
+        sc = rb.read_dxf(tmp_path / "w.dxf")
+        xs = sorted(float(np.asarray(b.vertices)[:, 0].min()) for b in sc.blocks)
+        assert xs == [-1.0, 0.0], (mirror, xs)
+    doc = ezdxf.new()
+    doc.modelspace().add_lwpolyline([(0, 0), (1, 0), (1, 1), (0, 1)], close=True,
+                                    dxfattribs={"extrusion": (0, 1, 0)})
+    doc.saveas(tmp_path / "v.dxf")
+    with pytest.raises(InputError, match=r"LWPOLYLINE #\w+: not drawn in the x-y plane: "
+                                         r"its z varies by 1 over an outline 1 across"):
+        rb.read_dxf(tmp_path / "v.dxf")
+
+
+def test_block_references_are_read_and_hidden_layers_are_not(tmp_path):
+    """A block reference (INSERT of a brick drawn once) was skipped, its bricks missing
+    (counted only in the summary line; with one polyline beside two references: "no
+    free block"); a layer switched off in CAD (construction lines) was read as blocks.
+    References are exploded (placed, scaled, mirrored as CAD places them), hidden
+    layers skipped and counted; a layer named with --layers is read all the same."""
+    doc = ezdxf.new()
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(-1, -1), (3, -1), (3, 0), (-1, 0)], close=True)
+    brick = doc.blocks.new("BRICK")
+    brick.add_lwpolyline([(0, 0), (1, 0), (1, 0.5), (0, 0.5)], close=True)
+    msp.add_blockref("BRICK", (0, 0))
+    msp.add_blockref("BRICK", (2, 0), dxfattribs={"xscale": -1})  # mirrored: x in [1, 2]
+    doc.layers.add("DRAFT").off()
+    msp.add_lwpolyline([(0, 0), (3, 0), (3, 3)], close=True, dxfattribs={"layer": "DRAFT"})
+    doc.saveas(tmp_path / "r.dxf")
+    sc, rep = rb.read_dxf(tmp_path / "r.dxf", report=True)
+    xs = [np.asarray(b.vertices)[:, 0] for b in sc.blocks if not b.support]
+    boxes = sorted((float(x.min()), float(x.max())) for x in xs)
+    assert boxes == [(0.0, 1.0), (1.0, 2.0)]
+    assert rep.skipped == {"LWPOLYLINE (on a layer switched off or frozen: DRAFT)": 1}
+    with pytest.raises(InputError, match="overlap"):  # named: read, the triangle overlaps
+        rb.read_dxf(tmp_path / "r.dxf", layers=["0", "DRAFT"])

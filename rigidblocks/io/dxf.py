@@ -1,7 +1,10 @@
 """CAD drawings in and out: DXF files (needs the ``cad`` extra, ezdxf).
 
 Reading (:func:`read_dxf`): each closed polyline (LWPOLYLINE or 2D POLYLINE) is a
-block, and so is each closed chain of LINE entities. Real drawings are never exact, so
+block, and so is each closed chain of LINE entities, in world coordinates (the x-y
+plane: a polyline's own coordinate system, mirrored in CAD, is applied; one drawn in
+another plane is refused), block references (INSERT) exploded, layers switched off or
+frozen skipped. Real drawings are never exact, so
 the reader repairs, within a snapping tolerance ``snap_tol`` (relative to the drawing's
 size), what is only round-off (:mod:`rigidblocks.io.dxf_repair`, which needs no CAD
 library):
@@ -108,41 +111,88 @@ def _xdata_id(e: Any) -> str | None:
     return text or None
 
 
-def _entities(msp: Any, report: DxfReport, keep: Any) -> tuple[list[Outline], list[Any],
-                                                                list[str | None]]:
+#: an outline's z may vary by this much of its size: a 2D scene is read from the x-y
+#: plane of the world (WCS), and an outline drawn in another plane is refused
+PLANE_TOL = 1e-9
+
+
+def _plane_xy(pts: Any, where: str) -> np.ndarray:
+    """The x, y of one outline's points in world coordinates (``pts``, (n, 3)), where
+    they lie in a plane z = const; else an InputError naming ``where``."""
+    p = np.asarray([tuple(v) for v in pts], dtype=float).reshape(-1, 3)
+    if len(p):
+        size = float(np.ptp(p[:, :2], axis=0).max(initial=0.0))
+        dz = float(np.ptp(p[:, 2]))
+        if dz > PLANE_TOL * max(size, 1e-300):
+            raise InputError(f"not drawn in the x-y plane: its z varies by {dz:.3g} over "
+                             f"an outline {size:.3g} across (a 2D scene is read from the "
+                             "world's x-y plane: rotate or flatten the drawing in CAD)",
+                             where)
+    return p[:, :2].copy()
+
+
+def _entities(msp: Any, report: DxfReport, keep: Any, hidden: Any = None
+              ) -> tuple[list[Outline], list[tuple[str, str, np.ndarray]], list[str | None]]:
+    """The outlines (closed or not) of the polylines, the LINE entities (handle, layer,
+    ends (2, 2)) and the block
+    ids our writer attached, of the entities ``msp`` on the layers ``keep`` takes and
+    that are not ``hidden`` (a layer switched off or frozen), in world coordinates: a
+    polyline's own coordinate system (its extrusion: a drawing mirrored in CAD has
+    (0, 0, -1)) is applied, and block references (INSERT) are exploded into the
+    entities they place."""
     raws: list[Outline] = []
-    lines: list[Any] = []
+    lines: list[tuple[str, str, np.ndarray]] = []
     tags: list[str | None] = []
-    for e in msp:
-        kind = e.dxftype()
-        if not keep(e.dxf.layer):
-            report.skipped[kind] = report.skipped.get(kind, 0) + 1
-            continue
-        if kind == "LWPOLYLINE":
-            pts = np.array([(x, y, b) for x, y, b in e.get_points("xyb")], dtype=float)
-            if len(pts) and np.any(np.abs(pts[:-1, 2] if not e.closed else pts[:, 2]) > 0):
-                raise InputError("curved (bulged) polyline segments are not supported: "
-                                 "replace arcs by straight segments",
-                                 f"{report.source}: LWPOLYLINE #{e.dxf.handle}")
-            raws.append(Outline(e.dxf.handle, e.dxf.layer, pts[:, :2].copy(), bool(e.closed),
-                                kind))
-            tags.append(_xdata_id(e))
-        elif kind == "POLYLINE":
-            if not (e.is_2d_polyline or e.is_3d_polyline):
-                report.skipped[kind] = report.skipped.get(kind, 0) + 1
+
+    def skip(kind: str) -> None:
+        report.skipped[kind] = report.skipped.get(kind, 0) + 1
+
+    def read(entities: Any, handle: str | None, ref_layer: str | None) -> None:
+        for i, e in enumerate(entities):
+            kind = e.dxftype()
+            # an entity of a block reference: named by the reference, and on its layer
+            # where drawn on layer 0 (as CAD shows it)
+            h = e.dxf.handle if handle is None else f"{handle}.{i}"
+            layer = e.dxf.layer if ref_layer is None or e.dxf.layer != "0" else ref_layer
+            if not keep(layer):
+                skip(kind)
                 continue
-            verts = list(e.vertices)
-            if any(abs(getattr(v.dxf, "bulge", 0.0) or 0.0) > 0 for v in verts):
-                raise InputError("curved (bulged) polyline segments are not supported",
-                                 f"{report.source}: POLYLINE #{e.dxf.handle}")
-            pts = np.array([(v.dxf.location[0], v.dxf.location[1]) for v in verts], float)
-            raws.append(Outline(e.dxf.handle, e.dxf.layer, pts.reshape(-1, 2),
-                                bool(e.is_closed), kind))
-            tags.append(_xdata_id(e))
-        elif kind == "LINE":
-            lines.append(e)
-        else:
-            report.skipped[kind] = report.skipped.get(kind, 0) + 1
+            if hidden is not None and hidden(layer):
+                skip(f"{kind} (on a layer switched off or frozen: {layer})")
+                continue
+            where = f"{report.source}: {kind} #{h}"
+            if kind == "INSERT":
+                try:
+                    parts = list(e.virtual_entities())
+                except Exception as err:  # noqa: BLE001 - ezdxf: a reference it cannot place
+                    raise InputError(f"the block reference cannot be exploded ({err})",
+                                     where) from None
+                read(parts, h, layer)
+            elif kind == "LWPOLYLINE":
+                b = np.array([bb for _, _, bb in e.get_points("xyb")], dtype=float)
+                if len(b) and np.any(np.abs(b[:-1] if not e.closed else b) > 0):
+                    raise InputError("curved (bulged) polyline segments are not "
+                                     "supported: replace arcs by straight segments", where)
+                raws.append(Outline(h, layer, _plane_xy(e.vertices_in_wcs(), where),
+                                    bool(e.closed), kind))
+                tags.append(_xdata_id(e))
+            elif kind == "POLYLINE":
+                if not (e.is_2d_polyline or e.is_3d_polyline):
+                    skip(kind)
+                    continue
+                if any(abs(getattr(v.dxf, "bulge", 0.0) or 0.0) > 0 for v in e.vertices):
+                    raise InputError("curved (bulged) polyline segments are not supported",
+                                     where)
+                raws.append(Outline(h, layer, _plane_xy(e.points_in_wcs(), where),
+                                    bool(e.is_closed), kind))
+                tags.append(_xdata_id(e))
+            elif kind == "LINE":
+                ends = _plane_xy([e.dxf.start, e.dxf.end], where)
+                lines.append((h, layer, ends))
+            else:
+                skip(kind)
+
+    read(msp, None, None)
     return raws, lines, tags
 
 
@@ -387,24 +437,31 @@ def read_dxf(path: str | os.PathLike, *, supports: str | None = None,
 
         def keep(layer: str) -> bool:
             return layer.lower() in wanted
+        hidden = None  # (layers named are read as named)
     else:
         def keep(layer: str) -> bool:
             return layer not in ANALYSIS_LAYERS
-    raws, lines, tags = _entities(doc.modelspace(), rep, keep)
+
+        def hidden(layer: str) -> bool:
+            """Is the layer switched off or frozen: not shown in CAD?"""
+            try:
+                lay = doc.layers.get(layer)
+            except Exception:  # noqa: BLE001 - a layer without a table entry is shown
+                return False
+            return bool(lay.is_off() or lay.is_frozen())
+    raws, lines, tags = _entities(doc.modelspace(), rep, keep, hidden)
     meta = _metadata(doc, src)
     units = _declared_units(doc, units, rep, adopt=meta is None or "units" not in meta)
     allpts = [r.points for r in raws] + [
-        np.array([[e.dxf.start[0], e.dxf.start[1]], [e.dxf.end[0], e.dxf.end[1]]])
-        for e in lines]
+        ends for _, _, ends in lines]
     if not allpts:
         raise InputError("no polylines or lines: nothing to make blocks of", src)
     cat = np.concatenate(allpts)
     size = float(np.linalg.norm(cat.max(axis=0) - cat.min(axis=0)))
     tol = snap_tol * size
     rep.tol = tol
-    ends = np.array([[e.dxf.start[0], e.dxf.start[1], e.dxf.end[0], e.dxf.end[1]]
-                     for e in lines], dtype=float).reshape(-1, 4)
-    loops = line_loops(ends, [e.dxf.handle for e in lines], [e.dxf.layer for e in lines],
+    ends = np.array([e.ravel() for _, _, e in lines], dtype=float).reshape(-1, 4)
+    loops = line_loops(ends, [h for h, _, _ in lines], [layer for _, layer, _ in lines],
                        tol, rep)
     raws += loops
     tags += [None] * len(loops)
