@@ -592,3 +592,26 @@ def test_a_scene_built_in_code_is_checked_before_it_is_drawn_reported_or_written
     import matplotlib.pyplot as plt
 
     plt.close("all")
+
+
+def test_a_key_given_twice_is_refused(tmp_path):
+    """`"friction": 0.6, "friction": 0.1` in one scene was read as 0.1 (the decoder keeps
+    the last): `load` answered 0.0999999 with no word. A key given twice in any object
+    of a scene or a sweep spec is an error naming it (and the block)."""
+    from rigidblocks.studies.spec import read_spec
+
+    doc = ('{"format": "rigidblocks-scene", "version": 1, "dimension": 2, '
+           '"friction": 0.6, "friction": 0.1, "blocks": []}')
+    p = tmp_path / "s.json"
+    p.write_text(doc)
+    with pytest.raises(InputError, match=r's.json: the key "friction" appears twice in one '
+                                         r"object: which value is meant\? give it once"):
+        read_scene(p)
+    p.write_text(doc.replace('"friction": 0.1, "blocks": []', '"blocks": [{"id": "b", '
+                             '"support": true, "support": false}]'))
+    with pytest.raises(InputError, match=r'the key "support" appears twice in one object '
+                                         r"\(in the object with id 'b'\)"):
+        read_scene(p)
+    p.write_text('{"format": "rigidblocks-sweep", "version": 1, "version": 1}')
+    with pytest.raises(InputError, match='the key "version" appears twice'):
+        read_spec(p)

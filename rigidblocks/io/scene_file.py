@@ -121,6 +121,21 @@ def _keys(obj: Any, allowed: set[str], required: tuple[str, ...], where: str) ->
     return obj
 
 
+def unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """A JSON object from its ``pairs`` (``json.loads``'s ``object_pairs_hook``), refused
+    where a key appears twice: the decoder keeps the last, and a slip of editing
+    ("friction": 0.6 ... "friction": 0.1) changed the answer without a word."""
+    out: dict[str, Any] = {}
+    for k, v in pairs:
+        if k in out:
+            ident = out.get("id", v if k == "id" else None)
+            where = f" (in the object with id {ident!r})" if isinstance(ident, str) else ""
+            raise InputError(f"the key \"{k}\" appears twice in one object{where}: which "
+                             "value is meant? give it once")
+        out[k] = v
+    return out
+
+
 def _nonfinite_constant(name: str) -> float:
     # NaN / Infinity literals are read as floats so that the strict value checks reject
     # them with the block and key they stand in (every number goes through _number)
@@ -299,7 +314,8 @@ def loads_json(text: str, source: str | None = None) -> Any:
     rejects naming the block and key where they stand.
     """
     try:
-        doc = json.loads(text, parse_constant=_nonfinite_constant)
+        doc = json.loads(text, parse_constant=_nonfinite_constant,
+                         object_pairs_hook=unique_keys)
     except json.JSONDecodeError as err:
         if _is_dxf(text):  # (it read "malformed JSON: Extra data ...")
             raise InputError(DXF_GIVEN.format(source or "DRAWING.dxf"), source) from None

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
+from ..io.scene_file import unique_keys
 from .sweep import Sweep, make_sweep
 
 FORMAT = "rigidblocks-sweep"
@@ -95,7 +96,8 @@ def read_spec(path: str | os.PathLike) -> Sweep:
     except OSError as err:
         raise InputError(f"cannot read: {err.strerror or err}", str(p)) from None
     try:
-        doc = json.loads(text, parse_constant=_reject_constant)
+        doc = json.loads(text, parse_constant=_reject_constant,
+                         object_pairs_hook=unique_keys)
     except json.JSONDecodeError as err:
         raise InputError(f"invalid JSON at line {err.lineno} column {err.colno}: {err.msg}",
                          str(p)) from None
