@@ -198,6 +198,23 @@ def test_unwritable_output_is_refused_before_any_work(argv, tmp_path, capsys, mo
     assert not calls and not Path("/nonexistent").exists()
 
 
+@pytest.mark.parametrize("command, name", [
+    ("extrude", "s.json"), ("import-dxf", "d.dxf"), ("import-compas", "c.json")])
+def test_an_output_that_is_the_input_is_refused(command, name, tmp_path, capsys):
+    """`import-dxf same.dxf -o same.dxf` replaced the drawing by a scene file (exit 0),
+    `extrude s.json -o s.json` the 2D scene by its prisms, `import-compas` likewise: an
+    output naming a file the command reads is refused before any work, the file kept."""
+    import shutil
+
+    src = tmp_path / name
+    shutil.copy(EXAMPLES / "wall.json", src)  # (each refused before it is read)
+    before = src.read_bytes()
+    assert main([command, str(src), "-o", str(tmp_path / "." / name)]) == 2
+    one_line_error(capsys, f"-o {tmp_path / '.' / name}: is the file it reads", "give "
+                   "another name")
+    assert src.read_bytes() == before
+
+
 def test_output_that_is_a_folder_is_refused(tmp_path, capsys):
     assert main(["example", "arch", "-o", str(tmp_path)]) == 2
     one_line_error(capsys, "is a folder")

@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import gc
 import importlib
+import os
 import sys
 import warnings
 from collections.abc import Sequence
@@ -39,6 +40,20 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "extrude": ("extrude", "turn a 2D scene into the 3D scene of its prisms"),
     "sweep": ("sweep", "parametric study from a spec file: many cases, in parallel, resumable"),
 }
+
+
+def _not_an_input(args: argparse.Namespace, out: Any) -> None:
+    """Refuse an output ``out`` that is one of the files the command reads (an argument
+    naming an existing file): `import-dxf same.dxf -o same.dxf` replaced the drawing by
+    a scene file, `extrude s.json -o s.json` the 2D scene by its prisms."""
+    if not out.exists():
+        return
+    for key, value in vars(args).items():
+        if key == "output" or not isinstance(value, str) or not os.path.isfile(value):
+            continue
+        if os.path.samefile(value, out):
+            raise InputError(f"is the file it reads ({value}): it would be overwritten; "
+                             "give another name", f"-o {args.output}")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -109,7 +124,7 @@ def _main(argv: Sequence[str] | None) -> int:
             parser.print_help()
             return 2
         if getattr(args, "output", None):  # every command's -o, before any work
-            output_path(args.output)
+            _not_an_input(args, output_path(args.output))
         gc.freeze()  # the imported modules' objects: the collections of the run skip them
         try:
             status = int(args._run(args) or 0)
