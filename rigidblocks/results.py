@@ -745,6 +745,10 @@ class LoadResult(Result):
     #: :func:`rigidblocks.analyses.na_bounds.capacity_bound`: every collapse state at
     #: lambda >= 0)
     lower_bound_by: str | None = None
+    #: associative, on a small scene (rigidblocks.analyses.core.DILATANCY_JOINTS) whose
+    #: collapse slides or does not come: (status, multiplier) of the same question
+    #: without dilatancy, from the elastic state X0 (None: not computed)
+    without_dilatancy: tuple[str, float | None] | None = None
 
     @property
     def governing_joints(self) -> list[tuple[str, str]]:
@@ -765,6 +769,9 @@ class LoadResult(Result):
             b = self.load_multiplier_bounds
             out["load_multiplier_bounds"] = None if b is None else list(b)
             out["lower_bound_by"] = self.lower_bound_by
+        elif self.without_dilatancy is not None:
+            st, v = self.without_dilatancy
+            out["without_dilatancy"] = {"status": st, "load_multiplier": v}
         out["governing_joints"] = [list(p) for p in self.governing_joints]
         m = self.mechanism
         if m is not None:

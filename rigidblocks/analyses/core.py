@@ -16,6 +16,8 @@ from contextlib import contextmanager
 from dataclasses import replace
 from typing import Any
 
+import numpy as np
+
 from ..errors import InputError, SolverFailure, finite_number
 from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_method
 from ..methods.convex import (
@@ -420,6 +422,64 @@ def _load_nonassociative(scene: Scene, friction: Any, method: str, flow: str | N
                    tilt_angle_deg=tilt_angle_deg(scene, lam))
 
 
+#: the largest scene (joints) on which an associative `load` compares its answer with the
+#: one without dilatancy (:func:`_without_dilatancy`; the capacity bound's limit:
+#: 0.01 to 0.7 s on the examples and trial scenes up to 42 joints)
+DILATANCY_JOINTS = 50
+#: ... and a multiplier this much lower (relative) is said to be
+DILATANCY_RTOL = 1e-4
+
+
+def _without_dilatancy(scene: Scene, m: Method, f: float, method: str, status: str,
+                       lam: float | None, mech: Any, opened: dict[str, Any]
+                       ) -> tuple[str, float | None] | None:
+    """The answer of `load` without dilatancy (from the elastic state X0) beside an
+    associative one (``status``, ``lam``, its mechanism ``mech``) on a small scene whose
+    joints have a finite friction, where the associative collapse slides (or does not
+    come): (its status, its multiplier), its note added to the method's where it is
+    lower (:func:`_dilatancy_note`); None where not computed. Associative sliding opens
+    a joint by f times its slip: a block standing against a wall (touching it,
+    unloaded) at f = 0.6 collapsed at 0.548387 by rubbing up the wall as it tipped, and
+    dry joints let it tip at 0.5; at f = 0.5 sideways along the wall, 0.57735 for 0.4."""
+    if method == "distortion" or m.system.contacts.n_joints > DILATANCY_JOINTS:
+        return None
+    if not np.isfinite(m.f_joint(f)).any() or status not in ("collapse", "unbounded"):
+        return None
+    if status == "collapse" and (mech is None or not any(
+            str(v).startswith("slide") for v in mech.modes)):
+        return None  # no joint slides: nothing opens by its slip
+    try:
+        na = _load_nonassociative(scene, friction_label(f), method, "non-associative",
+                                  NA_RTOL, state=False, progress=None, mechanism="vertex",
+                                  **opened)
+    except (InputError, SolverFailure):
+        return None
+    note = _dilatancy_note(na, lam)
+    m.notes += [note] if note else []
+    return na.status, na.load_multiplier
+
+
+def _dilatancy_note(na: LoadResult, lam: float | None) -> str:
+    """What the answer without dilatancy ``na`` says beside the associative multiplier
+    ``lam`` (None: unbounded): where it collapses lower, or does not stand; else ""."""
+    how = ("without dilatancy (dry joints slide without opening: --flow "
+           "non-associative)")
+    why = ("this answer lets its sliding joints open by f times their slip (associative "
+           "flow), which dry joints do not")
+    if na.status == "unstable":
+        return (f"{how} the dead load alone has no admissible state reached from the "
+                f"elastic state X0: {why}")
+    if na.status != "collapse" or na.load_multiplier is None:
+        return ""
+    low = float(na.load_multiplier)
+    if lam is None:
+        return f"{how} it collapses at lambda = {low:.6g} from the elastic state X0: {why}"
+    if low < lam * (1.0 - DILATANCY_RTOL):
+        return (f"{how} it collapses at lambda = {low:.6g} from the elastic state X0, "
+                f"{100.0 * (lam - low) / lam:.1f} % lower: {why}")
+    return ""
+
+
 def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clarabel", *,
                         solver: str | None = None, state: bool = True,
                         settings: dict | None = None, pyramid: int | None = None,
@@ -470,9 +530,12 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     if lim.status == "unstable":  # (rare: one more relaxation, whatever ``state``)
         note = friction_governs(m, f, 0.0)
         m.notes += [note] if note else []
+    opened = dict(solver=solver, settings=settings, pyramid=pyramid,
+                  contact_tol=contact_tol)
     if lim.status != "collapse":
+        dry = _without_dilatancy(scene, m, f, method, lim.status, None, None, opened)
         return LoadResult(**_fields(m, "max_load_multiplier", lim.status, f, None),
-                          bracket=_bracket(lim), **reached)
+                          bracket=_bracket(lim), without_dilatancy=dry, **reached)
     # a multiplier within round-off below 0 (the methods call one below -1e-9 unstable)
     # is 0: the dead load alone is at its limit (a frictionless block on a level base:
     # -3.4e-11 from Clarabel, -4.8e-10 from OSQP)
@@ -489,7 +552,9 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
             gov = gov or m.governing_load(f, at, lim.accuracy or 0.0, width)
     st = m.state(f, lam, at, limit=True) if (state and at is not None) else None
     lam = _round_off_of_zero(lam, lim.accuracy)  # (its state is the solver's)
+    dry = _without_dilatancy(scene, m, f, method, "collapse", lam, lim.mechanism, opened)
     return LoadResult(**_fields(m, "max_load_multiplier", "collapse", f, lam), state=st,
+                      without_dilatancy=dry,
                       governing=gov, load_multiplier=lam, mechanism=lim.mechanism,
                       bracket=_bracket(lim) if lim.lower != lim.upper else None,
                       tilt_angle_deg=tilt_angle_deg(scene, lam), **reached)

@@ -1,0 +1,68 @@
+"""An associative `load` beside the same question without dilatancy, on small scenes.
+
+Associative sliding opens a joint by f times its slip (normality). A block standing
+against a fixed wall, touching it without pressure, and pulled away from it: dry joints
+let it tip about its far toe at lambda = b/h (a block on a level base tips at b/h:
+validation.md), while the associative collapse rubs the block up the wall as it tips
+(the wall joint compressed and at its friction limit) and needs more. The answer said
+nothing of it: an engineer read 0.548387 for a block that tips at 0.5.
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from conftest import EXAMPLES, make_scene, rect
+
+import rigidblocks as rb
+from rigidblocks.cli.main import main
+
+
+def against_wall(f=0.6):
+    """A b x h = 1 x 2 block on a ground, its right face on a fixed wall, under a
+    horizontal body force lambda W away from the wall."""
+    return make_scene([
+        {"id": "ground", "vertices": rect(-2, -1, 3, 1), "support": True},
+        {"id": "wall", "vertices": rect(1, -1, 1, 4), "support": True},
+        {"id": "B", "vertices": rect(0, 0, 1, 2)}],
+        unit_weight=20.0, friction=f, live_body_force=[-1.0, 0.0])
+
+
+def test_a_block_against_a_wall_is_said_to_tip_lower_without_dilatancy():
+    r = rb.max_load_multiplier(against_wall())
+    assert r.status == "collapse" and r.load_multiplier > 0.54  # associative: 0.548387
+    st, low = r.without_dilatancy
+    assert st == "collapse" and low == pytest.approx(0.5, abs=1e-7)  # b/h
+    note = next(n for n in r.notes if n.startswith("without dilatancy"))
+    assert "it collapses at lambda = 0.5 from the elastic state X0, 8.8 % lower" in note
+    assert "open by f times their slip (associative flow)" in note
+    assert r.to_dict()["without_dilatancy"] == {"status": "collapse", "load_multiplier": low}
+
+
+def test_no_word_where_dry_joints_give_the_same_or_no_joint_slides(capsys):
+    """The 4 x 4 wall slides on its foundation at f = 0.6 either way (computed, equal:
+    no note); the arch's collapse hinges only (not computed); nor at infinite friction,
+    nor on the non-associative question itself."""
+    wall = rb.read_scene(EXAMPLES / "wall.json")
+    r = rb.max_load_multiplier(wall)
+    assert r.without_dilatancy[0] == "collapse"
+    assert r.without_dilatancy[1] == pytest.approx(r.load_multiplier, rel=1e-6)
+    assert not any(n.startswith("without dilatancy") for n in r.notes)
+    arch = rb.max_load_multiplier(rb.read_scene(EXAMPLES / "arch.json"))
+    assert arch.without_dilatancy is None
+    assert rb.max_load_multiplier(against_wall(), friction="infinite").without_dilatancy \
+        is None
+    na = rb.max_load_multiplier(against_wall(), flow="non-associative")
+    assert na.without_dilatancy is None and "without_dilatancy" not in na.to_dict()
+
+
+def test_the_command_says_it_and_the_flat_arch_on_piers_does_not_stand_dry(tmp_path,
+                                                                             capsys):
+    """The flat arch with vertical joints: its pier joints slide under its own weight
+    without dilatancy (test_nonassociative), so dry it has no admissible state at all."""
+    assert main(["load", str(EXAMPLES / "flat_arch_vertical.json"), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["without_dilatancy"] == {"status": "unstable", "load_multiplier": None}
+    assert any("the dead load alone has no admissible state reached from the elastic "
+               "state X0" in w for w in doc["why"])
