@@ -615,3 +615,19 @@ def test_block_references_are_read_and_hidden_layers_are_not(tmp_path):
     assert rep.skipped == {"LWPOLYLINE (on a layer switched off or frozen: DRAFT)": 1}
     with pytest.raises(InputError, match="overlap"):  # named: read, the triangle overlaps
         rb.read_dxf(tmp_path / "r.dxf", layers=["0", "DRAFT"])
+
+
+def test_a_unit_given_to_a_restored_scene_is_checked_against_its_own(tmp_path, capsys):
+    """`import-dxf P.dxf --force-unit N` of a drawing exported from a scene in mm and kN
+    wrote units {"force": "N"}: the length unit dropped and the unit weight, stored in kN,
+    relabelled (`load` said 0.06642 N for 0.06642 kN). A unit that differs from the
+    stored scene's is refused; one that agrees keeps the other."""
+    dxf = tmp_path / "w.dxf"
+    assert main(["export-dxf", str(EXAMPLES / "wall.json"), "-o", str(dxf)]) == 0
+    out = tmp_path / "w.json"
+    assert main(["import-dxf", str(dxf), "-o", str(out), "--force-unit", "N"]) == 2
+    err = capsys.readouterr().err
+    assert "the drawing's scene is in kN (force unit): --force-unit N would relabel" in err
+    assert main(["import-dxf", str(dxf), "-o", str(out), "--length-unit", "mm"]) == 2
+    assert main(["import-dxf", str(dxf), "-o", str(out), "--force-unit", "kN"]) == 0
+    assert json.loads(out.read_text())["units"] == {"length": "m", "force": "kN"}

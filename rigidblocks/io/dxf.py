@@ -546,8 +546,20 @@ def _with_metadata(meta: dict, ids: list[str], polys: list[np.ndarray], raws: li
     if isinstance(units, str):
         units = (units, None)
     if units:
-        doc["units"] = {k: v for k, v in zip(("length", "force"), units, strict=True)
-                        if v is not None}
+        # the stored scene's values are in its own units: a unit given that differs
+        # would relabel them unconverted (--force-unit N on a scene in kN: its unit weight
+        # 2.5e-8 kN/mm^3 read as N, every force 1000 times too small), and the other unit
+        # is kept (it was dropped)
+        had = meta.get("units") if isinstance(meta.get("units"), dict) else {}
+        for key, v in zip(("length", "force"), units, strict=True):
+            if v is not None and had.get(key) not in (None, v):
+                opt = "--length-unit" if key == "length" else "--force-unit"
+                raise InputError(f"the drawing's scene is in {had[key]} ({key} unit): "
+                                 f"{opt} {v} would relabel its values without converting "
+                                 f"them; omit {opt}, or convert the scene and export it "
+                                 "again", src)
+        doc["units"] = {**had, **{k: v for k, v in zip(("length", "force"), units,
+                                                      strict=True) if v is not None}}
     lbf = given.pop("live_body_force")
     if lbf is not None:
         doc["live_body_force"] = [float(v) for v in lbf]
