@@ -84,3 +84,9 @@ def finite_number(value: Any, what: str = "value", *, strict: bool = False,
                 return v
             kind = "a finite number"
     raise error(message.format(what=what, kind=kind, value=value))
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM while a study runs (a batch system's time limit, ``kill``): it ends as at
+    Ctrl-C, its workers stopped and its finished cases kept
+    (:func:`rigidblocks.studies.execute.terminate_as_interrupt`)."""

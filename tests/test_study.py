@@ -513,6 +513,73 @@ def test_ctrl_c_ends_a_sweep_with_a_message_and_no_traceback(tmp_path):
     assert "rigidblocks: interrupted" in err and "Traceback" not in err, err
 
 
+def _children(pid):
+    """The processes whose parent is ``pid`` (Linux /proc)."""
+    import os
+
+    kids = []
+    for d in os.listdir("/proc"):
+        if d.isdigit():
+            try:
+                with open(f"/proc/{d}/stat") as fh:
+                    if int(fh.read().rsplit(")", 1)[1].split()[1]) == pid:
+                        kids.append(int(d))
+            except (OSError, ValueError, IndexError):
+                pass
+    return kids
+
+
+def _alive(pid):
+    try:
+        with open(f"/proc/{pid}/stat") as fh:
+            return fh.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+@pytest.mark.skipif(not __import__("sys").platform.startswith("linux"), reason="/proc")
+@pytest.mark.parametrize("sig", ["SIGTERM", "SIGKILL"])
+def test_a_killed_sweep_leaves_no_workers(tmp_path, sig):
+    """`kill` (SIGTERM, a batch system's time limit) ended a sweep with status 143 and
+    no word, its two workers left running for minutes with their parent gone (holding
+    the output pipe, so that a script waiting on it hung), no case saved; SIGKILL the
+    same. SIGTERM now ends it as Ctrl-C does, its finished cases kept ("rigidblocks:
+    terminated", 143); the workers die with their parent either way."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    spec = tmp_path / "arches.json"
+    spec.write_text(json.dumps({
+        "format": "rigidblocks-sweep", "version": 1, "generator": "arch",
+        "grid": {"thickness": [0.12 + 0.01 * k for k in range(30)],
+                 "voussoirs": [40, 41, 42, 43]},
+        "analyses": ["min_friction", "max_load_multiplier"]}))
+    out = tmp_path / "arches.parquet"
+    p = subprocess.Popen([sys.executable, "-m", "rigidblocks.cli.main", "sweep", str(spec),
+                          "-o", str(out), "--no-progress", "--workers", "2",
+                          "--batch-size", "1"], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    t0 = time.monotonic()
+    while len(_children(p.pid)) < 2 and time.monotonic() - t0 < 60:
+        time.sleep(0.2)
+    kids = _children(p.pid)
+    assert len(kids) >= 2, kids
+    time.sleep(3)  # some cases done
+    os.kill(p.pid, getattr(signal, sig))
+    _, err = p.communicate(timeout=60)
+    t0 = time.monotonic()
+    while any(_alive(k) for k in kids) and time.monotonic() - t0 < 20:
+        time.sleep(0.2)
+    assert not any(_alive(k) for k in kids)
+    if sig == "SIGTERM":
+        assert p.returncode == 143 and "rigidblocks: terminated" in err, err
+        assert "Traceback" not in err
+        assert list(tmp_path.glob("arches.parquet*/*.parquet"))  # the cases done
+
+
 def test_min_thickness_friction_given_twice_is_a_spec_error():
     """A case parameter friction beside min_thickness's own friction option failed every
     case with "min_thickness() got multiple values for keyword argument 'friction'"."""

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from ..analyses import ANALYSES
-from ..errors import InputError, SolverFailure
+from ..errors import InputError, SolverFailure, Terminated
 from ..io.paths import output_path
 from .options import use_finite_floats
 
@@ -141,7 +141,10 @@ def _main(argv: Sequence[str] | None) -> int:
     except SolverFailure as err:
         print(f"rigidblocks: solver failure: {_one_line(err)}", file=sys.stderr)
         return 1
-    except KeyboardInterrupt:  # pragma: no cover
+    except KeyboardInterrupt as err:  # pragma: no cover
+        if isinstance(err, Terminated):  # SIGTERM during a sweep: 128 + 15
+            print("rigidblocks: terminated", file=sys.stderr)
+            return 143
         print("rigidblocks: interrupted", file=sys.stderr)
         return 130
     except OSError as err:  # an output that cannot be written (stdout on a full disk

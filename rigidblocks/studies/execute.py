@@ -5,13 +5,15 @@ from __future__ import annotations
 
 import itertools
 import math
+import os
 import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
-from ..errors import InputError
+from ..errors import InputError, Terminated
 from ..scene.model import INFINITE, Scene, friction_value
 from .cases import RESERVED, SCENE_PARAMS
 
@@ -203,16 +205,54 @@ def _in_process(job: _Job, batches: Iterator[Batch]) -> Iterator[list[dict]]:
         yield run_batch(job, b)
 
 
-def _ignore_interrupts() -> None:
+def _worker_start(parent: int) -> None:
     """A worker's start: Ctrl-C is the main process's to handle (it ends the workers);
-    caught in a worker, inside a solver's callback, it printed a traceback there."""
+    caught in a worker, inside a solver's callback, it printed a traceback there. On
+    Linux the worker is killed when the process ``parent`` that started it ends: killed
+    by SIGKILL, it cannot end them, and they ran on, orphaned, for minutes, holding its
+    output pipe."""
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # the main process's SIGTERM handler, copied by the fork, is not the worker's: its
+    # end by the main process (terminate) raised inside a solver's callback, a traceback
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    try:
+        import ctypes
+
+        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):  # pragma: no cover - not Linux
+        return
+    if os.getppid() != parent:  # it ended before the line above
+        os._exit(1)
+
+
+@contextmanager
+def terminate_as_interrupt() -> Iterator[None]:
+    """SIGTERM (a batch system's time limit, ``kill``) raised as
+    :class:`~rigidblocks.errors.Terminated`, a KeyboardInterrupt, in the main thread
+    while a study runs: its workers are ended and its finished cases written, as at
+    Ctrl-C (the workers were left running, orphaned, and no case was saved)."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def handler(signum: int, frame: Any) -> None:
+        raise Terminated()
+
+    old = signal.signal(signal.SIGTERM, handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, old)
 
 
 def _processes(job: _Job, batches: Iterator[Batch], workers: int) -> Iterator[list[dict]]:
-    ex = ProcessPoolExecutor(max_workers=workers, initializer=_ignore_interrupts)
+    ex = ProcessPoolExecutor(max_workers=workers, initializer=_worker_start,
+                             initargs=(os.getpid(),))
     pending: set = set()
     try:
         for b in itertools.islice(batches, 3 * workers):

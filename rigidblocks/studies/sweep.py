@@ -77,6 +77,7 @@ from .execute import (
     connect,
     run_batch,
     run_case,
+    terminate_as_interrupt,
 )
 from .storage import _Store
 
@@ -427,23 +428,24 @@ def run(source: str | Scene | Sweep, *, output: str | os.PathLike | None = None,
     last = time.monotonic()
     n_batches = 0
     t0 = time.perf_counter()
-    try:
-        for rows in stream:
-            for row in rows:
-                buffer.append(row)
-                failed += row["status"] == "failed"
-                bar.update(1)
-                if on_case is not None:
-                    on_case(row)
-            bar.set_postfix(failed=failed, refresh=False)
-            n_batches += 1
-            if n_batches % 10 == 0 or time.monotonic() - last > flush_every:
-                store.write(buffer, columns)
-                buffer, last = [], time.monotonic()
-    finally:
-        stream.close()
-        store.write(buffer, columns)
-        bar.close()
+    with terminate_as_interrupt():  # (a kill ends the workers and keeps the cases)
+        try:
+            for rows in stream:
+                for row in rows:
+                    buffer.append(row)
+                    failed += row["status"] == "failed"
+                    bar.update(1)
+                    if on_case is not None:
+                        on_case(row)
+                bar.set_postfix(failed=failed, refresh=False)
+                n_batches += 1
+                if n_batches % 10 == 0 or time.monotonic() - last > flush_every:
+                    store.write(buffer, columns)
+                    buffer, last = [], time.monotonic()
+        finally:
+            stream.close()
+            store.write(buffer, columns)
+            bar.close()
     elapsed = time.perf_counter() - t0
     frame = store.merge(columns, ids)
     return StudyResult(frame, sw, store.path, len(todo), len(ids) - len(todo), elapsed,
