@@ -151,8 +151,9 @@ def _disagreements() -> str:
     if not bad:
         return ("The two methods agree on the associative f* of every case above that "
                 "both computed (to 1e-3); the non-associative answers are compared in the "
-                "first table, where the distortion iteration leaves one undecided (the "
-                "note beneath it).")
+                "table of what the seed computes (the first of docs/seed-examples.md), "
+                "where the distortion iteration leaves one undecided (the note beneath "
+                "it).")
     rows = "; ".join(f"{g} {p}: convex {fmt(a)}, distortion {fmt(b)}" for g, p, a, b in bad)
     return ("Where the methods differ the convex path's value is the optimum of a convex "
             "problem (an admissible state exists at it, none below), while the "
