@@ -63,8 +63,9 @@ def test_an_upper_bound_that_slides_asks_for_friction_not_thickness(tmp_path, ca
     (at f = 0.35 an upper bound of 0.12 is too thin: the minimum is 0.1466)."""
     assert main(["thickness", "arch", "--friction", "0.3"]) == 2
     err = capsys.readouterr().err
-    assert "(it needs f >= 0.309 there): a thicker one may need a smaller f (raise the "\
-        "upper bound: hi, --hi) or as large (give a larger f: --friction)" in err, err
+    assert "(it needs f >= 0.309 there), nor at any of the smaller values tried down to " \
+        "the lower bound: a thicker one may need a smaller f (raise the upper bound: hi, " \
+        "--hi) or as large (give a larger f: --friction)" in err, err
     path = tmp_path / "arch.json"
     assert main(["example", "arch", "--thickness", "1", "--friction", "0.3", "-o",
                  str(path)]) == 0
@@ -361,3 +362,18 @@ def test_the_notebooks_claim_on_even_and_odd_voussoirs():
     for even in (6, 10, 14):
         assert t[even] > max(t[even - 1], t[even + 1]), (even, t)
     assert t[8] < t[9], t
+
+
+def test_a_thinner_bound_that_stands_is_named_where_the_friction_needed_rises():
+    """The flat arch on piers needs f* = 0.22 at a depth of 0.4 and 0.27 at 1: at f = 0.25
+    the bound 1 does not stand, and the error advised only to raise it, which never
+    helps, while depths from 0.3237 stand. It names a smaller bound that stands (here
+    1/sqrt(2)), at which the search then answers."""
+    with pytest.raises(InputError) as err:
+        min_thickness("flat_arch", param="height", friction=0.25, lo=0.02, hi=1.0)
+    msg = str(err.value)
+    assert "(it needs f >= 0.2699 there), but stands at height=0.707107: the f it needs " \
+        "rises with the height there; an upper bound at height=0.707107" in msg
+    r = min_thickness("flat_arch", param="height", friction=0.25, lo=0.02, hi=0.707107,
+                      rtol=1e-4)
+    assert 0.3236 < r.thickness < 0.3238

@@ -204,8 +204,18 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
                         (", or a smaller load factor" if load_factor else ""))
             return "; raise the upper bound (hi, --hi)"
 
+        def thinner_stands() -> str:
+            """At a finite friction, the first of hi / sqrt(2), hi / 2, ... above lo at
+            which it stands ({param}=value); else ""."""
+            t = hi / math.sqrt(2.0)
+            while t > lo:
+                if builds(gen, params, param, t) and admissible(t)[0]:
+                    return f"{param}={t:.6g}"
+                t /= math.sqrt(2.0)
+            return ""
+
         raise InputError(_not_at_hi(build(hi), name, f"{param}={hi:g}", at_hi, friction,
-                                    method, load_factor, thicker))
+                                    method, load_factor, thicker, thinner_stands))
     at_lo, status = admissible(lo)
     if at_lo:
         # an answer, not an error: the 3-voussoir arch (four joints) stands however thin,
@@ -232,14 +242,19 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
 
 
 def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction: Any,
-               method: str, load_factor: float, thicker: Callable[[], str]) -> str:
+               method: str, load_factor: float, thicker: Callable[[], str],
+               thinner: Callable[[], str]) -> str:
     """Why the search cannot start at its upper bound ``where``, and what to change: the
     bound where the structure falls by rotation, the friction where it stands there
     without sliding, or the bound: the friction a ring needs falls with its thickness,
     then stops falling (the semicircular arch under its self-weight: f* = 0.347 at t/R =
     0.15, 0.309 at 0.3 and at 1), so that at f = 0.35 an upper bound of 0.12 is too
     thin (it needs 0.378 there; the minimum is 0.1466), while at f = 0.3 none helps.
-    ``thicker()`` ends the last case: raise the bound, or why that cannot help."""
+    ``thicker()`` ends the last case: raise the bound, or why that cannot help. The
+    friction needed can also rise with the thickness (the flat arch on piers: f* = 0.22
+    at a depth of 0.4, 0.27 at 1), so that a thinner one may stand where the bound
+    does not: ``thinner()`` names one, or "" (the advice was to raise the bound alone,
+    which at f = 0.25 never helps, while depths from 0.32 stand)."""
     head = f"min_thickness: {name} is not admissible at the upper bound {where}"
     if at_hi is None:
         return (f"min_thickness: {name} could not be decided at the upper bound {where}; "
@@ -251,8 +266,15 @@ def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction
             need = min_friction(scene, load_factor=load_factor, state=False)
             f = f"f >= {fmt_safe(need.friction_factor, 4, True)}" \
                 if need.status == "stable" else "a larger f"
+            lower = thinner()
+            if lower:
+                return (f"{head} with f = {friction_label(friction)} (it needs {f} there), "
+                        f"but stands at {lower}: the f it needs rises with the "
+                        f"{where.split('=')[0]} there; an upper bound at {lower} (hi, "
+                        "--hi) bisects below it")
             return (f"{head} with f = {friction_label(friction)}, although it stands "
-                    f"there without sliding (it needs {f} there): a thicker one may need "
+                    f"there without sliding (it needs {f} there), nor at any of the "
+                    "smaller values tried down to the lower bound: a thicker one may need "
                     "a smaller f (raise the upper bound: hi, --hi) or as large (give a "
                     "larger f: friction)")
     return head + thicker()
