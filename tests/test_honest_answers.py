@@ -1633,3 +1633,23 @@ def test_an_associative_answer_of_a_non_associative_scene_says_which_flow(tmp_pa
            "scene's flow)" in out, out
     code, out, _ = run(capsys, ["load", str(EXAMPLES / "reference.json")])
     assert "with dilatancy" not in out
+
+
+def test_an_unstable_load_answer_points_to_the_check_that_names_the_joints(tmp_path,
+                                                                           capsys):
+    """A block overhanging its support: `load` said "UNSTABLE: the dead load alone has no
+    admissible state" with no why line (JSON why []), where `path` pointed to the check
+    that names the breached joints; `load` does too."""
+    p = tmp_path / "over.json"
+    p.write_text(json.dumps({
+        "format": "rigidblocks-scene", "version": 1, "dimension": 2, "unit_weight": 10,
+        "friction": 0.6, "live_body_force": [1, 0],
+        "blocks": [{"id": "S", "vertices": rect(0, -1, 1, 1), "support": True},
+                   {"id": "A", "vertices": rect(0.8, 0, 1, 1)}]}))
+    assert main(["load", str(p), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["status"] == "unstable"
+    assert f"`rigidblocks check {p} --load-factor 0` names the joints the dead load " \
+        "breaches" in doc["why"]
+    assert main(["check", str(p), "--load-factor", "0"]) == 0
+    assert "breached at S-A" in capsys.readouterr().out

@@ -47,7 +47,7 @@ from .nonassociative import (
     max_load_nonassociative,
     min_friction_nonassociative,
 )
-from .notes import friction_governs, interlocking_note
+from .notes import friction_governs, interlocking_note, unstable_note
 from .search import friction_by_bisection, load_by_bisection, no_number_note
 
 #: the default accuracy of lambda*, as f*'s (FRICTION_RTOL, chosen from the chart)
@@ -528,8 +528,9 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     lim = certified(m, lim, rtol, "lambda*")
     reached = dict(rtol=rtol, accuracy=lim.accuracy)
     if lim.status == "unstable":  # (rare: one more relaxation, whatever ``state``)
-        note = friction_governs(m, f, 0.0)
-        m.notes += [note] if note else []
+        # where friction does not govern, the command that names the joints breached
+        # (the answer said no more than "the dead load alone has no admissible state")
+        m.notes.append(friction_governs(m, f, 0.0) or unstable_note(m.scene))
     opened = dict(solver=solver, settings=settings, pyramid=pyramid,
                   contact_tol=contact_tol)
     if lim.status != "collapse":

@@ -37,6 +37,13 @@ def friction_governs(m: Method, f: float, load_factor: float, na: bool = False
             f"the geometry; {command} gives the least friction that carries it")
 
 
+def unstable_note(scene: Any) -> str:
+    """Where the dead load alone has no admissible state (friction does not govern),
+    the command that names the joints it breaches."""
+    return (f"`rigidblocks check {scene.source or 'SCENE'} --load-factor 0` names the "
+            "joints the dead load breaches")
+
+
 def with_friction_governs(res: Any, m: Method, f: float, load_factor: float) -> Any:
     """A non-associative result that found no admissible state, with the note of
     :func:`friction_governs` (a static check without sliding by the method ``m``, which
