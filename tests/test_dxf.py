@@ -631,3 +631,18 @@ def test_a_unit_given_to_a_restored_scene_is_checked_against_its_own(tmp_path, c
     assert main(["import-dxf", str(dxf), "-o", str(out), "--length-unit", "mm"]) == 2
     assert main(["import-dxf", str(dxf), "-o", str(out), "--force-unit", "kN"]) == 0
     assert json.loads(out.read_text())["units"] == {"length": "m", "force": "kN"}
+
+
+def test_import_with_a_live_body_force_writes_load_factor_0(tmp_path, capsys):
+    """import-compas and the generators write load_factor 0 beside a seismic body force,
+    so that check and friction answer for the weight alone; import-dxf wrote none (1),
+    and `check` right after importing a drawing said NOT ADMISSIBLE (at 1 g sideways).
+    A body force of nothing is refused, as import-compas refuses it."""
+    path = quirky_drawing(tmp_path / "q.dxf")
+    out = tmp_path / "q.json"
+    assert main(["import-dxf", str(path), "-o", str(out), "--supports", "layer:SUPPORT",
+                 "--unit-weight", "1", "--live-body-force", "1 0"]) == 0
+    assert "load factor 0 written" in capsys.readouterr().out
+    assert read_scene(out).load_factor == 0.0
+    assert main(["import-dxf", str(path), "-o", str(out), "--live-body-force", "0 0"]) == 2
+    assert "not both zero" in capsys.readouterr().err

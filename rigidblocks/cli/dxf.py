@@ -18,6 +18,8 @@ def _pair(text: str) -> tuple[float, float]:
         raise argparse.ArgumentTypeError(f"not two numbers: '{text}'") from None
     if len(vals) != 2:
         raise argparse.ArgumentTypeError(f"not two numbers: '{text}'")
+    if not any(vals):  # (as import-compas: a live load of nothing has no multiplier)
+        raise argparse.ArgumentTypeError(f"not both zero: '{text}'")
     return vals  # type: ignore[return-value]
 
 
@@ -43,7 +45,11 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
                        help="e.g. mm (default: the unit the drawing declares, $INSUNITS)")
         p.add_argument("--force-unit", default=None, help="e.g. kN")
         p.add_argument("--live-body-force", type=_pair, default=None, metavar="'FX FY'",
-                       help="live body force vector, e.g. '1 0'")
+                       help="live body force vector, e.g. '1 0' (the live load of "
+                       "`rigidblocks load`: every free block's weight times it times "
+                       "lambda); the scene's load_factor is then written 0, so check and "
+                       "friction answer for the weight alone (--load-factor asks for "
+                       "more)")
         p.add_argument("--name", default=None, help="scene name")
         p.add_argument("--snap-tol", type=finite_float, default=DEFAULT_SNAP_TOL,
                        help="snapping tolerance relative to the drawing size "
@@ -96,8 +102,15 @@ def run(args: argparse.Namespace) -> int:
                               name=args.name, snap_tol=args.snap_tol,
                               near_miss=args.near_miss, report=True,
                               layers=_layers(args.layers))
+        lbf = args.live_body_force is not None and scene.load_factor is None
+        if lbf:  # as import-compas and the generators: check and friction at the weight
+            scene = scene.with_changes(load_factor=0.0)
         write_scene(scene, args.output)
         print(rep.summary())
+        if lbf:
+            ax, ay = args.live_body_force
+            print(f"live load  weight x ({ax:g}, {ay:g}) x lambda (load factor 0 written: "
+                  "check and friction answer for the weight alone)")
         from ..io.dxf import (
             NO_FRICTION_NOTE,
             NO_UNIT_WEIGHT_NOTE,
