@@ -161,7 +161,7 @@ def answer_block(scene: Scene, result: Any, symbols: bool = False) -> AnswerBloc
     w = _Words(scene, symbols)
     a = getattr(result, "analysis", "")
     reasons, notes = split_notes(getattr(result, "notes", ()) or ())
-    reasons += _other_back_ends(result)
+    reasons += _other_back_ends(result) + _sheared_open(result)
     asked = w.asked(result)
     if getattr(result, "status", "") not in VERDICTS:
         return AnswerBlock(asked, *w.undecided(result), reasons=reasons + notes,
@@ -174,6 +174,25 @@ def answer_block(scene: Scene, result: Any, symbols: bool = False) -> AnswerBloc
     verdict, number, governing, why = build(result)
     return AnswerBlock(asked, verdict, number, governing, tuple(why) + reasons, notes,
                        case=w.short_case(result))
+
+
+def _sheared_open(result: Any) -> tuple[str, ...]:
+    """Where the result's state has open joints that carry shear (infinite friction lets
+    them: a block touching a wall hung on it by 80 kN of shear, its joint read "open"),
+    a why line naming them."""
+    if getattr(result, "state", None) is None or getattr(result, "contacts", None) is None:
+        return ()
+    from .results import force_state_words
+
+    words = force_state_words(result)
+    names = ["-".join(result.joint_name(k)) for k, w in enumerate(words)
+             if w == "open, carrying shear"]
+    if not names:
+        return ()
+    return (f"{joint_list(names)} carr{'ies' if len(names) == 1 else 'y'} shear with no "
+            "compression in this state: infinite friction (no sliding) lets an open joint "
+            "carry shear, which no finite friction does; with a finite one (--friction) "
+            "and without dilatancy (--flow non-associative) it may carry less",)
 
 
 def _joints_own_friction(contacts: Any) -> np.ndarray | None:

@@ -191,7 +191,8 @@ def tension_use(result: Any) -> np.ndarray:
 
 def force_state_words(result: Any) -> list[str]:
     """Each joint's state in the result's force state: "open" (no compression, see
-    :func:`unloaded`), "in tension" (a bonded joint that carries tension), "hinging"
+    :func:`unloaded`; "open, carrying shear" where it carries shear all the same, as
+    infinite friction lets it), "in tension" (a bonded joint that carries tension), "hinging"
     (the resultant at the contact's edge, :func:`hinging`), "at friction limit" (|T|
     within ``AT_LIMIT`` of its threshold f N + c a, the joint's own friction and
     cohesion; always where both are 0), both ("hinging, at friction limit"), or
@@ -212,10 +213,14 @@ def force_state_words(result: Any) -> list[str]:
     if getattr(result, "solver", None) == "distortion" and getattr(result, "bracket", None):
         tol = max(tol, float(getattr(result, "accuracy", None) or 0.0))
     limit = (shear_use(result) >= 1 - tol) | none
+    # an open joint that carries shear: infinite friction lets it (T free whatever N),
+    # which no finite friction does (a block touching a wall, "open" with 80 kN of shear)
+    T = np.abs(np.asarray(st.joint_shear, dtype=float))
+    sheared = open_ & (T > ZERO_FORCE * _largest(N, T))
     out = []
     for k in range(c.n_joints):
         if open_[k]:
-            out.append("open")
+            out.append("open, carrying shear" if sheared[k] else "open")
             continue
         tags = [w for w, on in (("in tension", N[k] < 0), ("hinging", hinge[k]),
                                 ("at friction limit", limit[k])) if on]
@@ -485,7 +490,7 @@ class Result:
             T = 0.0 if abs(T) <= TABLE_ZERO * big else T
             e = float(ecc[k])
             e = 0.0 if abs(e) <= TABLE_ZERO * size[k] else e
-            open_ = states[k] == "open"
+            open_ = states[k].startswith("open")
             rows.append({"joint": [a, b], "N": 0.0 if none[k] else N,
                          "T": 0.0 if none[k] else T,
                          "eccentricity": e if math.isfinite(e) and not open_ else None,

@@ -66,3 +66,27 @@ def test_the_command_says_it_and_the_flat_arch_on_piers_does_not_stand_dry(tmp_p
     assert doc["without_dilatancy"] == {"status": "unstable", "load_multiplier": None}
     assert any("the dead load alone has no admissible state reached from the elastic "
                "state X0" in w for w in doc["why"])
+
+
+def test_joints_between_supports_are_none_and_an_open_joint_that_carries_shear_says_so(
+        capsys):
+    """The block against the wall at infinite friction under 3 x its weight away from
+    the wall: `check` admitted it, its table reading wall-B "open" with 48 (here 80 in
+    3D) of shear, hung on the wall by shear alone (it tips at b/h = 0.5 with any finite
+    friction and dry joints). The joint reads "open, carrying shear" and a why line says
+    what lets it. The ground and the wall, both supports, had a joint of their own
+    ("ground-wall 0 0 open"), counted among the joints: two supports have none."""
+    s = against_wall()
+    r = rb.check(s, friction="infinite", load_factor=3.0)
+    assert r.status == "admissible" and r.contacts.n_joints == 2
+    assert sorted("-".join(r.joint_name(k)) for k in range(2)) == ["ground-B", "wall-B"]
+    rows = {"-".join(row["joint"]): row for row in r.joint_table()}
+    assert rows["wall-B"]["state"] == "open, carrying shear" and rows["wall-B"]["T"] > 40
+    from rigidblocks.answer import answer_block
+
+    why = answer_block(s, r).reasons
+    assert any(w.startswith("wall-B carries shear with no compression in this state: "
+                            "infinite friction (no sliding) lets an open joint carry "
+                            "shear") for w in why), why
+    assert rb.max_load_multiplier(s, friction=0.6, flow="non-associative") \
+        .load_multiplier == pytest.approx(0.5, abs=1e-7)

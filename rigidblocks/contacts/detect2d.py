@@ -97,7 +97,9 @@ def detect_contacts_2d(scene: Scene, tol: float) -> Contacts:
     box_hi = np.maximum(a0, a1) + eps
     boxes = shapely.box(box_lo[:, 0], box_lo[:, 1], box_hi[:, 0], box_hi[:, 1])
     ea, eb = shapely.STRtree(boxes).query(boxes)
-    keep = owner[ea] < owner[eb]
+    # (two supports have no joint: neither moves, nor has an equation its force enters)
+    fixed = np.array([b.support for b in scene.blocks], dtype=bool)
+    keep = (owner[ea] < owner[eb]) & ~(fixed[owner[ea]] & fixed[owner[eb]])
     ea, eb = ea[keep], eb[keep]
 
     # opposite directions, and each edge's end points on the other's line
@@ -168,8 +170,12 @@ def joint_laws(scene: Scene, pairs: np.ndarray) -> tuple[np.ndarray, np.ndarray,
             fr[k] = friction_value(j.friction)
         coh[k] = j.cohesion or 0.0
         ts[k] = j.tensile_strength or 0.0
+    fixed = {k for k, b in enumerate(scene.blocks) if b.support}
     for key, j in table.items():
-        if key not in found:
+        # two supports have no joint (they touch or not, nothing there is computed): a
+        # generator's override of its foundation's joint stays valid where the block on
+        # it is made a support
+        if key not in found and not key <= fixed:
             raise InputError(f"blocks {j.blocks[0]!r} and {j.blocks[1]!r} are not in "
                              "contact, so their joint cannot be overridden",
                              f"joint {j.blocks[0]!r}-{j.blocks[1]!r}")
