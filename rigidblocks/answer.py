@@ -176,6 +176,13 @@ def answer_block(scene: Scene, result: Any, symbols: bool = False) -> AnswerBloc
                        case=w.short_case(result))
 
 
+def undecided_why(scene: Scene, result: Any) -> str:
+    """Why ``result``, an analysis of ``scene`` that could not decide, gives no number,
+    in one line (a sweep's ``note``): its bracket and its first reason."""
+    block = answer_block(scene, result)
+    return "; ".join(x for x in (block.number, *block.reasons[:1]) if x) or block.verdict
+
+
 def _sheared_open(result: Any) -> tuple[str, ...]:
     """Where the result's state has open joints that carry shear (infinite friction lets
     them: a block touching a wall hung on it by 80 kN of shear, its joint read "open"),
@@ -1015,4 +1022,4 @@ __all__ = ["NA_BELOW_LOAD", "NA_INADMISSIBLE", "AnswerBlock", "accuracy_text", "
            "block_reach",
            "bodies_text", "flow_lines", "joint_list", "live_load_size", "live_load_text",
            "mechanism_groups", "mechanism_text", "method_text", "rigid_bodies", "split_notes",
-           "without_dilatancy"]
+           "undecided_why", "without_dilatancy"]

@@ -773,3 +773,31 @@ def test_a_case_without_a_hue_value_is_drawn():
     ax = study.plot(df, x="thickness", y="friction_factor", hue="friction")
     drawn = {ln.get_label(): list(ln.get_ydata()) for ln in ax.get_lines()}
     assert drawn == {"friction = nan": [0.3466], "friction = 0.4": [0.35, 0.33]}
+
+
+def test_an_undecided_case_says_why_in_its_note_and_the_summary_names_it(tmp_path,
+                                                                          capsys):
+    """Two cases of the 15-voussoir arch near its limit thickness, by the distortion
+    method at infinite friction, are undecided: the summary said only "undecided 2
+    case(s)", no case named, the error column empty and no reason anywhere (a single
+    `load` gives it). Each row's note says why, and the summary names the first."""
+    from rigidblocks.cli.main import main
+
+    spec = tmp_path / "near.json"
+    spec.write_text(json.dumps({
+        "format": "rigidblocks-sweep", "version": 1, "generator": "arch",
+        "method": "distortion", "parameters": {"friction": "infinite", "voussoirs": 15},
+        "grid": {"thickness": [0.106263, 0.12]}, "analyses": ["max_load_multiplier"]}))
+    out = tmp_path / "near.csv"
+    assert main(["sweep", str(spec), "-o", str(out), "--workers", "1",
+                 "--no-progress"]) == 3
+    text = capsys.readouterr().out
+    assert "(the first, case 0: max_load_multiplier: lambda* in [" in text
+    assert "every one in the output's note column)" in text
+    import pandas as pd
+
+    d = pd.read_csv(out)
+    assert d.loc[0, "max_load_multiplier_status"] == "undecided"
+    assert d.loc[0, "note"].startswith("max_load_multiplier: lambda* in [")
+    assert "could not decide" in d.loc[0, "note"]
+    assert d.loc[1, "max_load_multiplier_status"] == "collapse" and pd.isna(d.loc[1, "note"])

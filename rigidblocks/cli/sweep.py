@@ -37,7 +37,8 @@ def run(args: argparse.Namespace) -> int:
     print(f"failures  {res.n_failed}" + _first_failure(res.frame))
     if res.n_undecided:
         print(f"undecided {res.n_undecided} case(s) with an analysis that could not decide: "
-              "no number, its bracket in its lower and upper columns where it has one")
+              "no number, its bracket in its lower and upper columns where it has one"
+              + _first_note(res.frame))
     print(f"time      {res.elapsed:.2f} s ({rate_text(res.rate)}, {res.executor})")
     print(f"output    {res.path}")
     # as an analysis's command: 1 where a case failed, 3 where one is undecided
@@ -50,6 +51,19 @@ def _terminal() -> bool:
     import sys
 
     return sys.stderr.isatty()
+
+
+def _first_note(frame) -> str:
+    """Where an analysis of a case could not decide, the first such case's reason (the
+    others are in the output's ``note`` column; the summary named no case)."""
+    if "note" not in frame or not len(frame):
+        return ""
+    noted = frame[frame["note"].notna() & (frame["note"].astype(str) != "")]
+    if not len(noted):
+        return ""
+    row = noted.iloc[0]
+    return f" (the first, case {int(row['case'])}: {row['note']}; every one in the " \
+        "output's note column)"
 
 
 def _first_failure(frame) -> str:

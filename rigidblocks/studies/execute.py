@@ -13,6 +13,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
+from ..answer import VERDICTS, undecided_why
 from ..errors import InputError, Terminated
 from ..scene.model import INFINITE, Scene, friction_value
 from .cases import RESERVED, SCENE_PARAMS
@@ -127,6 +128,8 @@ def answer(analysis: Analysis, job: _Job, params: Mapping[str, Any],
                              **extra)
     row = {f"{name}_status": r.status}
     row.update({k: _column(r, k) for k in ANSWERS[name]})
+    if r.status not in VERDICTS:  # why it could not decide (the summary named no case)
+        row["note"] = f"{name}: {undecided_why(scene(), r)}"
     return row, float(r.solve_time)
 
 
@@ -140,7 +143,7 @@ class _NoScene(Exception):
 
 def run_case(job: _Job, params: Mapping[str, Any]) -> dict[str, Any]:
     """The answers of one case (never raises: an error is recorded in the row)."""
-    row: dict[str, Any] = {"status": "ok", "error": None, "solve_time": 0.0}
+    row: dict[str, Any] = {"status": "ok", "error": None, "note": None, "solve_time": 0.0}
     for a in job.analyses:
         row[f"{a.name}_status"] = None
         row.update(dict.fromkeys(ANSWERS[a.name]))
@@ -158,7 +161,7 @@ def run_case(job: _Job, params: Mapping[str, Any]) -> dict[str, Any]:
                 raise _NoScene(err) from err
         return built[0]
 
-    errors = []
+    errors, notes = [], []
     for a in job.analyses:
         # each analysis on its own: one that raises leaves the others' answers; a scene
         # that cannot be built fails the case, and every analysis of it (their statuses
@@ -173,8 +176,10 @@ def run_case(job: _Job, params: Mapping[str, Any]) -> dict[str, Any]:
             row[f"{a.name}_status"] = "failed"
             errors.append(f"{a.name}: {type(err).__name__}: {err}")
             continue
+        notes += [entries.pop("note")] if "note" in entries else []
         row.update(entries)
         row["solve_time"] += solve_time
+    row["note"] = "; ".join(notes) or None
     if errors:
         row["status"] = "failed"
         row["error"] = "; ".join(errors)

@@ -112,8 +112,8 @@ class Sweep:
 
     @property
     def columns(self) -> list[str]:
-        cols = ["case", "case_id", *self.parameter_names, "status", "error", "time",
-                "solve_time"]
+        cols = ["case", "case_id", *self.parameter_names, "status", "error", "note",
+                "time", "solve_time"]
         for a in self.analyses:
             cols += [f"{a.name}_status", *ANSWERS[a.name]]
         return cols
