@@ -217,3 +217,18 @@ def test_the_accuracy_line_gives_the_rtol_asked_as_asked(capsys, rtol, shown):
     line = next(ln for ln in capsys.readouterr().out.splitlines()
                 if ln.startswith("accuracy"))
     assert line.endswith(f"relative width; requested {shown})"), line
+
+
+def test_a_load_bracket_within_the_floor_of_0_is_decided_as_the_readme_says():
+    """The 15-voussoir arch at t/R = 0.106263 by the distortion method: lambda* in
+    [9.527e-7, 9.639e-7], 1.1e-8 wide, was UNDECIDED (exit 3) although the README says a
+    bracket no wider than 1e-6 of the live load within that of 0 is decided (the search
+    took it so; the answer's certification had no floor for lambda*). Clarabel: 9.52859e-7,
+    inside it."""
+    from rigidblocks.generators import build
+
+    s = build("arch", voussoirs=15, thickness=0.106263, friction="infinite")
+    r = rb.max_load_multiplier(s, method="distortion", state=False)
+    assert r.status == "collapse" and 9.5e-7 < r.load_multiplier < 9.53e-7
+    lo, hi = r.bracket
+    assert hi - lo <= 1e-6 and lo <= 9.52859e-7 <= hi

@@ -48,7 +48,7 @@ from .nonassociative import (
     min_friction_nonassociative,
 )
 from .notes import friction_governs, interlocking_note, unstable_note
-from .search import friction_by_bisection, load_by_bisection, no_number_note
+from .search import BRACKET_ATOL, friction_by_bisection, load_by_bisection, no_number_note
 
 #: the default accuracy of lambda*, as f*'s (FRICTION_RTOL, chosen from the chart)
 LOAD_RTOL = FRICTION_RTOL
@@ -525,7 +525,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     interlocking_note(m)
     with _large_friction_named(f):
         lim: Limit = m.load_limit(f, rtol, mechanism) or load_by_bisection(m, f, rtol)
-    lim = certified(m, lim, rtol, "lambda*")
+    lim = certified(m, lim, rtol, "lambda*", BRACKET_ATOL)  # (the searches' floor at 0)
     reached = dict(rtol=rtol, accuracy=lim.accuracy)
     if lim.status == "unstable":  # (rare: one more relaxation, whatever ``state``)
         # where friction does not govern, the command that names the joints breached
