@@ -507,7 +507,11 @@ class Result:
                 "rtol": self.rtol, "accuracy": _finite_or_none(self.accuracy),
                 "solver": self.solver, "n_solves": self.n_solves,
                 "solve_time": self.solve_time, "answered_by": list(self.answered_by),
-                "rejected": list(self.rejected)}
+                "rejected": list(self.rejected),
+                # the units of every force and length in it, as the scene gives them
+                # (None where it gives none: "force units"); a JSON reader had no way to
+                # tell kN from N
+                "units": {"length": self.units[0] or None, "force": self.units[1] or None}}
 
     def to_dict(self, joints: bool = False) -> dict[str, Any]:
         """The result as plain data (the CLI's ``--json``); ``joints`` adds the

@@ -333,3 +333,16 @@ def test_export_dxf_refuses_another_extension(tmp_path, capsys):
     out = tmp_path / "x.txt"
     assert main(["export-dxf", str(EXAMPLES / "arch.json"), "-o", str(out)]) == 2
     assert "use .dxf, not '.txt'" in capsys.readouterr().err and not out.exists()
+
+
+def test_the_json_says_its_units_and_what_lambda_1_is(capsys):
+    """`load --json` gave the multiplier alone: neither the units nor the live load it
+    multiplies (the answer line's "0.6 x 25.6 kN = 15.36 kN"), so that a program could
+    not recover either without reading the scene; the joints' N and T had no unit."""
+    assert main(["load", str(EXAMPLES / "wall.json"), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["units"] == {"length": "m", "force": "kN"}
+    assert doc["live_load"]["size"] == pytest.approx(25.6)
+    assert doc["live_load"]["direction"] == "horizontal"
+    assert main(["check", str(EXAMPLES / "reference.json"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["units"] == {"length": "m", "force": "N"}
