@@ -439,8 +439,11 @@ class _Words:
     def dead(self) -> str:
         text = f"self-weight {self.force(self.weight)}" if self.weight else "no self-weight"
         if self.n_dead_points:
-            s = "s" if self.n_dead_points > 1 else ""
-            text += f", {self.n_dead_points} point load{s} of {self.force(self.dead_points)}"
+            # (sizes summed: "2 point loads of 8 kN" read as 8 kN each for 3 and 5 kN)
+            text += (f", 1 point load of {self.force(self.dead_points)}"
+                     if self.n_dead_points == 1 else
+                     f", {self.n_dead_points} point loads, {self.force(self.dead_points)} in "
+                     "all")
         return text
 
     def live_text(self) -> str:

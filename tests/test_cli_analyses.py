@@ -346,3 +346,17 @@ def test_the_json_says_its_units_and_what_lambda_1_is(capsys):
     assert doc["live_load"]["direction"] == "horizontal"
     assert main(["check", str(EXAMPLES / "reference.json"), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["units"] == {"length": "m", "force": "N"}
+
+
+def test_several_dead_point_loads_are_given_in_all(tmp_path, capsys):
+    """Dead point loads of 3 and 5 kN read "2 point loads of 8 kN" (8 kN each?)."""
+    p = tmp_path / "pl.json"
+    p.write_text(json.dumps({
+        "format": "rigidblocks-scene", "version": 1, "dimension": 2,
+        "units": {"length": "m", "force": "kN"}, "friction": 0.6,
+        "blocks": [{"id": "g", "support": True, "vertices": rect(-1, -1, 4, 1)},
+                   {"id": "b", "vertices": rect(0, 0, 1, 1)}],
+        "loads": [{"block": "b", "force": [0, -3]}, {"block": "b", "force": [0, -5]},
+                  {"block": "b", "force": [1, 0], "live": True}]}))
+    assert main(["load", str(p)]) == 0
+    assert "(no self-weight, 2 point loads, 8 kN in all)" in capsys.readouterr().out
