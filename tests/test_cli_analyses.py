@@ -360,3 +360,23 @@ def test_several_dead_point_loads_are_given_in_all(tmp_path, capsys):
                   {"block": "b", "force": [1, 0], "live": True}]}))
     assert main(["load", str(p)]) == 0
     assert "(no self-weight, 2 point loads, 8 kN in all)" in capsys.readouterr().out
+
+
+def test_an_id_with_a_newline_keeps_the_answer_one_line_per_row_and_is_not_drawn(
+        tmp_path, capsys):
+    """A block id "A\\nx": the answer's governing line broke in two ("(base, ground-A" then
+    "x)"), and export-dxf wrote a file that neither it nor ezdxf could read. The answer
+    writes it as Python does, as the errors give ids; the export refuses it."""
+    p = tmp_path / "nl.json"
+    p.write_text(json.dumps({
+        "format": "rigidblocks-scene", "version": 1, "dimension": 2, "unit_weight": 10,
+        "live_body_force": [1, 0],
+        "blocks": [{"id": "ground", "support": True, "vertices": rect(-1, -1, 3, 1)},
+                   {"id": "A\nx", "vertices": rect(0, 0, 1, 2)}]}))
+    assert main(["load", str(p)]) == 0
+    out = capsys.readouterr().out
+    assert "ground-A\\nx" in out and all(
+        line[:10].strip() for line in out.splitlines())  # every line labelled
+    assert main(["export-dxf", str(p), "-o", str(tmp_path / "nl.dxf")]) == 2
+    assert "block 'A\\nx': its id holds a control character" in capsys.readouterr().err
+    assert not (tmp_path / "nl.dxf").exists()

@@ -340,7 +340,13 @@ def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
     if verbose:
         lines.append(f"solver     {res.solvers}, {res.n_solves} solve(s), "
                      f"{res.solve_time:.3g} s")
-    return "\n".join(lines)
+    # a block id with a newline broke its line ("governing  1 hinging (base, ground-A"
+    # then "x)"): control characters as Python writes them, as the errors give ids
+    return "\n".join(line.translate(_ESCAPES) for line in lines)
+
+
+#: control characters, escaped as Python writes them in a string
+_ESCAPES = {c: repr(chr(c))[1:-1] for c in [*range(32), 127]}
 
 
 def _count(n: int, word: str) -> str:

@@ -645,6 +645,11 @@ def write_dxf(scene: Scene, path: str | os.PathLike, result: Any = None, *,
     from .scene_file import scene_to_dict
 
     require_2d(scene)
+    for b in scene.blocks:  # (a newline in an id wrote a file no reader opens)
+        if any(ord(ch) < 32 or ord(ch) == 127 for ch in b.id):
+            raise InputError("its id holds a control character (a newline, a tab), which "
+                             "a DXF string cannot carry: rename the block",
+                             f"block {b.id!r}")
     doc = ezdxf.new("R2010")
     # (every unit the import reads: a scene in ft or dm was written unitless)
     code = {u: k for k, u in INSUNITS.items()}.get(_unit_key(scene.length_unit))
