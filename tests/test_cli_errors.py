@@ -325,3 +325,17 @@ def test_an_output_that_cannot_be_written_is_one_line_exit_2():
         run = subprocess.run([sys.executable, "-m", "rigidblocks.cli.main", "--help"],
                              stdout=full, stderr=subprocess.PIPE, text=True, timeout=300)
     assert run.returncode == 2 and "cannot write: standard output" in run.stderr
+
+
+def test_a_scene_no_reader_accepts_is_not_written(tmp_path, capsys):
+    """`extrude --depth 1e200` wrote a scene every command then refused (a writer must
+    round-trip what a reader accepts); the reader's message called the diagonal cubed
+    the box's volume (1e+150 for a box of volume 1e50)."""
+    out = tmp_path / "deep.json"
+    assert main(["extrude", str(EXAMPLES / "wall.json"), "--depth", "1e200", "-o",
+                 str(out)]) == 2
+    one_line_error(capsys, "a coordinate reaches 1e+200, beyond 1e+150")
+    assert not out.exists()
+    assert main(["extrude", str(EXAMPLES / "wall.json"), "--depth", "1e50", "-o",
+                 str(out)]) == 2
+    one_line_error(capsys, "its volume's bound (its bounding box's diagonal^3) reaches")

@@ -461,9 +461,11 @@ def write_scene(scene: Scene, path: str | os.PathLike) -> None:
     Raises:
         InputError: the file cannot be written (its folder is missing, say).
     """
-    from ..scene.validate import check_fields
+    from ..scene.validate import check_fields, check_representable
 
     check_fields(scene)  # (a block of two vertices was written, and refused when read)
+    # (extrude --depth 1e200 wrote a scene that every command then refused)
+    check_representable(scene)
     text = dumps_scene(scene)
     try:
         Path(path).write_text(text, encoding="utf-8")

@@ -265,7 +265,11 @@ def check_representable(scene: Scene) -> None:
     g = max((abs(x) for x in scene.live_body_force or ()), default=0.0)
     name = "its area" if scene.dimension == 2 else "its volume"
     with np.errstate(all="ignore"):
-        checks = (("a coordinate", big), (f"{name} (bounding box)", diag ** scene.dimension),
+        # (the diagonal to the dimension bounds the box's area or volume: a box
+        # 2 x 1e50 x 0.5 read "its volume (bounding box) reaches 1e+150")
+        checks = (("a coordinate", big),
+                  (f"{name}'s bound (its bounding box's diagonal^{scene.dimension})",
+                   diag ** scene.dimension),
                   ("its weight (unit weight x bounding box)", weight),
                   ('its live body force ("live_body_force" x weight)', weight * g),
                   ("the moment of its weight", weight * big))
