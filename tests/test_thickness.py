@@ -377,3 +377,21 @@ def test_a_thinner_bound_that_stands_is_named_where_the_friction_needed_rises():
     r = min_thickness("flat_arch", param="height", friction=0.25, lo=0.02, hi=0.707107,
                       rtol=1e-4)
     assert 0.3236 < r.thickness < 0.3238
+
+
+def test_thickness_says_its_accuracy_and_refuses_one_its_checks_cannot_hold(capsys):
+    """`thickness --rtol 1e-9` with Clarabel was accepted and printed a bracket whose
+    ends read alike ([0.1062627304, 0.1062627304]), finer than an interior-point
+    solver's verdicts hold (f* refuses it: README); there was no accuracy line, as
+    friction and load have. Refused as f*'s; HiGHS's simplex gives it, with the figures
+    its width needs; the accuracy line says what the bracket reached."""
+    assert main(["thickness", "arch", "--rtol", "1e-9"]) == 2
+    assert "rtol 1e-09 is finer than an interior-point solver certifies its checks" in \
+        capsys.readouterr().err
+    with pytest.raises(InputError, match="finer than an interior-point solver"):
+        min_thickness("arch", rtol=1e-9)
+    assert main(["thickness", "arch", "--rtol", "1e-9", "--method", "highs"]) == 0
+    out = capsys.readouterr().out
+    lo, hi = (float(x) for x in out.split("(bracket [")[1].split("]")[0].split(", "))
+    assert lo < hi and (hi - lo) / hi <= 1e-9
+    assert "accuracy   " in out and "(bracket relative width; requested 1e-09)" in out

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 
 from ..errors import InputError
 from ..results import fmt_safe
@@ -102,7 +103,9 @@ def run(args: argparse.Namespace) -> int:
             "0 (dead load only)"))
         print(f"method     {method}" + (f" (back end {backend})" if backend else ""))
         print(f"minimised  {shown}: {what}")
-        bracket = f"[{res.lower:.10g}, {res.thickness:.10g}]"
+        # as many figures as its width needs (at --rtol 1e-9 both ends read alike)
+        d = max(10, 3 - math.floor(math.log10(args.rtol)))
+        bracket = f"[{res.lower:.{d}g}, {res.thickness:.{d}g}]"
         if res.status == "undecided":
             print("status     UNDECIDED: a check could not decide; the minimum is only "
                   "bracketed")
@@ -114,6 +117,10 @@ def run(args: argparse.Namespace) -> int:
             # the thinnest that stands, rounded up (a check at the printed value stands)
             print(f"{shown:<10} min {fmt_safe(res.thickness, 6, True)}   (bracket "
                   f"{bracket}, {res.n_checks} checks)")
+        if res.status != AT_LOWER_BOUND:  # (as friction and load say it)
+            width = (res.thickness - res.lower) / res.thickness
+            print(f"accuracy   {width:.1e} (bracket relative width; requested "
+                  f"{args.rtol:g})")
         for n in ([bound] if bound else []) + list(res.notes):
             print(f"note       {n}")
     return 3 if res.status == "undecided" else 0

@@ -134,6 +134,15 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         raise InputError(f"min_thickness: need 0 < lo < hi, got lo={lo!r}, hi={hi!r}")
     if not (0 < rtol < 1):
         raise InputError(f"min_thickness: rtol must be in (0, 1), got {rtol!r}")
+    from ..analyses.core import F_RTOL_FLOOR, SIMPLEX
+
+    if rtol < F_RTOL_FLOOR and method != "distortion" and method not in SIMPLEX:
+        # as f*'s (`friction`): --rtol 1e-9 printed a bracket whose two ends read alike,
+        # finer than the checks' verdicts hold
+        raise InputError(f"min_thickness: rtol {rtol:g} is finer than an interior-point "
+                         f"solver certifies its checks (their verdicts hold to 1e-9 of the "
+                         f"largest force): ask for {F_RTOL_FLOOR:g} or coarser, or method "
+                         "highs in 2D")
     if param in params:
         raise InputError(f"min_thickness: {param!r} is the bisected parameter; do not "
                          "give it")
