@@ -395,3 +395,12 @@ def test_thickness_says_its_accuracy_and_refuses_one_its_checks_cannot_hold(caps
     lo, hi = (float(x) for x in out.split("(bracket [")[1].split("]")[0].split(", "))
     assert lo < hi and (hi - lo) / hi <= 1e-9
     assert "accuracy   " in out and "(bracket relative width; requested 1e-09)" in out
+
+
+def test_a_lower_bound_the_family_refuses_is_told_to_rise():
+    """The corbel dome's ring_thickness at the default lower bound 0.01, below its
+    overhang 0.15, ended in the generator's error with no advice, where an upper bound
+    the family refuses is told to fall."""
+    with pytest.raises(InputError, match=r"give a larger lower bound \(lo, --lo\): it is "
+                                         r"built at ring_thickness=1"):
+        min_thickness("corbel_dome", param="ring_thickness")

@@ -181,10 +181,15 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         except InputError as err:
             # (where it fails at the lower bound too, the other parameters are at
             # fault: voussoirs=2.5 was told to give a smaller upper bound)
+            # and at the lower bound, where the upper one builds: a larger one (the
+            # corbel dome's ring_thickness at 0.01, below its overhang, had no advice)
+            advice = ("; give a smaller upper bound (hi, --hi)"
+                      if t == hi and builds(gen, params, param, lo) else
+                      f"; give a larger lower bound (lo, --lo): it is built at "
+                      f"{param}={hi:g}" if t == lo and builds(gen, params, param, hi)
+                      else "")
             raise InputError(f"min_thickness: {name} cannot be built at {param}={t:g} "
-                             f"({err})" + ("; give a smaller upper bound (hi, --hi)"
-                                           if t == hi and builds(gen, params, param, lo)
-                                           else "")) from None
+                             f"({err}){advice}") from None
 
     def admissible(t: float) -> tuple[bool | None, str]:
         nonlocal n, spent
