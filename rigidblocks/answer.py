@@ -375,6 +375,15 @@ def fmt(x: float, digits: int = 4) -> str:
     return f"{x:.{digits}g}"
 
 
+def plain(x: float, digits: int = 4) -> str:
+    """``x`` to ``digits`` significant figures without an exponent from 1e-3 to 1e6 (a
+    force of 32000 N read "3.2e+04 N", where 32 kN read "32 kN")."""
+    if x == 0 or not (1e-3 <= abs(x) < 1e6):
+        return fmt(x, digits)
+    return np.format_float_positional(x, precision=digits, unique=False, fractional=False,
+                                      trim="-")
+
+
 class _Words:
     """The phrases of one scene (its loads in its force unit)."""
 
@@ -420,7 +429,7 @@ class _Words:
 
     # -- the loads --------------------------------------------------------------------
     def force(self, v: float) -> str:
-        return f"{fmt(v)} {self.fu}"
+        return f"{plain(v)} {self.fu}"
 
     def direction(self) -> str:
         """The live load's resultant direction in words."""
@@ -744,7 +753,7 @@ class _Words:
                       f"{fmt_safe(lm * self.live_moment, 4, False)} {self.mu} of couples")
         else:
             number = (f"{self.lam}* = {shown}, that is {shown} {self.x} {self.force(size)} = "
-                      f"{fmt_safe(lm * size, 4, False)} {self.fu} "
+                      f"{plain(float(fmt_safe(lm * size, 4, False)))} {self.fu} "
                       f"{self.direction()}").rstrip()
         why = []
         if res.tilt_angle_deg is not None:

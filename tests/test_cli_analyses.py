@@ -380,3 +380,19 @@ def test_an_id_with_a_newline_keeps_the_answer_one_line_per_row_and_is_not_drawn
     assert main(["export-dxf", str(p), "-o", str(tmp_path / "nl.dxf")]) == 2
     assert "block 'A\\nx': its id holds a control character" in capsys.readouterr().err
     assert not (tmp_path / "nl.dxf").exists()
+
+
+def test_forces_in_newtons_are_written_without_an_exponent(tmp_path, capsys):
+    """A 1 x 2 m block of 16 kN/m^3 drawn in mm and N: "32000 N" read "3.2e+04 N" and
+    the answer "= 1.81e+04 N", where the same block in kN read "32 kN"."""
+    p = tmp_path / "mm.json"
+    p.write_text(json.dumps({
+        "format": "rigidblocks-scene", "version": 1, "dimension": 2,
+        "units": {"length": "mm", "force": "N"}, "unit_weight": 16e-6, "depth": 1000,
+        "friction": 0.6, "live_body_force": [1, 0],
+        "blocks": [{"id": "g", "support": True, "vertices": rect(-1000, -500, 3000, 500)},
+                   {"id": "b", "vertices": rect(0, 0, 1000, 2000)}]}))
+    assert main(["load", str(p)]) == 0
+    out = capsys.readouterr().out
+    assert "32000 N horizontal" in out and "= 16000 N horizontal" in out, out
+    assert "e+0" not in out
