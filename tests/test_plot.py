@@ -721,3 +721,15 @@ def test_block_ids_and_breach_labels_lie_over_the_load_arrows():
         marks = [t.get_zorder() for t in ax.texts if t.get_gid() in ("rb-ids", "rb-breached")]
         assert arrows and marks and min(marks) > max(arrows)
         plt.close("all")
+
+
+def test_the_api_plot_saves_where_it_is_told(tmp_path):
+    """`rb.plot(scene, result, path=...)` raised a TypeError where `rb.report` takes
+    ``path``: it saves the figure there (png, svg or pdf), and refuses another kind
+    before drawing."""
+    scene = rb.read_scene(EXAMPLES / "reference.json")
+    out = tmp_path / "ref.svg"
+    ax = rb.plot(scene, rb.min_friction(scene), path=out)
+    assert ax is not None and out.read_text().lstrip().startswith("<?xml")
+    with pytest.raises(rb.InputError, match=r"path .*ref.txt: must end in .png or .svg"):
+        rb.plot(scene, path=tmp_path / "ref.txt")

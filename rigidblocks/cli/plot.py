@@ -8,9 +8,8 @@ from pathlib import Path
 from ..analyses import ANALYSES
 from ..errors import InputError
 from ..io import read_scene
+from ..plotting import FORMATS
 from .analyses import EXIT, add_limit_args, add_question_args, limit_options, question
-
-FORMATS = (".png", ".svg", ".pdf")
 
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
