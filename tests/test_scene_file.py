@@ -615,3 +615,11 @@ def test_a_key_given_twice_is_refused(tmp_path):
     p.write_text('{"format": "rigidblocks-sweep", "version": 1, "version": 1}')
     with pytest.raises(InputError, match='the key "version" appears twice'):
         read_spec(p)
+
+
+def test_a_scene_saved_with_a_byte_order_mark_is_read(tmp_path):
+    """A scene saved by a Windows editor with a UTF-8 byte-order mark was refused with
+    Python's hint ("decode using utf-8-sig"); scenes and sweep specs read it."""
+    p = tmp_path / "bom.json"
+    p.write_bytes(b"\xef\xbb\xbf" + (EXAMPLES / "wall.json").read_bytes())
+    assert len(read_scene(p).blocks) == 19

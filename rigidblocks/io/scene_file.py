@@ -367,7 +367,7 @@ def read_scene(path: str | os.PathLike, *, validate: bool = True) -> Scene:
     """
     name = str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = Path(path).read_text(encoding="utf-8-sig")  # (a BOM: Windows editors)
     except FileNotFoundError:
         raise InputError("no such file", name) from None
     except UnicodeDecodeError as err:

@@ -92,7 +92,7 @@ def read_spec(path: str | os.PathLike) -> Sweep:
     """
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
+        text = p.read_text(encoding="utf-8-sig")  # (a BOM: Windows editors)
     except OSError as err:
         raise InputError(f"cannot read: {err.strerror or err}", str(p)) from None
     try:
