@@ -388,8 +388,10 @@ def test_import_doubts_a_declared_unit_that_makes_blocks_metres_across(tmp_path,
     said = capsys.readouterr()
     assert "lengths in in, as the drawing declares ($INSUNITS; it spans 2521 x 1650 in " \
            "(64.03 x 41.91 m))" in said.out
+    # the units that make them a block's size, not the one it was read in (a drawing
+    # read in mm was told "give it with --length-unit (e.g. mm)")
     assert ("warning: the blocks are 250 in across (the median), 6.35 m: if the drawing "
-            "is in another unit, give it with --length-unit (e.g. mm)") in said.err
+            "is in mm (0.25 m) or cm (2.5 m), give it with --length-unit") in said.err
     assert main(["import-dxf", str(path), "-o", str(out), "--length-unit", "mm",
                  "--unit-weight", "25e-9"]) == 0
     said = capsys.readouterr()

@@ -290,8 +290,14 @@ def unit_doubt(scene: Scene) -> str:
         return ""
     # (in metres too where the unit is another: "250 m across (the median), 250 m")
     inm = f", {size * metres:.3g} m" if metres != 1.0 else ""
+    # the units that make them a block's size, not the one given ("1.5 mm across ...
+    # give it with --length-unit (e.g. mm)" to a drawing read in mm)
+    own = _unit_key(scene.length_unit)
+    fits = [f"{u} ({size * m:.3g} m)" for u, m in METRES.items()
+            if u not in ("km", "yd", "dm", own) and low <= size * m <= high]
+    which = f"in {' or '.join(fits)}" if fits else "in another unit"
     return (f"the blocks are {size:.4g} {scene.length_unit} across (the median){inm}: if "
-            "the drawing is in another unit, give it with --length-unit (e.g. mm)")
+            f"the drawing is {which}, give it with --length-unit")
 
 
 def unit_guess(scene: Scene, code: int = 0) -> str:
