@@ -577,6 +577,9 @@ def test_a_killed_sweep_leaves_no_workers(tmp_path, sig):
     if sig == "SIGTERM":
         assert p.returncode == 143 and "rigidblocks: terminated" in err, err
         assert "Traceback" not in err
+        # (Ctrl-C said "interrupted" alone: nothing of the cases kept or how to go on)
+        assert "the cases it finished are kept in" in err and \
+            "arches.parquet.parts/; the same command resumes from them" in err
         assert list(tmp_path.glob("arches.parquet*/*.parquet"))  # the cases done
 
 

@@ -27,9 +27,16 @@ def run(args: argparse.Namespace) -> int:
     from ..studies.sweep import run as run_sweep
 
     sweep = read_spec(args.spec)
-    res = run_sweep(sweep, output=args.output, workers=args.workers,
-                    scheduler=args.scheduler, batch_size=args.batch_size,
-                    progress=not args.no_progress and _terminal())
+    try:
+        res = run_sweep(sweep, output=args.output, workers=args.workers,
+                        scheduler=args.scheduler, batch_size=args.batch_size,
+                        progress=not args.no_progress and _terminal())
+    except KeyboardInterrupt:  # Ctrl-C or SIGTERM: what is kept, and how to go on
+        import sys
+
+        print(f"rigidblocks: sweep stopped: the cases it finished are kept in "
+              f"{args.output}.parts/; the same command resumes from them", file=sys.stderr)
+        raise
     print(f"cases     {res.n_cases} ({res.n_run} run, {res.n_skipped} done before)")
     for i, (name, counts) in enumerate(res.outcomes.items()):
         print(f"{'' if i else 'outcomes':10s}{name}: "
