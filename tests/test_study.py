@@ -790,7 +790,7 @@ def test_an_undecided_case_says_why_in_its_note_and_the_summary_names_it(tmp_pat
     spec.write_text(json.dumps({
         "format": "rigidblocks-sweep", "version": 1, "generator": "arch",
         "method": "distortion", "parameters": {"friction": "infinite", "voussoirs": 15},
-        "grid": {"thickness": [0.106263, 0.12]}, "analyses": ["max_load_multiplier"]}))
+        "grid": {"thickness": [0.106264, 0.12]}, "analyses": ["max_load_multiplier"]}))
     out = tmp_path / "near.csv"
     assert main(["sweep", str(spec), "-o", str(out), "--workers", "1",
                  "--no-progress"]) == 3
@@ -802,5 +802,15 @@ def test_an_undecided_case_says_why_in_its_note_and_the_summary_names_it(tmp_pat
     d = pd.read_csv(out)
     assert d.loc[0, "max_load_multiplier_status"] == "undecided"
     assert d.loc[0, "note"].startswith("max_load_multiplier: lambda* in [")
-    assert "could not decide" in d.loc[0, "note"]
+    assert "undecided" in d.loc[0, "note"]
     assert d.loc[1, "max_load_multiplier_status"] == "collapse" and pd.isna(d.loc[1, "note"])
+
+
+def test_min_thickness_rows_name_the_parameter_they_bisect():
+    """A pier width bisected landed in the min_thickness column with nothing saying it
+    was a pier width in metres and not t/R."""
+    sw = study.make_sweep("flat_arch", grid={"friction": [0.6]}, analyses=[
+        {"analysis": "min_thickness", "param": "pier_width", "lo": 0.05, "hi": 2.0,
+         "rtol": 1e-2}])
+    row = study.run(sw).frame.iloc[0]
+    assert row["min_thickness_param"] == "pier_width" and row["min_thickness"] > 0.05

@@ -32,7 +32,8 @@ ANSWERS: dict[str, tuple[str, ...]] = {
                      "friction_factor_upper"),
     "max_load_multiplier": ("load_multiplier", "load_multiplier_accuracy",
                             "load_multiplier_lower", "load_multiplier_upper"),
-    "min_thickness": ("min_thickness", "min_thickness_lower", "min_thickness_friction"),
+    "min_thickness": ("min_thickness", "min_thickness_lower", "min_thickness_friction",
+                      "min_thickness_param"),
 }
 #: the result's attribute behind an answer column, where it is not the column's name:
 #: the bracket of f* (its ends, also where the search could not decide), the relative
@@ -117,7 +118,9 @@ def answer(analysis: Analysis, job: _Job, params: Mapping[str, Any],
                            load_factor=load_factor or 0.0, **opts, **params)
         return {"min_thickness_status": th.status, "min_thickness": th.thickness,
                 "min_thickness_lower": th.lower,
-                "min_thickness_friction": float(friction_value(th.friction))}, \
+                "min_thickness_friction": float(friction_value(th.friction)),
+                # which parameter the two columns before are (a pier width read as t/R)
+                "min_thickness_param": th.param}, \
             th.solve_time
     if name not in ANALYSES:
         raise InputError(f"unknown analysis {name!r} (choose from {', '.join(ANALYSES)})")
