@@ -1653,3 +1653,26 @@ def test_an_unstable_load_answer_points_to_the_check_that_names_the_joints(tmp_p
         "breaches" in doc["why"]
     assert main(["check", str(p), "--load-factor", "0"]) == 0
     assert "breached at S-A" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("depth, said", [
+    (300.0, "the scene's depth 300 m is 76.8 times the scene's size (3.91 m)"),
+    (0.0001, "the scene's depth 0.0001 m is 2.5e+04 times thinner than its blocks (2.5 m)")])
+def test_a_depth_far_from_the_scenes_size_is_doubted(depth, said):
+    """A scene in metres with point loads and "depth": 300 (meant in mm) collapsed at
+    lambda* = 1920.6 where 0.3 m gives 3.8, with no word: the depth scales the weights,
+    not the point loads."""
+    s = make_scene([
+        {"id": "base", "vertices": rect(-1, -0.5, 3, 0.5), "support": True},
+        {"id": "B", "vertices": rect(0, 0, 1, 2)}],
+        units={"length": "m", "force": "kN"}, unit_weight=20.0, friction=0.6,
+        depth=depth,
+        loads=[{"block": "B", "force": [1, 0], "point": [0.5, 2], "live": True}])
+    r = rb.max_load_multiplier(s, state=False)
+    assert any(n.startswith(said) for n in r.notes), r.notes
+    ok = rb.max_load_multiplier(make_scene(
+        [{"id": "base", "vertices": rect(-1, -0.5, 3, 0.5), "support": True},
+         {"id": "B", "vertices": rect(0, 0, 1, 2)}], unit_weight=20.0, friction=0.6,
+        depth=0.3, loads=[{"block": "B", "force": [1, 0], "point": [0.5, 2],
+                           "live": True}]), state=False)
+    assert not any("depth" in n for n in ok.notes)

@@ -120,6 +120,36 @@ def _no_depth(scene: Scene, system: Any) -> list[str]:
             "act on the whole wall, give its \"depth\""]
 
 
+#: a 2D scene's depth beyond this many times its size, or below this fraction of its
+#: blocks' median size, is said to be doubtful where point loads stand beside weights
+DEPTH_DOUBT = (50.0, 1e-3)
+
+
+def _odd_depth(scene: Scene, system: Any) -> list[str]:
+    """The note on a 2D scene with weights and point loads whose depth is far from its
+    size: given in another unit, it scales the weights beside the point loads (a scene
+    in metres with a depth of 300, meant in mm, collapsed at lambda* = 1920.6 for 3.8,
+    with no word)."""
+    if scene.dimension != 2 or scene.depth is None or not scene.loads or \
+            not _weighs(scene):
+        return []
+    from ..scene.model import block_boxes
+
+    lo, hi = block_boxes(scene)
+    size = float(np.linalg.norm(hi.max(axis=0) - lo.min(axis=0)))
+    block = float(np.median((hi - lo).max(axis=1)))
+    depth = float(scene.depth)
+    unit = scene.length_unit or "length units"
+    if depth > DEPTH_DOUBT[0] * size:
+        how = f"{depth / size:.3g} times the scene's size ({size:.3g} {unit})"
+    elif depth < DEPTH_DOUBT[1] * block:
+        how = f"{block / depth:.3g} times thinner than its blocks ({block:.3g} {unit})"
+    else:
+        return []
+    return [f"the scene's depth {depth:g} {unit} is {how}: its blocks' weights scale with "
+            "it, its point loads do not; is the depth in the scene's length unit?"]
+
+
 def _unheld(scene: Scene, contacts: Any, tol: float) -> list[str]:
     """The notes on the blocks that nothing holds (:func:`unsupported_blocks`): one that
     touches another at a point only (:func:`~rigidblocks.contacts.point_touches`), one
@@ -202,7 +232,8 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
     else:
         m = ConvexMethod(scene, system, timings, solver=solver or "clarabel",
                          settings=settings, pyramid=pyramid, progress=progress)
-    m.notes.extend(_weightless(scene, system) + _no_depth(scene, system))
+    m.notes.extend(_weightless(scene, system) + _no_depth(scene, system)
+                   + _odd_depth(scene, system))
     m.notes.extend(_unheld(scene, contacts, kw.get("tol", DEFAULT_TOL)))
     bonded = int(np.count_nonzero((contacts.tensile_strength > 0) | (contacts.cohesion > 0)))
     if bonds_kept and bonded:
