@@ -733,3 +733,14 @@ def test_the_api_plot_saves_where_it_is_told(tmp_path):
     assert ax is not None and out.read_text().lstrip().startswith("<?xml")
     with pytest.raises(rb.InputError, match=r"path .*ref.txt: must end in .png or .svg"):
         rb.plot(scene, path=tmp_path / "ref.txt")
+
+
+def test_3d_load_labels_lie_on_a_light_box():
+    """A 3D picture's load labels were drawn bare over the blocks' faces and their own
+    arrows (the self-weight's value on its arrowhead, the live load's across the moving
+    block), hard to read: each lies on a light box."""
+    scene = rb.read_scene(EXAMPLES / "box_stack_3d.json")
+    ax = rb.plot(scene, rb.max_load_multiplier(scene))
+    labels = [t for t in ax.texts if t.get_gid() == "rb-loads"]
+    assert labels and all(t.get_bbox_patch() is not None for t in labels)
+    plt.close(ax.figure)

@@ -283,8 +283,12 @@ def _draw_loads(ax: Any, scene: Scene, lo: np.ndarray, hi: np.ndarray,
         at = m.tip if m.kind != "point load" else m.tail
         # (on two lines: "live: λ × 40 kN (weight × (0.866, 0.5, 0))" ran over the z
         # axis's label)
+        # on a light box: drawn over a block's faces or an arrow ("self-weight 50 kN"
+        # on its own arrowhead, the live load's label across the moving block) it was
+        # hard to read
         t = ax.text(*at, " " + m.label.replace(" (", "\n (", 1), color=colour, fontsize=8,
-                    zorder=7)
+                    zorder=7, bbox=dict(facecolor="white", alpha=0.75, edgecolor="none",
+                                        pad=1.0))
         t.set_gid("rb-loads")
         kinds.add(m.live)
         lo = np.minimum(lo, np.minimum(m.tail, m.tip))
