@@ -436,6 +436,10 @@ class Result:
     #: carries the load, whichever state the iterations from X0 reach), STATIC_UNSTABLE
     #: ("unstable" `friction`: no friction admits a state at all); "" otherwise
     cause: str = ""
+    #: associative `load` and `friction` on a small scene
+    #: (rigidblocks.analyses.core.DILATANCY_JOINTS): (status, number) of the same
+    #: question without dilatancy, from the elastic state X0 (None: not computed)
+    without_dilatancy: tuple[str, float | None] | None = None
 
     #: the statuses that are not verdicts: the method could not decide, or broke down
     UNDECIDED: ClassVar[tuple[str, ...]] = ("undecided", "failure")
@@ -508,10 +512,19 @@ class Result:
                 "solver": self.solver, "n_solves": self.n_solves,
                 "solve_time": self.solve_time, "answered_by": list(self.answered_by),
                 "rejected": list(self.rejected),
+                **self._dry_dict(),
                 # the units of every force and length in it, as the scene gives them
                 # (None where it gives none: "force units"); a JSON reader had no way to
                 # tell kN from N
                 "units": {"length": self.units[0] or None, "force": self.units[1] or None}}
+
+    def _dry_dict(self) -> dict[str, Any]:
+        """``without_dilatancy`` as the JSON gives it, where computed."""
+        if self.without_dilatancy is None:
+            return {}
+        st, v = self.without_dilatancy
+        key = "friction_factor" if self.analysis == "min_friction" else "load_multiplier"
+        return {"without_dilatancy": {"status": st, key: v}}
 
     def to_dict(self, joints: bool = False) -> dict[str, Any]:
         """The result as plain data (the CLI's ``--json``); ``joints`` adds the
@@ -754,10 +767,6 @@ class LoadResult(Result):
     #: :func:`rigidblocks.analyses.na_bounds.capacity_bound`: every collapse state at
     #: lambda >= 0)
     lower_bound_by: str | None = None
-    #: associative, on a small scene (rigidblocks.analyses.core.DILATANCY_JOINTS) whose
-    #: collapse slides or does not come: (status, multiplier) of the same question
-    #: without dilatancy, from the elastic state X0 (None: not computed)
-    without_dilatancy: tuple[str, float | None] | None = None
 
     @property
     def governing_joints(self) -> list[tuple[str, str]]:
@@ -778,9 +787,7 @@ class LoadResult(Result):
             b = self.load_multiplier_bounds
             out["load_multiplier_bounds"] = None if b is None else list(b)
             out["lower_bound_by"] = self.lower_bound_by
-        elif self.without_dilatancy is not None:
-            st, v = self.without_dilatancy
-            out["without_dilatancy"] = {"status": st, "load_multiplier": v}
+
         out["governing_joints"] = [list(p) for p in self.governing_joints]
         m = self.mechanism
         if m is not None:

@@ -90,3 +90,26 @@ def test_joints_between_supports_are_none_and_an_open_joint_that_carries_shear_s
                             "shear") for w in why), why
     assert rb.max_load_multiplier(s, friction=0.6, flow="non-associative") \
         .load_multiplier == pytest.approx(0.5, abs=1e-7)
+
+
+def test_friction_says_where_dry_joints_need_more(capsys):
+    """The flat arch with vertical joints on piers needs f* = 0.4714 (0.4719 to 2e-3),
+    and without dilatancy 0.8100 (docs/seed-examples.md, the seed's reading: its
+    friction angle of 39 deg): the associative answer, 42 % lower, said nothing of it.
+    The block against the wall under its weight away from it stood associatively from
+    f = 1.0002 (rubbing up the wall) and tips dry at any friction (b/h = 0.5 < 1)."""
+    assert main(["friction", str(EXAMPLES / "flat_arch_vertical.json"), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    st, f = doc["without_dilatancy"]["status"], doc["without_dilatancy"]["friction_factor"]
+    assert st == "stable" and 0.8099 < f < 0.8113, f
+    assert any(w.startswith("without dilatancy (dry joints slide without opening: --flow "
+                            "non-associative) the state reached from the elastic state X0 "
+                            "needs f >= 0.811, 71.9 % more") for w in doc["why"]), doc["why"]
+    r = rb.min_friction(against_wall(), load_factor=1.0, state=False)
+    assert r.status == "stable" and r.friction_factor > 1.0
+    assert r.without_dilatancy == ("unstable", None)
+    assert any("no friction makes the state reached from the elastic state X0 stand" in n
+               for n in r.notes)
+    ref = rb.min_friction(rb.read_scene(EXAMPLES / "reference.json"), state=False)
+    assert ref.without_dilatancy[0] == "stable"  # the seed's f* = 0.5 either way: no word
+    assert not any(n.startswith("without dilatancy") for n in ref.notes)
