@@ -40,21 +40,44 @@ def test_a_block_against_a_wall_is_said_to_tip_lower_without_dilatancy():
     assert r.to_dict()["without_dilatancy"] == {"status": "collapse", "load_multiplier": low}
 
 
-def test_no_word_where_dry_joints_give_the_same_or_no_joint_slides(capsys):
-    """The 4 x 4 wall slides on its foundation at f = 0.6 either way (computed, equal:
-    no note); the arch's collapse hinges only (not computed); nor at infinite friction,
-    nor on the non-associative question itself."""
-    wall = rb.read_scene(EXAMPLES / "wall.json")
-    r = rb.max_load_multiplier(wall)
-    assert r.without_dilatancy[0] == "collapse"
-    assert r.without_dilatancy[1] == pytest.approx(r.load_multiplier, rel=1e-6)
-    assert not any(n.startswith("without dilatancy") for n in r.notes)
-    arch = rb.max_load_multiplier(rb.read_scene(EXAMPLES / "arch.json"))
-    assert arch.without_dilatancy is None
-    assert rb.max_load_multiplier(against_wall(), friction="infinite").without_dilatancy \
-        is None
+def test_no_word_where_dry_joints_give_the_same(capsys):
+    """The 4 x 4 wall slides on its foundation at f = 0.6 either way, and the arch's
+    collapse hinges either way (computed, equal: no note); not computed on the
+    non-associative question itself."""
+    for name in ("wall.json", "arch.json"):
+        r = rb.max_load_multiplier(rb.read_scene(EXAMPLES / name))
+        assert r.without_dilatancy[0] == "collapse"
+        assert r.without_dilatancy[1] == pytest.approx(r.load_multiplier, rel=1e-6)
+        assert not any("without dilatancy" in n for n in r.notes)
     na = rb.max_load_multiplier(against_wall(), flow="non-associative")
     assert na.without_dilatancy is None and "without_dilatancy" not in na.to_dict()
+
+
+def test_at_infinite_friction_and_whatever_the_associative_mechanism():
+    """At infinite friction the block against the wall read UNBOUNDED with no word: the
+    wall joint, open, carried shear (a large finite friction and dry joints: it tips at
+    b/h = 0.5). A block pinched under a lintel at f = 0.3 beside a block that hinges at
+    0.5 (its base joint of infinite friction) collapsed associatively at 0.5 by that
+    hinge, with no word (no joint slides in that mechanism), where dry joints let the
+    pinched one slide at f = 0.3 (validation.md: the pinched block)."""
+    r = rb.max_load_multiplier(against_wall(), friction="infinite")
+    assert r.status == "unbounded" and r.without_dilatancy[0] == "collapse"
+    assert r.without_dilatancy[1] == pytest.approx(0.5, abs=1e-7)
+    assert any(n.startswith("with friction 10 where it is infinite and without dilatancy")
+               and "it collapses at lambda = 0.5 from the elastic state X0" in n
+               for n in r.notes), r.notes
+    s = make_scene([
+        {"id": "ground", "vertices": rect(-1, -1, 6, 1), "support": True},
+        {"id": "lintel", "vertices": rect(-1, 1, 3, 1), "support": True},
+        {"id": "P", "vertices": rect(0, 0, 1, 1)},
+        {"id": "Q", "vertices": rect(3, 0, 1, 2)}],
+        unit_weight=10.0, friction=0.3, live_body_force=[1.0, 0.0],
+        joints=[{"blocks": ["ground", "Q"], "friction": "infinite"}])
+    r = rb.max_load_multiplier(s)
+    assert r.load_multiplier == pytest.approx(0.5, rel=1e-6)
+    assert r.without_dilatancy[1] == pytest.approx(0.3, rel=1e-6)
+    assert any("it collapses at lambda = 0.3 from the elastic state X0, 40.0 % lower" in n
+               for n in r.notes), r.notes
 
 
 def test_the_command_says_it_and_the_flat_arch_on_piers_does_not_stand_dry(tmp_path,

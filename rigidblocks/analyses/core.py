@@ -16,8 +16,6 @@ from contextlib import contextmanager
 from dataclasses import replace
 from typing import Any
 
-import numpy as np
-
 from ..errors import InputError, SolverFailure, finite_number
 from ..methods import ADMISSIBLE, INADMISSIBLE, Limit, Method, Progress, open_method
 from ..methods.convex import (
@@ -430,36 +428,69 @@ def _load_nonassociative(scene: Scene, friction: Any, method: str, flow: str | N
 DILATANCY_JOINTS = 50
 #: ... and a multiplier this much lower (relative) is said to be
 DILATANCY_RTOL = 1e-4
+#: the friction an answer without dilatancy is compared at where it is infinite
+LARGE_FRICTION = 10.0
 #: ... and an f* this much larger (beyond the accuracy asked of it): the stocky arch's
 #: 0.298746 dry, 1e-3 above its static 0.298455, to that accuracy the same
 DILATANCY_FRICTION_RTOL = 2e-3
 
 
+def _dry(scene: Scene, f: float) -> tuple[Scene, float, bool]:
+    """The scene and friction an answer without dilatancy is compared at: infinite
+    friction (the scene's, the one asked, a joint's own) replaced by ``LARGE_FRICTION``,
+    since infinite friction lets a joint carry shear whatever its compression, an open
+    one too, which no finite friction does (a block touching a wall, pulled away from
+    it, read UNBOUNDED at infinite friction and tips at b/h = 0.5 at f = 10, dry); and
+    whether any was replaced."""
+    import dataclasses
+
+    joints = tuple(dataclasses.replace(j, friction=LARGE_FRICTION)
+                   if j.friction is not None and friction_value(j.friction) == math.inf
+                   else j for j in scene.joints)
+    replaced = not math.isfinite(f) or joints != scene.joints
+    return (dataclasses.replace(scene, joints=joints) if joints != scene.joints else scene,
+            f if math.isfinite(f) else LARGE_FRICTION, replaced)
+
+
+def _dry_words(replaced: bool) -> tuple[str, str]:
+    """How an answer without dilatancy was reached, and what the associative one
+    assumes that it does not."""
+    if replaced:
+        return (f"with friction {LARGE_FRICTION:g} where it is infinite and without "
+                "dilatancy (dry joints slide without opening: --flow non-associative)",
+                "infinite friction lets a joint carry shear whatever its compression, an "
+                "open one too, and associative sliding opens a joint by f times its slip: "
+                "dry joints do neither")
+    return ("without dilatancy (dry joints slide without opening: --flow "
+            "non-associative)",
+            "this answer lets its sliding joints open by f times their slip (associative "
+            "flow), which dry joints do not")
+
+
 def _without_dilatancy(scene: Scene, m: Method, f: float, method: str, status: str,
-                       lam: float | None, mech: Any, opened: dict[str, Any]
+                       lam: float | None, opened: dict[str, Any]
                        ) -> tuple[str, float | None] | None:
     """The answer of `load` without dilatancy (from the elastic state X0) beside an
-    associative one (``status``, ``lam``, its mechanism ``mech``) on a small scene whose
-    joints have a finite friction, where the associative collapse slides (or does not
-    come): (its status, its multiplier), its note added to the method's where it is
-    lower (:func:`_dilatancy_note`); None where not computed. Associative sliding opens
-    a joint by f times its slip: a block standing against a wall (touching it,
-    unloaded) at f = 0.6 collapsed at 0.548387 by rubbing up the wall as it tipped, and
-    dry joints let it tip at 0.5; at f = 0.5 sideways along the wall, 0.57735 for 0.4."""
+    associative one (``status``, ``lam``) on a small scene, at a large finite friction
+    where it is infinite (:func:`_dry`): (its status, its multiplier), its note added
+    to the method's where it is lower (:func:`_dilatancy_note`); None where not
+    computed. Associative sliding opens a joint by f times its slip: a block standing
+    against a wall (touching it, unloaded) at f = 0.6 collapsed at 0.548387 by rubbing up
+    the wall as it tipped, and dry joints let it tip at 0.5; at f = 0.5 sideways along
+    the wall, 0.57735 for 0.4. Whatever its own mechanism: a block pinched under a lintel
+    at f = 0.3 beside one that hinges at 0.5 collapsed associatively at 0.5 (the pinched
+    one cannot slide with dilatancy), dry at 0.3."""
     if method == "distortion" or m.system.contacts.n_joints > DILATANCY_JOINTS:
         return None
-    if not np.isfinite(m.f_joint(f)).any() or status not in ("collapse", "unbounded"):
+    if status not in ("collapse", "unbounded"):
         return None
-    if status == "collapse" and (mech is None or not any(
-            str(v).startswith("slide") for v in mech.modes)):
-        return None  # no joint slides: nothing opens by its slip
+    dry, fr, replaced = _dry(scene, f)
     try:
-        na = _load_nonassociative(scene, friction_label(f), method, "non-associative",
-                                  NA_RTOL, state=False, progress=None, mechanism="vertex",
-                                  **opened)
+        na = _load_nonassociative(dry, fr, method, "non-associative", NA_RTOL, state=False,
+                                  progress=None, mechanism="vertex", **opened)
     except (InputError, SolverFailure):
         return None
-    note = _dilatancy_note(na, lam)
+    note = _dilatancy_note(na, lam, replaced)
     m.notes += [note] if note else []
     return na.status, na.load_multiplier
 
@@ -473,15 +504,13 @@ def _friction_without_dilatancy(scene: Scene, m: Method, lf: float, fstar: float
     point; a block against a wall stood associatively from f = 1.0002, dry at none)."""
     if method == "distortion" or m.system.contacts.n_joints > DILATANCY_JOINTS:
         return None
+    dry, _, replaced = _dry(scene, 0.0)  # (the joints' own infinite friction)
     try:
-        na = min_friction_nonassociative(scene, lf, method, flow="non-associative",
+        na = min_friction_nonassociative(dry, lf, method, flow="non-associative",
                                          state=False, rtol=max(rtol, NA_RTOL), **opened)
     except (InputError, SolverFailure):
         return None
-    how = ("without dilatancy (dry joints slide without opening: --flow "
-           "non-associative)")
-    why = ("this answer lets its sliding joints open by f times their slip (associative "
-           "flow), which dry joints do not")
+    how, why = _dry_words(replaced)
     if na.status == "unstable":
         m.notes.append(f"{how} no friction makes the state reached from the elastic state "
                        f"X0 stand: {why}")
@@ -495,23 +524,29 @@ def _friction_without_dilatancy(scene: Scene, m: Method, lf: float, fstar: float
     return na.status, na.friction_factor
 
 
-def _dilatancy_note(na: LoadResult, lam: float | None) -> str:
+def _dilatancy_note(na: LoadResult, lam: float | None, replaced: bool = False) -> str:
     """What the answer without dilatancy ``na`` says beside the associative multiplier
-    ``lam`` (None: unbounded): where it collapses lower, or does not stand; else ""."""
-    how = ("without dilatancy (dry joints slide without opening: --flow "
-           "non-associative)")
-    why = ("this answer lets its sliding joints open by f times their slip (associative "
-           "flow), which dry joints do not")
+    ``lam`` (None: unbounded): where it collapses lower, does not stand, or is undecided
+    (its bracket, where it reaches below); else "" (``replaced``: reached at a large
+    finite friction where it is infinite)."""
+    how, why = _dry_words(replaced)
+    if na.status == "undecided" and na.bracket is not None and \
+            (lam is None or na.bracket[0] < lam * (1.0 - DILATANCY_RTOL)):
+        lo, hi = na.bracket
+        return (f"{how} the collapse from the elastic state X0 is undecided in "
+                f"[{fmt_safe(lo, 6, False)}, {fmt_safe(hi, 6, True)}]: {why}")
     if na.status == "unstable":
         return (f"{how} the dead load alone has no admissible state reached from the "
                 f"elastic state X0: {why}")
     if na.status != "collapse" or na.load_multiplier is None:
         return ""
     low = float(na.load_multiplier)
+    shown = fmt_safe(low, 6, False)  # (on the safe side, as the answer: 0.0500022 read
+    # beside --flow non-associative's 0.0500021)
     if lam is None:
-        return f"{how} it collapses at lambda = {low:.6g} from the elastic state X0: {why}"
+        return f"{how} it collapses at lambda = {shown} from the elastic state X0: {why}"
     if low < lam * (1.0 - DILATANCY_RTOL):
-        return (f"{how} it collapses at lambda = {low:.6g} from the elastic state X0, "
+        return (f"{how} it collapses at lambda = {shown} from the elastic state X0, "
                 f"{100.0 * (lam - low) / lam:.1f} % lower: {why}")
     return ""
 
@@ -570,7 +605,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     opened = dict(solver=solver, settings=settings, pyramid=pyramid,
                   contact_tol=contact_tol)
     if lim.status != "collapse":
-        dry = _without_dilatancy(scene, m, f, method, lim.status, None, None, opened)
+        dry = _without_dilatancy(scene, m, f, method, lim.status, None, opened)
         return LoadResult(**_fields(m, "max_load_multiplier", lim.status, f, None),
                           bracket=_bracket(lim), without_dilatancy=dry, **reached)
     # a multiplier within round-off below 0 (the methods call one below -1e-9 unstable)
@@ -589,7 +624,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
             gov = gov or m.governing_load(f, at, lim.accuracy or 0.0, width)
     st = m.state(f, lam, at, limit=True) if (state and at is not None) else None
     lam = _round_off_of_zero(lam, lim.accuracy)  # (its state is the solver's)
-    dry = _without_dilatancy(scene, m, f, method, "collapse", lam, lim.mechanism, opened)
+    dry = _without_dilatancy(scene, m, f, method, "collapse", lam, opened)
     return LoadResult(**_fields(m, "max_load_multiplier", "collapse", f, lam), state=st,
                       without_dilatancy=dry,
                       governing=gov, load_multiplier=lam, mechanism=lim.mechanism,
