@@ -215,6 +215,20 @@ def test_an_output_that_is_the_input_is_refused(command, name, tmp_path, capsys)
     assert src.read_bytes() == before
 
 
+@pytest.mark.parametrize("command", ["check", "friction", "load"])
+def test_a_joint_table_that_is_the_scene_is_refused(command, tmp_path, capsys):
+    """`check io.json --joints io.json` replaced the scene by its joint table (exit 0),
+    where -o naming an input is refused."""
+    import shutil
+
+    src = tmp_path / "io.json"
+    shutil.copy(EXAMPLES / "wall.json", src)
+    before = src.read_bytes()
+    assert main([command, str(src), "--joints", str(src)]) == 2
+    one_line_error(capsys, f"--joints {src}: is the file it reads")
+    assert src.read_bytes() == before
+
+
 def test_output_that_is_a_folder_is_refused(tmp_path, capsys):
     assert main(["example", "arch", "-o", str(tmp_path)]) == 2
     one_line_error(capsys, "is a folder")

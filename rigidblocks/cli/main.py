@@ -42,18 +42,25 @@ COMMANDS: dict[str, tuple[str, str]] = {
 }
 
 
-def _not_an_input(args: argparse.Namespace, out: Any) -> None:
-    """Refuse an output ``out`` that is one of the files the command reads (an argument
-    naming an existing file): `import-dxf same.dxf -o same.dxf` replaced the drawing by
-    a scene file, `extrude s.json -o s.json` the 2D scene by its prisms."""
-    if not out.exists():
-        return
-    for key, value in vars(args).items():
-        if key == "output" or not isinstance(value, str) or not os.path.isfile(value):
+#: the options that name a file a command writes (their dest, and how they are written)
+_OUTPUTS = (("output", "-o"), ("joints", "--joints"))
+
+
+def _not_an_input(args: argparse.Namespace) -> None:
+    """Refuse an output (-o, --joints FILE) that is one of the files the command reads
+    (an argument naming an existing file): `import-dxf same.dxf -o same.dxf` replaced
+    the drawing by a scene file, `extrude s.json -o s.json` the 2D scene by its prisms,
+    `check s.json --joints s.json` the scene by its joint table."""
+    for dest, option in _OUTPUTS:
+        out = getattr(args, dest, None)
+        if not isinstance(out, str) or out == "-" or not os.path.isfile(out):
             continue
-        if os.path.samefile(value, out):
-            raise InputError(f"is the file it reads ({value}): it would be overwritten; "
-                             "give another name", f"-o {args.output}")
+        for key, value in vars(args).items():
+            if key == dest or not isinstance(value, str) or not os.path.isfile(value):
+                continue
+            if os.path.samefile(value, out):
+                raise InputError(f"is the file it reads ({value}): it would be "
+                                 "overwritten; give another name", f"{option} {out}")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -124,7 +131,8 @@ def _main(argv: Sequence[str] | None) -> int:
             parser.print_help()
             return 2
         if getattr(args, "output", None):  # every command's -o, before any work
-            _not_an_input(args, output_path(args.output))
+            output_path(args.output)
+        _not_an_input(args)
         gc.freeze()  # the imported modules' objects: the collections of the run skip them
         try:
             status = int(args._run(args) or 0)
