@@ -648,3 +648,41 @@ def test_import_with_a_live_body_force_writes_load_factor_0(tmp_path, capsys):
     assert read_scene(out).load_factor == 0.0
     assert main(["import-dxf", str(path), "-o", str(out), "--live-body-force", "0 0"]) == 2
     assert "not both zero" in capsys.readouterr().err
+
+
+def test_references_are_placed_by_their_transformation_and_grids_expanded(tmp_path):
+    """A 2 x 1 brick turned by 90 deg inside a reference scaled 2 in y: CAD shows a 1 x 4
+    pier, the exploded entities read a 2 x 2 block (at infinite friction lambda* = 1
+    where the pier tips at 0.25); a MINSERT grid of 2 x 2 bricks read one brick, with
+    "skipped none"; an invisible entity was read; a reference on a layer switched off
+    hid the bricks it places on their own visible layer, which CAD shows."""
+    doc = ezdxf.new()
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(-3, -1), (3, -1), (3, 0), (-3, 0)], close=True)
+    r = doc.blocks.new("R")
+    r.add_lwpolyline([(0, 0), (2, 0), (2, 1), (0, 1)], close=True)
+    s = doc.blocks.new("S")
+    s.add_blockref("R", (0, 0), dxfattribs={"rotation": 90})
+    msp.add_blockref("S", (0, 0), dxfattribs={"yscale": 2})
+    doc.saveas(tmp_path / "nest.dxf")
+    (b,) = [b for b in rb.read_dxf(tmp_path / "nest.dxf").blocks if not b.support]
+    v = np.asarray(b.vertices)
+    assert np.allclose([v[:, 0].min(), v[:, 0].max(), v[:, 1].min(), v[:, 1].max()],
+                       [-1, 0, 0, 4], atol=1e-12)
+    doc = ezdxf.new()
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(-2, -1), (3, -1), (3, 0), (-2, 0)], close=True)
+    q = doc.blocks.new("Q")
+    doc.layers.add("STONE")
+    q.add_lwpolyline([(0, 0), (0.5, 0), (0.5, 0.5), (0, 0.5)], close=True,
+                     dxfattribs={"layer": "STONE"})
+    doc.layers.add("OFF").off()
+    msp.add_blockref("Q", (0, 0), dxfattribs={"column_count": 2, "column_spacing": 0.5,
+                                               "row_count": 2, "row_spacing": 0.5,
+                                               "layer": "OFF"})
+    msp.add_lwpolyline([(2, 0), (2.5, 0), (2.5, 1), (2, 1)], close=True,
+                       dxfattribs={"invisible": 1})
+    doc.saveas(tmp_path / "grid.dxf")
+    sc, rep = rb.read_dxf(tmp_path / "grid.dxf", report=True)
+    assert sum(not b.support for b in sc.blocks) == 4
+    assert rep.skipped == {"LWPOLYLINE (invisible)": 1}

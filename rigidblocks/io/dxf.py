@@ -131,15 +131,18 @@ def _plane_xy(pts: Any, where: str) -> np.ndarray:
     return p[:, :2].copy()
 
 
-def _entities(msp: Any, report: DxfReport, keep: Any, hidden: Any = None
+def _entities(msp: Any, report: DxfReport, keep: Any, hidden: Any = None,
+              frozen: Any = None
               ) -> tuple[list[Outline], list[tuple[str, str, np.ndarray]], list[str | None]]:
     """The outlines (closed or not) of the polylines, the LINE entities (handle, layer,
-    ends (2, 2)) and the block
-    ids our writer attached, of the entities ``msp`` on the layers ``keep`` takes and
-    that are not ``hidden`` (a layer switched off or frozen), in world coordinates: a
-    polyline's own coordinate system (its extrusion: a drawing mirrored in CAD has
-    (0, 0, -1)) is applied, and block references (INSERT) are exploded into the
-    entities they place."""
+    ends (2, 2)) and the block ids our writer attached, of the entities ``msp`` on the
+    layers ``keep`` takes, shown (not invisible, not on a layer ``hidden``: switched off
+    or frozen), in world coordinates: a polyline's own coordinate system (its extrusion:
+    a drawing mirrored in CAD has (0, 0, -1)) is applied, and block references (INSERT,
+    MINSERT grids) are placed by their transformation, nested ones too (exploded
+    entities lost a rotation under a scale of another axis: a 2 x 1 brick turned by 90
+    deg in a reference scaled 2 in y read 2 x 2, where CAD shows 1 x 4), their entities
+    on layer 0 on the reference's layer, a reference on a ``frozen`` layer not at all."""
     raws: list[Outline] = []
     lines: list[tuple[str, str, np.ndarray]] = []
     tags: list[str | None] = []
@@ -147,7 +150,12 @@ def _entities(msp: Any, report: DxfReport, keep: Any, hidden: Any = None
     def skip(kind: str) -> None:
         report.skipped[kind] = report.skipped.get(kind, 0) + 1
 
-    def read(entities: Any, handle: str | None, ref_layer: str | None) -> None:
+    def points(pts: Any, matrix: Any, where: str) -> np.ndarray:
+        p = [tuple(v) for v in pts]
+        return _plane_xy(p if matrix is None else matrix.transform_vertices(p), where)
+
+    def read(entities: Any, handle: str | None, ref_layer: str | None,
+             matrix: Any) -> None:
         for i, e in enumerate(entities):
             kind = e.dxftype()
             # an entity of a block reference: named by the reference, and on its layer
@@ -157,23 +165,38 @@ def _entities(msp: Any, report: DxfReport, keep: Any, hidden: Any = None
             if not keep(layer):
                 skip(kind)
                 continue
-            if hidden is not None and hidden(layer):
-                skip(f"{kind} (on a layer switched off or frozen: {layer})")
+            if e.dxf.get("invisible", 0):
+                skip(f"{kind} (invisible)")
                 continue
             where = f"{report.source}: {kind} #{h}"
             if kind == "INSERT":
+                # its layer switched off hides only what it places on layer 0 (checked
+                # there); frozen, the whole reference
+                if frozen is not None and frozen(layer):
+                    skip(f"{kind} (on a frozen layer: {layer})")
+                    continue
                 try:
-                    parts = list(e.virtual_entities())
+                    grid = list(e.multi_insert()) if e.mcount > 1 else [e]
+                    placed = [(g.matrix44(), g.block()) for g in grid]
                 except Exception as err:  # noqa: BLE001 - ezdxf: a reference it cannot place
-                    raise InputError(f"the block reference cannot be exploded ({err})",
+                    raise InputError(f"the block reference cannot be placed ({err})",
                                      where) from None
-                read(parts, h, layer)
-            elif kind == "LWPOLYLINE":
+                for k, (m, block) in enumerate(placed):
+                    if block is None:
+                        raise InputError(f"the block {e.dxf.name!r} it places is not in "
+                                         "the drawing", where)
+                    read(block, h if len(placed) == 1 else f"{h}[{k}]", layer,
+                         m if matrix is None else m @ matrix)
+                continue
+            if hidden is not None and hidden(layer):
+                skip(f"{kind} (on a layer switched off or frozen: {layer})")
+                continue
+            if kind == "LWPOLYLINE":
                 b = np.array([bb for _, _, bb in e.get_points("xyb")], dtype=float)
                 if len(b) and np.any(np.abs(b[:-1] if not e.closed else b) > 0):
                     raise InputError("curved (bulged) polyline segments are not "
                                      "supported: replace arcs by straight segments", where)
-                raws.append(Outline(h, layer, _plane_xy(e.vertices_in_wcs(), where),
+                raws.append(Outline(h, layer, points(e.vertices_in_wcs(), matrix, where),
                                     bool(e.closed), kind))
                 tags.append(_xdata_id(e))
             elif kind == "POLYLINE":
@@ -183,16 +206,15 @@ def _entities(msp: Any, report: DxfReport, keep: Any, hidden: Any = None
                 if any(abs(getattr(v.dxf, "bulge", 0.0) or 0.0) > 0 for v in e.vertices):
                     raise InputError("curved (bulged) polyline segments are not supported",
                                      where)
-                raws.append(Outline(h, layer, _plane_xy(e.points_in_wcs(), where),
+                raws.append(Outline(h, layer, points(e.points_in_wcs(), matrix, where),
                                     bool(e.is_closed), kind))
                 tags.append(_xdata_id(e))
             elif kind == "LINE":
-                ends = _plane_xy([e.dxf.start, e.dxf.end], where)
-                lines.append((h, layer, ends))
+                lines.append((h, layer, points([e.dxf.start, e.dxf.end], matrix, where)))
             else:
                 skip(kind)
 
-    read(msp, None, None)
+    read(msp, None, None, None)
     return raws, lines, tags
 
 
@@ -448,14 +470,16 @@ def read_dxf(path: str | os.PathLike, *, supports: str | None = None,
         def keep(layer: str) -> bool:
             return layer not in ANALYSIS_LAYERS
 
-        def hidden(layer: str) -> bool:
-            """Is the layer switched off or frozen: not shown in CAD?"""
+        def hidden(layer: str, off: bool = True) -> bool:
+            """Is the layer switched off (``off``) or frozen: not shown in CAD?"""
             try:
                 lay = doc.layers.get(layer)
             except Exception:  # noqa: BLE001 - a layer without a table entry is shown
                 return False
-            return bool(lay.is_off() or lay.is_frozen())
-    raws, lines, tags = _entities(doc.modelspace(), rep, keep, hidden)
+            return bool((off and lay.is_off()) or lay.is_frozen())
+    raws, lines, tags = _entities(doc.modelspace(), rep, keep, hidden,
+                                  None if hidden is None else
+                                  (lambda layer: hidden(layer, off=False)))
     meta = _metadata(doc, src)
     units = _declared_units(doc, units, rep, adopt=meta is None or "units" not in meta)
     allpts = [r.points for r in raws] + [
