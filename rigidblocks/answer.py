@@ -176,11 +176,21 @@ def answer_block(scene: Scene, result: Any, symbols: bool = False) -> AnswerBloc
                        case=w.short_case(result))
 
 
+#: words of the reasons that say why an analysis could not decide (beside those that
+#: describe the analysis, which came first: a sweep's note read the non-associative
+#: analysis's description, not that its fixed point failed its check)
+UNDECIDED_WORDS = ("could not decide", "fails its check", "undecided", "is below",
+                   "no fixed point", "requested (rtol)", "not settle", "gave no answer")
+
+
 def undecided_why(scene: Scene, result: Any) -> str:
     """Why ``result``, an analysis of ``scene`` that could not decide, gives no number,
-    in one line (a sweep's ``note``): its bracket and its first reason."""
+    in one line (a sweep's ``note``): its bracket and the reasons that say why (else
+    its first)."""
     block = answer_block(scene, result)
-    return "; ".join(x for x in (block.number, *block.reasons[:1]) if x) or block.verdict
+    why = [r for r in block.reasons if any(w in r for w in UNDECIDED_WORDS)][:2] or \
+        list(block.reasons[:1])
+    return "; ".join(x for x in (block.number, *why) if x) or block.verdict
 
 
 def _sheared_open(result: Any) -> tuple[str, ...]:

@@ -814,3 +814,26 @@ def test_min_thickness_rows_name_the_parameter_they_bisect():
          "rtol": 1e-2}])
     row = study.run(sw).frame.iloc[0]
     assert row["min_thickness_param"] == "pier_width" and row["min_thickness"] > 0.05
+
+
+def test_an_undecided_note_gives_the_reason_not_the_description(tmp_path):
+    """A block against a wall bonded to it (cohesion and tensile strength 4 kPa), f =
+    0.3, without dilatancy: undecided in [0.458, 0.542] (the capacity bound and the
+    associative multiplier) because its fixed point breaks Coulomb's law. The sweep's
+    note read the analysis's description ("non-associative sliding (no dilatancy): the
+    answer is a collapse state reached ..."), the first reason, not that."""
+    from conftest import make_scene, rect
+
+    from rigidblocks.answer import undecided_why
+
+    s = make_scene([
+        {"id": "ground", "vertices": rect(-2, -1, 3, 1), "support": True},
+        {"id": "wall", "vertices": rect(1, -1, 1, 4), "support": True},
+        {"id": "B", "vertices": rect(0, 0, 1, 2)}],
+        unit_weight=20.0, friction=0.3, live_body_force=[-1.0, 0.0], flow="non-associative",
+        joints=[{"blocks": ["wall", "B"], "cohesion": 4.0, "tensile_strength": 4.0}])
+    r = rb.max_load_multiplier(s, state=False)
+    assert r.status == "undecided" and r.bracket is not None
+    why = undecided_why(s, r)
+    assert "non-associative sliding (no dilatancy): the answer is" not in why
+    assert "fails its check" in why or "is below the capacity bound" in why, why
