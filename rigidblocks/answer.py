@@ -233,6 +233,17 @@ def live_load_size(scene: Scene) -> tuple[float, str]:
     return w.live_size, w.direction()
 
 
+def live_load_doc(scene: Scene) -> dict[str, Any]:
+    """What lambda = 1 is, as a `load --json` gives it: the size and direction the
+    answer line reads (:func:`live_load_size`), the resultant force (its components: a
+    pull along -x read "horizontal" as one along +x) and, where the live load is couples
+    alone, their summed size (force x length; the size is then 0)."""
+    w = _Words(scene, False)
+    return {"size": w.live_size, "direction": w.direction(),
+            "resultant": [float(c) for c in w.live],
+            "moment": w.live_moment if w.live_moment else None}
+
+
 def split_notes(notes: Any) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """(reasons, solver notes): a note on the solver or the accuracy of a number is for
     ``--verbose``; the others (weightless blocks, a block touching nothing, the
@@ -1041,7 +1052,7 @@ def flow_lines(res: Any) -> list[str]:
 
 
 __all__ = ["NA_BELOW_LOAD", "NA_INADMISSIBLE", "AnswerBlock", "accuracy_text", "answer_block",
-           "block_reach",
-           "bodies_text", "flow_lines", "joint_list", "live_load_size", "live_load_text",
-           "mechanism_groups", "mechanism_text", "method_text", "rigid_bodies", "split_notes",
+           "block_reach", "bodies_text", "flow_lines", "joint_list", "live_load_doc",
+           "live_load_size", "live_load_text", "mechanism_groups", "mechanism_text",
+           "method_text", "rigid_bodies", "split_notes",
            "undecided_why", "without_dilatancy"]

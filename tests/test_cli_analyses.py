@@ -396,3 +396,24 @@ def test_forces_in_newtons_are_written_without_an_exponent(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "32000 N horizontal" in out and "= 16000 N horizontal" in out, out
     assert "e+0" not in out
+
+
+def test_the_json_live_load_has_its_resultant_and_path_and_thickness_their_units(
+        tmp_path, capsys):
+    """`live_load` read "horizontal" for a pull along -x as along +x (the direction in
+    words only) and size 0 for live couples; `path --json` and `thickness --json` had no
+    units."""
+    p = tmp_path / "pull.json"
+    p.write_text(json.dumps({
+        "format": "rigidblocks-scene", "version": 1, "dimension": 2, "unit_weight": 10,
+        "units": {"length": "m", "force": "kN"}, "friction": 0.6,
+        "live_body_force": [-1, 0],
+        "blocks": [{"id": "g", "support": True, "vertices": rect(-1, -1, 3, 1)},
+                   {"id": "b", "vertices": rect(0, 0, 1, 2)}]}))
+    assert main(["load", str(p), "--json"]) == 0
+    live = json.loads(capsys.readouterr().out)["live_load"]
+    assert live["resultant"] == [-20.0, 0.0] and live["moment"] is None
+    assert main(["path", str(EXAMPLES / "reference.json"), "--json"]) in (0, 3)
+    assert json.loads(capsys.readouterr().out)["units"] == {"length": "m", "force": "N"}
+    assert main(["thickness", "arch", "--rtol", "1e-2", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["units"] == {"length": "m", "force": "kN"}

@@ -14,7 +14,7 @@ from ..analyses.nonassociative import (
     SPREAD_NOTE,
     is_nonassociative,
 )
-from ..answer import accuracy_text, answer_block, flow_lines, live_load_size, method_text
+from ..answer import accuracy_text, answer_block, flow_lines, live_load_doc, method_text
 from ..errors import InputError
 from ..io import read_scene
 from ..methods import METHODS, Progress
@@ -156,8 +156,7 @@ def run(args: argparse.Namespace) -> int:
         doc["why"] = list(_answer(scene, res)[0].reasons)
         if getattr(res, "analysis", "") == "max_load_multiplier" and scene.has_live_load:
             # what lambda = 1 is, in the force unit: the answer line's "x 32 kN = 16 kN"
-            size, direction = live_load_size(scene)
-            doc["live_load"] = {"size": size, "direction": direction}
+            doc["live_load"] = live_load_doc(scene)
         if safe is not None:
             doc["safe_multiplier"] = safe
         print(json.dumps(_jsonable(doc)))

@@ -46,7 +46,8 @@ def run(args: argparse.Namespace) -> int:
         show=not args.json and sys.stderr.isatty())
     if args.json:
         # the terminal's "why" lines, as every analysis's JSON has them
-        doc = {**res.to_dict(), "why": list(_why(res)[0])}
+        doc = {**res.to_dict(), "why": list(_why(res)[0]),
+               "units": {"length": scene.length_unit, "force": scene.force_unit}}
         print(json.dumps(_jsonable(doc)))
         return EXIT.get(res.status, 0)
     print("\n".join(_lines(scene, res, args)))

@@ -69,8 +69,9 @@ def run(args: argparse.Namespace) -> int:
                          "between --lo and --hi; do not give it", where)
     typed[param] = shown
     hi, halved = (1.0 if args.hi is None else args.hi), ""
+    built = None
     try:
-        gen(**params, **{param: hi})  # the user's parameters, before any solve
+        built = gen(**params, **{param: hi})  # the user's parameters, before any solve
     except InputError as err:
         why = as_options(err, gen, typed).detail
         hi = thinner(gen, params, param, args.lo) if args.hi is None else None
@@ -89,6 +90,8 @@ def run(args: argparse.Namespace) -> int:
              f"({halved})") if halved else ""
     if args.json:
         doc = res.to_dict()
+        if built is not None:  # the family's units: the parameter's and the answer's
+            doc["units"] = {"length": built.length_unit, "force": built.force_unit}
         if bound:
             doc["notes"] = [bound, *doc["notes"]]
             doc["why"] = [bound, *doc["why"]]
