@@ -623,3 +623,13 @@ def test_a_scene_saved_with_a_byte_order_mark_is_read(tmp_path):
     p = tmp_path / "bom.json"
     p.write_bytes(b"\xef\xbb\xbf" + (EXAMPLES / "wall.json").read_bytes())
     assert len(read_scene(p).blocks) == 19
+
+
+def test_a_scene_in_utf16_is_told_to_be_utf8(tmp_path):
+    """A scene saved as UTF-16 read Python's "'utf-8' codec can't decode byte 0xff in
+    position 0: invalid start byte"."""
+    p = tmp_path / "u16.json"
+    p.write_bytes((EXAMPLES / "wall.json").read_text().encode("utf-16"))
+    with pytest.raises(InputError, match=r"u16.json: not UTF-8 text \(a scene is a JSON "
+                                         r"file in UTF-8: save it so"):
+        read_scene(p)

@@ -129,7 +129,10 @@ def unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
     for k, v in pairs:
         if k in out:
             ident = out.get("id", v if k == "id" else None)
-            where = f" (in the object with id {ident!r})" if isinstance(ident, str) else ""
+            names = list(dict.fromkeys(p for p, _ in pairs))[:6]
+            keys = ", ".join(f'"{name}"' for name in names)
+            where = f" (in the object with id {ident!r})" if isinstance(ident, str) else \
+                f" (in the object with the keys {keys})"
             raise InputError(f"the key \"{k}\" appears twice in one object{where}: which "
                              "value is meant? give it once")
         out[k] = v
@@ -370,10 +373,12 @@ def read_scene(path: str | os.PathLike, *, validate: bool = True) -> Scene:
         text = Path(path).read_text(encoding="utf-8-sig")  # (a BOM: Windows editors)
     except FileNotFoundError:
         raise InputError("no such file", name) from None
-    except UnicodeDecodeError as err:
+    except UnicodeDecodeError:
         if Path(path).read_bytes()[:18] == b"AutoCAD Binary DXF":
             raise InputError(DXF_GIVEN.format(name), name) from None
-        raise InputError(f"cannot read: {err}", name) from None
+        # (it gave Python's "'utf-8' codec can't decode byte 0xff in position 0")
+        raise InputError("not UTF-8 text (a scene is a JSON file in UTF-8: save it so, "
+                         "e.g. not as UTF-16)", name) from None
     except OSError as err:
         raise InputError(f"cannot read: {err}", name) from None
     return scene_from_dict(loads_json(text, name), name, validate=validate)
