@@ -605,7 +605,9 @@ def test_a_key_given_twice_is_refused(tmp_path):
     p = tmp_path / "s.json"
     p.write_text(doc)
     with pytest.raises(InputError, match=r's.json: the key "friction" appears twice in one '
-                                         r"object: which value is meant\? give it once"):
+                                         r'object \(in the object with the keys "format", '
+                                         r'"version", "dimension", "friction", "blocks"\): '
+                                         r"which value is meant\? give it once"):
         read_scene(p)
     p.write_text(doc.replace('"friction": 0.1, "blocks": []', '"blocks": [{"id": "b", '
                              '"support": true, "support": false}]'))
