@@ -837,3 +837,16 @@ def test_an_undecided_note_gives_the_reason_not_the_description(tmp_path):
     why = undecided_why(s, r)
     assert "non-associative sliding (no dilatancy): the answer is" not in why
     assert "fails its check" in why or "is below the capacity bound" in why, why
+
+
+def test_a_min_thickness_rtol_finer_than_its_checks_is_refused_by_the_spec():
+    """A sweep's min_thickness at rtol 1e-9 with Clarabel failed every case on its own
+    (the sweep exiting 1), where `thickness` and min_thickness refuse it at once."""
+    from rigidblocks.errors import InputError
+
+    with pytest.raises(InputError, match=r"analyses\[0\]: min_thickness: rtol 1e-09 is "
+                                         "finer than an interior-point solver"):
+        study.make_sweep("arch", grid={"voussoirs": [9]},
+                         analyses=[{"analysis": "min_thickness", "rtol": 1e-9}])
+    study.make_sweep("arch", grid={"voussoirs": [9]}, method="distortion",
+                     analyses=[{"analysis": "min_thickness", "rtol": 1e-9}])

@@ -80,6 +80,7 @@ from .execute import (
     terminate_as_interrupt,
 )
 from .storage import _Store
+from .thickness import check_rtol
 
 #: columns of every row besides the parameters and the answers
 BASE_COLUMNS = ("case", "case_id", "status", "error", "time", "solve_time")
@@ -239,6 +240,13 @@ def make_sweep(source: str | Scene, *, grid: Mapping[str, Sequence[Any]] | None 
     if isinstance(analyses, str | Mapping):
         analyses = [analyses]
     ans = tuple(_analysis(a, f"analyses[{i}]") for i, a in enumerate(analyses))
+    for i, a in enumerate(ans):  # (every case failed on its own, the sweep exiting 1)
+        rtol = dict(a.options).get("rtol")
+        if a.name == "min_thickness" and rtol is not None:
+            try:
+                check_rtol(rtol, method)
+            except InputError as err:
+                raise InputError(err.detail, f"analyses[{i}]") from None
     names = [a.name for a in ans]
     for a in ans:
         if names.count(a.name) > 1:

@@ -82,6 +82,18 @@ def builds(gen: Callable[..., Scene], params: dict[str, Any], param: str, t: flo
     return True
 
 
+def check_rtol(rtol: float, method: str) -> None:
+    """Refuse an ``rtol`` finer than the checks of ``method`` hold, as f*'s (`friction`):
+    --rtol 1e-9 printed a bracket whose two ends read alike."""
+    from ..analyses.core import F_RTOL_FLOOR, SIMPLEX
+
+    if rtol < F_RTOL_FLOOR and method != "distortion" and method not in SIMPLEX:
+        raise InputError(f"min_thickness: rtol {rtol:g} is finer than an interior-point "
+                         f"solver certifies its checks (their verdicts hold to 1e-9 of the "
+                         f"largest force): ask for {F_RTOL_FLOOR:g} or coarser, or method "
+                         "highs in 2D")
+
+
 def thinner(gen: Callable[..., Scene], params: dict[str, Any], param: str, lo: float
             ) -> float | None:
     """The largest of 1/2, 1/4, ... above ``lo`` at which the family ``gen`` builds, where
@@ -134,15 +146,7 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         raise InputError(f"min_thickness: need 0 < lo < hi, got lo={lo!r}, hi={hi!r}")
     if not (0 < rtol < 1):
         raise InputError(f"min_thickness: rtol must be in (0, 1), got {rtol!r}")
-    from ..analyses.core import F_RTOL_FLOOR, SIMPLEX
-
-    if rtol < F_RTOL_FLOOR and method != "distortion" and method not in SIMPLEX:
-        # as f*'s (`friction`): --rtol 1e-9 printed a bracket whose two ends read alike,
-        # finer than the checks' verdicts hold
-        raise InputError(f"min_thickness: rtol {rtol:g} is finer than an interior-point "
-                         f"solver certifies its checks (their verdicts hold to 1e-9 of the "
-                         f"largest force): ask for {F_RTOL_FLOOR:g} or coarser, or method "
-                         "highs in 2D")
+    check_rtol(rtol, method)
     if param in params:
         raise InputError(f"min_thickness: {param!r} is the bisected parameter; do not "
                          "give it")
@@ -294,4 +298,4 @@ def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction
     return head + thicker()
 
 
-__all__ = ["AT_LOWER_BOUND", "ThicknessResult", "builds", "min_thickness"]
+__all__ = ["AT_LOWER_BOUND", "ThicknessResult", "builds", "check_rtol", "min_thickness"]
