@@ -208,7 +208,7 @@ def test_tight_tolerances_out_of_reach_go_on_at_1e_9(monkeypatch, block_on_base)
     no_tight = refusing_tight("InsufficientProgress")
     monkeypatch.setattr(policy, "solve", no_tight)
     s = block_on_base(1.0, 2.0, 0.4)
-    fr = min_friction(s, load_factor=0.3, state=False)
+    fr = min_friction(s, load_factor=0.3, state=False, compare_dry=False)
     assert fr.friction_factor == pytest.approx(0.3, rel=1e-6)
     assert asked[:3] == [1e-10, 1e-10, 1e-9]  # tight, refined, then 1e-9
     # at the defaults only the search on lambda*(f)'s first max-load LP
@@ -219,11 +219,11 @@ def test_tight_tolerances_out_of_reach_go_on_at_1e_9(monkeypatch, block_on_base)
     asked.clear()
     monkeypatch.setattr(policy, "solve",
                         refusing_tight("AlmostSolved", policy.REFINE_WITHIN))
-    assert min_friction(s, load_factor=0.3, state=False).friction_factor == \
-        pytest.approx(0.3, rel=1e-6)
+    assert min_friction(s, load_factor=0.3, state=False,
+                        compare_dry=False).friction_factor == pytest.approx(0.3, rel=1e-6)
     assert asked[:2] == [1e-10, 1e-9] and asked.count(1e-10) == 1
     monkeypatch.setattr(policy, "solve", no_tight)
-    r = max_load_multiplier(s, state=False)
+    r = max_load_multiplier(s, state=False, compare_dry=False)
     assert r.load_multiplier == pytest.approx(0.4, rel=1e-6)
     # verdicts then compare with 1e-8 of the largest force: ten times the solver's 1e-9
     monkeypatch.setattr(policy, "solve", policy_solve)
@@ -353,7 +353,9 @@ def test_a_solve_settled_at_the_next_solves_tolerances_is_not_solved_again(
         return policy_solve(problem, solver, after=after, **settings)
 
     monkeypatch.setattr(policy, "solve", settling)
-    fr = min_friction(block_on_base(1.0, 2.0, 0.4), load_factor=0.3, state=False)
+    # (the associative search's solves alone: not the comparison without dilatancy)
+    fr = min_friction(block_on_base(1.0, 2.0, 0.4), load_factor=0.3, state=False,
+                      compare_dry=False)
     assert fr.friction_factor == pytest.approx(0.3, rel=1e-6)
     # at the defaults only the search on lambda*(f)'s first max-load LP
     assert asked[:asks] == [1e-10] * asks and set(asked[asks:]) == {1e-9, None}
@@ -376,7 +378,8 @@ def test_a_stalled_force_state_qp_is_solved_once(monkeypatch, block_on_base):
 
     policy_solve = policy.solve
     monkeypatch.setattr(policy, "solve", stalled)
-    fr = min_friction(block_on_base(1.0, 2.0, 0.4), load_factor=0.3)
+    fr = min_friction(block_on_base(1.0, 2.0, 0.4), load_factor=0.3,
+                      compare_dry=False)
     assert fr.friction_factor == pytest.approx(0.3, rel=1e-6) and len(qp) == 1
     assert fr.state is not None and fr.state.method == "solution of the limit problem"
     assert any("least-energy QP ended with status AlmostSolved" in n for n in fr.notes)
@@ -941,7 +944,7 @@ def test_finer_regularisation_out_of_reach_is_not_asked_again(monkeypatch):
 
     monkeypatch.setattr(policy, "solve", recording)
     wall = read_scene(EXAMPLES / "wall.json")
-    r = min_friction(wall, load_factor=1.0, state=False, rtol=1e-7)
+    r = min_friction(wall, load_factor=1.0, state=False, rtol=1e-7, compare_dry=False)
     assert r.upper == pytest.approx(1.0, rel=1e-6)
     fine = policy.VALUE_SETTINGS["clarabel"]["static_regularization_constant"]
     assert [status for reg, status in asked if reg == fine] == ["failure"]
@@ -955,7 +958,8 @@ def test_lambda_star_of_a_large_wall_agrees_with_the_simplex():
     With Clarabel's default KKT regularisation (1e-8) lambda* came out 0.9999956, 5.3e-6
     below it: its dual residual (1.9e-8), times forces of 641 block loads, bounds the
     accuracy of the objective; with VALUE_SETTINGS (1e-10) 1.0000005."""
-    r = max_load_multiplier(running_bond_wall(32, 31), friction=1.1837200040466043)
+    r = max_load_multiplier(running_bond_wall(32, 31), friction=1.1837200040466043,
+                            compare_dry=False)
     assert r.status == "collapse"
     assert r.load_multiplier == pytest.approx(1.0000009251763409, rel=1e-6)
 

@@ -323,7 +323,7 @@ def min_friction(scene: Scene, load_factor: float | None = None,
                  solver: str | None = None, state: bool = True, rtol: float | None = None,
                  settings: dict | None = None, pyramid: int | None = None,
                  contact_tol: float | None = None, progress: Progress | None = None,
-                 flow: str | None = None) -> FrictionResult:
+                 flow: str | None = None, compare_dry: bool = True) -> FrictionResult:
     """The smallest uniform friction coefficient f* that admits equilibrium (with
     ``flow="non-associative"``: the smallest f at which the non-associative analysis
     finds the structure standing, :func:`.nonassociative.min_friction_nonassociative`).
@@ -346,6 +346,10 @@ def min_friction(scene: Scene, load_factor: float | None = None,
         :meth:`rigidblocks.methods.convex.ConvexMethod.friction_limit`). Other
         methods: bracketing and bisection on their verdicts to ``rtol`` (at least 1e-9:
         a verdict is only as sharp as its violation tolerance).
+        ``compare_dry``: on a scene of up to DILATANCY_JOINTS joints, the associative
+        answer is compared with the friction the state reached from X0 needs without
+        dilatancy (``without_dilatancy``, and a note where it needs more); False skips it
+        (a sweep, whose rows do not hold it).
     """
     validate_scene(scene)  # a scene built in code, checked as a file's is
     lf = _load_factor(scene, load_factor)
@@ -384,7 +388,8 @@ def min_friction(scene: Scene, load_factor: float | None = None,
         gov = gov or m.governing_friction(fstar, at, lim.accuracy or 0.0)
     st = m.state(fstar, lf, at, limit=True) if (state and at is not None) else None
     dry = _friction_without_dilatancy(scene, m, lf, fstar, method, rtol, dict(
-        solver=solver, settings=settings, pyramid=pyramid, contact_tol=contact_tol))
+        solver=solver, settings=settings, pyramid=pyramid, contact_tol=contact_tol)) \
+        if compare_dry else None
     return FrictionResult(**_fields(m, "min_friction", "stable", fstar, lf), state=st,
                           without_dilatancy=dry, governing=gov, friction_factor=fstar,
                           friction_angle_deg=math.degrees(math.atan(fstar)),
@@ -556,7 +561,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
                         settings: dict | None = None, pyramid: int | None = None,
                         contact_tol: float | None = None, rtol: float | None = None,
                         mechanism: str = "vertex", progress: Progress | None = None,
-                        flow: str | None = None) -> LoadResult:
+                        flow: str | None = None, compare_dry: bool = True) -> LoadResult:
     """The largest multiplier lambda* of the live loads (associative friction; with
     ``flow="non-associative"`` see :func:`.nonassociative.max_load_nonassociative`).
 
@@ -577,7 +582,10 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         lists the joints at their friction threshold at lambda*. ``mechanism``:
         "vertex" (default) gives one mechanism of the optimal face, which can be drawn,
         its joints ranked by relative velocity; "blend" the interior-point duals (a mix
-        of every optimal mechanism where there are several).
+        of every optimal mechanism where there are several). ``compare_dry``: on a scene
+        of up to DILATANCY_JOINTS joints, the associative answer is compared with the
+        collapse without dilatancy from X0 (``without_dilatancy``, and a note where it
+        is lower); False skips it (a sweep, whose rows do not hold it).
     """
     validate_scene(scene)  # a scene built in code, checked as a file's is
     if mechanism not in ("vertex", "blend"):
@@ -605,7 +613,8 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     opened = dict(solver=solver, settings=settings, pyramid=pyramid,
                   contact_tol=contact_tol)
     if lim.status != "collapse":
-        dry = _without_dilatancy(scene, m, f, method, lim.status, None, opened)
+        dry = _without_dilatancy(scene, m, f, method, lim.status, None, opened) \
+            if compare_dry else None
         return LoadResult(**_fields(m, "max_load_multiplier", lim.status, f, None),
                           bracket=_bracket(lim), without_dilatancy=dry, **reached)
     # a multiplier within round-off below 0 (the methods call one below -1e-9 unstable)
@@ -624,7 +633,8 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
             gov = gov or m.governing_load(f, at, lim.accuracy or 0.0, width)
     st = m.state(f, lam, at, limit=True) if (state and at is not None) else None
     lam = _round_off_of_zero(lam, lim.accuracy)  # (its state is the solver's)
-    dry = _without_dilatancy(scene, m, f, method, "collapse", lam, opened)
+    dry = _without_dilatancy(scene, m, f, method, "collapse", lam, opened) \
+        if compare_dry else None
     return LoadResult(**_fields(m, "max_load_multiplier", "collapse", f, lam), state=st,
                       without_dilatancy=dry,
                       governing=gov, load_multiplier=lam, mechanism=lim.mechanism,
