@@ -39,6 +39,7 @@ from ..results import (
 from ..scene.model import Scene, friction_label, friction_value, geometry_key, loading_keys
 from ..scene.validate import check_load_factor, validate_scene
 from .nonassociative import (
+    NA_FRICTION_CEILING,
     NA_RTOL,
     check_nonassociative,
     is_nonassociative,
@@ -517,8 +518,8 @@ def _friction_without_dilatancy(scene: Scene, m: Method, lf: float, fstar: float
         return None
     how, why = _dry_words(replaced)
     if na.status == "unstable":
-        m.notes.append(f"{how} no friction makes the state reached from the elastic state "
-                       f"X0 stand: {why}")
+        m.notes.append(f"{how} no friction tried up to {NA_FRICTION_CEILING:g} makes the "
+                       f"state reached from the elastic state X0 stand: {why}")
     elif na.status == "stable" and na.friction_factor is not None and \
             na.friction_factor > fstar * (1.0 + max(rtol, DILATANCY_FRICTION_RTOL)):
         more = 100.0 * (na.friction_factor - fstar) / fstar if fstar > 0 else math.inf
