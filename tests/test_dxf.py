@@ -686,3 +686,17 @@ def test_references_are_placed_by_their_transformation_and_grids_expanded(tmp_pa
     sc, rep = rb.read_dxf(tmp_path / "grid.dxf", report=True)
     assert sum(not b.support for b in sc.blocks) == 4
     assert rep.skipped == {"LWPOLYLINE (invisible)": 1}
+
+
+def test_the_block_size_doubt_reads_the_free_blocks(tmp_path, capsys):
+    """A 1 x 2 m block on a 5 m base, drawn in metres: "the blocks are 3.5 m across (the
+    median)" counted the base, and warned of blocks no masonry has."""
+    doc = ezdxf.new()
+    doc.header["$INSUNITS"] = 6
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(-2, -1), (3, -1), (3, 0), (-2, 0)], close=True)
+    msp.add_lwpolyline([(0, 0), (1, 0), (1, 2), (0, 2)], close=True)
+    doc.saveas(tmp_path / "b.dxf")
+    assert main(["import-dxf", str(tmp_path / "b.dxf"), "-o", str(tmp_path / "b.json"),
+                 "--unit-weight", "20"]) == 0
+    assert "blocks are" not in capsys.readouterr().err

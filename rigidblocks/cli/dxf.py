@@ -137,8 +137,11 @@ def run(args: argparse.Namespace) -> int:
                      else "none declared")
             print(f"lengths in the drawing's own units, {which} (it spans "
                   f"{span_text(scene)})")
-        doubt = unit_doubt(scene) or (unit_guess(scene, rep.insunits)
-                                      if not scene.length_unit else "")
+        # (not of a scene restored with its units: --length-unit, which it advised,
+        # is refused there)
+        doubt = "" if rep.restored and scene.length_unit else \
+            unit_doubt(scene) or (unit_guess(scene, rep.insunits)
+                                  if not scene.length_unit else "")
         if doubt:
             print(f"rigidblocks: warning: {doubt}", file=sys.stderr)
         if scene.unit_weight is None:

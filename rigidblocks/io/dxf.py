@@ -277,9 +277,12 @@ def _unit_key(unit: str) -> str:
 
 def _block_size(scene: Scene) -> float:
     """The blocks' median size: their bounding boxes' largest side, in the scene's
-    length unit."""
+    length unit; the free blocks' where there are any (a 1 x 2 m block on a 5 m base
+    read "3.5 m across")."""
     lo, hi = block_boxes(scene)
-    return float(np.median((hi - lo).max(axis=1)))
+    size = (hi - lo).max(axis=1)
+    free = ~np.asarray(scene.support_mask, dtype=bool)
+    return float(np.median(size[free] if free.any() else size))
 
 
 def _metres(scene: Scene) -> float | None:
