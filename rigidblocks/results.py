@@ -523,6 +523,8 @@ class Result:
         if self.without_dilatancy is None:
             return {}
         st, v = self.without_dilatancy
+        if self.analysis == "check":  # (its status says it: admissible or not)
+            return {"without_dilatancy": {"status": st}}
         key = "friction_factor" if self.analysis == "min_friction" else "load_multiplier"
         return {"without_dilatancy": {"status": st, key: v}}
 

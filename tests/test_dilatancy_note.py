@@ -136,3 +136,24 @@ def test_friction_says_where_dry_joints_need_more(capsys):
     ref = rb.min_friction(rb.read_scene(EXAMPLES / "reference.json"), state=False)
     assert ref.without_dilatancy[0] == "stable"  # the seed's f* = 0.5 either way: no word
     assert not any(n.startswith("without dilatancy") for n in ref.notes)
+
+
+def test_check_says_where_dry_joints_do_not_stand(capsys):
+    """The block against the wall under 0.52 of its weight away from it at f = 0.6 was
+    ADMISSIBLE with no word (associatively it rubs up the wall; dry it tips at b/h =
+    0.5); the flat arch with vertical joints at its own f = 0.6 likewise (dry it needs
+    0.81). A check that needs no friction at all says nothing (the reference model at
+    its f = 0.6, f* = 0.5 either way)."""
+    r = rb.check(against_wall(), load_factor=0.52, state=False)
+    assert r.status == "admissible" and r.without_dilatancy == ("inadmissible", None)
+    assert any("the state reached from the elastic state X0 does not stand at this load"
+               in n for n in r.notes), r.notes
+    assert r.to_dict()["without_dilatancy"] == {"status": "inadmissible"}
+    assert main(["check", str(EXAMPLES / "flat_arch_vertical.json"), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["without_dilatancy"] == {"status": "inadmissible"}
+    ref = rb.check(rb.read_scene(EXAMPLES / "reference.json"), state=False)
+    assert ref.without_dilatancy[0] == "admissible"
+    assert not any("without dilatancy" in n for n in ref.notes)
+    assert rb.check(against_wall(), load_factor=0.45, state=False).without_dilatancy[0] \
+        == "admissible"

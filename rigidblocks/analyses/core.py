@@ -245,8 +245,7 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
           method: str = "clarabel", *, solver: str | None = None, state: bool = True,
           settings: dict | None = None, pyramid: int | None = None,
           contact_tol: float | None = None, progress: Progress | None = None,
-          flow: str | None = None,
-          ) -> CheckResult:
+          flow: str | None = None, compare_dry: bool = True) -> CheckResult:
     """Is there an admissible equilibrium state under dead + load_factor x live?
 
     Admissible: equilibrium of every free block with compression-only contacts (or
@@ -277,6 +276,10 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
             date (stage, solves, iterations), for a progress line.
         flow: "associative" or "non-associative" for every joint without its own
             ``flow`` (None: the scene's); see :mod:`.nonassociative`.
+        compare_dry: on a scene of up to DILATANCY_JOINTS joints admissible
+            associatively, whether the state reached from X0 without dilatancy stands
+            too (``without_dilatancy``, and a note where it does not); False skips it
+            (a thickness search's checks, a sweep).
 
     Returns:
         :class:`~rigidblocks.results.CheckResult` with status "admissible",
@@ -314,9 +317,12 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
     ok = v.status == ADMISSIBLE
     st = m.state(f, lf, v) if (ok and state) else None
     breaches = m.breaches(f, v) if v.status == INADMISSIBLE else ()
+    dry = _check_without_dilatancy(scene, m, f, lf, method, dict(
+        solver=solver, settings=settings, pyramid=pyramid, contact_tol=contact_tol)) \
+        if ok and compare_dry else None
     return CheckResult(**_fields(m, "check", v.status, f, lf), state=st,
                        admissible=v.admissible, violation=0.0 if ok else v.violation,
-                       breaches=breaches)
+                       breaches=breaches, without_dilatancy=dry)
 
 
 def min_friction(scene: Scene, load_factor: float | None = None,
@@ -499,6 +505,31 @@ def _without_dilatancy(scene: Scene, m: Method, f: float, method: str, status: s
     note = _dilatancy_note(na, lam, replaced)
     m.notes += [note] if note else []
     return na.status, na.load_multiplier
+
+
+def _check_without_dilatancy(scene: Scene, m: Method, f: float, lf: float, method: str,
+                             opened: dict[str, Any]) -> tuple[str, float | None] | None:
+    """As :func:`_without_dilatancy` for an associative "admissible": whether the state
+    reached from X0 without dilatancy stands at the load factor ``lf`` (its status), its
+    note added where it does not, or cannot tell (a block against a wall, pulled away
+    from it at 0.52 of its weight with f = 0.6: admissible associatively, rubbing up the
+    wall; dry, it tips at 0.5)."""
+    if method == "distortion" or m.system.contacts.n_joints > DILATANCY_JOINTS:
+        return None
+    dry, fr, replaced = _dry(scene, f)
+    try:
+        na = check_nonassociative(dry, fr, lf, method, flow="non-associative",
+                                  state=False, **opened)
+    except (InputError, SolverFailure):
+        return None
+    how, why = _dry_words(replaced)
+    if na.status == INADMISSIBLE:
+        m.notes.append(f"{how} the state reached from the elastic state X0 does not stand "
+                       f"at this load: {why}")
+    elif na.status != ADMISSIBLE:
+        m.notes.append(f"{how} whether the state reached from the elastic state X0 stands "
+                       f"at this load is undecided: {why}")
+    return na.status, None
 
 
 def _friction_without_dilatancy(scene: Scene, m: Method, lf: float, fstar: float,

@@ -127,8 +127,7 @@ def answer(analysis: Analysis, job: _Job, params: Mapping[str, Any],
     from ..analyses import analysis as registered
 
     extra = {"flow": flow} if flow is not None else {}
-    if name != "check":  # (no column holds it: time for nothing)
-        extra["compare_dry"] = False
+    extra["compare_dry"] = False  # (no column holds it: time for nothing)
     r = registered(name).run(scene(), load_factor=load_factor, method=method, state=False,
                              **extra)
     row = {f"{name}_status": r.status}

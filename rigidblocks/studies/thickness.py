@@ -201,7 +201,7 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
         scene = build(t)
         try:
             r = check(scene, friction=friction, load_factor=load_factor, method=method,
-                      state=False)
+                      state=False, compare_dry=False)
         except InputError as err:  # the question, not the family (its name left out)
             raise InputError(f"min_thickness: {err.detail}") from None
         spent += float(r.solve_time)
@@ -279,9 +279,10 @@ def _not_at_hi(scene: Scene, name: str, where: str, at_hi: bool | None, friction
                 "give another upper bound (hi, --hi)")
     if friction_value(friction) != math.inf:
         stands = check(scene, friction="infinite", load_factor=load_factor, method=method,
-                       state=False).status == "admissible"
+                       state=False, compare_dry=False).status == "admissible"
         if stands:
-            need = min_friction(scene, load_factor=load_factor, state=False)
+            need = min_friction(scene, load_factor=load_factor, state=False,
+                                compare_dry=False)
             f = f"f >= {fmt_safe(need.friction_factor, 4, True)}" \
                 if need.status == "stable" else "a larger f"
             lower = thinner()
