@@ -290,11 +290,16 @@ def test_output_piped_into_head_ends_quietly(tmp_path):
 def test_a_check_process_imports_only_what_it_uses(tmp_path):
     """``rigidblocks check`` of a 2D wall and of its extrusion, with the force state, in
     a fresh interpreter: neither scipy (0.1 CPU s to import scipy.sparse) nor the
-    modules of the other commands are imported."""
+    modules of the other commands are imported. (A wall above DILATANCY_JOINTS: on a
+    smaller one the answer without dilatancy beside it is an iteration of sparse
+    problems, which imports scipy.)"""
+    from rigidblocks.analyses.core import DILATANCY_JOINTS
+    from rigidblocks.contacts import detect_contacts
     from rigidblocks.generators.walls import running_bond_wall
     from rigidblocks.scene.extrude import extrude
 
-    wall = running_bond_wall(4, 4)
+    wall = running_bond_wall(6, 6)
+    assert detect_contacts(wall).n_joints > DILATANCY_JOINTS
     files = [tmp_path / "wall.json", tmp_path / "wall3d.json"]
     write_scene(wall, files[0])
     write_scene(extrude(wall), files[1])

@@ -276,10 +276,7 @@ def check(scene: Scene, friction: Any = None, load_factor: float | None = None,
             date (stage, solves, iterations), for a progress line.
         flow: "associative" or "non-associative" for every joint without its own
             ``flow`` (None: the scene's); see :mod:`.nonassociative`.
-        compare_dry: on a scene of up to DILATANCY_JOINTS joints admissible
-            associatively, whether the state reached from X0 without dilatancy stands
-            too (``without_dilatancy``, and a note where it does not); False skips it
-            (a thickness search's checks, a sweep).
+        compare_dry: the answer without dilatancy beside it (:data:`DILATANCY_JOINTS`).
 
     Returns:
         :class:`~rigidblocks.results.CheckResult` with status "admissible",
@@ -353,10 +350,7 @@ def min_friction(scene: Scene, load_factor: float | None = None,
         :meth:`rigidblocks.methods.convex.ConvexMethod.friction_limit`). Other
         methods: bracketing and bisection on their verdicts to ``rtol`` (at least 1e-9:
         a verdict is only as sharp as its violation tolerance).
-        ``compare_dry``: on a scene of up to DILATANCY_JOINTS joints, the associative
-        answer is compared with the friction the state reached from X0 needs without
-        dilatancy (``without_dilatancy``, and a note where it needs more); False skips it
-        (a sweep, whose rows do not hold it).
+        ``compare_dry``: the answer without dilatancy beside it (DILATANCY_JOINTS).
     """
     validate_scene(scene)  # a scene built in code, checked as a file's is
     lf = _load_factor(scene, load_factor)
@@ -434,9 +428,13 @@ def _load_nonassociative(scene: Scene, friction: Any, method: str, flow: str | N
                    tilt_angle_deg=tilt_angle_deg(scene, lam))
 
 
-#: the largest scene (joints) on which an associative `load` compares its answer with the
-#: one without dilatancy (:func:`_without_dilatancy`; the capacity bound's limit:
-#: 0.01 to 0.7 s on the examples and trial scenes up to 42 joints)
+#: the largest scene (joints) on which an associative `check`, `friction` or `load`
+#: (their ``compare_dry``, True by default; False: a thickness search's checks, a sweep,
+#: whose rows do not hold it) answers the same question without dilatancy from X0
+#: (``without_dilatancy``, and a note where that stands less:
+#: :func:`_check_without_dilatancy`, :func:`_friction_without_dilatancy`,
+#: :func:`_without_dilatancy`; the capacity bound's limit: 0.01 to 0.7 s more on the
+#: examples and trial scenes up to 42 joints, 1.85 s on a 2-ring vault of 47)
 DILATANCY_JOINTS = 50
 #: ... and a multiplier this much lower (relative) is said to be
 DILATANCY_RTOL = 1e-4
@@ -480,7 +478,7 @@ def _dry_words(replaced: bool) -> tuple[str, str]:
 
 
 def _without_dilatancy(scene: Scene, m: Method, f: float, method: str, status: str,
-                       lam: float | None, opened: dict[str, Any]
+                       lam: float | None, opened: dict[str, Any], on: bool = True
                        ) -> tuple[str, float | None] | None:
     """The answer of `load` without dilatancy (from the elastic state X0) beside an
     associative one (``status``, ``lam``) on a small scene, at a large finite friction
@@ -491,8 +489,8 @@ def _without_dilatancy(scene: Scene, m: Method, f: float, method: str, status: s
     the wall as it tipped, and dry joints let it tip at 0.5; at f = 0.5 sideways along
     the wall, 0.57735 for 0.4. Whatever its own mechanism: a block pinched under a lintel
     at f = 0.3 beside one that hinges at 0.5 collapsed associatively at 0.5 (the pinched
-    one cannot slide with dilatancy), dry at 0.3."""
-    if method == "distortion" or m.system.contacts.n_joints > DILATANCY_JOINTS:
+    one cannot slide with dilatancy), dry at 0.3. ``on`` False: not computed."""
+    if not on or method == "distortion" or m.system.contacts.n_joints > DILATANCY_JOINTS:
         return None
     if status not in ("collapse", "unbounded"):
         return None
@@ -614,10 +612,8 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         lists the joints at their friction threshold at lambda*. ``mechanism``:
         "vertex" (default) gives one mechanism of the optimal face, which can be drawn,
         its joints ranked by relative velocity; "blend" the interior-point duals (a mix
-        of every optimal mechanism where there are several). ``compare_dry``: on a scene
-        of up to DILATANCY_JOINTS joints, the associative answer is compared with the
-        collapse without dilatancy from X0 (``without_dilatancy``, and a note where it
-        is lower); False skips it (a sweep, whose rows do not hold it).
+        of every optimal mechanism where there are several). ``compare_dry``: the
+        answer without dilatancy beside it (DILATANCY_JOINTS).
     """
     validate_scene(scene)  # a scene built in code, checked as a file's is
     if mechanism not in ("vertex", "blend"):
@@ -642,11 +638,9 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
         # where friction does not govern, the command that names the joints breached
         # (the answer said no more than "the dead load alone has no admissible state")
         m.notes.append(friction_governs(m, f, 0.0) or unstable_note(m.scene))
-    opened = dict(solver=solver, settings=settings, pyramid=pyramid,
-                  contact_tol=contact_tol)
+    opened = dict(solver=solver, settings=settings, pyramid=pyramid, contact_tol=contact_tol)
     if lim.status != "collapse":
-        dry = _without_dilatancy(scene, m, f, method, lim.status, None, opened) \
-            if compare_dry else None
+        dry = _without_dilatancy(scene, m, f, method, lim.status, None, opened, compare_dry)
         return LoadResult(**_fields(m, "max_load_multiplier", lim.status, f, None),
                           bracket=_bracket(lim), without_dilatancy=dry, **reached)
     # a multiplier within round-off below 0 (the methods call one below -1e-9 unstable)
@@ -665,8 +659,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
             gov = gov or m.governing_load(f, at, lim.accuracy or 0.0, width)
     st = m.state(f, lam, at, limit=True) if (state and at is not None) else None
     lam = _round_off_of_zero(lam, lim.accuracy)  # (its state is the solver's)
-    dry = _without_dilatancy(scene, m, f, method, "collapse", lam, opened) \
-        if compare_dry else None
+    dry = _without_dilatancy(scene, m, f, method, "collapse", lam, opened, compare_dry)
     return LoadResult(**_fields(m, "max_load_multiplier", "collapse", f, lam), state=st,
                       without_dilatancy=dry,
                       governing=gov, load_multiplier=lam, mechanism=lim.mechanism,
