@@ -582,8 +582,7 @@ class _Words:
             k = getattr(result, "sliding_joints", None)
             rule = ", sliding without dilatancy" if k is None else \
                 f", {k} of {result.contacts.n_joints} joints sliding without dilatancy"
-        elif self.scene.effective_flow != "associative" or any(
-                j.flow not in (None, "associative") for j in self.scene.joints):
+        elif self.scene.slides_dry:
             # (an associative answer of a scene that asks for none read as the scene's)
             rule = ", sliding with dilatancy (associative; not the scene's flow)"
         friction = self.joint_friction_text(result)

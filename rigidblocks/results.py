@@ -436,7 +436,7 @@ class Result:
     #: carries the load, whichever state the iterations from X0 reach), STATIC_UNSTABLE
     #: ("unstable" `friction`: no friction admits a state at all); "" otherwise
     cause: str = ""
-    #: associative `load` and `friction` on a small scene
+    #: associative `check`, `friction` and `load` on a small scene
     #: (rigidblocks.analyses.core.DILATANCY_JOINTS): (status, number) of the same
     #: question without dilatancy, from the elastic state X0 (None: not computed)
     without_dilatancy: tuple[str, float | None] | None = None

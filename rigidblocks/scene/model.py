@@ -207,6 +207,13 @@ class Scene:
         return ASSOCIATIVE if self.flow is None else self.flow
 
     @property
+    def slides_dry(self) -> bool:
+        """Does some joint slide without dilatancy by the scene's own rules (its ``flow``,
+        or a joint's override)? ``is_nonassociative`` with no flow asked."""
+        return self.effective_flow == NON_ASSOCIATIVE or \
+            any(j.flow == NON_ASSOCIATIVE for j in self.joints)
+
+    @property
     def length_unit(self) -> str:
         return (self.units.length if self.units and self.units.length else "") or ""
 
