@@ -168,14 +168,14 @@ def min_thickness(generator: str | Callable[..., Scene], param: str = "thickness
     bound: tuple[str, ...] = ()  # the note of a default upper bound below 1
     if hi is None:
         hi = 1.0
-        smaller = None if builds(gen, params, param, hi) else thinner(gen, params, param, lo)
-        if smaller is not None:  # (a pointed arch of 16 voussoirs is not built at 1)
-            try:
-                gen(**params, **{param: hi})
-            except InputError as err:
+        try:
+            gen(**params, **{param: hi})
+        except InputError as err:  # (a pointed arch of 16 voussoirs is not built at 1)
+            smaller = thinner(gen, params, param, lo)
+            if smaller is not None:
                 bound = (f"the upper bound is {param} = {smaller:g}: the family is not "
                          f"built at 1 ({err.detail})",)
-            hi = smaller
+                hi = smaller
     n = 0
     spent = 0.0
 
