@@ -20,7 +20,7 @@ from ..io import read_scene
 from ..methods import METHODS, Progress
 from ..results import fmt_safe
 from ..scene.model import INFINITE, friction_label
-from .options import add_rtol, finite_float, friction_option, relative_tolerance
+from .options import add_rtol, finite_float, friction_option, one_line, relative_tolerance
 from .options import load_factor as load_factor_type
 from .progress import run_interruptible
 
@@ -340,12 +340,8 @@ def report(scene, res, joints: bool = False, verbose: bool = False) -> str:
         lines.append(f"solver     {res.solvers}, {res.n_solves} solve(s), "
                      f"{res.solve_time:.3g} s")
     # a block id with a newline broke its line ("governing  1 hinging (base, ground-A"
-    # then "x)"): control characters as Python writes them, as the errors give ids
-    return "\n".join(line.translate(_ESCAPES) for line in lines)
-
-
-#: control characters, escaped as Python writes them in a string
-_ESCAPES = {c: repr(chr(c))[1:-1] for c in [*range(32), 127]}
+    # then "x)"): escaped as the errors give it
+    return "\n".join(one_line(line) for line in lines)
 
 
 def _count(n: int, word: str) -> str:

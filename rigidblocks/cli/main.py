@@ -20,7 +20,7 @@ from typing import Any
 from ..analyses import ANALYSES
 from ..errors import InputError, SolverFailure, Terminated
 from ..io.paths import output_path
-from .options import use_finite_floats
+from .options import one_line, use_finite_floats
 
 #: numpy's floating-point warnings (RuntimeWarning)
 NUMPY_WARNINGS = r"(overflow|invalid value|divide by zero|underflow) encountered"
@@ -107,12 +107,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _main(argv)
 
 
-def _one_line(message: object) -> str:
-    """``message`` with its unprintable characters escaped (a block id with a newline
-    stays on the error's one line)."""
-    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in str(message))
-
-
 def _main(argv: Sequence[str] | None) -> int:
     try:
         words = list(sys.argv[1:] if argv is None else argv)
@@ -144,10 +138,10 @@ def _main(argv: Sequence[str] | None) -> int:
         _silence_stdout()
         return 141  # 128 + SIGPIPE, as a program the pipe ended
     except InputError as err:
-        print(f"rigidblocks: error: {_one_line(err)}", file=sys.stderr)
+        print(f"rigidblocks: error: {one_line(err)}", file=sys.stderr)
         return 2
     except SolverFailure as err:
-        print(f"rigidblocks: solver failure: {_one_line(err)}", file=sys.stderr)
+        print(f"rigidblocks: solver failure: {one_line(err)}", file=sys.stderr)
         return 1
     except KeyboardInterrupt as err:  # pragma: no cover
         if isinstance(err, Terminated):  # SIGTERM during a sweep: 128 + 15

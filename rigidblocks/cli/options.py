@@ -97,6 +97,12 @@ def add_rtol(parser: argparse.ArgumentParser, command: str,
                         f"reached; default {RTOL_DEFAULTS[command]}")
 
 
+def one_line(message: object) -> str:
+    """``message`` with its unprintable characters escaped as Python writes them (a
+    block id with a newline stays on an error's one line, and on an answer's row)."""
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in str(message))
+
+
 def use_finite_floats(parser: argparse.ArgumentParser) -> None:
     """Give every ``type=float`` option of ``parser`` the type :func:`finite_float`."""
     for action in parser._actions:
@@ -104,5 +110,6 @@ def use_finite_floats(parser: argparse.ArgumentParser) -> None:
             action.type = finite_float
 
 
-__all__ = ["RTOL_DEFAULTS", "add_rtol", "finite_float", "friction_option", "output_path",
-           "positive_float", "positive_int", "relative_tolerance", "use_finite_floats"]
+__all__ = ["RTOL_DEFAULTS", "add_rtol", "finite_float", "friction_option", "one_line",
+           "output_path", "positive_float", "positive_int", "relative_tolerance",
+           "use_finite_floats"]
