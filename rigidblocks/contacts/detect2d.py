@@ -98,7 +98,7 @@ def detect_contacts_2d(scene: Scene, tol: float) -> Contacts:
     boxes = shapely.box(box_lo[:, 0], box_lo[:, 1], box_hi[:, 0], box_hi[:, 1])
     ea, eb = shapely.STRtree(boxes).query(boxes)
     # (two supports have no joint: neither moves, nor has an equation its force enters)
-    fixed = np.array([b.support for b in scene.blocks], dtype=bool)
+    fixed = scene.support_mask
     keep = (owner[ea] < owner[eb]) & ~(fixed[owner[ea]] & fixed[owner[eb]])
     ea, eb = ea[keep], eb[keep]
 

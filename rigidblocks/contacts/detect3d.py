@@ -287,7 +287,7 @@ def detect_contacts_3d(scene: Scene, tol: float) -> Contacts:
 
     cand = candidate_pairs(scene, eps)
     # (two supports have no joint: neither moves, nor has an equation its force enters)
-    fixed = np.array([b.support for b in scene.blocks], dtype=bool)
+    fixed = scene.support_mask
     cand = cand[~(fixed[cand[:, 0]] & fixed[cand[:, 1]])] if len(cand) else cand
     convex = np.array([s.convex for s in shapes], dtype=bool)
     both = convex[cand[:, 0]] & convex[cand[:, 1]] if len(cand) else np.zeros(0, bool)

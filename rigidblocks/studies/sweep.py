@@ -83,7 +83,7 @@ from .storage import _Store
 from .thickness import check_rtol
 
 #: columns of every row besides the parameters and the answers
-BASE_COLUMNS = ("case", "case_id", "status", "error", "time", "solve_time")
+BASE_COLUMNS = ("case", "case_id", "status", "error", "note", "time", "solve_time")
 
 
 # -- the sweep -------------------------------------------------------------------------
@@ -113,8 +113,7 @@ class Sweep:
 
     @property
     def columns(self) -> list[str]:
-        cols = ["case", "case_id", *self.parameter_names, "status", "error", "note",
-                "time", "solve_time"]
+        cols = [*BASE_COLUMNS[:2], *self.parameter_names, *BASE_COLUMNS[2:]]
         for a in self.analyses:
             cols += [f"{a.name}_status", *ANSWERS[a.name]]
         return cols
