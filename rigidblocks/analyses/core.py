@@ -11,7 +11,7 @@ bisect on its verdicts (:mod:`.search`). Results are immutable
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import replace
 from typing import Any
@@ -477,6 +477,17 @@ def _dry_words(replaced: bool) -> tuple[str, str]:
             "flow), which dry joints do not")
 
 
+def _dry_answer(m: Method, method: str, run: Callable[[], Any]) -> Any:
+    """The answer without dilatancy that ``run`` gives, where one is compared (the convex
+    path, a scene of up to DILATANCY_JOINTS joints); None elsewhere, or where it fails."""
+    if method == "distortion" or m.system.contacts.n_joints > DILATANCY_JOINTS:
+        return None
+    try:
+        return run()
+    except (InputError, SolverFailure):
+        return None
+
+
 def _without_dilatancy(scene: Scene, m: Method, f: float, method: str, status: str,
                        lam: float | None, opened: dict[str, Any], on: bool = True
                        ) -> tuple[str, float | None] | None:
@@ -490,15 +501,13 @@ def _without_dilatancy(scene: Scene, m: Method, f: float, method: str, status: s
     the wall, 0.57735 for 0.4. Whatever its own mechanism: a block pinched under a lintel
     at f = 0.3 beside one that hinges at 0.5 collapsed associatively at 0.5 (the pinched
     one cannot slide with dilatancy), dry at 0.3. ``on`` False: not computed."""
-    if not on or method == "distortion" or m.system.contacts.n_joints > DILATANCY_JOINTS:
-        return None
-    if status not in ("collapse", "unbounded"):
+    if not on or status not in ("collapse", "unbounded"):
         return None
     dry, fr, replaced = _dry(scene, f)
-    try:
-        na = _load_nonassociative(dry, fr, method, "non-associative", NA_RTOL, state=False,
-                                  progress=None, mechanism="vertex", **opened)
-    except (InputError, SolverFailure):
+    na = _dry_answer(m, method, lambda: _load_nonassociative(
+        dry, fr, method, "non-associative", NA_RTOL, state=False, progress=None,
+        mechanism="vertex", **opened))
+    if na is None:
         return None
     note = _dilatancy_note(na, lam, replaced)
     m.notes += [note] if note else []
@@ -512,13 +521,10 @@ def _check_without_dilatancy(scene: Scene, m: Method, f: float, lf: float, metho
     note added where it does not, or cannot tell (a block against a wall, pulled away
     from it at 0.52 of its weight with f = 0.6: admissible associatively, rubbing up the
     wall; dry, it tips at 0.5)."""
-    if method == "distortion" or m.system.contacts.n_joints > DILATANCY_JOINTS:
-        return None
     dry, fr, replaced = _dry(scene, f)
-    try:
-        na = check_nonassociative(dry, fr, lf, method, flow="non-associative",
-                                  state=False, **opened)
-    except (InputError, SolverFailure):
+    na = _dry_answer(m, method, lambda: check_nonassociative(
+        dry, fr, lf, method, flow="non-associative", state=False, **opened))
+    if na is None:
         return None
     how, why = _dry_words(replaced)
     if na.status == INADMISSIBLE:
@@ -537,13 +543,11 @@ def _friction_without_dilatancy(scene: Scene, m: Method, lf: float, fstar: float
     needs without dilatancy, on a small scene, its note added where it needs more (the
     flat arch with vertical joints: f* = 0.4719, and dry joints 0.8109, the seed's
     point; a block against a wall stood associatively from f = 1.0002, dry at none)."""
-    if method == "distortion" or m.system.contacts.n_joints > DILATANCY_JOINTS:
-        return None
     dry, _, replaced = _dry(scene, 0.0)  # (the joints' own infinite friction)
-    try:
-        na = min_friction_nonassociative(dry, lf, method, flow="non-associative",
-                                         state=False, rtol=max(rtol, NA_RTOL), **opened)
-    except (InputError, SolverFailure):
+    na = _dry_answer(m, method, lambda: min_friction_nonassociative(
+        dry, lf, method, flow="non-associative", state=False, rtol=max(rtol, NA_RTOL),
+        **opened))
+    if na is None:
         return None
     how, why = _dry_words(replaced)
     if na.status == "unstable":
