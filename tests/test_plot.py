@@ -21,6 +21,7 @@ from conftest import EXAMPLES, make_scene, rect  # noqa: E402
 from matplotlib.quiver import Quiver  # noqa: E402
 
 import rigidblocks as rb  # noqa: E402
+from rigidblocks import generators  # noqa: E402
 from rigidblocks.cli.main import main  # noqa: E402
 from rigidblocks.io import read_scene, write_scene  # noqa: E402
 from rigidblocks.plotting import displaced_polygons  # noqa: E402
@@ -145,6 +146,26 @@ def test_displaced_polygons_rigid_rotation():
     # rotating (0,0) by 90 deg about (0.5, 0.25) gives (0.75, -0.25)
     assert np.allclose(moved[1][0], [0.75, -0.25])
     assert np.allclose(moved[0], sc.blocks[0].points)
+
+
+def test_a_block_that_only_slides_is_drawn_translated():
+    """The flat arch on piers collapses with its right pier sliding on the ground, a
+    translation (its velocity's turn is 0), beside a hinge to the last voussoir, which
+    turns. Closing that hinge in the picture turned the pier 2.9 deg (its base lifted
+    0.27 m at one end and 0.33 m at the other): drawn tipping as it slid. A translated
+    block keeps every edge's direction."""
+    from rigidblocks.scene.geometry import block_weights
+
+    scene = generators.build("flat_arch")
+    res = rb.max_load_multiplier(scene)
+    vel = np.asarray(res.mechanism.velocities, dtype=float)
+    k = scene.index["pier_r"]
+    assert abs(vel[k, 2]) <= 1e-9 * np.abs(vel).max() < np.abs(vel[k, :2]).max()
+    cen = block_weights(scene)[1]
+    moved = displaced_polygons(scene, vel, 0.3 / np.abs(vel).max(), cen,
+                               contacts=res.contacts)
+    d = moved[k] - scene.blocks[k].points
+    assert np.abs(d - d[0]).max() <= 1e-9 * np.abs(d).max()
 
 
 @pytest.mark.parametrize("name", ["arch", "pointed_arch", "segmental_arch"])
