@@ -157,6 +157,34 @@ def test_load_without_live_load_exits_2(capsys, tmp_path):
     assert len(err) == 1 and "live" in err[0]
 
 
+
+@pytest.mark.parametrize("command", [["load"], ["load", "--flow", "non-associative"],
+                                     ["load", "--method", "distortion"], ["path"]])
+@pytest.mark.parametrize("live", ["weightless", "zero"])
+def test_load_of_a_live_load_that_is_nothing_exits_2(capsys, tmp_path, command, live):
+    """A live load that is nothing is no live load: a live body force on blocks that
+    weigh nothing (a scene without unit_weight, carried by a dead point load) or a live
+    point load of force [0, 0] read UNBOUNDED ("no multiple of the live load makes it
+    collapse"), exit 0, no note. scene-format.md: a usage error, one line."""
+    blocks = [{"id": "S", "vertices": rect(-1, -1, 4, 1), "support": True},
+              {"id": "B", "vertices": rect(0, 0, 1, 2)}]
+    dead = {"block": "B", "force": [0, -10]}
+    p = write(tmp_path, "nothing.json", blocks, friction=0.4, loads=[dead],
+              live_body_force=[1, 0]) if live == "weightless" else \
+        write(tmp_path, "nothing.json", blocks, friction=0.4, unit_weight=20.0,
+              loads=[dead, {"block": "B", "force": [0, 0], "live": True}])
+    code = main([*command, p])
+    out = capsys.readouterr()
+    assert code == 2 and out.out == ""
+    err = out.err.strip().splitlines()
+    assert len(err) == 1 and "nothing to" in err[0] and "nothing.json" in err[0]
+    assert ("weigh nothing" if live == "weightless" else "all zero") in err[0]
+    if live == "weightless" and command == ["load"]:
+        # check and friction answer, and say the live body force adds nothing
+        code, d, _ = run_json(capsys, ["check", p, "--json"])
+        assert code == 0 and any("adds nothing" in n for n in d["notes"])
+
+
 def test_friction_all_overridden_exits_2(capsys, tmp_path):
     """scene-format.md: friction on a scene whose every joint has its own friction is a
     usage error (exit 2, one line)."""

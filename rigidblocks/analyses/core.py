@@ -37,7 +37,7 @@ from ..results import (
     within,
 )
 from ..scene.model import Scene, friction_label, friction_value, geometry_key, loading_keys
-from ..scene.validate import check_load_factor, validate_scene
+from ..scene.validate import check_live_load, check_load_factor, validate_scene
 from .nonassociative import (
     NA_FRICTION_CEILING,
     NA_RTOL,
@@ -622,9 +622,7 @@ def max_load_multiplier(scene: Scene, friction: Any = None, method: str = "clara
     validate_scene(scene)  # a scene built in code, checked as a file's is
     if mechanism not in ("vertex", "blend"):
         raise InputError(f'mechanism must be "vertex" or "blend", got {mechanism!r}')
-    if not scene.has_live_load:
-        raise InputError("the scene has no live load (no \"live\": true load and no "
-                         "live_body_force): there is nothing to multiply", scene.source)
+    check_live_load(scene)
     if is_nonassociative(scene, flow):
         return _load_nonassociative(scene, friction, method, flow, requested_rtol(
             rtol, NA_RTOL), state=state, progress=progress, mechanism=mechanism,

@@ -39,7 +39,7 @@ from ..errors import InputError
 from ..methods import Progress, open_method
 from ..methods.distortion import AT_THRESHOLD, LOADED
 from ..scene.model import Scene, friction_label, friction_value
-from ..scene.validate import validate_scene
+from ..scene.validate import check_live_load, validate_scene
 from ..solvers.distortion import TOL, Run
 from .nonassociative import _UNSETTLED, flow_mask
 from .search import BRACKET_ATOL, bisect
@@ -586,7 +586,5 @@ def _check_args(scene: Scene, steps: int, max_load: float, friction: Any, method
         raise InputError("the load path follows the distortion method, which is 2D only; "
                          "for a 3D scene, lambda* and its mechanism are the maximum load "
                          "multiplier's (`rigidblocks load`)", scene.source)
-    if not scene.has_live_load:
-        raise InputError("the scene has no live load: there is nothing to increase",
-                         scene.source)
+    check_live_load(scene, "increase")
     return friction_value(scene.effective_friction if friction is None else friction)

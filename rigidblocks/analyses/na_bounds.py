@@ -76,6 +76,7 @@ from ..equilibrium import force_state, mechanism
 from ..errors import InputError
 from ..results import ForceState, Mechanism
 from ..scene.model import Scene, friction_value
+from ..scene.validate import check_live_load
 from .na_capacity import (
     MAX_JOINTS,
     _admissible_lps,
@@ -422,9 +423,7 @@ def safe_multiplier(scene: Scene, friction: float | str | None = None, *,
 
     if scene.dimension == 3 and pyramid is None:
         pyramid = PYRAMID
-    if not scene.has_live_load:
-        raise InputError("the scene has no live load (no \"live\": true load and no "
-                         "live_body_force): there is nothing to multiply", scene.source)
+    check_live_load(scene)
     f = friction_value(scene.effective_friction if friction is None else friction)
     cv = open_method(scene, "clarabel", pyramid=pyramid)
     c = cv.contacts

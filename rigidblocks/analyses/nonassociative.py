@@ -112,6 +112,7 @@ from ..scene.model import (
     geometry_key,
     loading_keys,
 )
+from ..scene.validate import check_live_load
 from ..solvers import OPTIMAL
 from .na_limit import (
     CARRY_TOL,
@@ -849,9 +850,7 @@ def max_load_nonassociative(scene: Scene, friction: Any = None, method: str = "c
     or "blend", which of the optimal mechanisms of the computed state is drawn, as for
     associative friction (see :func:`_collapse_mechanism`).
     """
-    if not scene.has_live_load:
-        raise InputError("the scene has no live load (no \"live\": true load and no "
-                         "live_body_force): there is nothing to multiply", scene.source)
+    check_live_load(scene)
     f = friction_value(scene.effective_friction if friction is None else friction)
     na, cv = _open(scene, method, flow, **kw)
     _above_ceiling(na, f)

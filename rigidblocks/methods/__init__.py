@@ -97,9 +97,15 @@ def _weighs(scene: Scene) -> bool:
 
 
 def _weightless(scene: Scene, system: Any) -> list[str]:
-    """The note on blocks that weigh nothing (and on a scene that nothing loads)."""
-    if np.any(system.dead) or _weighs(scene):
+    """The note on blocks that weigh nothing (and on a scene that nothing loads, or
+    whose live body force, a multiple of the weights, is nothing)."""
+    if _weighs(scene):
         return []
+    if np.any(system.dead):
+        lbf = scene.live_body_force
+        return ["the blocks weigh nothing (no unit_weight): the live body force, a "
+                "multiple of their weights, adds nothing; only the point loads act"] \
+            if lbf is not None and any(v != 0 for v in lbf) else []
     return ["the blocks weigh nothing (no unit_weight): self-weight is not part of this "
             "analysis, only the loads act" + ("; and no load acts: every force is zero (set "
                                              "unit_weight, or add loads)"

@@ -312,6 +312,33 @@ def check_load_factor(scene: Scene, load_factor: float) -> None:
                                  "load", top, "give a smaller load factor"), "load factor")
 
 
+def check_live_load(scene: Scene, verb: str = "multiply") -> None:
+    """Raise :class:`InputError` where the scene has no live load for a limit analysis
+    to ``verb``: none declared, or one that is nothing (live point loads of zero force
+    and moment, a live body force on free blocks that weigh nothing: a scene without a
+    unit weight read UNBOUNDED, as if no load could make it collapse)."""
+    if not scene.has_live_load:
+        raise InputError("the scene has no live load (no \"live\": true load and no "
+                         f"live_body_force): there is nothing to {verb}", scene.source)
+    live = [ld for ld in scene.loads if ld.is_live]
+    if any(np.any(np.asarray(ld.force, dtype=float) != 0) for ld in live) or \
+            any(ld.moment is not None and np.any(np.atleast_1d(ld.moment) != 0)
+                for ld in live):
+        return
+    lbf = scene.live_body_force
+    if lbf is not None and any(v != 0 for v in lbf):
+        from .geometry import scene_weights
+
+        if np.any(scene_weights(scene)[0][~scene.support_mask] > 0):
+            return
+        raise InputError("the live body force acts on the free blocks' weight, and they "
+                         "weigh nothing (no unit_weight, or 0): there is nothing to "
+                         f"{verb}; give the scene a unit_weight, or a live point load",
+                         scene.source)
+    raise InputError("the scene's live loads are all zero (no force and no moment): "
+                     f"there is nothing to {verb}", scene.source)
+
+
 def _check_ids_and_loads(scene: Scene) -> None:
     seen: set[str] = set()
     for b in scene.blocks:
