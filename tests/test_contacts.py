@@ -15,6 +15,7 @@ from conftest import make_scene, rect
 from rigidblocks.contacts import detect_contacts
 from rigidblocks.contacts.detect2d import detect_contacts_2d
 from rigidblocks.errors import InputError
+from rigidblocks.generators import build
 from rigidblocks.generators.walls import block_id, joint_count, running_bond_wall
 from rigidblocks.scene.geometry import scene_size
 from rigidblocks.scene.model import Block
@@ -264,6 +265,10 @@ def test_running_bond_joint_count_with_openings(courses, N, openings):
         # course 2 block 2 (6 joints) and course 3 block 2 (2 head + 2 below, minus the
         # one shared with the first, + 2 above) -> 6 + 5 = 11 fewer
         assert n == joint_count(courses, N) - 11
+    # the command line's string form, documented in the generator's help, is read in
+    # Python too (build("wall", openings="2,2,2,1") read "2" as an item)
+    typed = ";".join(",".join(str(v) for v in op) for op in openings)
+    assert build("wall", courses=courses, blocks_per_course=N, openings=typed) == scene
 
 
 def test_bookkeeping_count_agrees_with_closed_form():
@@ -290,6 +295,8 @@ def test_wall_geometry_and_loads():
     ({"depth": 0}, "depth"), ({"unit_weight": -1}, "unit_weight"),
     ({"friction": -0.1}, "friction"), ({"horizontal_load": float("inf")}, "horizontal_load"),
     ({"openings": [(0, 1, 0)]}, "openings item #0"),
+    ({"openings": "0,1,x,1"}, "openings item #0"), ({"openings": "0,1,0,1;0,1"},
+                                                    "openings item #1"),
     ({"openings": [(9, 2, 0, 1)]}, "openings item #0"),
     ({"openings": [(0, 1, 9, 2)]}, "openings item #0"),
     ({"openings": [(0, 1, 3, 1)]}, "even course"),

@@ -66,6 +66,17 @@ def friction_param(value: Any, gen: str, name: str = "friction") -> float | str:
         raise InputError(f"{gen}: {str(err).replace('friction', name, 1)}") from None
 
 
+def items(value: Any) -> list[Any]:
+    """The items of a list parameter: a list as given, or the command line's string
+    form 'a,b;c,d' read as [["a", "b"], ["c", "d"]] (its items' values are the
+    generator's to check)."""
+    if value is None or isinstance(value, str) and not value.strip():
+        return []
+    if isinstance(value, str):
+        return [[v.strip() for v in s.split(",")] for s in value.split(";") if s.strip()]
+    return list(value)
+
+
 def _num(name: str, value: Any, gen: str) -> float:
     return finite_number(value, f"{gen}: {name}")
 

@@ -21,7 +21,7 @@ from ..io.scene_file import scene_from_dict
 from ..scene.model import Scene
 from ..scene.polyhedra import prism_faces
 from .arches import _num as _number
-from .arches import _r, choice, friction_param, integer, non_negative, positive
+from .arches import _r, choice, friction_param, integer, items, non_negative, positive
 from .limits import MAX_CAPPED_RING, MAX_STACK, at_most, count_at_most
 
 LOAD_DIRECTIONS = ("in_plane", "out_of_plane")
@@ -140,15 +140,11 @@ def joint_count3d(courses: int, blocks_per_course: int) -> int:
 
 # -- box stacks ----------------------------------------------------------------------
 def _offsets(offsets: Any, n: int, g: str) -> list[tuple[float, float]]:
-    if offsets is None or offsets == "" or offsets == ():
+    given = items(offsets)
+    if not given:
         return []
-    items: list[Any]
-    if isinstance(offsets, str):
-        items = [s.split(",") for s in offsets.split(";") if s.strip()]
-    else:
-        items = list(offsets)
     out = []
-    for k, it in enumerate(items):
+    for k, it in enumerate(given):
         try:
             dx, dy = (float(v) for v in it)
         except (TypeError, ValueError):

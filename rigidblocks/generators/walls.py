@@ -17,6 +17,7 @@ import numpy as np
 
 from ..errors import InputError, finite_number
 from ..scene.model import Block, Scene, Units
+from .arches import items
 from .limits import MAX_WALL_BLOCKS, at_most
 
 FOUNDATION_ID = "foundation"
@@ -46,10 +47,22 @@ def _count(name: str, value: int, minimum: int = 1) -> int:
     return int(value)
 
 
+def _whole(v: object) -> object:
+    """An opening's number, read from the command line's string form where it is one
+    (what is not an integer is left for the check to name)."""
+    if isinstance(v, str):
+        try:
+            return int(v)
+        except ValueError:
+            return v
+    return v
+
+
 def running_bond_wall(courses: int = 10, blocks_per_course: int = 10, block_length: float = 0.4,
                       block_height: float = 0.2, unit_weight: float = 20.0,
                       friction: float = 0.6, depth: float = 1.0, horizontal_load: float = 1.0,
-                      openings: Sequence[tuple[int, int, int, int]] = ()) -> Scene:
+                      openings: Sequence[tuple[int, int, int, int]] | str = ()
+                      ) -> Scene:
     """A running-bond wall of rectangular blocks on a foundation (a 2D scene).
 
     Args:
@@ -118,7 +131,9 @@ def running_bond_wall(courses: int = 10, blocks_per_course: int = 10, block_leng
     right2 = np.where(odd, np.minimum(2 * index + 1, 2 * N), 2 * index + 2)
 
     keep = np.ones(len(course_of), dtype=bool)
-    for k, op in enumerate(openings):
+    for k, op in enumerate(items(openings)):
+        if isinstance(op, Sequence) and not isinstance(op, str):
+            op = tuple(_whole(v) for v in op)
         if not (isinstance(op, Sequence) and len(op) == 4 and all(
                 isinstance(v, int | np.integer) and not isinstance(v, bool) for v in op)):
             raise InputError(f"running_bond_wall: openings item #{k} must be 4 integers "
