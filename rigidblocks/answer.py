@@ -25,6 +25,7 @@ from .results import (
     MODE_WORDS,
     STATIC_UNSTABLE,
     Result,
+    angle_text,
     fmt_bracket,
     fmt_safe,
 )
@@ -543,7 +544,7 @@ class _Words:
         if f is None or isinstance(f, str) or math.isinf(float(f)):
             return "infinite friction (no sliding)"
         f = float(f)
-        return f"friction f = {f:.10g} ({math.degrees(math.atan(f)):.2f}{self.deg})"
+        return f"friction f = {f:.10g} ({angle_text(f)}{self.deg})"
 
     def joint_friction_text(self, result: Any) -> str:
         """The friction the joints of ``result`` have: the uniform one, or where every
@@ -715,7 +716,7 @@ class _Words:
         na = without_dilatancy(res)
         shown = _within(fs, res.bracket) if na else _figures(fs, True, res.rtol)
         number = (f"f* = {shown} (friction angle "
-                  f"{math.degrees(math.atan(float(shown))):.4f}{self.deg})")
+                  f"{angle_text(shown, 4)}{self.deg})")
         why = []
         f = self.scene.effective_friction
         # a bond's net pull is capped by c a / f: more friction may carry less (a block

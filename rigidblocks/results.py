@@ -657,7 +657,7 @@ def headline(result: Any, symbols: bool = False) -> str:
         if result.friction_factor is None:
             return f"unstable: no friction suffices{at}"
         return (f"minimum friction f* = {result.friction_factor:.4g} "
-                f"(friction angle {result.friction_angle_deg:.2f}{deg}){at}")
+                f"(friction angle {angle_text(result.friction_factor)}{deg}){at}")
     if a == "max_load_multiplier":
         if result.load_multiplier is not None:
             return (f"collapse load multiplier {lam}* = {result.load_multiplier:.4g}, "
@@ -675,7 +675,13 @@ def headline(result: Any, symbols: bool = False) -> str:
 def _friction_text(f: Any, deg: str, inf: str) -> str:
     if f is None or isinstance(f, str) or math.isinf(f):
         return inf
-    return f"{float(f):.4g} ({math.degrees(math.atan(float(f))):.2f}{deg})"
+    return f"{float(f):.4g} ({angle_text(f)}{deg})"
+
+
+def angle_text(f: Any, decimals: int = 2) -> str:
+    """The friction angle atan(f) in degrees to ``decimals`` places, or "0" for f = 0
+    (it read 0.0000 deg beside f* = 0)."""
+    return "0" if float(f) == 0 else f"{math.degrees(math.atan(float(f))):.{decimals}f}"
 
 
 @dataclass(frozen=True, eq=False)

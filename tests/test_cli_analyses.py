@@ -450,3 +450,17 @@ def test_the_json_live_load_has_its_resultant_and_path_and_thickness_their_units
     assert json.loads(capsys.readouterr().out)["units"] == {"length": "m", "force": "N"}
     assert main(["thickness", "arch", "--rtol", "1e-2", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["units"] == {"length": "m", "force": "kN"}
+
+
+def test_no_friction_needed_reads_an_angle_of_0(capsys, block_file):
+    """A block under its weight alone needs no friction: f* = 0, whose angle read
+    "0.0000 deg" (and 0.00 deg in a picture's title), figures of a number that is 0."""
+    assert main(["friction", block_file, "--load-factor", "0"]) == 0
+    answer = next(ln for ln in capsys.readouterr().out.splitlines()
+                  if ln.startswith("answer"))
+    assert answer.split(None, 1)[1] == "f* = 0 (friction angle 0 deg)"
+    from rigidblocks.io import read_scene
+    from rigidblocks.results import headline
+
+    res = rb.min_friction(read_scene(block_file), load_factor=0.0)
+    assert "(friction angle 0\N{DEGREE SIGN})" in headline(res, symbols=True)

@@ -378,3 +378,13 @@ def test_old_package_name_is_a_deprecated_alias():
     from rigidblocks.examples.walls import running_bond_wall
 
     assert running_bond_wall is walls.running_bond_wall
+
+
+def test_every_generator_parameter_has_its_help():
+    """`rigidblocks example NAME --help` lists each parameter with what it is: the
+    reference model's bond_tensile_strength and bond_cohesion were listed bare."""
+    from rigidblocks.generators import GENERATORS
+
+    bare = [f"{g.name} {p.name}" for g in GENERATORS.values() for p in g.params
+            if not p.help.strip()]
+    assert bare == []

@@ -219,6 +219,15 @@ def test_notebook_view():
     assert page.to_ipython().data == frame
 
 
+def test_a_report_echoed_at_a_prompt_is_one_line():
+    """A plain Python prompt echoes repr(): it was the whole document (750 kB with a 3D
+    view); it is one line that says what the report is and how to write it, while the
+    report is still the document (a str)."""
+    page = rb.report(box_stack(boxes=1))
+    assert "\n" not in repr(page) and len(repr(page)) < 200 and ".save(path)" in repr(page)
+    assert str(page).startswith("<!DOCTYPE html>") and f"{len(page):,}" in repr(page)
+
+
 def test_cli(tmp_path, capsys):
     out = tmp_path / "flat.html"
     scene = str(EXAMPLES / "flat_arch_vertical.json")

@@ -98,7 +98,10 @@ GENERATORS: dict[str, Generator] = {g.name: g for g in (
                ("block_height", "central block height (m)"),
                ("top_height", "top block height (m)"),
                ("depth", "out-of-plane thickness (m)"),
-               ("friction", 'friction coefficient f, or "infinite"'))),
+               ("friction", 'friction coefficient f, or "infinite"'),
+               ("bond_tensile_strength", "tensile strength of a bonded vertical joint "
+                "between the central blocks (N/m^2 over its area; 0: dry), seed Fig. 4b"),
+               ("bond_cohesion", "cohesion of that bonded joint (N/m^2 over its area)"))),
     Generator("flat_arch", "arches:flat_arch",
               "flat arch (platband) with vertical or radial joints, on piers or abutments",
               (("span", "clear span at the intrados (m)"),

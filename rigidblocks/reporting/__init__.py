@@ -34,6 +34,11 @@ class Report(str):
     #: height of the frame a notebook shows it in (CSS)
     frame_height = "900px"
 
+    def __repr__(self) -> str:
+        # (a plain Python prompt echoed the whole document, 750 kB with a 3D view)
+        return (f"<rigidblocks report: one HTML document of {len(self):,} characters; "
+                ".save(path) writes it, str(report) is the document>")
+
     def _repr_html_(self) -> str:
         return ('<div class="rb-report-frame">'
                 f'<iframe srcdoc="{_html.escape(str(self), quote=True)}" '

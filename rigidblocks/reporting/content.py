@@ -25,7 +25,7 @@ from ..answer import (
     without_dilatancy,
 )
 from ..plotting.marks import scene_weights
-from ..results import DIRECT_STANDS, force_state_words
+from ..results import DIRECT_STANDS, angle_text, force_state_words
 from ..scene.model import Scene
 
 #: statuses that answer the question, and how the answer reads (tone of the badge)
@@ -81,7 +81,7 @@ def fmt_friction(f: Any) -> str:
         return "-"
     if isinstance(f, str) or math.isinf(float(f)):
         return "\N{INFINITY} (no sliding)"
-    return f"{float(f):.4g} (friction angle {math.degrees(math.atan(float(f))):.2f}\N{DEGREE SIGN})"
+    return f"{float(f):.4g} (friction angle {angle_text(f)}\N{DEGREE SIGN})"
 
 
 def _vec(v: Any) -> str:
