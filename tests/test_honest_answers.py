@@ -1580,14 +1580,15 @@ def test_a_scene_without_depth_beside_point_loads_is_said_to_be_a_slice(tmp_path
     lambda* = 500.5 with no word; with its depth of 1000 mm it weighs 40 kN and tips at
     (W + P) b / (W h) = 1 (P = W, b/h = 1/2). The answer now says the blocks are a 1 mm
     slice beside the point loads."""
-    def scene(**top):
+    def scene(**top):  # a key given as None is left out
+        keys = {"units": {"length": "mm", "force": "N"}, "unit_weight": 2e-5,
+                "friction": "infinite", "live_body_force": [1, 0],
+                "loads": [{"block": "B", "force": [0, -40000], "point": [500, 2000]}],
+                **top}
         return write(tmp_path, make_scene(
             [{"id": "base", "vertices": rect(-2000, -1000, 6000, 1000), "support": True},
              {"id": "B", "vertices": rect(0, 0, 1000, 2000)}],
-            **{"units": {"length": "mm", "force": "N"}, "unit_weight": 2e-5,
-               "friction": "infinite", "live_body_force": [1, 0],
-               "loads": [{"block": "B", "force": [0, -40000], "point": [500, 2000]}],
-               **top}))
+            **{k: v for k, v in keys.items() if v is not None}))
 
     said = "the scene gives no depth: its blocks are 1 mm deep"
     code, doc, _ = run_json(capsys, ["load", scene(), "--json"])
@@ -1595,9 +1596,17 @@ def test_a_scene_without_depth_beside_point_loads_is_said_to_be_a_slice(tmp_path
     code, doc, _ = run_json(capsys, ["load", scene(depth=1000), "--json"])
     assert doc["load_multiplier"] == pytest.approx(1.0)
     assert not any(said in w for w in doc["why"]), doc["why"]
-    # weightless blocks beside point loads: the depth changes nothing, nothing to say
-    code, doc, _ = run_json(capsys, ["load", scene(unit_weight=0), "--json"])
-    assert code == 0 and not any(said in w for w in doc["why"]), doc["why"]
+    # weightless blocks beside point loads: the depth changes nothing, nothing to say.
+    # The live body force would act on nothing (a one-line error says so); a live point
+    # load of 10 kN at the top tips the block at 40 kN x 0.5 m / (10 kN x 2 m) = 1
+    code, out, err = run(capsys, ["load", scene(unit_weight=0), "--json"])
+    assert code == 2 and "weigh nothing" in err and said not in err + out, (out, err)
+    push = {"block": "B", "force": [10000, 0], "point": [500, 2000], "live": True}
+    weightless = scene(unit_weight=0, live_body_force=None, loads=[
+        {"block": "B", "force": [0, -40000], "point": [500, 2000]}, push])
+    code, doc, _ = run_json(capsys, ["load", weightless, "--json"])
+    assert code == 0 and doc["load_multiplier"] == pytest.approx(1.0, rel=1e-6)
+    assert not any(said in w for w in doc["why"]), doc["why"]
 
 
 def test_f_star_of_a_bonded_scene_is_no_bound_for_every_larger_f(tmp_path, capsys):
