@@ -155,14 +155,15 @@ def test_coulomb_slide_with_self_weight_collapses_where_it_slides():
                    for n in p.notes), p.notes
 
 
-@pytest.mark.parametrize("steps", [7, 13, 40])
-def test_plastic_shearing_with_self_weight_events_at_their_loads(steps):
+@pytest.mark.parametrize("steps, top", [(7, 2.5), (13, 2.5), (40, 2.5), (40, 1e12)])
+def test_plastic_shearing_with_self_weight_events_at_their_loads(steps, top):
     """Drucker: the top joints plasticise at lambda_s = 1.5 (as above) and stay at their
     threshold; the structure collapses at the static multiplier
     f (P + W_t + W_c) / H = 0.5 x 200 / 50 = 2 (generators/seed.py), whatever the step
-    (before: 1.53846 with 13 steps, the end of the step)."""
+    (before: 1.53846 with 13 steps, the end of the step; and with steps of 2.5e10 to
+    max_load = 1e12, a collapse at 0, its first bracket left 23 wide)."""
     scene = rb.read_scene(EXAMPLES / "reference_self_weight.json")
-    p = load_path(scene, friction=0.5, steps=steps, max_load=2.5)
+    p = load_path(scene, friction=0.5, steps=steps, max_load=top)
     first = p.first("plastic")
     assert first.load_factor == pytest.approx(1.5, rel=EV)
     assert joints(first) == {frozenset(("left", "top")), frozenset(("right", "top"))}
@@ -439,3 +440,13 @@ def test_joints_that_slide_at_once_under_the_dead_load_are_said_to(capsys):
     assert ("why        2 joints are at the friction threshold under the dead load alone (in "
             "the state reached from the elastic state X0): plastic from lambda = 0; with "
             "Coulomb sliding friction they slide and keep no shear") in out, out
+
+
+def test_a_max_load_beyond_what_double_precision_carries_is_one_line(capsys):
+    """max_load x the largest live load must stay below 1e150 (docs/scene-format.md,
+    "Limits"), as the load factor of `check` must: --max-load 1e300 ended in a
+    traceback (an SVD that did not converge)."""
+    code = main(["path", str(EXAMPLES / "reference_self_weight.json"), "--max-load", "1e300"])
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "max_load" in err, err
+    assert "Traceback" not in err

@@ -38,8 +38,9 @@ import numpy as np
 from ..errors import InputError
 from ..methods import Progress, open_method
 from ..methods.distortion import AT_THRESHOLD, LOADED
+from ..methods.engine import MAX_TRIALS
 from ..scene.model import Scene, friction_label, friction_value
-from ..scene.validate import check_live_load, validate_scene
+from ..scene.validate import check_live_load, check_load_factor, validate_scene
 from ..solvers.distortion import TOL, Run
 from .nonassociative import _UNSETTLED, flow_mask
 from .search import BRACKET_ATOL, bisect
@@ -55,6 +56,11 @@ EXTRAPOLATE = 1e-4
 #: and kept where it falls within the bracket (to its width); else the bisection goes on
 #: to ``refine`` steps
 COARSE = 1e-4
+#: the bisection then goes on until the event's bracket is within FINE of its load (or
+#: FLOOR of the live load near 0), or for ``refine`` halvings of the step in all: a
+#: step of 2.5e10 (``max_load`` 1e12) had left 30 halvings 23 wide and the reference
+#: model collapsing at 0 instead of 2.4
+FINE, FLOOR = 1e-9, 1e-12
 #: an undecided run within this (relative) of an admissible load puts the collapse at
 #: that load, with a note; farther above it, the path is undecided
 LIMIT_RTOL = 1e-6
@@ -278,18 +284,18 @@ class _Path:
         return r.status != "admissible" or any(self.new(r))
 
     # -- locating an event --------------------------------------------------------------
-    def locate(self, a: float, b: float, rtol: float = 0.0, steps: int | None = None
-               ) -> tuple[float, float, Run | None]:
+    def locate(self, a: float, b: float, rtol: float = 0.0, steps: int | None = None,
+               atol: float = 0.0) -> tuple[float, float, Run | None]:
         """(lo, hi, run at hi): the first load in (a, b] where something happens is in
-        [lo, hi], bisected to ``rtol`` (relative) or ``steps`` (``refine``); nothing happens
-        at lo. An undecided trial ends the path."""
+        [lo, hi], bisected to ``rtol`` (relative) + ``atol`` or ``steps`` (``refine``);
+        nothing happens at lo. An undecided trial ends the path."""
         def decide(lam: float) -> tuple[bool | None, Run]:
             q = self.solve(lam)
             if q.status == "failure":
                 raise self.failed(q, lam)
             return (None if q.status == "undecided" else self.happens(q)), q
 
-        br = bisect(decide, a, b, rtol, steps=steps or self.refine)
+        br = bisect(decide, a, b, rtol, atol, steps=steps or self.refine)
         u = br.undecided_at
         if u is not None:
             why = f"at lambda = {u:.9g}: {self.solve(u).reason}"
@@ -317,7 +323,8 @@ class _Path:
         cracks and joints. Bracketed to ``COARSE`` and extrapolated (:meth:`extrapolate`), else
         bisected on to ``refine`` steps in all; a state that is not admissible at the
         bracket's upper end is a collapse at its lower end."""
-        lo, hi, rh = self.locate(a, b, COARSE if self.refine else 0.0)
+        lo, hi, rh = (self.locate(a, b, COARSE, MAX_TRIALS, FLOOR) if self.refine
+                      else self.locate(a, b))
         rh = rh if rh is not None else r
         if rh.status == "admissible":
             cracks, joints = self.new(rh)
@@ -325,7 +332,8 @@ class _Path:
             if lam is not None:
                 return lam, (lo, hi), rh, cracks, joints
         used = math.ceil(math.log2((b - a) / (hi - lo))) if hi > lo else self.refine
-        lo, hi, rf = self.locate(lo, hi, steps=max(self.refine - used, 1))
+        fine = math.ceil(math.log2((hi - lo) / (FINE * hi + FLOOR))) if hi > lo else 0
+        lo, hi, rf = self.locate(lo, hi, steps=max(self.refine - used, fine, 1))
         rh = rf if rf is not None else rh
         if rh.status != "admissible":
             raise self.collapse(lo, [], self.solve(lo))
@@ -587,4 +595,5 @@ def _check_args(scene: Scene, steps: int, max_load: float, friction: Any, method
                          "for a 3D scene, lambda* and its mechanism are the maximum load "
                          "multiplier's (`rigidblocks load`)", scene.source)
     check_live_load(scene, "increase")
+    check_load_factor(scene, max_load, "max_load")
     return friction_value(scene.effective_friction if friction is None else friction)

@@ -294,11 +294,12 @@ def check_representable(scene: Scene) -> None:
                 raise InputError(_beyond(what, value), f"load #{i} on block {ld.block!r}")
 
 
-def check_load_factor(scene: Scene, load_factor: float) -> None:
+def check_load_factor(scene: Scene, load_factor: float, what: str = "load factor") -> None:
     """Raise :class:`InputError` where ``load_factor`` times the largest live load (a
     force or moment, or the live body force on a block's weight bound, as
     :func:`check_representable` has them) is not finite or exceeds :data:`LARGEST`
-    (``check --load-factor 1e308`` ended in a solver's NumericalError)."""
+    (``check --load-factor 1e308`` ended in a solver's NumericalError; ``path
+    --max-load 1e300`` in an SVD that did not converge). ``what``: the factor's name."""
     live = [float(np.abs(ld.force).max(initial=0.0)) for ld in scene.loads if ld.is_live]
     live += [float(np.abs(np.atleast_1d(ld.moment)).max(initial=0.0))
              for ld in scene.loads if ld.is_live and ld.moment is not None]
@@ -308,8 +309,8 @@ def check_load_factor(scene: Scene, load_factor: float) -> None:
     with np.errstate(all="ignore"):
         top = max(live, default=0.0) * float(load_factor)
     if _too_large(top):
-        raise InputError(_beyond(f"the load factor {load_factor:.10g} times the largest live "
-                                 "load", top, "give a smaller load factor"), "load factor")
+        raise InputError(_beyond(f"{what} = {load_factor:.10g} times the largest live "
+                                 "load", top, f"give a smaller {what}"), what)
 
 
 def check_live_load(scene: Scene, verb: str = "multiply") -> None:
