@@ -309,6 +309,28 @@ def test_the_json_answer_names_the_back_ends_that_answered(tmp_path, capsys):
         assert json.loads(capsys.readouterr().out)["answered_by"] == ["distortion"]
 
 
+@pytest.mark.parametrize("argv, key", [(["load"], "load_multiplier"),
+                                       (["friction"], "friction_factor")])
+def test_a_distortion_answer_that_is_a_convex_bound_names_its_back_end(capsys, argv, key):
+    """The reference model with self-weight without dilatancy: the state reached from X0
+    by the distortion iteration stands at the associative lambda* = f (P + W) / H = 2.4
+    (f = 0.6, generators/seed.py) and at the static f* = 0.25 (seed Fig. 4a with
+    self-weight), so the answer is that bound, to Clarabel's digits; the JSON named the
+    distortion iteration alone as the back end that answered."""
+    path = str(EXAMPLES / "reference_self_weight.json")
+    docs = {}
+    for method in ("convex", "distortion"):
+        assert main([*argv, path, "--method", method, "--flow", "non-associative",
+                     "--json"]) == 0
+        docs[method] = json.loads(capsys.readouterr().out)
+    conv, dist = docs["convex"], docs["distortion"]
+    assert dist[key] == pytest.approx({"load": 2.4, "friction": 0.25}[argv[0]], rel=1e-6)
+    said = {"load": "equals the associative one", "friction": "equals the static f*"}
+    assert any(said[argv[0]] in n for n in dist["notes"]), dist["notes"]
+    assert dist[key] == conv[key]  # the bound's own number, so its back end answered too
+    assert dist["answered_by"] == ["distortion", "clarabel"], dist["answered_by"]
+
+
 @pytest.mark.parametrize("argv", [["check", "reference.json"],
                                   ["friction", "segmental_arch.json", "--flow",
                                    "non-associative"]])

@@ -308,6 +308,18 @@ class NonAssociative(Method):
         #: (:func:`~rigidblocks.analyses.na_limit.reached_normals`): its breaches are
         #: named from it, not from the same fixed point run again
         self.dead_load: tuple[float, FixedPoint] | None = None
+        #: the convex method of the bounds (:func:`_open`), and the back ends of a
+        #: bound that is the answer itself (:meth:`answer_is_bound`)
+        self.bounds_by: Method | None = None
+        self.number_by: tuple[str, ...] = ()
+
+    def answer_is_bound(self) -> None:
+        """The answer is a bound's own number (the associative multiplier, the static
+        f*) where the state reached from X0 stands there: the back ends that computed
+        it answered too (the distortion path named itself alone beside Clarabel's
+        lambda* = 2.4000000002 of the reference model)."""
+        if self.bounds_by is not None:
+            self.number_by = tuple(self.bounds_by.answered_by)
 
     @property
     def n_solves(self) -> int:
@@ -319,7 +331,8 @@ class NonAssociative(Method):
 
     @property
     def answered_by(self) -> tuple[str, ...]:
-        return self.inner.answered_by
+        own = tuple(self.inner.answered_by)
+        return own + tuple(b for b in self.number_by if b not in own)
 
     @property
     def rejected(self) -> tuple[str, ...]:
@@ -562,9 +575,8 @@ def _open(scene: Scene, method: str, flow: str | None, **kw: Any
 
     m = open_method(scene, method, **kw)
     na = nonassociative_method(m, flow_mask(scene, m.contacts, flow))
-    if isinstance(m, ConvexMethod):
-        return na, m
-    cv = ConvexMethod(scene, m.system, m.timings)
+    cv = m if isinstance(m, ConvexMethod) else ConvexMethod(scene, m.system, m.timings)
+    na.bounds_by = cv
     return na, cv
 
 
@@ -1044,8 +1056,10 @@ def _at_the_top(na: NonAssociative, decide: Any, hi: float, up: Any
     for top in (hi, hi * (1.0 - TOP_RTOL)):
         ok, v = decide(top)
         if ok is True:
-            na.notes.append("the non-associative multiplier equals the associative one"
-                            if top == hi else
+            if top == hi:
+                na.answer_is_bound()
+            na.notes.append("the non-associative multiplier equals the associative one "
+                            "(the state reached from X0 stands at it)" if top == hi else
                             f"the non-associative multiplier is within {TOP_RTOL:g} "
                             f"(relative) below the associative one, {hi:.9g}")
             up_end = up.upper if top == hi and up.upper is not None else hi
@@ -1634,6 +1648,8 @@ def _friction_by_verdicts(na: NonAssociative, lf: float, lim: Any, rtol: float, 
         low = lim.lower if first == fs and lim.lower is not None else fs
         ok, v = decide(first)
         if ok is True:
+            if first == fs:
+                na.answer_is_bound()
             na.notes.append(_equals_static(fs, rtol) if first == fs else
                             f"the non-associative friction is within {rtol:g} (relative) "
                             f"above the static f* = {fs:.9g}")
