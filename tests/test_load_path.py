@@ -450,3 +450,13 @@ def test_a_max_load_beyond_what_double_precision_carries_is_one_line(capsys):
     err = capsys.readouterr().err
     assert code == 2 and len(err.strip().splitlines()) == 1 and "max_load" in err, err
     assert "Traceback" not in err
+
+
+def test_a_path_of_more_steps_than_it_takes_is_refused():
+    """--steps 1e9 ran on for hours; the path takes at most MAX_STEPS = 10,000 steps
+    (events are located to 1e-9 of their load whatever the step)."""
+    from rigidblocks.errors import InputError
+
+    scene = rb.read_scene(EXAMPLES / "reference.json")
+    with pytest.raises(InputError, match="1 to 10000 steps"):
+        load_path(scene, steps=10**9)

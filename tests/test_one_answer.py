@@ -193,13 +193,15 @@ def test_negative_load_factor_is_refused_everywhere(capsys):
 def test_bad_friction_and_path_options_name_the_option(capsys):
     """A negative or non-numeric --friction, --steps 0 and --max-load 0 are usage errors
     (exit 2) naming the option, as every other option's (before: "friction must be
-    >= 0" named no option, "load_path needs steps >= 1" a Python function)."""
+    >= 0" named no option, "load_path needs steps >= 1" a Python function); so is
+    --steps 1e9, which ran on for hours."""
     f = str(EXAMPLES / "arch.json")
     for argv, opt in ((["check", f, "--friction", "-1"], "--friction"),
                       (["load", f, "--friction", "abc"], "--friction"),
                       (["path", f, "--friction", "-0.5"], "--friction"),
                       (["plot", f, "--analysis", "load", "--friction", "-1"], "--friction"),
                       (["path", f, "--steps", "0"], "--steps"),
+                      (["path", f, "--steps", "1000000000"], "--steps"),
                       (["path", f, "--max-load", "0"], "--max-load")):
         assert main(argv) == 2, argv
         err = capsys.readouterr().err

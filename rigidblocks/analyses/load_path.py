@@ -61,6 +61,8 @@ COARSE = 1e-4
 #: step of 2.5e10 (``max_load`` 1e12) had left 30 halvings 23 wide and the reference
 #: model collapsing at 0 instead of 2.4
 FINE, FLOOR = 1e-9, 1e-12
+#: the most load steps a path takes (``--steps 1e9`` ran on for hours)
+MAX_STEPS = 10_000
 #: an undecided run within this (relative) of an admissible load puts the collapse at
 #: that load, with a note; farther above it, the path is undecided
 LIMIT_RTOL = 1e-6
@@ -588,8 +590,13 @@ def _check_args(scene: Scene, steps: int, max_load: float, friction: Any, method
         raise InputError(f'load_path supports method="distortion" only, got {method!r}')
     if sliding not in ("plastic", "coulomb"):
         raise InputError(f'sliding must be "plastic" or "coulomb", got {sliding!r}')
-    if steps < 1 or not (max_load > 0):
-        raise InputError("load_path needs steps >= 1 and max_load > 0")
+    if not (max_load > 0):
+        raise InputError(f"load_path needs max_load > 0, got {max_load!r}", "max_load")
+    if not 1 <= steps <= MAX_STEPS:
+        raise InputError(f"the path takes 1 to {MAX_STEPS} steps, got {steps}: each step "
+                         "is a solve at least, and finer steps locate no event better "
+                         f"(each is located to {FINE:g} of its load whatever the step)",
+                         "steps")
     if scene.dimension != 2:
         raise InputError("the load path follows the distortion method, which is 2D only; "
                          "for a 3D scene, lambda* and its mechanism are the maximum load "

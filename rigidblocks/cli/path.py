@@ -7,6 +7,7 @@ import json
 import sys
 
 from ..analyses import load_path
+from ..analyses.load_path import FINE, MAX_STEPS
 from ..io import read_scene
 from ..methods import Progress
 from ..results import fmt_safe
@@ -17,8 +18,8 @@ from .progress import run_interruptible
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("scene", help="scene file (JSON, see docs/scene-format.md)")
-    p.add_argument("--steps", type=positive_int, default=40,
-                   help="number of load steps (default 40)")
+    p.add_argument("--steps", type=_steps, default=40,
+                   help=f"number of load steps, 1 to {MAX_STEPS} (default 40)")
     p.add_argument("--max-load", type=positive_float, default=2.0,
                    help="largest live-load multiplier of the path (default 2)")
     p.add_argument("--friction", type=friction_option,
@@ -35,6 +36,16 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--verbose", "-v", action="store_true",
                    help="also print the work done and the solver's notes")
+
+
+def _steps(text: str) -> int:
+    """argparse type of ``--steps``: a whole number from 1 to MAX_STEPS."""
+    v = positive_int(text)
+    if v > MAX_STEPS:
+        raise argparse.ArgumentTypeError(f"at most {MAX_STEPS} (each step is a solve at "
+                                         f"least; events are located to {FINE:g} of their "
+                                         f"load whatever the step), got {text!r}")
+    return v
 
 
 def run(args: argparse.Namespace) -> int:
