@@ -460,3 +460,16 @@ def test_a_path_of_more_steps_than_it_takes_is_refused():
     scene = rb.read_scene(EXAMPLES / "reference.json")
     with pytest.raises(InputError, match="1 to 10000 steps"):
         load_path(scene, steps=10**9)
+
+
+def test_an_event_the_steps_are_too_coarse_to_locate_is_undecided(block_on_base):
+    """The block slides at f = 0.3 (validation.md); a path to max_load = 1e100 in 40
+    steps (each 2.5e98 wide) cannot bisect its first step down to 0.3 within the trial
+    budget, and said "COLLAPSE at lambda = 0" with no word. It is undecided, with the
+    reason; a path to 1e40 still locates the slide at 0.3."""
+    scene = block_on_base(1.0, 2.0, 0.3)
+    p = load_path(scene, max_load=1e40, flow="non-associative")
+    assert p.status == "collapse" and p.collapse_load == pytest.approx(0.3, rel=EV)
+    p = load_path(scene, max_load=1e100, flow="non-associative")
+    assert p.status == "undecided" and p.collapse_load is None
+    assert any("could not be located" in n for n in p.notes), p.notes

@@ -316,6 +316,14 @@ class _Path:
                                 f"and {BRACKET_ATOL:g} of the live load near 0): "
                                 f"admissible at {br.bad:.9g}, undecided {why}{above}")
             raise self.collapse(br.bad, [], self.solve(br.bad), (br.bad, top))
+        if rtol > 0 and abs(br.good - br.bad) > rtol * max(abs(br.good), abs(br.bad)) + atol:
+            # (the trial budget spent: a step of 2.5e98, --max-load 1e100, left a block
+            # that slides at 0.3 "COLLAPSE at lambda = 0")
+            self.w.notes.append(
+                f"an event between lambda = {br.bad:.9g} and {br.good:.9g} could not be "
+                f"located to {rtol:g} within {steps or self.refine} halvings of the step: "
+                "a smaller max_load (--max-load) locates it")
+            raise _End("undecided", br.bad, (br.bad, br.good))
         return br.bad, br.good, br.good_data
 
     def event(self, a: float, b: float, r: Run
