@@ -516,3 +516,44 @@ def test_highs_messages_are_not_repeated():
         "Time limit reached (HiGHS status 13)"
     other = "Optimization terminated successfully. (HiGHS Status 7: Optimal)"
     assert _message(other) == other
+
+
+def test_where_the_bounds_meet_the_distortion_path_gives_their_answer():
+    """Seed Fig. 4a with its vertical joint bonded in tension only (no cohesion), at
+    f = 0.5: the capacity bound and the associative multiplier meet at f P / H =
+    0.5 x 100 / 50 = 1 (generators/seed.py), so every collapse state lies at 1. The
+    distortion path's state from X0 does not settle there (here within a budget of 500
+    iterations, as at its default 20,000) and it read UNDECIDED with a bracket
+    [0, 0.999999] below its own lower bound; the convex path answered 1."""
+    import json
+
+    from rigidblocks.io.scene_file import scene_from_dict
+
+    doc = json.loads((EXAMPLES / "fig4a_bonded.json").read_text())
+    doc["joints"][0].pop("cohesion")
+    scene = scene_from_dict(doc)
+    r = rb.max_load_multiplier(scene, method="distortion", flow="non-associative",
+                               settings={"max_iter": 500})
+    assert r.status == "collapse" and r.load_multiplier == pytest.approx(1.0, rel=1e-6)
+    lo, hi = r.load_multiplier_bounds
+    assert lo <= r.load_multiplier <= hi
+    assert any("meets the associative multiplier" in n for n in r.notes), r.notes
+    assert r.answered_by[0] == "distortion" and "clarabel" in r.answered_by
+
+
+def test_where_a_bound_carries_the_load_an_undecided_distortion_check_stands():
+    """The same scene at lambda = 0.5, below its capacity bound 1: the distortion path's
+    state from X0 decides nothing (within 500 iterations here), and `check` said
+    UNDECIDED where the theorem says that every state stands (Radenkovic's second
+    theorem, docs/safe-multiplier.md); the verdict is the bound's, and says so."""
+    import json
+
+    from rigidblocks.io.scene_file import scene_from_dict
+
+    doc = json.loads((EXAMPLES / "fig4a_bonded.json").read_text())
+    doc["joints"][0].pop("cohesion")
+    r = rb.check(scene_from_dict(doc), load_factor=0.5, method="distortion",
+                 flow="non-associative", settings={"max_iter": 500})
+    assert r.status == "admissible" and r.admissible
+    assert any("capacity bound on every collapse state" in n for n in r.notes), r.notes
+    assert "clarabel" in r.answered_by

@@ -661,12 +661,15 @@ def _check(na: NonAssociative, cv: ConvexMethod, f: float, lf: float, state: boo
         trial["limit_status"] = status
         if status == INADMISSIBLE:  # (the state shown did not settle: no breach of its)
             admissible, violation = False, math.nan
-    if isinstance(na, ConvexNonAssociative) and na.scene.has_live_load:
+    if (isinstance(na, ConvexNonAssociative) or status == UNDECIDED) and \
+            na.scene.has_live_load:
         # a theorem decides where the iterations from X0 do not stand, and says more
         # where they do: it stands in every state, not only in the one from X0 (the
         # reference model with self-weight at 0.5, below its bound 0.6, read "another
-        # state may collapse at a lower load"); not on the distortion path, the seed's
-        # procedure as it is
+        # state may collapse at a lower load"); on the distortion path, the seed's
+        # procedure as it is, only where it decides nothing (seed Fig. 4a bonded in
+        # tension alone at 0.5, below its capacity bound 1: UNDECIDED, as `load` was
+        # beside the bounds that give its answer)
         lower = _bound_carries(na, cv, f, lf)
         shown = (v if v.status == ADMISSIBLE else _bound_state(cv, f, lf, static)) \
             if lower is not None else None
@@ -678,8 +681,9 @@ def _check(na: NonAssociative, cv: ConvexMethod, f: float, lf: float, state: boo
                             "whatever state it is in, that reached from X0 or another"
                             + ("" if shown is v else " (the state shown: an admissible one "
                                "of least complementary energy)"))
-            if status != ADMISSIBLE:
+            if status != ADMISSIBLE:  # the bound's verdict, not the state's
                 st = na.state(f, lf, shown)
+                na.answer_is_bound()
             status, admissible, violation, na.cause = ADMISSIBLE, True, 0.0, BOUND_STANDS
     breaches = na.breaches(f, v) if status == INADMISSIBLE and v.status == INADMISSIBLE \
         else ()
@@ -997,7 +1001,19 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
             na.explain(v)
         return v.admissible, v
 
+    def by_the_bounds(what: str) -> LoadResult | None:
+        """Where the bounds meet, the answer whatever the state reached from X0 did
+        (``what``): fig4a without cohesion read UNDECIDED in [0, 0.999999] beside its
+        bounds [1, 1], the convex path's answer 1 (seed Fig. 4a: f P / H)."""
+        if not _closes(bounds):
+            return None
+        na.notes.append(f"the state reached from X0 {what}")
+        return _by_the_bounds(na, cv, f, up, bounds, tuple(trials), state)
+
     ok0, v0 = decide(0.0)
+    if ok0 is not True and v0.status != FAILURE and \
+            (ans := by_the_bounds("stands at no load factor tried from 0")) is not None:
+        return ans
     if ok0 is not True:
         na.explain(v0)
         # a method that fails is a failure (exit 1), not an undecided search (3)
@@ -1027,6 +1043,10 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
     best_v = br.good_data or best
     if br.undecided_at is not None:
         last = trials[-1]
+        if br.too_wide(rtol, BRACKET_ATOL) and (ans := by_the_bounds(
+                f"did not settle at lambda = {br.undecided_at:.9g}: it brackets its "
+                f"multiplier in {fmt_bracket(br.lower, br.upper, 9)} only")) is not None:
+            return ans
         na.notes.append(f"the iteration did not settle at lambda = {br.undecided_at:.9g}: "
                         f"the multiplier is bracketed in {fmt_bracket(br.lower, br.upper, 9)}")
         if br.too_wide(rtol, BRACKET_ATOL):
@@ -1039,6 +1059,8 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
                         f"{LOWER_WORDS[na.lower_by]} {lo:.6g}, "
                         "a lower bound on every collapse state: the state reached from the "
                         "elastic state is not one")
+        if (ans := by_the_bounds("gives none")) is not None:
+            return ans
     # (converged False where a trial did not settle: the flow line said "converged"
     # beside the inclined corbel arch's at f = 0.8, its bracket decided by its width)
     return result("collapse", br.good, best_v, br.undecided_at is None,
@@ -1304,7 +1326,7 @@ def _x0_answer(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
                       load_multiplier_bounds=bounds, mechanism=mech, governing=gov)
 
 
-def _by_the_bounds(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
+def _by_the_bounds(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
                    bounds: tuple[float | None, float | None], trials: tuple, state: bool
                    ) -> LoadResult:
     """The answer where the limit iteration from X0 gives none in [0, hi] but a lower
@@ -1325,6 +1347,7 @@ def _by_the_bounds(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any
                                     False), load_multiplier_bounds=bounds,
                           bracket=(float(lo), float(hi)))
     hi = float(hi)
+    na.answer_is_bound()
     na.notes.append(f"{word} meets the associative multiplier: every collapse state "
                     + ("" if na.lower_by == "frictionless" else "at lambda >= 0 ")
                     + f"collapses at lambda_a = {hi:.9g}, whichever state it is in, and "
