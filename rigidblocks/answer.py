@@ -234,6 +234,17 @@ def live_load_size(scene: Scene) -> tuple[float, str]:
     return w.live_size, w.direction()
 
 
+def live_load_measure(scene: Scene) -> tuple[float, str, str]:
+    """What lambda = 1 means as a table's column gives it: the live load's size, its
+    unit and its direction in words (:func:`live_load_size`); where the live load is
+    couples alone, their summed size in force x length units, "of couples" (a path
+    under a live couple read "1.6 x 0 kN = 0 kN")."""
+    w = _Words(scene, False)
+    if w.live_moment:
+        return w.live_moment, w.mu, "of couples"
+    return w.live_size, scene.force_unit or "force units", w.direction()
+
+
 def live_load_doc(scene: Scene) -> dict[str, Any]:
     """What lambda = 1 is, as a `load --json` gives it: the size and direction the
     answer line reads (:func:`live_load_size`), the resultant force (its components: a

@@ -14,6 +14,7 @@ relative (issue 30, item 5).
 from __future__ import annotations
 
 import json
+import re
 
 import pytest
 from conftest import EXAMPLES
@@ -473,3 +474,42 @@ def test_an_event_the_steps_are_too_coarse_to_locate_is_undecided(block_on_base)
     p = load_path(scene, max_load=1e100, flow="non-associative")
     assert p.status == "undecided" and p.collapse_load is None
     assert any("could not be located" in n for n in p.notes), p.notes
+
+
+def test_a_path_under_a_live_couple_gives_it_in_force_x_length(tmp_path, capsys):
+    """A 0.4 x 1 m block of 20 kN/m^3 (W = 8 kN) under a live couple of 1 kN m tips at
+    W b / 2 = 8 x 0.2 = 1.6 kN m, lambda = 1.6 (validation.md, tipping about a toe):
+    the path said "1.6 x 0 kN = 0 kN", the couple's size being no force. Its table's
+    headers stand over their columns."""
+    doc = {"format": "rigidblocks-scene", "version": 1, "dimension": 2,
+           "units": {"length": "m", "force": "kN"}, "depth": 1.0, "unit_weight": 20.0,
+           "friction": 0.6, "blocks": [
+               {"id": "base", "vertices": [[-1, -0.2], [1, -0.2], [1, 0], [-1, 0]],
+                "support": True},
+               {"id": "B", "vertices": [[0, 0], [0.4, 0], [0.4, 1.0], [0, 1.0]]}],
+           "loads": [{"block": "B", "force": [0, 0], "moment": 1.0, "live": True}]}
+    path = tmp_path / "couple.json"
+    path.write_text(json.dumps(doc))
+    assert main(["path", str(path), "--flow", "non-associative"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    status = next(ln for ln in out if ln.startswith("status"))
+    assert "1.6 x 1 kN m = 1.6 kN m of couples" in status, status
+    head = next(i for i, ln in enumerate(out) if "lambda [-]" in ln)
+    assert "live [kN m]" in out[head]
+
+    def ends(line):  # where each of a row's words ends
+        return [m.end() for m in re.finditer(r"\S+", line)]
+
+    # right-aligned: each header ends where its column's figures end
+    assert out[head].index("  event") == ends(out[head + 1])[1]
+    assert out[head].index("lambda [-]") + 10 == ends(out[head + 1])[0]
+    # the reference model's balanced pulls: "live in all [N]", 15 wide, stood 3 columns
+    # right of its 12-wide column
+    assert main(["path", str(EXAMPLES / "reference.json")]) == 0
+    out = capsys.readouterr().out.splitlines()
+    head = next(i for i, ln in enumerate(out) if "lambda [-]" in ln)
+    assert "live in all [N]" in out[head]
+    assert out[head].index("  event") == ends(out[head + 1])[1]
+    # the end of a path that stands, as given (it read 1.23457, rounded up)
+    assert main(["path", str(path), "--max-load", "1.23456789", "--steps", "2"]) == 0
+    assert "STANDING at lambda = 1.23456789 " in capsys.readouterr().out

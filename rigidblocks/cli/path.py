@@ -66,10 +66,9 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _lines(scene, res, args: argparse.Namespace) -> list[str]:
-    from ..answer import joint_friction_words, live_load_size, live_load_text
+    from ..answer import joint_friction_words, live_load_measure, live_load_text
 
-    fu = scene.force_unit or "force units"
-    live, direction = live_load_size(scene)
+    live, fu, direction = live_load_measure(scene)
     some = res.sliding_joints
     # (a scene's one joint without dilatancy read "non-associative flow" for them all,
     # and a joint's own friction went unsaid beside "friction infinite")
@@ -83,11 +82,12 @@ def _lines(scene, res, args: argparse.Namespace) -> list[str]:
              f"({live_load_text(scene)}); {res.sliding} sliding, {flow}, "
              f"{joint_friction_words(scene, res)}",
              f"status     {res.status.upper()}" + _status_tail(res, live, fu, direction)]
+    # a balanced live load (the reference model's two opposing pulls) has no
+    # resultant: its column is the sum of its sizes, as the status line says
+    head = ("live in all [" if direction.startswith("in all") else "live [") + fu + "]"
+    width = max(12, len(head))  # ("live in all [N]" stood 3 columns right of its column)
     if res.events:
-        # a balanced live load (the reference model's two opposing pulls) has no
-        # resultant: its column is the sum of its sizes, as the status line says
-        head = ("live in all [" if direction.startswith("in all") else "live [") + fu + "]"
-        lines.append(f"  {'lambda [-]':>14}  {head:>12}  {'event':8s}  "
+        lines.append(f"  {'lambda [-]':>14}  {head:>{width}}  {'event':8s}  "
                      "joints (blocks a-b)")
     for e in res.events:
         modes = e.modes or ("",) * len(e.joints)
@@ -95,7 +95,8 @@ def _lines(scene, res, args: argparse.Namespace) -> list[str]:
                            for (a, b), m in zip(e.joints, modes, strict=True)) or "-"
         # down, as the status line's collapse: an event happens at or above its load
         lines.append(f"  {fmt_safe(e.load_factor, 9, False):>14}  "
-                     f"{fmt_safe(e.load_factor * live, 6, False):>12}  {e.kind:8s}  {joints}")
+                     f"{fmt_safe(e.load_factor * live, 6, False):>{width}}  {e.kind:8s}  "
+                     f"{joints}")
     if args.verbose:
         lines.append(f"work       {res.n_solves} runs, {res.iterations} iterations, "
                      f"{res.solve_time:.3g} s")
@@ -142,6 +143,8 @@ def _status_tail(res, live: float, fu: str, direction: str = "") -> str:
                        if e.load_factor >= end * (1 - 1e-9)})
         at_end = (f"; at its end joints {' and '.join(last)}: it may collapse at once "
                   "beyond" if last else "")
-        return (f" at lambda = {end:g} ({end * live:.4g} {fu}), the end of the path "
+        # (to 10 figures: "STANDING at lambda = 0.149765", its 0.149764895 rounded up
+        # above the collapse load the path to 0.15 gives)
+        return (f" at lambda = {end:.10g} ({end * live:.4g} {fu}), the end of the path "
                 f"(--max-load goes further){at_end}")
     return ""
