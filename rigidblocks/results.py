@@ -543,9 +543,21 @@ class Result:
         """The keys of a non-associative analysis (none for an associative one)."""
         if self.flow == "associative":
             return {}
-        return {"flow": self.flow, "iterations": self.iterations,
-                "converged": self.converged,
+        return {"flow": self.flow, "sliding_joints": sliding_count(self),
+                "iterations": self.iterations, "converged": self.converged,
                 "history": [dict(h) if isinstance(h, dict) else h for h in self.history]}
+
+
+def sliding_count(result: Any) -> int | None:
+    """How many joints slide without dilatancy in ``result`` (an analysis's or a load
+    path's): its ``sliding_joints``, whose None means every joint of a non-associative
+    analysis and none of an associative one (the JSON said null for both, and left the
+    key out where 2 of 5 joints slid so)."""
+    if result.flow == "associative":
+        return 0
+    if result.sliding_joints is not None:
+        return int(result.sliding_joints)
+    return int(result.contacts.n_joints) if result.contacts is not None else None
 
 
 #: a loaded joint's shear or eccentricity this small against the largest joint force or

@@ -353,7 +353,7 @@ def test_a_paths_question_names_the_joints_own_laws(tmp_path, capsys):
     from rigidblocks.io import write_scene
 
     def stack(joint):
-        path = tmp_path / "stack.json"
+        path = tmp_path / f"stack{len(list(tmp_path.iterdir()))}.json"
         write_scene(make_scene(
             [{"id": "base", "vertices": rect(-1, -1, 4, 1), "support": True},
              {"id": "A", "vertices": rect(0, 0, 1, 1)}, {"id": "B", "vertices": rect(0, 1, 1, 1)}],
@@ -372,6 +372,15 @@ def test_a_paths_question_names_the_joints_own_laws(tmp_path, capsys):
            "associative, friction f = 0.6" in out, out
     assert main(["path", stack({"flow": "non-associative"}), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["sliding_joints"] == 1
+    # the count in every JSON (null read "all" and "none" alike, and `load` left it out)
+    for argv, count in ((["path", stack({}), "--json"], 0),
+                        (["path", stack({}), "--flow", "non-associative", "--json"], 2),
+                        (["load", stack({"flow": "non-associative"}), "--json"], 1),
+                        (["check", stack({"flow": "non-associative"}), "--load-factor", "0.3",
+                          "--json"], 1),
+                        (["load", stack({}), "--flow", "non-associative", "--json"], 2)):
+        main(argv)
+        assert json.loads(capsys.readouterr().out)["sliding_joints"] == count, argv
 
 
 def test_a_collapse_says_what_each_of_its_joints_does(tmp_path, capsys):

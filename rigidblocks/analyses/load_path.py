@@ -40,6 +40,7 @@ from ..methods import Progress, open_method
 from ..methods.distortion import AT_THRESHOLD, LOADED
 from ..methods.engine import MAX_TRIALS
 from ..scene.model import Scene, friction_label, friction_value
+from ..results import sliding_count
 from ..scene.validate import check_live_load, check_load_factor, validate_scene
 from ..solvers.distortion import TOL, Run
 from .nonassociative import _UNSETTLED, flow_mask
@@ -157,7 +158,7 @@ class PathResult:
                            "cracked": [list(j) for j in s.cracked],
                            "at_threshold": [list(j) for j in s.at_threshold],
                            "iterations": s.iterations} for s in self.steps],
-                "sliding_joints": self.sliding_joints,
+                "sliding_joints": sliding_count(self),
                 "solver": "distortion", "n_solves": self.n_solves,
                 "iterations": self.iterations, "solve_time": self.solve_time,
                 "notes": list(self.notes)}
