@@ -39,8 +39,8 @@ from ..errors import InputError
 from ..methods import Progress, open_method
 from ..methods.distortion import AT_THRESHOLD, LOADED
 from ..methods.engine import MAX_TRIALS
-from ..scene.model import Scene, friction_label, friction_value
 from ..results import sliding_count
+from ..scene.model import Scene, friction_label, friction_value
 from ..scene.validate import check_live_load, check_load_factor, validate_scene
 from ..solvers.distortion import TOL, Run
 from .nonassociative import _UNSETTLED, flow_mask
