@@ -522,3 +522,16 @@ def test_a_path_under_a_live_couple_gives_it_in_force_x_length(tmp_path, capsys)
     # the end of a path that stands, as given (it read 1.23457, rounded up)
     assert main(["path", str(path), "--max-load", "1.23456789", "--steps", "2"]) == 0
     assert "STANDING at lambda = 1.23456789 " in capsys.readouterr().out
+
+
+def test_joints_that_slid_are_said_to_carry_no_shear(capsys):
+    """Coulomb's sliding friction on the reference model (f = 0.5): the four joints
+    slide together at f P / H = 1 (generators/seed.py) and keep no shear; the collapse
+    that follows named them "at friction limit", a threshold of f x 0 = 0 that their
+    shear of 0 meets."""
+    scene = rb.read_scene(EXAMPLES / "reference.json")
+    p = load_path(scene, friction=0.5, sliding="coulomb", max_load=2.0)
+    end = p.first("collapse")
+    assert p.status == "collapse" and p.collapse_load == pytest.approx(1.0, rel=EV)
+    assert joints(end) == joints(p.first("slide")) and len(end.joints) == 4
+    assert set(end.modes) == {"slid: no shear left"}, end.modes

@@ -190,6 +190,8 @@ class _Path:
         self.events: list[PathEvent] = []
         self.steps: list[PathStep] = []
         self.seen: set[int] = set()
+        #: joints that slid (Coulomb sliding friction: no shear left)
+        self.slid: set[int] = set()
 
     # -- runs and what they show -------------------------------------------------------
     def laws(self) -> Any:
@@ -400,6 +402,7 @@ class _Path:
         if self.sliding != "coulomb":
             return False
         self.events.append(PathEvent("slide", lam, tuple(n[j] for j in joints)))
+        self.slid.update(joints)
         self.fj[joints] = 0.0
         self.cohesion[joints] = 0.0
         return True
@@ -419,9 +422,12 @@ class _Path:
         # (a block that slid and one that tipped read alike: "collapse base-B")
         cracked = [j for j in cause if j not in self.seen and j not in at]
         # (the state's, not the mechanism's: "hinging" named head joints of a wall that
-        # moves as one body)
+        # moves as one body; a joint that slid, its shear 0 at a threshold of 0, read
+        # "at friction limit")
         modes = tuple(", ".join(w for w, on in (("cracked", j in cracked),
-                                                ("at friction limit", j in at),
+                                                ("slid: no shear left", j in self.slid),
+                                                ("at friction limit",
+                                                 j in at and j not in self.slid),
                                                 ("thrust at an edge", j in hinges)) if on)
                       for j in gov)
         self.events.append(PathEvent("collapse", lam, tuple(self.names[j] for j in gov),
