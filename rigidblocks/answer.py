@@ -1040,6 +1040,10 @@ def flow_lines(res: Any) -> list[str]:
         out = [f"flow       {res.flow}: {t.get('iterations', '?')} iteration(s) at lambda "
                f"= {t['load_factor']:.10g}, {done}; then {t['limit_steps']} limit step(s) "
                f"loading from X0{run}"]
+    elif res.iterations == 0 and res.converged and res.status == "admissible":
+        # (it read "0 iteration(s), converged")
+        out = [f"flow       {res.flow}: the elastic state X0 meets the joint laws as it is "
+               "(no iteration needed)"]
     else:
         out = [f"flow       {res.flow}: {res.iterations} iteration(s), {done}"]
     b = getattr(res, "load_multiplier_bounds", None)

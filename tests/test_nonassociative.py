@@ -1081,3 +1081,19 @@ def test_the_json_why_is_the_terminals_why_lines(name, capsys):
     assert any(ln.startswith("starts ") for ln in out)
     assert main([*args, "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["why"] == why
+
+
+def test_a_check_the_elastic_state_answers_says_so_on_its_flow_line(block_on_base, tmp_path,
+                                                                     capsys):
+    """A 1 x 2 block at f = 0.5 under 0.2 of its weight, below both f and b/h = 0.5
+    (validation.md): the elastic state X0 meets the joint laws as it is, and the
+    distortion path's flow line read "0 iteration(s), converged"."""
+    from rigidblocks.io import write_scene
+
+    path = tmp_path / "block.json"
+    write_scene(block_on_base(1.0, 2.0, 0.5), path)
+    assert main(["check", str(path), "--flow", NA, "--method", "distortion",
+                 "--load-factor", "0.2"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert (f"flow       {NA}: the elastic state X0 meets the joint laws as it is (no "
+            "iteration needed)") in lines, lines
