@@ -158,8 +158,8 @@ def test_cli_help_gives_the_bounds_defaults(capsys):
      "integer, got 'many'"),
     # an unknown method is the option's error (it was blamed on the generator at --hi)
     (["arch", "--method", "bogus"],
-     "thickness arch: --method: unknown method 'bogus' (choose from clarabel, "
-     "distortion, or a solver name for the convex path)"),
+     "thickness arch: --method: unknown method 'bogus' (choose from clarabel (or "
+     "convex), distortion, or a solver name for the convex path)"),
     # so is a bad friction, as in every other command (it was blamed on --hi too)
     (["arch", "--friction", "-1"],
      "thickness: --friction: friction must be >= 0, got -1.0"),

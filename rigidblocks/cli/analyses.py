@@ -40,7 +40,8 @@ def add_question_args(p: argparse.ArgumentParser, takes: tuple[str, ...]) -> Non
                        "load_factor, or 1)")
     p.add_argument("--method", default=None,
                    help=" or ".join(f'"{m}"' for m in METHODS)
-                   + ' (default "clarabel": the convex path; "distortion": the seed\'s '
+                   + ' (default "clarabel", also "convex": the convex path; "distortion": '
+                   "the seed's "
                    "impressed-distortion iteration, its procedure with --flow "
                    "non-associative, a cross-check of the convex path otherwise); a back "
                    "end's name is the convex path with that back end, as --solver")

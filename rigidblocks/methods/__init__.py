@@ -57,7 +57,9 @@ def method_name(method: str, solver: str | None = None) -> tuple[str, str | None
             raise InputError(f"method {method!r} is a back end of the convex path, and "
                              f"solver={solver!r} names another")
         return "clarabel", m
-    raise InputError(f"unknown method {method!r} (choose from {', '.join(METHODS)}, or a "
+    names = (m + "".join(f" (or {a})" for a, b in _ALIASES.items() if b == m)
+             for m in METHODS)
+    raise InputError(f"unknown method {method!r} (choose from {', '.join(names)}, or a "
                      "solver name for the convex path)")
 
 
