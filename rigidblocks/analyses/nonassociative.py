@@ -1001,10 +1001,7 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
             na.explain(v)
         return v.admissible, v
 
-    def by_the_bounds(what: str) -> LoadResult | None:
-        """Where the bounds meet, the answer whatever the state reached from X0 did
-        (``what``): fig4a without cohesion read UNDECIDED in [0, 0.999999] beside its
-        bounds [1, 1], the convex path's answer 1 (seed Fig. 4a: f P / H)."""
+    def by_the_bounds(what: str) -> LoadResult | None:  # (see _by_the_bounds)
         if not _closes(bounds):
             return None
         na.notes.append(f"the state reached from X0 {what}")
@@ -1020,19 +1017,10 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
         return result("unstable" if ok0 is False else
                       FAILURE if v0.status == FAILURE else UNDECIDED, converged=ok0 is False)
     if hi is None:  # associative unbounded: bracket by doubling
-        good, bad, best = 0.0, 1.0, v0
-        while True:
-            ok, v = decide(bad)
-            if ok is None:
-                na.explain(v)
-                return result(FAILURE if v.status == FAILURE else UNDECIDED,
-                              converged=False)
-            if ok is False:
-                break
-            good, best = bad, v
-            bad *= 2
-            if bad > UNBOUNDED_AT:
-                return result("unbounded", converged=True)
+        got = _double_up(na, decide, v0)
+        if isinstance(got, str):
+            return result(got, converged=got == "unbounded")
+        good, bad, best = got
     else:
         top, v, at = _at_the_top(na, decide, hi, up)
         if at is not None:
@@ -1042,29 +1030,59 @@ def _load_by_bisection(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
     br = bisect(decide, bad, good, rtol)
     best_v = br.good_data or best
     if br.undecided_at is not None:
-        last = trials[-1]
-        if br.too_wide(rtol, BRACKET_ATOL) and (ans := by_the_bounds(
+        wide = br.too_wide(rtol, BRACKET_ATOL)
+        if wide and (ans := by_the_bounds(
                 f"did not settle at lambda = {br.undecided_at:.9g}: it brackets its "
                 f"multiplier in {fmt_bracket(br.lower, br.upper, 9)} only")) is not None:
             return ans
         na.notes.append(f"the iteration did not settle at lambda = {br.undecided_at:.9g}: "
                         f"the multiplier is bracketed in {fmt_bracket(br.lower, br.upper, 9)}")
-        if br.too_wide(rtol, BRACKET_ATOL):
-            na.notes.append(_too_wide_note(br, rtol))
-            return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None,
-                                        tuple(trials), bool(last["converged"])),
-                              load_multiplier_bounds=bounds, bracket=(br.lower, br.upper))
+        if wide:
+            return _undecided_bracket(na, f, br, trials, bounds, rtol)
     if lo is not None and br.good < lo * (1.0 - 1e-6):
-        na.notes.append(f"the computed multiplier {br.good:.6g} is below "
-                        f"{LOWER_WORDS[na.lower_by]} {lo:.6g}, "
-                        "a lower bound on every collapse state: the state reached from the "
-                        "elastic state is not one")
+        na.notes.append(_below_the_bound(na, br.good, lo))
         if (ans := by_the_bounds("gives none")) is not None:
             return ans
     # (converged False where a trial did not settle: the flow line said "converged"
     # beside the inclined corbel arch's at f = 0.8, its bracket decided by its width)
     return result("collapse", br.good, best_v, br.undecided_at is None,
                   (br.lower, br.upper))
+
+
+def _below_the_bound(na: NonAssociative, lam: float, lo: float) -> str:
+    """The note of a multiplier ``lam`` from X0 below the lower bound ``lo``."""
+    return (f"the computed multiplier {lam:.6g} is below {LOWER_WORDS[na.lower_by]} "
+            f"{lo:.6g}, a lower bound on every collapse state: the state reached from the "
+            "elastic state is not one")
+
+
+def _double_up(na: NonAssociative, decide: Any, v0: Verdict
+               ) -> tuple[float, float, Verdict] | str:
+    """An unbounded associative multiplier: the state reached from X0 tried at 1, 2,
+    4, ...; (the last load it stands at, the first it does not, the verdict there) or
+    what ends the search (FAILURE, UNDECIDED, or "unbounded" past UNBOUNDED_AT)."""
+    good, bad, best = 0.0, 1.0, v0
+    while True:
+        ok, v = decide(bad)
+        if ok is None:
+            na.explain(v)
+            return FAILURE if v.status == FAILURE else UNDECIDED
+        if ok is False:
+            return good, bad, best
+        good, best = bad, v
+        bad *= 2
+        if bad > UNBOUNDED_AT:
+            return "unbounded"
+
+
+def _undecided_bracket(na: NonAssociative, f: float, br: Any, trials: list[dict[str, Any]],
+                       bounds: tuple[float | None, float | None], rtol: float) -> LoadResult:
+    """The bisection stopped by a trial that did not settle, its bracket wider than
+    ``rtol`` asks: no number, the bracket and why."""
+    na.notes.append(_too_wide_note(br, rtol))
+    return LoadResult(**_fields(na, "max_load_multiplier", UNDECIDED, f, None,
+                                tuple(trials), bool(trials[-1]["converged"])),
+                      load_multiplier_bounds=bounds, bracket=(br.lower, br.upper))
 
 
 def _at_the_top(na: NonAssociative, decide: Any, hi: float, up: Any
@@ -1329,7 +1347,9 @@ def _x0_answer(na: ConvexNonAssociative, cv: ConvexMethod, f: float, up: Any,
 def _by_the_bounds(na: NonAssociative, cv: ConvexMethod, f: float, up: Any,
                    bounds: tuple[float | None, float | None], trials: tuple, state: bool
                    ) -> LoadResult:
-    """The answer where the limit iteration from X0 gives none in [0, hi] but a lower
+    """The answer where the limit iteration from X0 (or the distortion path's
+    bisection: fig4a without cohesion read UNDECIDED in [0, 0.999999] beside its
+    bounds [1, 1]) gives none in [0, hi] but a lower
     bound lo > 0 holds (:func:`_lower_bound`): where the bounds meet (:func:`_closes`)
     every collapse state at lambda >= 0 lies at the associative multiplier hi, beyond
     which no state is admissible, and that is the answer whatever the state (shown: the
