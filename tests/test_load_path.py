@@ -535,3 +535,15 @@ def test_joints_that_slid_are_said_to_carry_no_shear(capsys):
     assert p.status == "collapse" and p.collapse_load == pytest.approx(1.0, rel=EV)
     assert joints(end) == joints(p.first("slide")) and len(end.joints) == 4
     assert set(end.modes) == {"slid: no shear left"}, end.modes
+
+
+def test_a_non_associative_path_at_infinite_friction_says_its_flow_rule_is_idle(capsys):
+    """Heyman's law (no sliding) leaves the flow rule nothing to act on: the question
+    read "non-associative flow (no dilatancy ...)" beside "infinite friction (no
+    sliding)" with no word; at finite friction nothing more is said."""
+    ref = str(EXAMPLES / "reference.json")
+    idle = "idle: no joint slides at infinite friction"
+    assert main(["path", ref, "--friction", "infinite", "--flow", "non-associative"]) == 0
+    assert idle in capsys.readouterr().out
+    assert main(["path", ref, "--flow", "non-associative"]) == 0
+    assert idle not in capsys.readouterr().out

@@ -76,6 +76,10 @@ def _lines(scene, res, args: argparse.Namespace) -> list[str]:
             else f"{some} of {res.contacts.n_joints} joints sliding without dilatancy "
             "(the seed's procedure), the others associative") \
         if res.flow == "non-associative" else "associative flow"
+    if res.flow == "non-associative" and _no_joint_slides(res):
+        # (it read "non-associative flow (no dilatancy ...)" beside "infinite friction
+        # (no sliding)")
+        flow += ", idle: no joint slides at infinite friction"
     lines = [f"scene      {scene.name or scene.source}",
              f"asked      the load path of the distortion method from lambda = 0 to "
              f"{args.max_load:g} in {args.steps} steps, lambda multiplying the live load "
@@ -105,6 +109,16 @@ def _lines(scene, res, args: argparse.Namespace) -> list[str]:
     if args.verbose:
         lines.extend(f"note       {n}" for n in notes)
     return lines
+
+
+def _no_joint_slides(res) -> bool:
+    """Is every joint's friction infinite (the uniform one where it has none of its
+    own), so that the flow rule has nothing to act on?"""
+    import numpy as np
+
+    over = np.asarray(res.contacts.override_friction, dtype=float)
+    uniform = np.inf if res.friction == "infinite" else float(res.friction)
+    return bool(np.all(np.isinf(np.where(np.isnan(over), uniform, over))))
 
 
 def _why(res) -> tuple[tuple[str, ...], tuple[str, ...]]:
