@@ -547,3 +547,20 @@ def test_a_non_associative_path_at_infinite_friction_says_its_flow_rule_is_idle(
     assert idle in capsys.readouterr().out
     assert main(["path", ref, "--flow", "non-associative"]) == 0
     assert idle not in capsys.readouterr().out
+
+
+def test_json_units_of_a_scene_without_units_read_as_every_analysis_reads_them(
+        tmp_path, capsys):
+    """A scene with no units: `load --json` gives them as null ("force units" in the
+    text); the path's JSON gave "" for the same scene."""
+    from rigidblocks.io.scene_file import loads_json
+
+    doc = loads_json((EXAMPLES / "reference.json").read_text())
+    doc.pop("units")
+    f = tmp_path / "plain.json"
+    f.write_text(json.dumps(doc))
+    assert main(["load", str(f), "--json"]) == 0
+    expected = json.loads(capsys.readouterr().out)["units"]
+    assert expected == {"length": None, "force": None}
+    assert main(["path", str(f), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["units"] == expected

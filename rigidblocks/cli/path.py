@@ -56,9 +56,11 @@ def run(args: argparse.Namespace) -> int:
         sliding=args.sliding, flow=args.flow, progress=progress), progress,
         show=not args.json and sys.stderr.isatty())
     if args.json:
-        # the terminal's "why" lines, as every analysis's JSON has them
+        # the terminal's "why" lines and the units, as every analysis's JSON has them
+        # (None where the scene gives none: "force units" in the text)
         doc = {**res.to_dict(), "why": list(_why(res)[0]),
-               "units": {"length": scene.length_unit, "force": scene.force_unit}}
+               "units": {"length": scene.length_unit or None,
+                         "force": scene.force_unit or None}}
         print(json.dumps(_jsonable(doc)))
         return EXIT.get(res.status, 0)
     print("\n".join(_lines(scene, res, args)))
