@@ -138,8 +138,10 @@ def answer(scene: Scene, qty: str, lf: float, s: dict[str, Any]) -> float | None
     if qty == "f*":
         if "rtol" in s:
             kw["rtol"] = s["rtol"]
-        return min_friction(scene, lf, method=s["method"], state=False, **kw).friction_factor
-    return max_load_multiplier(scene, method=s["method"], state=False, **kw).load_multiplier
+        return min_friction(scene, lf, method=s["method"], state=False, compare_dry=False,
+                            **kw).friction_factor
+    return max_load_multiplier(scene, method=s["method"], state=False, compare_dry=False,
+                               **kw).load_multiplier
 
 
 def timed_answer(fn: Callable[[], float | None], min_runs: int = MIN_RUNS,
@@ -171,10 +173,10 @@ def reference(scene: Scene, qty: str, lf: float) -> tuple[float, float, str]:
         try:
             if qty == "f*":
                 # the simplex certifies f* to 1e-10; Clarabel to F_RTOL_FLOOR
-                return min_friction(scene, lf, method=method, state=False,
+                return min_friction(scene, lf, method=method, state=False, compare_dry=False,
                                     rtol=1e-10 if method == "highs" else F_RTOL_FLOOR,
                                     settings=settings).friction_factor
-            return max_load_multiplier(scene, method=method, state=False,
+            return max_load_multiplier(scene, method=method, state=False, compare_dry=False,
                                        settings=settings).load_multiplier
         except Exception:  # the other reference decides
             return None
@@ -343,10 +345,10 @@ def sweep_run(case: dict[str, Any], scene: Scene, rtol: float) -> dict[str, Any]
     val = None
     try:
         if case["qty"] == "f*":
-            r = min_friction(scene, state=False, rtol=rtol, **case["kw"])
+            r = min_friction(scene, state=False, compare_dry=False, rtol=rtol, **case["kw"])
             val = r.friction_factor
         else:
-            r = max_load_multiplier(scene, state=False, rtol=rtol, **case["kw"])
+            r = max_load_multiplier(scene, state=False, compare_dry=False, rtol=rtol, **case["kw"])
             val = r.load_multiplier
         row = dict(status=r.status, value=val, bracket=r.bracket, accuracy=r.accuracy,
                    n_solves=r.n_solves)

@@ -213,11 +213,12 @@ def answer(case: Case, scene: Scene, method: str) -> Any:
     """The status (check, or no number) or the number the method gives."""
     kw = dict(case.kw)
     if case.analysis == "check":
-        return check(scene, method=method, state=False, **kw).status
+        return check(scene, method=method, state=False, compare_dry=False, **kw).status
     if case.analysis == "min_friction":
-        r = min_friction(scene, kw.get("load_factor", 1.0), method=method, state=False)
+        r = min_friction(scene, kw.get("load_factor", 1.0), method=method, state=False,
+                         compare_dry=False)
         return r.friction_factor if r.status == "stable" else r.status
-    r = max_load_multiplier(scene, method=method, state=False)
+    r = max_load_multiplier(scene, method=method, state=False, compare_dry=False)
     return r.load_multiplier if r.status == "collapse" else r.status
 
 

@@ -87,7 +87,7 @@ def walls(sizes: Sequence[tuple[int, int]], distortion_up_to: int) -> list[dict[
     rows = []
     for k, (c, n) in enumerate(sizes):
         scene = build("wall", courses=c, blocks_per_course=n, friction=WALL_FRICTION)
-        a, ta = _run(rb.max_load_multiplier, scene, state=False)
+        a, ta = _run(rb.max_load_multiplier, scene, state=False, compare_dry=False)
         v, tv = _run(rb.max_load_multiplier, scene, flow=NA, state=False)
         row = {"courses": c, "per_course": n, "blocks": len(scene.blocks),
                "assoc_lambda": a.load_multiplier, "assoc_seconds": ta,
@@ -116,7 +116,7 @@ def curves(structures: Sequence[tuple[str, str, dict]], frictions: Sequence[floa
             scene = build(gen, friction=f, **params)
             if not scene.has_live_load:
                 scene = scene.with_changes(live_body_force=(1.0, 0.0))
-            a = rb.max_load_multiplier(scene, state=False)
+            a = rb.max_load_multiplier(scene, state=False, compare_dry=False)
             v = rb.max_load_multiplier(scene, flow=NA, state=False)
             pts.append({"friction": f, "assoc": a.load_multiplier, "assoc_status": a.status,
                         "nonassoc": v.load_multiplier, "nonassoc_status": v.status,
@@ -373,7 +373,8 @@ def cra_tilt(python: str, scene3d: Scene, guess: float, tmp: Path, timeout: floa
 def lmgc90_ours(scene: Scene, extruded: bool) -> dict[str, Any]:
     """Our associative and non-associative multipliers (and on the extrusion)."""
     out: dict[str, Any] = {}
-    a, out["assoc_seconds"] = _run(rb.max_load_multiplier, scene, state=False)
+    a, out["assoc_seconds"] = _run(rb.max_load_multiplier, scene, state=False,
+                                   compare_dry=False)
     out["assoc"], out["assoc_status"] = a.load_multiplier, a.status
     v, out["na_seconds"] = _run(rb.max_load_multiplier, scene, flow=NA, state=False)
     out["na"], out["na_status"] = v.load_multiplier, v.status
@@ -726,7 +727,7 @@ def large_walls(sizes: Sequence[tuple], frictions: Sequence[float],
                 scene = build("wall", courses=c, blocks_per_course=n, friction=f)
             if len(scene.blocks) > up_to:
                 continue
-            a, ta = _cpu(rb.max_load_multiplier, scene, state=False)
+            a, ta = _cpu(rb.max_load_multiplier, scene, state=False, compare_dry=False)
             v, tv = _cpu(rb.max_load_multiplier, scene, flow=NA, state=False)
             # a start's multiplier only where its run settled (the history keeps the
             # last iterate of an undecided one)

@@ -315,7 +315,8 @@ def run_ours(make_scene: Any, pyramid: int | None = None, forces: bool = False,
     scene = make_scene()
     tol = contact_tol(scene) if callable(contact_tol) else contact_tol
     c1, t1 = time.process_time(), time.perf_counter()
-    res = check(scene, load_factor=0.0, state=True, pyramid=pyramid, contact_tol=tol)
+    res = check(scene, load_factor=0.0, state=True, compare_dry=False, pyramid=pyramid,
+                contact_tol=tol)
     c2, t2 = time.process_time(), time.perf_counter()
     stages = dict(res.cpu_timings)  # contacts, assembly, build, solve (CPU seconds)
     out = {"verdict": res.status, "total": t2 - t0, "read": t1 - t0, "check": t2 - t1,
@@ -656,8 +657,8 @@ def friction_na(scene: Scene, contact_tol: float | None) -> dict:
     for key, flow in (("static", None), ("na", NA)):
         t0 = time.perf_counter()
         try:
-            r = min_friction(scene, load_factor=0.0, state=False, contact_tol=contact_tol,
-                             flow=flow)
+            r = min_friction(scene, load_factor=0.0, state=False, compare_dry=False,
+                             contact_tol=contact_tol, flow=flow)
             out[key] = {"status": r.status, "f": r.friction_factor,
                         "bracket": list(r.bracket) if r.bracket else None}
         except SolverFailure as exc:

@@ -83,8 +83,10 @@ def _timed(fn: Callable[[], Any]) -> tuple[Any, float]:
 def measure(scene: Scene, lf_friction: float, pyramid: int | None = None) -> dict[str, Any]:
     """f* at load factor ``lf_friction`` and lambda* (scene friction) with their times."""
     kw = {} if pyramid is None else {"pyramid": pyramid}
-    fr, tf = _timed(lambda: min_friction(scene, lf_friction, state=False, rtol=1e-7, **kw))
-    lr, tl = _timed(lambda: max_load_multiplier(scene, state=False, rtol=1e-6, **kw))
+    fr, tf = _timed(lambda: min_friction(scene, lf_friction, state=False, compare_dry=False,
+                                         rtol=1e-7, **kw))
+    lr, tl = _timed(lambda: max_load_multiplier(scene, state=False, compare_dry=False,
+                                                rtol=1e-6, **kw))
     c = detect_contacts(scene)
     return {"blocks": len(scene.blocks), "joints": int(c.n_joints), "points": int(c.n_points),
             "f*": fr.friction_factor, "lambda*": lr.load_multiplier,

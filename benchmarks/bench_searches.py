@@ -112,7 +112,7 @@ def run(name: str, scene: Any, lf: float | None, rtol: float | None = None
     FIRED.clear()
     SOLVED.clear()
     try:
-        r = rb.min_friction(scene, load_factor=lf, state=False, rtol=rtol)
+        r = rb.min_friction(scene, load_factor=lf, state=False, compare_dry=False, rtol=rtol)
     except Exception as exc:  # noqa: BLE001 - recorded as the case's outcome
         return {"name": name, "status": f"error: {type(exc).__name__}: {exc}",
                 "fired": dict(FIRED), "rungs": dict(SOLVED)}

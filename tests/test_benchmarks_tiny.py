@@ -399,7 +399,9 @@ def test_bench_methods_tiny(tmp_path):
     """The methods comparison on the seed's reference model, with and without
     self-weight: f* = 0.5 and 0.25 (seed paper, numerical example 1) by every method,
     the distortion solver within 1e-4 of Clarabel, and plain bisection to 1e-6 needs
-    more solves than the Newton strategy (each halving gains one bit: about 20)."""
+    more solves than the Newton strategy (each halving gains one bit: about 20). Each
+    method computes f* alone (the convex path's timing once included an answer without
+    dilatancy that the distortion method does not compute)."""
     import json
 
     spec = importlib.util.spec_from_file_location(
@@ -418,6 +420,11 @@ def test_bench_methods_tiny(tmp_path):
         assert r["distortion"]["fstar"] == pytest.approx(fstar, rel=1e-4)
         assert r["relative_difference"] <= 1e-4
         assert r["bisection"]["solves"] > r["clarabel"]["solves"]
+        # the same work on every side: f* alone, no answer without dilatancy beside the
+        # convex path's (`friction` adds one on small scenes, the distortion none)
+        assert all(r[k]["without_dilatancy"] is None
+                   for k in ("clarabel", "highs", "scs", "distortion"))
+        assert r["load_average"] >= 0
     saved = json.loads((tmp_path / "bench_methods.json").read_text())
     assert saved["benchmark"] == "bench_methods" and len(saved["rows"]) == 2
     assert "| reference |" in (tmp_path / "bench_methods.md").read_text()
