@@ -353,3 +353,90 @@ def test_a_scene_no_reader_accepts_is_not_written(tmp_path, capsys):
     assert main(["extrude", str(EXAMPLES / "wall.json"), "--depth", "1e50", "-o",
                  str(out)]) == 2
     one_line_error(capsys, "its volume's bound (its bounding box's diagonal^3) reaches")
+
+
+def _two_blocks(**top):
+    return scene_doc([{"id": "base", "vertices": rect(0, 0, 2, 0.5), "support": True},
+                      {"id": "A", "vertices": rect(0.5, 0.5, 1, 0.5)}],
+                     unit_weight=20.0, friction=0.6, live_body_force=[1, 0], **top)
+
+
+def test_a_whole_dimension_written_as_a_float_is_read_as_its_integer(tmp_path, capsys):
+    """"dimension": 2.0 (a JSON writer's float) ended in an IndexError from the load
+    rows; "version": 1.0 was already read as 1. The block slides at f = 0.6 or tips at
+    b/h = 2: lambda* = 0.6."""
+    doc = _two_blocks()
+    doc["dimension"] = 2.0
+    path = write(tmp_path, "float_dim.json", doc)
+    assert main(["load", path, "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["load_multiplier"] == pytest.approx(0.6)
+
+
+def test_an_integer_literal_past_the_digit_limit_is_malformed_json(tmp_path, capsys):
+    """A 5,000-digit depth: Python's integer conversion raised a ValueError (a traceback);
+    in a sweep spec too."""
+    doc = _two_blocks()
+    path = tmp_path / "big.json"
+    path.write_text(json.dumps(doc).replace('"unit_weight": 20.0', '"unit_weight": '
+                                            + "9" * 5000))
+    assert main(["check", str(path)]) == 2
+    one_line_error(capsys, f"{path}: malformed JSON", "4300 digits")
+    spec = tmp_path / "big_spec.json"
+    spec.write_text('{"format": "rigidblocks-sweep", "version": 1, "generator": "arch", '
+                    '"grid": {"voussoirs": [' + "9" * 5000 + ']}, "analyses": ["check"]}')
+    assert main(["sweep", str(spec), "-o", str(tmp_path / "o.csv")]) == 2
+    one_line_error(capsys, f"{spec}: invalid JSON", "4300 digits")
+
+
+@pytest.mark.parametrize("span", ["[0.1, 1e400]", "[3, " + "9" * 400 + "]"])
+def test_a_random_range_too_wide_to_draw_from_is_refused(span, tmp_path, capsys):
+    """numpy raised an OverflowError ("high - low range exceeds valid bounds") for a
+    uniform range of [0.1, inf]; a 400-digit integer bound gives no float at all."""
+    kind, name = ("uniform", "thickness") if "e400" in span else ("integers", "voussoirs")
+    spec = tmp_path / "r.json"
+    spec.write_text('{"format": "rigidblocks-sweep", "version": 1, "generator": "arch", '
+                    f'"random": {{"samples": 2, "seed": 1, "{kind}": {{"{name}": {span}}}}}, '
+                    '"analyses": ["check"]}')
+    assert main(["sweep", str(spec), "-o", str(tmp_path / "o.csv")]) == 2
+    one_line_error(capsys, f"random.{kind}.{name}: expected finite numbers")
+
+
+def test_an_existing_output_that_is_no_results_file_is_refused(tmp_path, capsys):
+    """A parquet output of 2 bytes ended in pyarrow's ArrowInvalid traceback; a CSV whose
+    only line is "garbage" (a header, no rows) was overwritten without a word."""
+    pytest.importorskip("pyarrow")
+    bad = tmp_path / "o.parquet"
+    bad.write_text("x\n")
+    assert main(["sweep", str(SWEEP), "-o", str(bad), "--workers", "1",
+                 "--no-progress"]) == 2
+    one_line_error(capsys, f"{bad}: the existing output cannot be read")
+    assert bad.read_text() == "x\n"
+    csv = tmp_path / "o.csv"
+    csv.write_text("garbage\n")
+    assert main(["sweep", str(SWEEP), "-o", str(csv), "--workers", "1",
+                 "--no-progress"]) == 2
+    one_line_error(capsys, f"{csv}: the existing output has no case_id column")
+    assert csv.read_text() == "garbage\n"
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["check", str(EXAMPLES / "reference.json"), "--contact-tol", "0"],
+     ["argument --contact-tol: must be > 0"]),
+    (["sweep", str(SWEEP), "-o", "o.csv", "--workers", "0"],
+     ["argument --workers: must be >= 1"]),
+    (["sweep", str(SWEEP), "-o", "o.csv", "--batch-size", "0"],
+     ["argument --batch-size: must be >= 1"]),
+])
+def test_option_errors_name_the_option(argv, words, capsys):
+    """They read "contact_tol must be a number > 0, got 0.0" and "workers must be an
+    integer >= 1", the library's names, after the study had been read."""
+    assert main(argv) == 2
+    one_line_error(capsys, *words)
+
+
+def test_an_empty_path_or_a_folder_is_no_scene_file(tmp_path, capsys):
+    """`check ''` read "cannot read: [Errno 21] Is a directory: '.'"."""
+    assert main(["check", ""]) == 2
+    one_line_error(capsys, "no scene file given (an empty path)")
+    assert main(["check", str(tmp_path)]) == 2
+    one_line_error(capsys, f"{tmp_path}: a folder, not a scene file")

@@ -113,6 +113,28 @@ def test_rejections(tmp_path):
         rb.read_dxf(tmp_path / "missing.dxf")
 
 
+@pytest.mark.parametrize("cut", [100, 3000])
+def test_a_drawing_cut_short_is_no_valid_dxf(cut, tmp_path, capsys):
+    """A drawing cut after 100 or 3,000 bytes (a download or a copy broken off) ended in
+    ezdxf's StopIteration, a traceback; cut elsewhere it read "not a valid DXF file"."""
+    whole = quirky_drawing(tmp_path / "q.dxf").read_bytes()
+    cut_short = tmp_path / "cut.dxf"
+    cut_short.write_bytes(whole[:cut])
+    assert main(["import-dxf", str(cut_short), "-o", str(tmp_path / "s.json")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"{cut_short}: not a valid DXF file" in err, err
+    assert not (tmp_path / "s.json").exists()
+
+
+def test_a_vertex_that_is_no_number_is_named(tmp_path):
+    """A polyline vertex at NaN read "closed polyline with fewer than 3 vertices apart by
+    more than the snapping tolerance nan"."""
+    path = quirky_drawing(tmp_path / "n.dxf",
+                          extra=[[(10, 0), (11, 0), (math.nan, 1), (10, 1)]])
+    with pytest.raises(InputError, match=r"LWPOLYLINE #\w+: vertex 2 is not a finite number"):
+        rb.read_dxf(path)
+
+
 def test_cli_import_and_export(tmp_path, capsys):
     path = quirky_drawing(tmp_path / "q.dxf")
     out = tmp_path / "q.json"

@@ -20,7 +20,14 @@ from ..io import read_scene
 from ..methods import METHODS, Progress
 from ..results import fmt_safe
 from ..scene.model import INFINITE, friction_label
-from .options import add_rtol, finite_float, friction_option, one_line, relative_tolerance
+from .options import (
+    add_rtol,
+    finite_float,
+    friction_option,
+    one_line,
+    positive_float,
+    relative_tolerance,
+)
 from .options import load_factor as load_factor_type
 from .progress import run_interruptible
 
@@ -48,7 +55,7 @@ def add_question_args(p: argparse.ArgumentParser, takes: tuple[str, ...]) -> Non
     p.add_argument("--solver", default=None,
                    help="back end of the convex path: clarabel, highs, osqp, scs, ecos, "
                    "cvxpy-NAME")
-    p.add_argument("--contact-tol", type=float, default=None,
+    p.add_argument("--contact-tol", type=positive_float, default=None,
                    help="contact tolerance relative to the scene's size (default 1e-7): "
                    "faces this close count as touching")
     p.add_argument("--flow", choices=("associative", "non-associative"), default=None,

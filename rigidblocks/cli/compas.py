@@ -29,15 +29,16 @@ def add_args(p: argparse.ArgumentParser, name: str) -> None:
 
 
 def _friction(text: str | None) -> float | None:
+    """``--friction`` read as every other command reads it (a number >= 0, or
+    "infinite"; NaN read "must be >= 0")."""
+    from ..scene.model import friction_value
+
     if text is None:
         return None
     try:
-        f = float(text)
-    except ValueError:
-        raise InputError(f"--friction: not a number: '{text}'") from None
-    if not f >= 0:
-        raise InputError("--friction must be >= 0")
-    return f
+        return friction_value(text)
+    except InputError as err:
+        raise InputError(f"--friction: {err}") from None
 
 
 def _body_force(text: str | None) -> tuple[float, float, float] | None:

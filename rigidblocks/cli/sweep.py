@@ -4,16 +4,18 @@ from __future__ import annotations
 
 import argparse
 
+from .options import positive_int
+
 
 def add_args(p: argparse.ArgumentParser, name: str) -> None:
     p.add_argument("spec", help="sweep spec file (JSON, see docs/sweep-format.md)")
     p.add_argument("-o", "--output", required=True,
                    help="results file, .parquet or .csv (cases it holds are skipped)")
-    p.add_argument("--workers", type=int, default=None,
+    p.add_argument("--workers", type=positive_int, default=None,
                    help="local processes (default: every core; 1: this process)")
     p.add_argument("--scheduler", default=None,
                    help="Dask scheduler address (tcp://HOST:PORT) instead of local processes")
-    p.add_argument("--batch-size", type=int, default=None, help="cases per task")
+    p.add_argument("--batch-size", type=positive_int, default=None, help="cases per task")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress bar (drawn only where standard error is a terminal)")
 

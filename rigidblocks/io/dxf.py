@@ -120,6 +120,10 @@ def _plane_xy(pts: Any, where: str) -> np.ndarray:
     """The x, y of one outline's points in world coordinates (``pts``, (n, 3)), where
     they lie in a plane z = const; else an InputError naming ``where``."""
     p = np.asarray([tuple(v) for v in pts], dtype=float).reshape(-1, 3)
+    bad = np.flatnonzero(~np.isfinite(p).all(axis=1))
+    if len(bad):  # (it read "fewer than 3 vertices apart by more than ... nan")
+        raise InputError(f"vertex {int(bad[0])} is not a finite number "
+                         f"({', '.join(f'{v:g}' for v in p[bad[0]])})", where)
     if len(p):
         size = float(np.ptp(p[:, :2], axis=0).max(initial=0.0))
         dz = float(np.ptp(p[:, 2]))
@@ -449,9 +453,14 @@ def read_dxf(path: str | os.PathLike, *, supports: str | None = None,
     except OSError:
         if os.path.isfile(src) and os.access(src, os.R_OK):  # there, but no DXF
             raise InputError("not a DXF file", src) from None
+        if os.path.isdir(src):
+            raise InputError("a folder, not a DXF file", src) from None
         raise InputError("no such file or cannot read it", src) from None
     except ezdxf.DXFError as err:
         raise InputError(f"not a valid DXF file: {err}", src) from None
+    except (StopIteration, EOFError, ValueError):  # ezdxf's tag reader at a cut-off file
+        raise InputError("not a valid DXF file: it ends before its sections do, or holds "
+                         "values it cannot read", src) from None
     rep = DxfReport(source=os.path.basename(src), tol=0.0)
     if layers is not None:
         # layer names as DXF compares them, without case; each named must hold lines

@@ -177,6 +177,7 @@ def _parse(doc: Any, source: str | None) -> Scene:
     dim = top["dimension"]
     if dim not in (2, 3) or isinstance(dim, bool):
         raise InputError(f'"dimension" must be 2 or 3, got {json.dumps(dim)}')
+    dim = int(dim)  # (2.0 is 2, as "version" 1.0 is 1; a float indexed the load rows)
     name = _string(top["name"], '"name"') if "name" in top else None
     units = None
     if "units" in top:
@@ -330,6 +331,9 @@ def loads_json(text: str, source: str | None = None) -> Any:
     except RecursionError:  # the decoder's own recursion, thousands of levels deep
         raise InputError(f"JSON nested deeper than the decoder can follow; a scene "
                          f"nests {SCENE_DEPTH} levels at most", source) from None
+    except ValueError as err:  # an integer literal past Python's digit limit
+        why = str(err).splitlines()[0].split(";")[0]
+        raise InputError(f"malformed JSON: {why}", source) from None
     depth = _depth(text)
     if depth > NESTING_LIMIT:
         raise InputError(f"JSON nested more than {NESTING_LIMIT} levels deep; a scene nests "
@@ -369,6 +373,10 @@ def read_scene(path: str | os.PathLike, *, validate: bool = True) -> Scene:
             fault.
     """
     name = str(path)
+    if not name.strip():  # (Path("") is the working folder: "Is a directory: '.'")
+        raise InputError("no scene file given (an empty path)")
+    if Path(path).is_dir():
+        raise InputError("a folder, not a scene file", name)
     try:
         text = Path(path).read_text(encoding="utf-8-sig")  # (a BOM: Windows editors)
     except FileNotFoundError:

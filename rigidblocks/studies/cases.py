@@ -216,6 +216,8 @@ def _random_cases(spec: Mapping[str, Any], fixed: dict[str, Any]) -> list[dict[s
                     or len(rng_spec) != 2 or not all(is_number(_plain(x)) for x in rng_spec)):
                 raise InputError(f"expected [low, high], got {rng_spec!r}", where)
             lo, hi = (_plain(x) for x in rng_spec)
+            if not _finite_span(lo, hi):  # (numpy draws over no such range)
+                raise InputError(f"expected finite numbers, got [{lo}, {hi}]", where)
             if not lo <= hi:
                 raise InputError(f"expected low <= high, got [{lo}, {hi}]", where)
             if kind == "uniform":
@@ -227,6 +229,14 @@ def _random_cases(spec: Mapping[str, Any], fixed: dict[str, Any]) -> list[dict[s
     if not cols:
         raise InputError("nothing to draw: give uniform, integers or choice", "random")
     return [{**fixed, **{k: v[i] for k, v in cols.items()}} for i in range(n)]
+
+
+def _finite_span(lo: float, hi: float) -> bool:
+    """Is hi - lo a finite float (a JSON integer of 400 digits is none)?"""
+    try:
+        return math.isfinite(float(hi) - float(lo))
+    except OverflowError:
+        return False
 
 
 def _known(k: str, specs: Mapping[str, Any], generator: str | None, where: str) -> None:

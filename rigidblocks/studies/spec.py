@@ -103,6 +103,12 @@ def read_spec(path: str | os.PathLike) -> Sweep:
                          str(p)) from None
     except InputError as err:
         raise err.located(str(p)) from None
+    except RecursionError:
+        raise InputError("invalid JSON: nested deeper than the decoder can follow",
+                         str(p)) from None
+    except ValueError as err:  # an integer literal past Python's digit limit
+        why = str(err).splitlines()[0].split(";")[0]
+        raise InputError(f"invalid JSON: {why}", str(p)) from None
     return spec_from_dict(doc, str(p), p.parent)
 
 

@@ -31,11 +31,23 @@ class _Store:
         self.memory: list[dict] = []
 
     def _read(self, p: Path):
+        """One results file of this study's kind; an InputError naming it where it is none
+        (a parquet file cut short, text that is no table: a traceback from pyarrow) or has
+        no case_id column (an empty one included: it was overwritten without a word)."""
         import pandas as pd
 
-        if self.ext == ".parquet":
-            return pd.read_parquet(p)
-        return pd.read_csv(p, dtype={"case_id": str, "error": str, "status": str})
+        try:
+            df = pd.read_parquet(p) if self.ext == ".parquet" else \
+                pd.read_csv(p, dtype={"case_id": str, "error": str, "status": str})
+        except Exception as err:  # noqa: BLE001 - pyarrow's and pandas' own errors
+            why = str(err).splitlines()[0] if str(err) else type(err).__name__
+            raise InputError(f"the existing output cannot be read as a study's results "
+                             f"({why}): remove it, or choose another output",
+                             str(p)) from None
+        if "case_id" not in df:
+            raise InputError("the existing output has no case_id column: not a study's "
+                             "results", str(p))
+        return df
 
     def existing(self):
         """Rows already on disk (output file and chunks), one per case id."""
@@ -52,9 +64,6 @@ class _Store:
         if not frames:
             return pd.DataFrame()
         df = pd.concat(frames, ignore_index=True)
-        if "case_id" not in df:
-            raise InputError("the existing output has no case_id column: not a study's "
-                             "results", str(self.path))
         return df.drop_duplicates("case_id", keep="first")
 
     def write(self, rows: list[dict], columns: list[str]) -> None:
