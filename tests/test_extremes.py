@@ -112,6 +112,59 @@ def test_forces_beyond_resolution_are_undecided():
     assert any("forces span" in n for n in c.notes)
 
 
+def _light_block_under_a_point_load(unit_weight):
+    """Block A (1 x 0.5) on a base, block B (1 x 0.5) on A, a 10 kN dead point load at
+    B's top centre and a 1 kN live horizontal one there, f = 0.6. Weightless, the
+    stack tips about the base's edge under A at lambda = 10 x 0.5 / 1 = 5 (B on A at
+    10, sliding at 0.6 x 10 = 6): lambda* = 5 (docs/validation.md, block on a
+    support)."""
+    return make_scene([
+        {"id": "base", "vertices": rect(0, 0, 2, 0.5), "support": True},
+        {"id": "A", "vertices": rect(0.5, 0.5, 1, 0.5)},
+        {"id": "B", "vertices": rect(0.5, 1.0, 1, 0.5)},
+    ], unit_weight=unit_weight, friction=0.6, depth=1.0,
+        loads=[{"block": "B", "force": [0, -10], "point": [1.0, 1.5]},
+               {"block": "B", "force": [1, 0], "point": [1.0, 1.5], "live": True}])
+
+
+@pytest.mark.parametrize("unit_weight", [1e-13, 1e-10])
+def test_a_nearly_weightless_block_carrying_a_load_gets_no_wrong_verdict(unit_weight):
+    """Block A weighing 1e-13 (or 1e-10) of the 10 kN it carries: its per-block scale
+    left the forces through it 1e13 times its load. The solver then reported the
+    relaxation infeasible, read as "the scene is a mechanism" (NOT ADMISSIBLE, and
+    `load` and `friction` UNSTABLE), or the maximum-load LP gave lambda* = -1.37e-6
+    (UNSTABLE), where the weightless scene collapses at lambda* = 5. A verdict the
+    arithmetic cannot support is undecided, with the reason; the right one is
+    accepted too."""
+    assert max_load_multiplier(_light_block_under_a_point_load(0.0), state=False,
+                               compare_dry=False).load_multiplier == pytest.approx(5.0)
+    s = _light_block_under_a_point_load(unit_weight)
+    for lf in (0.0, 1.0):
+        c = check(s, load_factor=lf, state=False, compare_dry=False)
+        assert c.status in ("admissible", "undecided"), (lf, c.status, c.notes)
+    r = max_load_multiplier(s, state=False, compare_dry=False)
+    assert r.status == "undecided" or (
+        r.status == "collapse" and r.load_multiplier == pytest.approx(5.0, rel=1e-6)), \
+        (r.status, r.load_multiplier, r.notes)
+    fr_ = min_friction(s, load_factor=1.0, state=False, compare_dry=False)
+    assert fr_.status in ("stable", "undecided"), (fr_.status, fr_.notes)
+    if r.status == "undecided":
+        assert any("not a mechanism" in n or "forces span" in n or "fails its check" in n
+                   for n in r.notes), r.notes
+
+
+def test_a_loaded_block_that_touches_nothing_is_still_no_equilibrium():
+    """The least-squares confirmation leaves a true mechanism as it was: a block drawn
+    0.5 m above its support carries its weight on nothing."""
+    s = make_scene([
+        {"id": "base", "vertices": rect(0, 0, 2, 0.5), "support": True},
+        {"id": "A", "vertices": rect(0.5, 1.0, 1, 0.5)},
+    ], unit_weight=20.0, friction=0.6)
+    c = check(s, load_factor=0.0, state=False, compare_dry=False)
+    assert c.status == "inadmissible"
+    assert any("the scene is a mechanism" in n for n in c.notes), c.notes
+
+
 # -- 5. every back end's answer checked ---------------------------------------------------
 
 def _sloppy(solve):

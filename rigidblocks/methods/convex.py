@@ -219,12 +219,12 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
                 return Limit("undecided")
             return Limit("unbounded" if dead else "unstable")
         if res.status == INFEASIBLE:
-            return Limit("unstable")
+            return self._unstable_confirmed(f, "the maximum-load problem has no "
+                                            "admissible state")
         lam = float(res.z[prob.cols["lambda"]][0])
         if lam < -ADMISSIBLE_TOL:
-            self.notes.append(f"the largest admissible multiplier is negative ({lam:.6g}): "
-                              "the dead load alone is not admissible")
-            return Limit("unstable")
+            return self._unstable_confirmed(f, f"the largest admissible multiplier is "
+                                            f"negative ({lam:.6g})")
         dead = self._dead_admissible(f)
         if dead is None:
             return Limit("undecided", None, None, lam)
@@ -286,6 +286,22 @@ class ConvexMethod(Verdicts, ForceStates, FrictionSearch, LoadSearch, Method):
         elif _other_mechanisms(res.y[eq], vd[0][eq]):
             self.notes.append(OTHER_MECHANISMS)
         return vd[0][eq], vd[1]
+
+    def _unstable_confirmed(self, f: float, why: str) -> Limit:
+        """"unstable" where the maximum-load problem says that no multiplier is
+        admissible (``why``) and the dead load's own verdict agrees; "undecided" where
+        that verdict cannot decide or finds the dead load admissible (a block of weight
+        1e-10 of the 10 kN it carries: lambda* = -1.37e-6 by the LP, the dead load
+        undecided, where lambda* = 5 without the weight)."""
+        dead = self._dead_admissible(f)
+        if dead is False:
+            self.notes.append(f"{why}: the dead load alone is not admissible")
+            return Limit("unstable")
+        if dead:
+            self.notes.append(f"{why}, yet the dead load alone is admissible: the "
+                              "maximum-load problem is not resolved (forces far above "
+                              "the loads of the blocks they act on)")
+        return Limit("undecided")
 
     def _dead_admissible(self, f: float) -> bool | None:
         """Is lambda = 0 admissible? The admissible multipliers form an interval, which

@@ -200,7 +200,8 @@ class Verdicts:
                               ADMISSIBLE_TOL, f)
         rx = self._read(prob, jr, self.solve(prob, "relaxation", VERDICT), f,
                         self_certified)
-        return self._confirmed(rx) if confirm else rx
+        return self._no_equilibrium_checked(self._confirmed(rx) if confirm else rx,
+                                            load_factor)
 
     def _confirmed(self, rx: Relaxation) -> Relaxation:
         """An undecided relaxation solved again at the confirming tolerances."""
@@ -246,6 +247,24 @@ class Verdicts:
         slope = float(np.sum(self.friction_shares(res, jr, prob)))
         return Relaxation(R, slope, res, jr, prob, near * tol, f, low, residual, unresolved,
                           spread)
+
+    def _no_equilibrium_checked(self, rx: Relaxation, load_factor: float) -> Relaxation:
+        """A relaxation the solver calls infeasible, undecided where the equilibrium
+        equations have a solution after all: the relaxation is feasible exactly where
+        they have one, and where their least-squares residual
+        (:meth:`~rigidblocks.equilibrium.EquilibriumSystem.equations_residual`) is
+        round-off, the solver's certificate failed in the scaled problem (a block that
+        weighs 1e-13 of the 10 kN it carries read "the scene is a mechanism")."""
+        if rx.R is not None or rx.unresolved or rx.res.status != INFEASIBLE:
+            return rx
+        miss = self.system.equations_residual(load_factor)
+        if miss > UNHELD_TOL:
+            return rx
+        return replace(rx, unresolved=(
+            f"{rx.res.solver} found no equilibrium state, yet the equilibrium equations "
+            f"have solutions (least-squares residual {miss:.1e} of the loads): the "
+            "blocks' loads span more than the solver resolves (a block far lighter than "
+            "the loads it carries), not a mechanism"))
 
     def _resolution(self, x: np.ndarray) -> tuple[float, str]:
         """The threshold of a state ``x`` (scaled forces): ADMISSIBLE_TOL x its largest
