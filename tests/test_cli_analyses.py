@@ -71,11 +71,22 @@ def test_friction_json(capsys, seed_file, solver):
 
 
 def test_friction_unstable_json(capsys, tmp_path):
-    """A block standing on a corner has no joint: "unstable", angle null."""
+    """A block standing on a corner has no joint: bad input (exit 2, naming it), no
+    JSON. A structure that no friction makes stand, the stocky arch's thin sister
+    hinging under its weight, is "unstable" with the angle null."""
     p = write(tmp_path, "point.json", [
         {"id": "S", "vertices": rect(-1, -1, 2, 1), "support": True},
         {"id": "B", "vertices": [[0, 0], [1, 1], [0, 2], [-1, 1]]},
     ], unit_weight=1.0)
+    assert main(["friction", p, "--json"]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and "block 'B' touches block 'S' at a point only" in err
+    # a 1 x 3 block on a support whose weight acts 1 m beyond its toe: it tips whatever
+    # the friction
+    p = write(tmp_path, "tips.json", [
+        {"id": "S", "vertices": rect(-1, -1, 4, 1), "support": True},
+        {"id": "B", "vertices": rect(0, 0, 1, 3)},
+    ], unit_weight=1.0, loads=[{"block": "B", "force": [0, -100], "point": [2.0, 3.0]}])
     code, d, _ = run_json(capsys, ["friction", p, "--json"])
     assert code == 0
     assert d["status"] == "unstable"
@@ -232,19 +243,19 @@ def test_unstable_under_live_load_hints_at_the_two_usual_questions(capsys):
 
 def test_contact_tolerance_option(tmp_path, capsys):
     """A 1 x 2 block drawn 1e-6 above its base (scene size about 5.4, so the gap is
-    2e-7 of it): at the default tolerance (1e-7 of the size) it does not touch and
-    cannot stand; with --contact-tol 1e-6 it rests on the base and stands (lambda = 0,
-    f = 0.3: its weight goes straight down)."""
+    2e-7 of it): at the default tolerance (1e-7 of the size) it does not touch and is
+    refused, naming the option; with --contact-tol 1e-6 it rests on the base and
+    stands (lambda = 0, f = 0.3: its weight goes straight down)."""
     path = write(tmp_path, "gap.json", [
         {"id": "base", "vertices": rect(-2, -1, 5, 1), "support": True},
         {"id": "B", "vertices": rect(0, 1e-6, 1, 2)},
     ], unit_weight=1.0, friction=0.3)
-    assert main(["check", path, "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["status"] == "inadmissible"
+    assert main(["check", path, "--json"]) == 2
+    assert "raise the contact tolerance" in capsys.readouterr().err
     assert main(["check", path, "--contact-tol", "1e-6", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["status"] == "admissible"
     assert main(["check", path, "--contact-tol", "0"]) == 2
-    assert "contact_tol" in capsys.readouterr().err
+    assert "--contact-tol" in capsys.readouterr().err
 
 
 # -- small things a user meets ----------------------------------------------------------

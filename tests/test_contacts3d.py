@@ -89,7 +89,7 @@ def test_face_split_into_coplanar_triangles_keeps_the_area():
 def test_gap_needs_the_contact_tolerance(turned):
     """Two unit cubes 1e-6 apart in a scene of size sqrt 6 (the bounding-box diagonal):
     the default tolerance 1e-7 x sqrt 6 = 2.4e-7 sees no contact (the top cube has no
-    joint, so no equilibrium: inadmissible); contact_tol = 1e-5 (2.4e-5) sees a joint of
+    joint: the scene is refused, naming it); contact_tol = 1e-5 (2.4e-5) sees a joint of
     area 1 and the stack stands. Turned by an arbitrary rotation, the same (the plane
     offsets are compared along any normal)."""
     g = 1e-6
@@ -107,7 +107,9 @@ def test_gap_needs_the_contact_tolerance(turned):
     assert loose.n_joints == 1
     assert loose.areas[0] == pytest.approx(1.0, rel=1e-9)
     if not turned:
-        assert not check(scene, state=False).admissible
+        with pytest.raises(InputError, match="block 'top' touches no other block.*raise "
+                           "the contact tolerance"):
+            check(scene, state=False)
         assert check(scene, state=False, contact_tol=1e-5).admissible
 
 

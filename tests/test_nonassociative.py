@@ -1051,10 +1051,11 @@ def test_the_seeds_procedure_standing_above_the_convex_answer_says_so():
 
 def test_a_distortion_failure_without_dilatancy_is_a_failure(tmp_path, capsys):
     """A block that touches nothing (weightless, so the convex path answers the rest)
-    makes the distortion method's A C^-1 A^T singular: with associative friction `load`
+    made the distortion method's A C^-1 A^T singular: with associative friction `load`
     said FAILURE (exit 1), without dilatancy UNDECIDED (exit 3), which tells a script to
-    refine a search that cannot succeed. Every analysis now says FAILURE, exit 1, with
-    the reason."""
+    refine a search that cannot succeed; then every analysis said FAILURE, exit 1. A
+    block that nothing holds is now bad input to every analysis: one line naming it,
+    exit 2, before any solve."""
     d = json.loads((EXAMPLES / "fig4a_bonded.json").read_text())
     d["blocks"].append({"id": "float", "vertices": [[1, 1], [2, 1], [2, 2], [1, 2]]})
     path = tmp_path / "floating.json"
@@ -1062,10 +1063,9 @@ def test_a_distortion_failure_without_dilatancy_is_a_failure(tmp_path, capsys):
     for analysis in ("load", "friction", "check"):
         code = main([analysis, str(path), "--flow", "non-associative", "--method",
                      "distortion"])
-        out = capsys.readouterr().out
-        assert code == 1, (analysis, out)
-        assert "verdict    NO VERDICT: FAILURE" in out
-        assert "A C^-1 A^T is singular or ill-conditioned" in out
+        out, err = capsys.readouterr()
+        assert code == 2 and out == "", (analysis, out)
+        assert "block 'float' touches no other block" in err and err.count("\n") == 1
 
 
 @pytest.mark.parametrize("name", ["arch.json", "reference_self_weight.json"])

@@ -337,9 +337,6 @@ _HARMONIC = ("validation.md (harmonic stack): block k from the top shifted L/(2k
 _SIDE = ("validation.md (two blocks side by side): pushed together, the forces cancel "
          "through the vertical joint, so f = 0 suffices; pulled apart, each block's bed "
          "joint carries H: f* = H / W = 0.4 (no tipping: H h/2 = 0.2 <= W b/2 = 0.5).")
-_NO_JOINT = ("A free block without a joint (or touching at a point only) cannot be in "
-             "equilibrium under its weight: no admissible state, so check is "
-             "inadmissible, min_friction and max_load \"unstable\", never a number.")
 _CONE = ("validation.md (3D inclined plane): a block on a plane sloping at theta needs "
          "f* = tan(theta) with the Coulomb cone, whatever the downhill azimuth (the 2 x 2 "
          "x 0.5 box is squat enough not to tip: 2/0.5 >= tan 20 deg).")
@@ -434,14 +431,8 @@ def _catalogue() -> list[Case]:
                     governing=_pairs(("G", "L"), ("G", "R")), governing_any_vertex=True,
                     verdicts=(Verdict(False, (("friction", 0.0),)),
                               *_around(1.0 / 15.0, "friction")), source=_LEANING))
-    # statuses without a number
-    for name, build in (("floating", floating), ("on_a_point", on_a_point)):
-        out.append(Case(f"{name}_check", build, "check", "inadmissible",
-                        options=(("friction", "infinite"),), source=_NO_JOINT))
-        out.append(Case(f"{name}_min_friction", build, "min_friction", "unstable",
-                        source=_NO_JOINT))
-        out.append(Case(f"{name}_max_load", build, "max_load_multiplier", "unstable",
-                        source=_NO_JOINT))
+    # statuses without a number (a block that nothing holds, floating() or
+    # on_a_point(), is no case: every analysis refuses it as bad input)
     out.append(Case("pressed_down", pressed_down, "max_load_multiplier", "unbounded",
                     source="A live force straight down through the centroid with infinite "
                     "friction only presses the block onto its support: every lambda >= 0 "

@@ -242,7 +242,11 @@ def open_method(scene: Scene, method: str = "clarabel", *, solver: str | None = 
                          settings=settings, pyramid=pyramid, progress=progress)
     m.notes.extend(_weightless(scene, system) + _no_depth(scene, system)
                    + _odd_depth(scene, system))
-    m.notes.extend(_unheld(scene, contacts, kw.get("tol", DEFAULT_TOL)))
+    unheld = _unheld(scene, contacts, kw.get("tol", DEFAULT_TOL))
+    if unheld:
+        # a mechanism by its geometry is bad input, as a DXF import refuses it: a verdict
+        # (NOT ADMISSIBLE, UNSTABLE) on blocks that nothing holds read as the structure's
+        raise InputError("; ".join(unheld), scene.source)
     bonded = int(np.count_nonzero((contacts.tensile_strength > 0) | (contacts.cohesion > 0)))
     if bonds_kept and bonded:
         # (the load path is a 2D command: a 3D scene's note pointed to it)
