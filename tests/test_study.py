@@ -716,6 +716,10 @@ def test_an_optional_integer_parameter_is_an_integer(grid, said):
     with pytest.raises(InputError, match="lo must be below hi, got lo 0.3 and hi 0.1"):
         study.make_sweep("arch", grid={"voussoirs": [5]}, analyses=[
             {"analysis": "min_thickness", "lo": 0.3, "hi": 0.1}])
+    # an infinite hi failed every case ("cannot be built at thickness=inf", exit 1)
+    with pytest.raises(InputError, match="hi must be a finite number > 0, got inf"):
+        study.make_sweep("arch", grid={"voussoirs": [5]}, analyses=[
+            {"analysis": "min_thickness", "hi": math.inf}])
 
 
 def test_the_sweep_commands_progress_bar_is_for_a_terminal(tmp_path, capsys):

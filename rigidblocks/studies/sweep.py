@@ -158,8 +158,10 @@ def _analysis(entry: Any, where: str) -> Analysis:
             allowed = ", ".join(ANALYSES[name]) or "none"
             raise InputError(f'unknown option "{k}" of {name} (allowed: {allowed})', where)
     for k in ("lo", "hi", "rtol"):
-        if k in opts and not (is_number(_plain(opts[k])) and _plain(opts[k]) > 0):
-            raise InputError(f"{k} must be a number > 0, got {opts[k]!r}", where)
+        # (a hi of 1e400, infinite, failed every case: "cannot be built at thickness=inf")
+        if k in opts and not (is_number(_plain(opts[k])) and _plain(opts[k]) > 0
+                              and math.isfinite(_plain(opts[k]))):
+            raise InputError(f"{k} must be a finite number > 0, got {opts[k]!r}", where)
     if "lo" in opts and "hi" in opts and not _plain(opts["lo"]) < _plain(opts["hi"]):
         # (each case failed on its own, the sweep ending with status 0)
         raise InputError(f"lo must be below hi, got lo {opts['lo']!r} and hi "
