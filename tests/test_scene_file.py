@@ -184,23 +184,6 @@ def test_self_intersecting_polygon(tmp_path):
     expect_error(write_doc(tmp_path, doc), "block 'A'", "self-intersecting")
 
 
-@pytest.mark.parametrize("vertices, said", [
-    ([[0.5, 0.5], [1.5, 0.5], [1.5, 0.5], [1.5, 1.0], [0.5, 1.0]],
-     "vertex 2 repeats vertex 1 (a zero-length edge)"),
-    ([[0.5, 0.5], [1.5, 0.5], [1.5, 1.0], [0.5, 1.0], [0.5, 0.5]],
-     "its last vertex (4) repeats its first: a polygon closes itself"),
-])
-def test_a_repeated_vertex_is_refused(tmp_path, vertices, said):
-    """A vertex given twice in a row, or a ring closed by repeating its first vertex,
-    was taken without a word; a collinear vertex (a T-junction) stays allowed."""
-    doc = base_doc()
-    doc["blocks"][1]["vertices"] = vertices
-    expect_error(write_doc(tmp_path, doc), "block 'A'", said)
-    doc["blocks"][1]["vertices"] = [[0.5, 0.5], [1.0, 0.5], [1.5, 0.5], [1.5, 1.0],
-                                    [0.5, 1.0]]
-    read_scene(write_doc(tmp_path, doc))
-
-
 # -- semantics ------------------------------------------------------------------------
 def test_duplicate_ids(tmp_path):
     doc = base_doc()

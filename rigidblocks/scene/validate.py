@@ -373,7 +373,6 @@ def _check_polygons(scene: Scene) -> None:
     import shapely
 
     verts, starts = flat_polygons(scene)
-    _check_repeats(scene, verts, starts)
     area, _ = polygon_areas_centroids(verts, starts)
     owner = np.repeat(np.arange(len(scene.blocks)), np.diff(starts))
     diag2 = polygon_diagonals(verts, starts) ** 2
@@ -389,28 +388,6 @@ def _check_polygons(scene: Scene) -> None:
         b = scene.blocks[int(np.flatnonzero(~simple)[0])]
         raise InputError("polygon is self-intersecting (its edges cross or touch)",
                          f"block {b.id!r}")
-
-
-def _check_repeats(scene: Scene, verts: np.ndarray, starts: np.ndarray) -> None:
-    """A 2D block's vertex equal to the next one (a zero-length edge), or its last equal
-    to its first (a closed ring: the polygon closes itself), is refused naming the block
-    and the vertices; both were taken without a word."""
-    n = len(verts)
-    if n == 0:
-        return
-    nxt = np.arange(1, n + 1)
-    ends = np.asarray(starts[1:]) - 1
-    nxt[ends] = starts[:-1]
-    same = np.flatnonzero(np.all(verts == verts[nxt], axis=1))
-    if not len(same):
-        return
-    k = int(same[0])
-    owner = int(np.searchsorted(starts, k, side="right") - 1)
-    i, j = k - int(starts[owner]), int(nxt[k]) - int(starts[owner])
-    what = (f"its last vertex ({i}) repeats its first: a polygon closes itself, drop the "
-            "last vertex" if j == 0 else
-            f"vertex {j} repeats vertex {i} (a zero-length edge): drop one of them")
-    raise InputError(what, f"block {scene.blocks[owner].id!r}")
 
 
 def block_polygons(scene: Scene):
