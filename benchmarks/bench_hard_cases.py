@@ -27,6 +27,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from common import markdown_table, write_results  # noqa: E402
 
 from rigidblocks.analyses import check, max_load_multiplier, min_friction  # noqa: E402
+from rigidblocks.errors import InputError  # noqa: E402
 from rigidblocks.generators import build  # noqa: E402
 from rigidblocks.generators.arches import make_scene  # noqa: E402
 from rigidblocks.scene.model import Scene  # noqa: E402
@@ -34,6 +35,8 @@ from rigidblocks.scene.model import Scene  # noqa: E402
 NAME = "bench_hard_cases"
 METHODS = ("clarabel", "highs", "scs", "distortion")
 RTOL = 1e-6
+#: the expected answer of a case that every analysis refuses as bad input (InputError)
+REFUSED = "refused"
 #: Milankovitch (1907) / Heyman (The Stone Skeleton, 1995): thinnest semicircular arch
 #: with radial joints under self-weight, t / R = 0.1075 (R the mean radius)
 T_MIN = 0.1075
@@ -48,7 +51,7 @@ class Case:
     name: str
     scene: Callable[[], Scene]
     analysis: str  # check | min_friction | max_load
-    expected: Any  # "admissible" | "inadmissible" | "unstable" | a number
+    expected: Any  # "admissible" | "inadmissible" | "unstable" | REFUSED | a number
     why: str
     kw: dict[str, Any] = field(default_factory=dict)
     default_only: bool = False
@@ -157,11 +160,12 @@ def cases(tiny: bool) -> list[Case]:
                         lambda t=t: build("arch", voussoirs=60, thickness=t,
                                           friction="infinite"),
                         "check", exp, arch_why, {"load_factor": 0.0}))
-    float_why = "no contact: vertical equilibrium would need -W = 0"
+    float_why = ("no contact: vertical equilibrium would need -W = 0, a mechanism by its "
+                 "geometry: refused as bad input, naming the block")
     out += [Case("mechanism: floating block", lambda: block_on_base(gap=0.1), "check",
-                 "inadmissible", float_why, {"load_factor": 0.0}),
+                 REFUSED, float_why, {"load_factor": 0.0}),
             Case("mechanism: floating block, min friction", lambda: block_on_base(gap=0.1),
-                 "min_friction", "unstable", float_why, {"load_factor": 0.0})]
+                 "min_friction", REFUSED, float_why, {"load_factor": 0.0})]
     side_why = ("only a vertical face: horizontal equilibrium gives N = 0, so |T| <= f N "
                 "= 0 cannot carry the weight, for any finite f")
     for f in (0.6, 1e3):
@@ -189,8 +193,8 @@ def cases(tiny: bool) -> list[Case]:
     for d, exp, why in (
             (1e-9, "admissible", "a 1e-9 misfit is below the contact tolerance (1e-7 of "
              "the scene size): a flush joint carries the weight with N only"),
-            (1e-4, "inadmissible", "a block turned by 1e-4 touches at one corner: a "
-             "point contact off the weight's line of action cannot hold it")):
+            (1e-4, REFUSED, "a block turned by 1e-4 touches at one corner: a point "
+             "contact holds nothing (a mechanism by its geometry, refused as bad input)")):
         out.append(Case(f"nearly collinear joint, misfit {d:g} x size",
                         lambda d=d: block_on_base(lift=d * 3.0 / 1.0), "check", exp, why,
                         {"load_factor": 0.0}))
@@ -223,7 +227,10 @@ def answer(case: Case, scene: Scene, method: str) -> Any:
 
 
 def verdict(expected: Any, got: Any) -> str:
-    if got in ("undecided", "failure") or (isinstance(got, str) and got.startswith("error")):
+    if expected == REFUSED:
+        return "right" if isinstance(got, str) and got.startswith(REFUSED) else "wrong"
+    if got in ("undecided", "failure") or (isinstance(got, str) and (
+            got.startswith("error") or got.startswith(REFUSED))):
         return "flagged"
     if isinstance(expected, str) or isinstance(got, str):
         return "right" if got == expected else "wrong"
@@ -249,6 +256,8 @@ def run(tiny: bool) -> list[dict[str, Any]]:
             t0 = time.perf_counter()
             try:
                 got = answer(case, scene, m)
+            except InputError as e:  # bad input: right where the case expects it
+                got = f"{REFUSED}: {str(e)[:90]}"
             except Exception as e:  # a raised error is a flagged failure
                 got = f"error: {type(e).__name__}: {str(e)[:90]}"
             sec = time.perf_counter() - t0

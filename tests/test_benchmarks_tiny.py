@@ -393,6 +393,12 @@ def test_bench_hard_cases_tiny(tmp_path):
     assert bench.verdict(0.0, 1e-3) == "wrong"
     assert bench.verdict(0.5, "error: SolverFailure: x") == "flagged"
     assert bench.verdict("inadmissible", "undecided") == "flagged"
+    # bad input is right only where the case expects it (a floating block)
+    assert bench.verdict(bench.REFUSED, "refused: block 'b' touches no other") == "right"
+    assert bench.verdict(bench.REFUSED, "inadmissible") == "wrong"
+    assert bench.verdict("inadmissible", "refused: block 'b' ...") == "flagged"
+    assert {r["case"] for r in default if r["expected"] == bench.REFUSED} >= {
+        "mechanism: floating block", "nearly collinear joint, misfit 0.0001 x size"}
 
 
 def test_bench_methods_tiny(tmp_path):

@@ -145,32 +145,23 @@ def test_inadmissible_detected_by_stalling():
     assert any("tends to" in n and "virtual motion" in n for n in res.notes)
 
 
-def test_mechanism_is_a_failure_with_reason():
-    """An unloaded free block with no joint: A C^-1 A^T is singular (the block is a
-    mechanism of the linked structure) and the method cannot say anything: failure."""
+@pytest.mark.parametrize("unit_weight", [None, 1.0])
+def test_a_block_without_joints_is_refused_by_both_methods(unit_weight):
+    """A free block with no joint, unloaded (A C^-1 A^T singular: the distortion method
+    said FAILURE) or under its weight (no equilibrium state: NOT ADMISSIBLE, and
+    min_friction "unstable", on both methods): a mechanism by its geometry, refused as
+    bad input by every analysis of either method, naming the block."""
+    top = {} if unit_weight is None else {"unit_weight": unit_weight}
     scene = make_scene([
         {"id": "base", "vertices": rect(0, 0, 2, 0.5), "support": True},
         {"id": "A", "vertices": rect(0, 0.5, 1, 0.5)},
         {"id": "F", "vertices": rect(5, 5, 1, 1)},
-    ], friction=0.5, loads=[{"block": "A", "force": [0, -1]}])
-    res = rb.check(scene, method="distortion")
-    assert res.status == "failure" and not res.admissible
-    assert any("mechanism" in n and "F" in n for n in res.notes)
-
-
-def test_loaded_block_without_joints_is_inadmissible():
-    """A block without joints under its own weight has no equilibrium state at all
-    (Clarabel: inadmissible, min_friction "unstable"): the same verdicts, with the
-    block named."""
-    scene = make_scene([
-        {"id": "base", "vertices": rect(0, 0, 2, 0.5), "support": True},
-        {"id": "A", "vertices": rect(0, 0.5, 1, 0.5)},
-        {"id": "F", "vertices": rect(5, 5, 1, 1)},
-    ], unit_weight=1.0, friction=0.5)
-    res = rb.check(scene, method="distortion")
-    assert res.status == "inadmissible" and res.status == rb.check(scene).status
-    assert any("F" in n and "no equilibrium" in n for n in res.notes)
-    assert rb.min_friction(scene, method="distortion", rtol=1e-5).status == "unstable"
+    ], friction=0.5, loads=[{"block": "A", "force": [0, -1]}], **top)
+    for method in ("distortion", "clarabel"):
+        with pytest.raises(rb.InputError, match="block 'F' touches no other block"):
+            rb.check(scene, method=method)
+        with pytest.raises(rb.InputError, match="block 'F' touches no other block"):
+            rb.min_friction(scene, method=method, rtol=1e-5)
 
 
 @pytest.mark.parametrize("sliding", ["plastic", "coulomb"])

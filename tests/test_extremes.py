@@ -153,16 +153,23 @@ def test_a_nearly_weightless_block_carrying_a_load_gets_no_wrong_verdict(unit_we
                    for n in r.notes), r.notes
 
 
-def test_a_loaded_block_that_touches_nothing_is_still_no_equilibrium():
+def test_the_equations_residual_of_a_true_mechanism_is_its_load():
     """The least-squares confirmation leaves a true mechanism as it was: a block drawn
-    0.5 m above its support carries its weight on nothing."""
+    0.5 m above its support carries its weight (10 N of the 10 N loads) on nothing, so
+    the equations miss a solution by all of it; the light block under a point load
+    above has a solution (residual round-off). Read on the assembled system: every
+    analysis refuses the floating block before it."""
+    from rigidblocks.contacts import detect_contacts
+    from rigidblocks.equilibrium import assemble
+
     s = make_scene([
         {"id": "base", "vertices": rect(0, 0, 2, 0.5), "support": True},
         {"id": "A", "vertices": rect(0.5, 1.0, 1, 0.5)},
     ], unit_weight=20.0, friction=0.6)
-    c = check(s, load_factor=0.0, state=False, compare_dry=False)
-    assert c.status == "inadmissible"
-    assert any("the scene is a mechanism" in n for n in c.notes), c.notes
+    system = assemble(s, detect_contacts(s))
+    assert system.equations_residual(0.0) == pytest.approx(1.0, rel=1e-9)
+    light = _light_block_under_a_point_load(1e-13)
+    assert assemble(light, detect_contacts(light)).equations_residual(1.0) < 1e-12
 
 
 # -- 5. every back end's answer checked ---------------------------------------------------
