@@ -218,11 +218,13 @@ def answer(case: Case, scene: Scene, method: str) -> Any:
     kw = dict(case.kw)
     if case.analysis == "check":
         return check(scene, method=method, state=False, compare_dry=False, **kw).status
+    # the numbers asked to the accuracy they are judged at (RTOL): at the default 2e-3
+    # the distortion's lambda* = 1.19921875 of 1.2 and SCS's f* = 0.5005 of 0.5 read wrong
     if case.analysis == "min_friction":
         r = min_friction(scene, kw.get("load_factor", 1.0), method=method, state=False,
-                         compare_dry=False)
+                         compare_dry=False, rtol=RTOL)
         return r.friction_factor if r.status == "stable" else r.status
-    r = max_load_multiplier(scene, method=method, state=False, compare_dry=False)
+    r = max_load_multiplier(scene, method=method, state=False, compare_dry=False, rtol=RTOL)
     return r.load_multiplier if r.status == "collapse" else r.status
 
 
