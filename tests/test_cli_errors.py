@@ -401,22 +401,21 @@ def test_a_random_range_too_wide_to_draw_from_is_refused(span, tmp_path, capsys)
     one_line_error(capsys, f"random.{kind}.{name}: expected finite numbers")
 
 
-def test_an_existing_output_that_is_no_results_file_is_refused(tmp_path, capsys):
+@pytest.mark.parametrize("name, text, said", [
+    ("o.parquet", "x\n", "the existing output cannot be read"),
+    ("o.csv", "garbage\n", "the existing output has no case_id column"),
+])
+def test_an_existing_output_that_is_no_results_file_is_refused(name, text, said, tmp_path,
+                                                                capsys):
     """A parquet output of 2 bytes ended in pyarrow's ArrowInvalid traceback; a CSV whose
-    only line is "garbage" (a header, no rows) was overwritten without a word."""
-    pytest.importorskip("pyarrow")
-    bad = tmp_path / "o.parquet"
-    bad.write_text("x\n")
+    only line is "garbage" (a header, no rows) was overwritten without a word. Both are
+    refused and left as they were."""
+    bad = tmp_path / name
+    bad.write_text(text)
     assert main(["sweep", str(SWEEP), "-o", str(bad), "--workers", "1",
                  "--no-progress"]) == 2
-    one_line_error(capsys, f"{bad}: the existing output cannot be read")
-    assert bad.read_text() == "x\n"
-    csv = tmp_path / "o.csv"
-    csv.write_text("garbage\n")
-    assert main(["sweep", str(SWEEP), "-o", str(csv), "--workers", "1",
-                 "--no-progress"]) == 2
-    one_line_error(capsys, f"{csv}: the existing output has no case_id column")
-    assert csv.read_text() == "garbage\n"
+    one_line_error(capsys, f"{bad}: {said}")
+    assert bad.read_text() == text
 
 
 @pytest.mark.parametrize("argv, words", [
